@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Set up shaftfem in .venv on a fresh Debian machine: the Python packages, and the
+# system libraries gmsh's wheel links against (X11/OpenGL client libraries) if any
+# is missing. Safe to run again; it does nothing that is already done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PY=${PYTHON:-python3}
+if [ ! -x .venv/bin/python ]; then
+    "$PY" -m venv .venv
+fi
+stamp=.venv/.shaftfem-installed
+if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
+    touch "$stamp"
+fi
+# gmsh's wheel needs libGLU, libXrender, libXcursor, libXft, libXinerama, libGL.
+lib=$(ls .venv/lib/libgmsh.so* .venv/lib/python3*/site-packages/gmsh*/lib/libgmsh.so* 2>/dev/null | head -n 1 || true)
+if [ -n "$lib" ] && ldd "$lib" | grep -q "not found"; then
+    echo "setup: installing system libraries for gmsh" >&2
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq \
+        libglu1-mesa libgl1 libxrender1 libxcursor1 libxft2 libxinerama1 libx11-6 >/dev/null
+fi
+.venv/bin/python -c "import gmsh" || { echo "setup: gmsh does not import" >&2; exit 1; }

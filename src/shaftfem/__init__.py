@@ -1,0 +1,10 @@
+"""shaftfem: finite-element modal analysis of machine shafts.
+
+Importing the package is cheap: gmsh, scikit-fem and pyvista are imported only
+by the steps that need them (geometry/mesh, assembly, render).
+"""
+
+__version__ = "0.1.0"
+
+from .errors import GeometryError, MeshError, SceneError, ShaftfemError, SolverError  # noqa: F401
+from .scene import Scene, load_scene  # noqa: F401

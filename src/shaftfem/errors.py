@@ -1,0 +1,21 @@
+"""The errors shaftfem raises on purpose: each one is a sentence a designer can act on."""
+
+
+class ShaftfemError(Exception):
+    """Base class: the CLI prints the message on one line and exits nonzero."""
+
+
+class SceneError(ShaftfemError, ValueError):
+    """A scene file is missing, malformed, or has a value outside what is allowed."""
+
+
+class GeometryError(ShaftfemError):
+    """The CAD construction failed or produced a solid that fails its checks."""
+
+
+class MeshError(ShaftfemError):
+    """The mesh is unusable (inverted elements, disconnected parts, ...)."""
+
+
+class SolverError(ShaftfemError):
+    """The eigen solve did not give what a free elastic body must give."""

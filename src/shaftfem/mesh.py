@@ -1,0 +1,264 @@
+"""Tetrahedral meshes of the shaft's solid (gmsh), handed to scikit-fem.
+
+Sizes: `MeshSettings.size` away from the grooves, `groove_size` at the groove
+faces, `edge_size` at the groove's inner floor edges (where a sharp corner makes
+the elastic field singular), graded in between. Second-order elements are
+curved onto the CAD surfaces; every element's Jacobian determinant is checked
+and a mesh with an inverted or degenerate element is refused.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .errors import MeshError
+from .scene import Grooves, MeshSettings, Shaft
+
+MIN_JACOBIAN_RATIO = 0.02  # smallest det J / largest det J allowed within one element
+
+
+@dataclass
+class ShaftMesh:
+    """A tetrahedral mesh in m: points (N, 3), cells (E, 4 or 10) in VTK/meshio node order."""
+
+    points: np.ndarray
+    cells: np.ndarray
+    order: int
+    min_jacobian_ratio: float
+    optimized_high_order: bool
+    seconds: float
+
+    @property
+    def n_elements(self) -> int:
+        return self.cells.shape[0]
+
+    @property
+    def cell_type(self) -> str:
+        return "tetra10" if self.order == 2 else "tetra"
+
+    def to_skfem(self):
+        """The same mesh as a scikit-fem MeshTet1/MeshTet2 (node order handled by skfem.io)."""
+        import meshio
+        from skfem.io.meshio import from_meshio
+
+        return from_meshio(meshio.Mesh(self.points, [(self.cell_type, self.cells)]))
+
+
+def _sample(gmsh, dim: int, tag: int, n: int = 3) -> np.ndarray:
+    lo, hi = gmsh.model.getParametrizationBounds(dim, tag)
+    if dim == 1:
+        params = np.linspace(lo[0], hi[0], n + 2)[1:-1]
+    else:
+        u = np.linspace(lo[0], hi[0], n + 2)[1:-1]
+        v = np.linspace(lo[1], hi[1], n + 2)[1:-1]
+        params = np.array([[a, b] for a in u for b in v]).ravel()
+    return np.asarray(gmsh.model.getValue(dim, tag, params)).reshape(-1, 3)
+
+
+def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], list[int], float]:
+    """Boundary faces of the grooves, and the helical curves along their floor edges."""
+    R, L = shaft.radius, shaft.length
+    floor = R - grooves.depth
+    tol = 1e-6
+    faces = []
+    for _, s in gmsh.model.getEntities(2):
+        up, _ = gmsh.model.getAdjacencies(2, s)
+        if len(up) != 1:
+            continue  # a face between two cells
+        xyz = _sample(gmsh, 2, s)
+        r = np.hypot(xyz[:, 0], xyz[:, 1])
+        if np.all(np.abs(r - R) < tol) or np.all(np.abs(xyz[:, 2]) < tol) or np.all(
+            np.abs(xyz[:, 2] - L) < tol
+        ):
+            continue
+        faces.append(s)
+    edges, longest = [], 0.0
+    for _, c in gmsh.model.getEntities(1):
+        xyz = _sample(gmsh, 1, c, 5)
+        r = np.hypot(xyz[:, 0], xyz[:, 1])
+        if np.all(np.abs(r - floor) < tol) and np.ptp(xyz[:, 2]) > 1e-4:
+            edges.append(c)
+            longest = max(longest, float(np.sum(np.linalg.norm(np.diff(xyz, axis=0), axis=1))))
+    return faces, edges, longest * 6 / 5
+
+
+def _size_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> None:
+    f = gmsh.model.mesh.field
+    faces, edges, longest = _groove_entities(gmsh, shaft, grooves)
+    fields = []
+    if faces:
+        d = f.add("Distance")
+        f.setNumbers(d, "SurfacesList", faces)
+        f.setNumber(d, "Sampling", 60)
+        t = f.add("Threshold")
+        f.setNumber(t, "InField", d)
+        f.setNumber(t, "SizeMin", s.groove_size)
+        f.setNumber(t, "SizeMax", s.size)
+        f.setNumber(t, "DistMin", 0.5 * s.groove_size)
+        f.setNumber(t, "DistMax", 0.5 * s.groove_size + 2.5 * (s.size - s.groove_size))
+        fields.append(t)
+    if edges and s.edge_size < s.groove_size:
+        d = f.add("Distance")
+        f.setNumbers(d, "CurvesList", edges)
+        f.setNumber(d, "Sampling", max(20, math.ceil(2 * longest / s.edge_size)))
+        t = f.add("Threshold")
+        f.setNumber(t, "InField", d)
+        f.setNumber(t, "SizeMin", s.edge_size)
+        f.setNumber(t, "SizeMax", s.groove_size)
+        f.setNumber(t, "DistMin", 0.5 * s.edge_size)
+        f.setNumber(t, "DistMax", 0.5 * s.edge_size + 2.5 * (s.groove_size - s.edge_size))
+        fields.append(t)
+    if fields:
+        m = f.add("Min")
+        f.setNumbers(m, "FieldsList", fields)
+        f.setAsBackgroundMesh(m)
+
+
+def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
+               write_msh: Path | None = None) -> ShaftMesh:
+    """Mesh the solid in `brep` with tetrahedra of the settings' order and sizes."""
+    import meshio
+
+    from .geometry import gmsh_session
+
+    t0 = time.perf_counter()
+    with gmsh_session() as gmsh:
+        gmsh.model.add("mesh")
+        sector = grooves is None
+        if sector:
+            # An ungrooved shaft is meshed as a 90-degree sector with periodic radial
+            # faces and copied four times: the mesh then has the shaft's 4-fold
+            # symmetry, so bending pairs come out exactly degenerate.
+            _quarter_cylinder(gmsh, shaft)
+        else:
+            gmsh.model.occ.importShapes(str(brep))
+            gmsh.model.occ.synchronize()
+        opt = gmsh.option.setNumber
+        opt("Mesh.MeshSizeMax", settings.size)
+        opt("Mesh.MeshSizeMin", min(settings.edge_size, settings.size) * 0.5)
+        opt("Mesh.MeshSizeFromPoints", 0)
+        opt("Mesh.MeshSizeFromCurvature", 0)
+        opt("Mesh.MeshSizeExtendFromBoundary", 0)
+        opt("Mesh.Optimize", 1)
+        if grooves is not None:
+            _size_fields(gmsh, shaft, grooves, settings)
+        gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "shaft")
+        try:
+            gmsh.model.mesh.generate(3)
+            if settings.order == 2:
+                gmsh.model.mesh.setOrder(2)
+        except Exception as exc:  # gmsh raises a bare Exception with its log line
+            raise MeshError(f"gmsh could not mesh the solid: {exc}") from None
+        optimized = False
+        if settings.order == 2 and _worst_scaled_jacobian(gmsh) <= MIN_JACOBIAN_RATIO:
+            # Curving P2 edges onto the helical faces can invert thin elements; gmsh's
+            # high-order optimiser repairs them (only done when needed: it is slow).
+            opt("Mesh.HighOrderOptimize", 2)
+            gmsh.model.mesh.optimize("HighOrder")
+            optimized = True
+        fd, tmp = tempfile.mkstemp(suffix=".msh")
+        os.close(fd)
+        try:
+            gmsh.write(tmp)
+            m = meshio.read(tmp)
+        finally:
+            os.unlink(tmp)
+        if write_msh is not None:
+            gmsh.write(str(write_msh))
+    cell_type = "tetra10" if settings.order == 2 else "tetra"
+    cells = m.cells_dict.get(cell_type)
+    if cells is None or len(cells) == 0:
+        raise MeshError("the mesh has no tetrahedra")
+    points = m.points
+    if sector:
+        points, cells = _four_copies(points, cells)
+    points, cells = _compact(points, cells)
+    ratio = jacobian_ratio(points, cells)
+    if ratio <= MIN_JACOBIAN_RATIO:
+        raise MeshError(
+            f"the mesh has an inverted or degenerate element (min/max det J within an "
+            f"element = {ratio:.3g}, required > {MIN_JACOBIAN_RATIO}); try a different "
+            "element size"
+        )
+    return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
+                     optimized_high_order=optimized, seconds=time.perf_counter() - t0)
+
+
+def _quarter_cylinder(gmsh, shaft: Shaft) -> None:
+    occ = gmsh.model.occ
+    occ.addCylinder(0, 0, 0, 0, 0, shaft.length, shaft.radius, angle=math.pi / 2)
+    occ.synchronize()
+    planes = {}
+    for _, f in gmsh.model.getEntities(2):
+        c = gmsh.model.occ.getCenterOfMass(2, f)
+        if abs(c[1]) < 1e-12 and c[0] > 0:
+            planes["y0"] = f
+        elif abs(c[0]) < 1e-12 and c[1] > 0:
+            planes["x0"] = f
+    # exact quarter turn about z: (x, y) -> (-y, x)
+    turn = [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    gmsh.model.mesh.setPeriodic(2, [planes["x0"]], [planes["y0"]], turn)
+
+
+def _four_copies(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rotate a quarter mesh by 0, 90, 180, 270 degrees and merge the shared nodes."""
+    pts, cls = [], []
+    p = points.copy()
+    for k in range(4):
+        pts.append(p)
+        cls.append(cells + k * len(points))
+        p = np.column_stack([-p[:, 1], p[:, 0], p[:, 2]])  # exact quarter turn
+    allp = np.vstack(pts)
+    # Copies of a node agree to round-off of the periodic mapping; merge on a 1e-9 m grid.
+    _, first, inverse = np.unique(np.round(allp, 9), axis=0, return_index=True,
+                                  return_inverse=True)
+    return allp[first], inverse.reshape(-1)[np.vstack(cls)]
+
+
+def _compact(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Drop nodes no element uses (gmsh keeps CAD points as mesh nodes)."""
+    used = np.unique(cells)
+    remap = np.full(points.shape[0], -1, dtype=np.int64)
+    remap[used] = np.arange(used.size)
+    return np.ascontiguousarray(points[used]), remap[cells]
+
+
+def _worst_scaled_jacobian(gmsh) -> float:
+    worst = math.inf
+    for etype in gmsh.model.mesh.getElementTypes(3):
+        tags, _ = gmsh.model.mesh.getElementsByType(etype)
+        if len(tags):
+            q = gmsh.model.mesh.getElementQualities(tags, "minSJ")
+            worst = min(worst, float(np.min(q)))
+    return worst
+
+
+def jacobian_ratio(points: np.ndarray, cells: np.ndarray) -> float:
+    """Smallest over elements of min(det J) / max(det J), sampled at nodes and inside.
+
+    Negative means an inverted element; the determinant is evaluated with
+    scikit-fem's isoparametric mapping, the one the assembly integrates with.
+    """
+    import meshio
+    from skfem.io.meshio import from_meshio
+
+    ctype = "tetra10" if cells.shape[1] == 10 else "tetra"
+    mesh = from_meshio(meshio.Mesh(points, [(ctype, cells)]))
+    mapping = mesh._mapping()
+    # vertices, edge midpoints, face centroids and the centroid of the reference tet
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    pts = list(v)
+    pts += [(v[i] + v[j]) / 2 for i in range(4) for j in range(i + 1, 4)]
+    pts += [(v[i] + v[j] + v[k]) / 3 for i, j, k in ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))]
+    pts.append(v.mean(axis=0))
+    det = mapping.detDF(np.array(pts).T)
+    sign = np.sign(np.median(det))
+    det = sign * det
+    return float(np.min(det.min(axis=1) / np.abs(det).max(axis=1)))

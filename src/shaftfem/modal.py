@@ -1,0 +1,166 @@
+"""Free-free natural frequencies and mode shapes: (K - w^2 M) x = 0.
+
+K of a free body is singular (six rigid-body modes at 0 Hz), so the pencil is
+solved with shift-invert Lanczos (SciPy `eigsh`, SuperLU) about a small negative
+shift sigma, where K - sigma M is positive definite. The six rigid-body modes
+must come out near 0 Hz; anything else is reported as an error with its cause.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.linalg import eigh
+from scipy.sparse.csgraph import connected_components
+from scipy.sparse.linalg import eigsh
+
+from .errors import SolverError
+
+RIGID_BODY_MODES = 6
+# sigma = -SHIFT_FACTOR * median(diag K / diag M): scale-free, so frequencies scale
+# exactly with sqrt(E / rho) and do not depend on the unit system.
+SHIFT_FACTOR = 1e-8
+# A mode counts as rigid below this fraction of the same scale (f ~ 1e-5 f_scale).
+RIGID_FACTOR = 1e-10
+
+
+@dataclass
+class Modes:
+    """The first elastic modes of a free body, lowest first.
+
+    frequencies in Hz; shapes (n_dofs, n) mass-normalised (x^T M x = 1, in
+    m / sqrt(kg)); residuals ||K x - w^2 M x|| / ||K x||; kinds 'bending',
+    'torsion', 'axial' or 'mixed'; energy (n, 3): kinetic-energy fractions in
+    axial, radial and tangential (about the shaft axis) motion.
+    """
+
+    frequencies: np.ndarray
+    shapes: np.ndarray
+    residuals: np.ndarray
+    kinds: list[str]
+    energy: np.ndarray
+    rigid_frequencies: np.ndarray
+    orthonormality_error: float
+    shift: float
+    n_dofs: int
+    seconds: dict = field(default_factory=dict)
+
+    @property
+    def n_rigid(self) -> int:
+        return len(self.rigid_frequencies)
+
+    @property
+    def omegas(self) -> np.ndarray:
+        return 2 * math.pi * self.frequencies
+
+
+def _n_bodies(K: sp.csr_matrix) -> int:
+    graph = K[::3, ::3] if K.shape[0] % 3 == 0 else K
+    n, _ = connected_components(graph, directed=False)
+    return n
+
+
+def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = 10,
+                tol: float = 0.0) -> tuple[np.ndarray, np.ndarray, float, dict]:
+    """Lowest n_modes + 6 eigenpairs (w^2 in rad^2/s^2, M-normalised vectors)."""
+    n_dofs = K.shape[0]
+    k = n_modes + RIGID_BODY_MODES
+    if n_dofs <= k + 2:
+        raise SolverError(f"the mesh has only {n_dofs} DOFs; {k} modes need more")
+    scale = float(np.median(K.diagonal() / M.diagonal()))
+    sigma = -SHIFT_FACTOR * scale
+    t0 = time.perf_counter()
+    from scipy.sparse.linalg import splu
+
+    A = (K - sigma * M).tocsc()
+    lu = splu(A)
+    t1 = time.perf_counter()
+    op = sp.linalg.LinearOperator(A.shape, matvec=lu.solve, dtype=float)
+    try:
+        lam, X = eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol,
+                       ncv=min(n_dofs, max(2 * k + 1, 40)))
+    except sp.linalg.ArpackNoConvergence as exc:
+        raise SolverError(f"the eigen solver did not converge: {exc}") from None
+    # One step of subspace iteration with the same factors, then Rayleigh-Ritz:
+    # it takes ARPACK's vectors down to round-off residuals and splits
+    # near-repeated pairs cleanly.
+    Y = lu.solve(np.asarray(M @ X))
+    lam, Q = eigh(Y.T @ (K @ Y), Y.T @ (M @ Y))
+    X = Y @ Q
+    t2 = time.perf_counter()
+    return lam, X, scale, {"factorisation": t1 - t0, "eigensolve": t2 - t1}
+
+
+def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
+                   mass_scalar: sp.csr_matrix, n_modes: int = 10) -> Modes:
+    """Solve, separate the six rigid-body modes, check and classify the elastic ones."""
+    n_bodies = _n_bodies(K)
+    if n_bodies != 1:
+        raise SolverError(
+            f"the mesh has {n_bodies} disconnected parts; a free body must be one piece "
+            f"(it would have {RIGID_BODY_MODES * n_bodies} rigid-body modes)"
+        )
+    lam, X, scale, seconds = solve_modes(K, M, n_modes)
+    rigid_limit = RIGID_FACTOR * scale
+    if lam[0] < -rigid_limit:
+        raise SolverError(
+            f"a negative eigenvalue w^2 = {lam[0]:.3g} rad^2/s^2: K is not positive "
+            "semi-definite (an inverted element or a bad material)"
+        )
+    is_rigid = lam < rigid_limit
+    n_rigid = int(is_rigid.sum())
+    f_limit = math.sqrt(rigid_limit) / (2 * math.pi)
+    if n_rigid != RIGID_BODY_MODES:
+        why = ("a mechanism or a nearly disconnected part" if n_rigid > RIGID_BODY_MODES
+               else "the shift-invert solve missed some (bad shift or a failed factorisation)")
+        raise SolverError(
+            f"found {n_rigid} modes below {f_limit:.3g} Hz where one free body has "
+            f"{RIGID_BODY_MODES} rigid-body modes: {why}"
+        )
+    lam_e, X_e = lam[~is_rigid][:n_modes], X[:, ~is_rigid][:, :n_modes]
+    # M-normalise explicitly (ARPACK's vectors are, up to round-off)
+    X_e = X_e / np.sqrt(np.einsum("ij,ij->j", X_e, M @ X_e))
+    KX, MX = K @ X_e, M @ X_e
+    residuals = np.linalg.norm(KX - MX * lam_e, axis=0) / np.linalg.norm(KX, axis=0)
+    ortho = float(np.max(np.abs(X_e.T @ MX - np.eye(X_e.shape[1]))))
+    energy = energy_split(X_e, nodes, mass_scalar)
+    freqs = np.sqrt(lam_e) / (2 * math.pi)
+    rigid = np.sqrt(np.abs(lam[is_rigid])) / (2 * math.pi)
+    return Modes(frequencies=freqs, shapes=X_e, residuals=residuals,
+                 kinds=[classify(e) for e in energy], energy=energy,
+                 rigid_frequencies=rigid, orthonormality_error=ortho,
+                 shift=-SHIFT_FACTOR * scale, n_dofs=K.shape[0], seconds=seconds)
+
+
+def energy_split(X: np.ndarray, nodes: np.ndarray, mass_scalar: sp.csr_matrix) -> np.ndarray:
+    """Kinetic-energy fractions of each mode in axial, radial and tangential motion.
+
+    The shaft axis is z. Bending moves sections sideways (radial and tangential
+    alike), torsion turns them (tangential only), axial modes stretch (z only).
+    """
+    r = np.hypot(nodes[:, 0], nodes[:, 1])
+    safe = np.where(r > 0, r, 1.0)
+    c, s = nodes[:, 0] / safe, nodes[:, 1] / safe
+    out = np.empty((X.shape[1], 3))
+    for k in range(X.shape[1]):
+        ux, uy, uz = X[0::3, k], X[1::3, k], X[2::3, k]
+        ur, ut = c * ux + s * uy, -s * ux + c * uy
+        e = np.array([uz @ (mass_scalar @ uz), ur @ (mass_scalar @ ur), ut @ (mass_scalar @ ut)])
+        out[k] = e / e.sum()
+    return out
+
+
+def classify(energy: np.ndarray) -> str:
+    """'axial', 'torsion', 'bending' or 'mixed' from the energy fractions (z, r, t)."""
+    axial, radial, tangential = energy
+    if axial > 0.6:
+        return "axial"
+    if tangential > 0.75:
+        return "torsion"
+    if radial + tangential > 0.5 and radial > 0.2:
+        return "bending"
+    return "mixed"

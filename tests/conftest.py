@@ -1,0 +1,31 @@
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).parent))  # tests/references.py
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _fresh_shape_cache(tmp_path_factory):
+    """Every test session builds its CAD from scratch (the volume checks run)."""
+    os.environ["SHAFTFEM_CACHE"] = str(tmp_path_factory.mktemp("cache"))
+
+
+@pytest.fixture(scope="session")
+def cylinder(_fresh_shape_cache):
+    """The plain 32 x 550 mm cylinder, P2 at 8 mm (4-fold symmetric mesh)."""
+    from shaftfem.pipeline import run_modes
+    from shaftfem.scene import load_scene
+
+    return run_modes(load_scene("plain_cylinder"))
+
+
+@pytest.fixture(scope="session")
+def paper(_fresh_shape_cache):
+    """The paper's grooved shaft with its default mesh."""
+    from shaftfem.pipeline import run_modes
+    from shaftfem.scene import load_scene
+
+    return run_modes(load_scene("paper2018"))
