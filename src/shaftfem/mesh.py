@@ -180,13 +180,7 @@ def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: Mesh
     if sector:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)
-    ratio = jacobian_ratio(points, cells)
-    if ratio <= MIN_JACOBIAN_RATIO:
-        raise MeshError(
-            f"the mesh has an inverted or degenerate element (min/max det J within an "
-            f"element = {ratio:.3g}, required > {MIN_JACOBIAN_RATIO}); try a different "
-            "element size"
-        )
+    ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
                      optimized_high_order=optimized, seconds=time.perf_counter() - t0)
 
@@ -238,6 +232,18 @@ def _worst_scaled_jacobian(gmsh) -> float:
             q = gmsh.model.mesh.getElementQualities(tags, "minSJ")
             worst = min(worst, float(np.min(q)))
     return worst
+
+
+def check_jacobians(points: np.ndarray, cells: np.ndarray) -> float:
+    """Refuse a mesh with an inverted or degenerate element; return the worst ratio."""
+    ratio = jacobian_ratio(points, cells)
+    if ratio <= MIN_JACOBIAN_RATIO:
+        raise MeshError(
+            f"the mesh has an inverted or degenerate element (min/max det J within an "
+            f"element = {ratio:.3g}, required > {MIN_JACOBIAN_RATIO}); try a different "
+            "element size"
+        )
+    return ratio
 
 
 def jacobian_ratio(points: np.ndarray, cells: np.ndarray) -> float:

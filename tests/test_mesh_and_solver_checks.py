@@ -1,0 +1,67 @@
+"""The guards: inverted elements, disconnected bodies, a wrong rigid-body count."""
+
+import numpy as np
+import pytest
+
+from shaftfem import modal
+from shaftfem.assembly import assemble
+from shaftfem.errors import MeshError, SolverError
+from shaftfem.mesh import check_jacobians, jacobian_ratio
+
+
+def test_curved_mesh_has_positive_jacobians(cylinder):
+    m = cylinder.mesh
+    assert m.order == 2 and m.cells.shape[1] == 10
+    assert jacobian_ratio(m.points, m.cells) > 0.02
+
+
+def test_inverted_element_is_refused(cylinder):
+    m = cylinder.mesh
+    pts = m.points.copy()
+    cells = m.cells
+    # push one edge node of element 0 through its opposite face: the element inverts
+    vert = pts[cells[0, :4]]
+    centroid = vert.mean(axis=0)
+    mid = cells[0, 4]
+    pts[mid] = pts[mid] + 3.0 * (centroid - pts[mid]) + 2.0 * (centroid - vert[0])
+    assert jacobian_ratio(pts, cells) < 0
+    with pytest.raises(MeshError, match="inverted"):
+        check_jacobians(pts, cells)
+
+
+def test_mesh_volume_matches_the_cylinder(cylinder):
+    from skfem import Basis, ElementTetP2, Functional
+
+    from skfem import ElementTetP1, MeshTet
+
+    one = Functional(lambda w: 1.0 + 0 * w.x[0])
+    sk = cylinder.mesh.to_skfem()
+    curved = one.assemble(Basis(sk, ElementTetP2(), intorder=2))
+    straight = one.assemble(Basis(MeshTet(sk.p, sk.t), ElementTetP1(), intorder=1))
+    s = cylinder.scene.shaft
+    exact = np.pi * s.radius**2 * s.length
+    # curved P2 faces follow the cylinder: far closer than the straight-sided tets
+    assert abs(curved / exact - 1) < 1e-4
+    assert abs(curved / exact - 1) < 0.01 * abs(straight / exact - 1)
+
+
+def test_disconnected_mesh_is_an_error(cylinder):
+    from shaftfem.mesh import ShaftMesh
+
+    m = cylinder.mesh
+    shifted = m.points + np.array([1.0, 0.0, 0.0])
+    two = ShaftMesh(points=np.vstack([m.points, shifted]),
+                    cells=np.vstack([m.cells, m.cells + len(m.points)]), order=2,
+                    min_jacobian_ratio=m.min_jacobian_ratio, optimized_high_order=False,
+                    seconds=0.0)
+    sys_ = assemble(two.to_skfem(), 2, cylinder.scene.material)
+    with pytest.raises(SolverError, match="2 disconnected parts"):
+        modal.modal_analysis(sys_.K, sys_.M, sys_.nodes, sys_.mass_scalar)
+
+
+def test_a_shift_that_misses_the_rigid_modes_is_an_error(cylinder, monkeypatch):
+    # a shift far above the rigid-body modes: shift-invert finds modes near it instead
+    monkeypatch.setattr(modal, "SHIFT_FACTOR", -1e-3)
+    s = cylinder.system
+    with pytest.raises(SolverError, match="rigid-body modes"):
+        modal.modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)

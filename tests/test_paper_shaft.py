@@ -1,0 +1,62 @@
+"""The paper's grooved double-helix shaft (geometry/paper2018.toml)."""
+
+import json
+
+import numpy as np
+
+from shaftfem.cli import main
+from shaftfem.geometry import groove_volume
+
+
+def test_exactly_six_rigid_body_modes(paper):
+    assert paper.modes.n_rigid == 6
+
+
+def test_mass_orthonormal_shapes_and_small_residuals(paper):
+    X, M, K = paper.modes.shapes, paper.system.M, paper.system.K
+    assert np.max(np.abs(X.T @ (M @ X) - np.eye(10))) < 1e-8
+    w2 = (2 * np.pi * paper.modes.frequencies) ** 2
+    res = np.linalg.norm(K @ X - (M @ X) * w2, axis=0) / np.linalg.norm(K @ X, axis=0)
+    assert np.all(res < 1e-8)
+
+
+def test_groove_volume_within_one_percent_of_analytic(paper):
+    shape, scene = paper.shape, paper.scene
+    R, L = scene.shaft.radius, scene.shaft.length
+    removed = np.pi * R**2 * L - shape.volume
+    assert abs(removed / groove_volume(scene.grooves, R) - 1) < 0.01
+
+
+def test_groove_volume_integral_against_hand_formula():
+    """Rectangular grooves: one groove removes L_g * (phi/2) (R^2 - (R-d)^2)."""
+    from shaftfem.scene import Grooves
+
+    g = Grooves(hands=(1,), pitch=0.08, width=0.008, depth=0.003, root_radius=0.0,
+                length=0.36, start=0.0)
+    R = 0.016
+    phi = 2 * np.pi * g.width / g.pitch
+    exact = g.length * phi / 2 * (R**2 - (R - g.depth) ** 2)
+    assert abs(groove_volume(g, R) / exact - 1) < 1e-5
+
+
+def test_mode_one_near_the_papers_432_hz(paper):
+    assert abs(paper.modes.frequencies[0] / 432.16 - 1) < 0.02
+
+
+def test_grooves_split_the_bending_pairs(paper):
+    """The paper's reading: modes 1-2 are the two planes of bending, slightly split."""
+    f = paper.modes.frequencies
+    assert paper.modes.kinds[:2] == ["bending", "bending"]
+    assert 1e-3 < f[1] / f[0] - 1 < 0.1
+
+
+def test_cli_json_has_the_promised_fields(tmp_path, capsys):
+    out = tmp_path / "modes.json"
+    assert main(["modes", "plain_cylinder", "--json", str(out), "-q"]) == 0
+    data = json.loads(out.read_text())
+    assert data["rigid_body_modes"] == 6
+    assert data["element"] == "P2"
+    assert data["dofs"] > 0
+    assert len(data["elastic_modes"]) == 10
+    assert {"frequency_hz", "kind"} <= set(data["elastic_modes"][0])
+    assert "Hz" in capsys.readouterr().out
