@@ -9,6 +9,8 @@ and a mesh with an inverted or degenerate element is refused.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import math
 import os
 import tempfile
@@ -167,7 +169,8 @@ def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: Mesh
         os.close(fd)
         try:
             gmsh.write(tmp)
-            m = meshio.read(tmp)
+            with contextlib.redirect_stdout(io.StringIO()):  # meshio prints a blank line
+                m = meshio.read(tmp)
         finally:
             os.unlink(tmp)
         if write_msh is not None:
