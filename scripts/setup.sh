@@ -23,3 +23,22 @@ if [ -n "$lib" ] && ldd "$lib" | grep -q "not found"; then
         libglu1-mesa libgl1 libxrender1 libxcursor1 libxft2 libxinerama1 libx11-6 >/dev/null
 fi
 .venv/bin/python -c "import gmsh" || { echo "setup: gmsh does not import" >&2; exit 1; }
+
+# Pictures: VTK renders off-screen through EGL (Mesa) when there is no display.
+probe='
+import os
+os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+import pyvista as pv
+p = pv.Plotter(off_screen=True, window_size=(64, 64))
+p.add_mesh(pv.Sphere())
+img = p.screenshot(return_img=True)
+assert img.shape[0] == 64 and img.std() > 0
+'
+if ! .venv/bin/python -c "$probe" >/dev/null 2>&1; then
+    echo "setup: installing system libraries for off-screen rendering" >&2
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq \
+        libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1 libgl1 libxrender1 libx11-6 >/dev/null
+    .venv/bin/python -c "$probe" >/dev/null 2>&1 || echo "setup: warning: off-screen rendering does not work; pictures will fail" >&2
+fi

@@ -37,11 +37,8 @@ def _positive_float(text: str) -> float:
 
 def _cmd_modes(args) -> int:
     from .export import modes_record, write_json
-    from .pipeline import run_modes, with_mesh
-    from .scene import load_scene
 
-    scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
-    result = run_modes(scene, use_cache=not args.no_cache, progress=_Progress(args.quiet))
+    result = _run(args)
     print(format_modes(result))
     if args.json:
         write_json(args.json, modes_record(result))
@@ -75,6 +72,96 @@ def format_modes(result) -> str:
     return "\n".join(lines)
 
 
+def _run(args):
+    """Load the scene (with CLI mesh overrides) and run the modal chain."""
+    from .pipeline import run_modes, with_mesh
+    from .scene import load_scene
+
+    scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
+    return run_modes(scene, use_cache=not args.no_cache, progress=_Progress(args.quiet))
+
+
+def _verdict(args, result):
+    from .resonance import check_resonance
+
+    margin = result.scene.required_margin
+    if getattr(args, "margin", None) is not None:
+        margin = args.margin / 100
+    return check_resonance(result.modes.frequencies, result.modes.kinds,
+                           result.scene.excitations, margin)
+
+
+def _cmd_check(args) -> int:
+    from .errors import SceneError
+    from .export import write_json
+    from .resonance import format_verdict
+
+    result = _run(args)
+    if not result.scene.excitations:
+        raise SceneError(f"{result.scene.source}: no [[excitation]] sources to check against")
+    verdict = _verdict(args, result)
+    print(format_verdict(verdict))
+    if args.json:
+        write_json(args.json, {"scene": result.scene.name, **verdict.as_dict()})
+        print(f"wrote {args.json}")
+    return 0 if verdict.ok else 1
+
+
+def _cmd_export(args) -> int:
+    from .export import export_modes
+
+    result = _run(args)
+    files = export_modes(result, args.out)
+    print(f"wrote {len(files)} files to {args.out}: " + ", ".join(f.name for f in files))
+    return 0
+
+
+def _cmd_render(args) -> int:
+    from pathlib import Path
+
+    from .render import render_geometry, render_modes
+
+    result = _run(args)
+    out = Path(args.out)
+    a = render_geometry(result, out / "geometry.png")
+    b = render_modes(result, out / "modes.png")
+    print(f"wrote {a} and {b}")
+    return 0
+
+
+def _cmd_design(args) -> int:
+    from pathlib import Path
+
+    from .export import export_modes
+    from .render import render_geometry, render_modes
+    from .report import verdict_line, write_report
+    from .resonance import format_verdict
+    from .scene import load_scene
+    from .sizing import format_sizing, size_from_scene
+
+    progress = _Progress(args.quiet)
+    scene = load_scene(args.scene)
+    out = Path(args.out or Path("out") / scene.name)
+    sizing = None
+    if scene.sizing is not None:
+        progress("sizing (equations 1-9)")
+        sizing = size_from_scene(scene)
+        print(format_sizing(sizing) + "\n")
+    result = _run(args)
+    print(format_modes(result) + "\n")
+    verdict = _verdict(args, result)
+    print(format_verdict(verdict) + "\n")
+    progress("exporting mode shapes, mesh and solid")
+    files = export_modes(result, out)
+    progress("rendering pictures")
+    pics = [render_geometry(result, out / "geometry.png"), render_modes(result, out / "modes.png")]
+    report = write_report(out / "report.md", result, verdict, sizing, pics, files)
+    progress(f"report written: {report}")
+    print(f"report: {report}")
+    print(verdict_line(verdict).replace("**", ""))
+    return 0 if verdict.ok else 1
+
+
 def _cmd_size(args) -> int:
     from .sizing import format_sizing, size_from_scene
     from .export import write_json
@@ -96,16 +183,37 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sub = p.add_subparsers(dest="command", required=True)
 
-    m = sub.add_parser("modes", help="first ten free-free natural frequencies")
-    m.add_argument("scene", nargs="?", default=None,
-                   help="scene file or name in geometry/ (default: paper2018)")
-    m.add_argument("--mesh-size", type=_positive_float, metavar="MM",
-                   help="element size away from the grooves, mm (groove sizes scale with it)")
-    m.add_argument("--order", type=int, choices=(1, 2), help="element order (default: scene)")
-    m.add_argument("--json", metavar="FILE", help="also write the results as JSON")
-    m.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid")
-    m.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
-    m.set_defaults(func=_cmd_modes)
+    def modal_command(name: str, help: str, func, json: bool = True, out: str | None = None):
+        c = sub.add_parser(name, help=help)
+        c.add_argument("scene", nargs="?", default=None,
+                       help="scene file or name in geometry/ (default: paper2018)")
+        c.add_argument("--mesh-size", type=_positive_float, metavar="MM",
+                       help="element size away from the grooves, mm (groove sizes scale with it)")
+        c.add_argument("--order", type=int, choices=(1, 2), help="element order (default: scene)")
+        if json:
+            c.add_argument("--json", metavar="FILE", help="also write the results as JSON")
+        if out is not None:
+            c.add_argument("--out", metavar="DIR", required=out == "required",
+                           help="output folder" + ("" if out == "required"
+                                                   else " (default: out/SCENE)"))
+        c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid")
+        c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
+        c.set_defaults(func=func)
+        return c
+
+    modal_command("modes", "first ten free-free natural frequencies", _cmd_modes)
+    c = modal_command("check", "resonance check against the scene's excitations (exit 1 if "
+                      "a margin is violated)", _cmd_check)
+    c.add_argument("--margin", type=_positive_float, metavar="PERCENT",
+                   help="required separation margin, %% (default: scene, else 15)")
+    modal_command("export", "mode shapes (VTU/PVD), tables (CSV/JSON), mesh (MSH), solid "
+                  "(STEP/BREP)", _cmd_export, json=False, out="required")
+    modal_command("render", "PNG pictures of the shaft and its first eight modes", _cmd_render,
+                  json=False, out="required")
+    d = modal_command("design", "sizing, modes, resonance check, files, pictures and a report",
+                      _cmd_design, json=False, out="optional")
+    d.add_argument("--margin", type=_positive_float, metavar="PERCENT",
+                   help="required separation margin, %% (default: scene, else 15)")
 
     s = sub.add_parser("size", help="size the screw shaft from its duty (paper eqs. 1-9)")
     s.add_argument("scene", nargs="?", default=None,

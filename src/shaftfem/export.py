@@ -23,6 +23,7 @@ def atomic_path(path: str | Path):
     os.close(fd)
     try:
         yield Path(tmp)
+        os.chmod(tmp, 0o644)  # mkstemp makes 0600; results are for sharing
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -33,7 +34,7 @@ def atomic_path(path: str | Path):
 def _plain(obj):
     if isinstance(obj, np.ndarray):
         return obj.tolist()
-    if isinstance(obj, (np.floating, np.integer)):
+    if isinstance(obj, (np.floating, np.integer, np.bool_)):
         return obj.item()
     if isinstance(obj, Path):
         return str(obj)
@@ -79,3 +80,102 @@ def modes_record(result) -> dict:
         },
         "timings_s": result.seconds,
     }
+
+
+# --------------------------------------------------------------------------
+# Mode shapes and the solid, for ParaView, CAD and other solvers
+
+
+def nodal_shapes(result) -> np.ndarray:
+    """Mode shapes at the mesh's nodes: (n_modes, n_points, 3), m / sqrt(kg).
+
+    The solver's DOFs sit on scikit-fem's P1/P2 nodes, which are the mesh's own
+    nodes in another order; they are matched by position.
+    """
+    from scipy.spatial import cKDTree
+
+    nodes, points = result.system.nodes, result.mesh.points
+    dist, idx = cKDTree(nodes).query(points)
+    if dist.max() > 1e-12:
+        raise RuntimeError("mesh nodes and solver DOF nodes do not coincide")
+    X = result.modes.shapes  # (3 n, m), interleaved
+    n = nodes.shape[0]
+    return np.stack([X[:, k].reshape(n, 3)[idx] for k in range(X.shape[1])])
+
+
+def field_name(mode: int, frequency: float) -> str:
+    return f"mode_{mode:02d}_{frequency:.2f}Hz"
+
+
+def modes_table(result, errors: np.ndarray | None = None) -> list[dict]:
+    """One row per elastic mode: the content of modes.csv and modes.json."""
+    rows = []
+    for i, (f, kind) in enumerate(zip(result.modes.frequencies, result.modes.kinds)):
+        rows.append({
+            "mode": i + 1,
+            "frequency_hz": float(f),
+            "omega_rad_s": float(2 * np.pi * f),
+            "period_s": float(1 / f),
+            "kind": kind,
+            "estimated_error": None if errors is None else float(errors[i]),
+        })
+    return rows
+
+
+@contextmanager
+def staged_directory(out: str | Path):
+    """Write a set of files into a hidden staging folder; move them into `out` at the end.
+
+    On any failure the staging folder is removed and `out` gets none of the files.
+    """
+    import shutil
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(prefix=".staging-", dir=out))
+    try:
+        yield stage
+        for f in sorted(stage.iterdir()):
+            os.chmod(f, 0o644)
+            os.replace(f, out / f.name)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def export_modes(result, out: str | Path, errors: np.ndarray | None = None) -> list[Path]:
+    """mode_NN.vtu per elastic mode (+ modes.pvd), modes.csv, modes.json, mesh.msh,
+    shaft.brep and shaft.step; returns the files written."""
+    import csv
+
+    import meshio
+
+    from .geometry import export_solid
+
+    shapes = nodal_shapes(result)
+    mesh = result.mesh
+    names = []
+    with staged_directory(out) as stage:
+        for k, (f, u) in enumerate(zip(result.modes.frequencies, shapes)):
+            name = f"mode_{k + 1:02d}.vtu"
+            m = meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)],
+                            point_data={field_name(k + 1, f): u})
+            meshio.write(stage / name, m)
+            names.append(name)
+        pvd = ['<?xml version="1.0"?>',
+               '<VTKFile type="Collection" version="0.1">', "  <Collection>"]
+        pvd += [f'    <DataSet timestep="{k + 1}" part="0" file="{n}"/>'
+                for k, n in enumerate(names)]
+        pvd += ["  </Collection>", "</VTKFile>", ""]
+        (stage / "modes.pvd").write_text("\n".join(pvd))
+        rows = modes_table(result, errors)
+        with open(stage / "modes.csv", "w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        (stage / "modes.json").write_text(json.dumps(
+            {**modes_record(result), "modes": rows}, indent=2, default=_plain) + "\n")
+        meshio.write(stage / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)]),
+                     file_format="gmsh", binary=False)
+        export_solid(result.shape.brep, stage / "shaft.step", stage / "shaft.brep")
+        written = sorted(p.name for p in stage.iterdir())
+    return [Path(out) / n for n in written]

@@ -165,6 +165,23 @@ def gmsh_session(verbose: bool = False):
         gmsh.finalize()
 
 
+@contextmanager
+def _stdout_to_devnull():
+    """Silence C-level prints on stdout (OpenCASCADE's STEP writer talks there)."""
+    import sys
+
+    sys.stdout.flush()
+    saved = os.dup(1)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(devnull)
+
+
 def _section_wire(occ, outline, z: float, theta: float, pitch: float) -> int:
     """One transverse section of a groove tool at height z, centred at angle theta."""
     k = 2 * math.pi / pitch
@@ -352,3 +369,16 @@ def _check_connected(gmsh) -> None:
     roots = {find(v) for v in vols}
     if len(roots) != 1:
         raise GeometryError(f"the solid fell apart into {len(roots)} bodies after the booleans")
+
+
+def export_solid(brep: Path, step: Path, brep_copy: Path | None = None) -> None:
+    """Write the cached solid as STEP (for CAD and the workshop) and optionally as BREP."""
+    import shutil
+
+    with gmsh_session() as gmsh, _stdout_to_devnull():
+        gmsh.model.add("export")
+        gmsh.model.occ.importShapes(str(brep))
+        gmsh.model.occ.synchronize()
+        gmsh.write(str(step))
+    if brep_copy is not None:
+        shutil.copyfile(brep, brep_copy)

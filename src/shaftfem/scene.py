@@ -108,6 +108,7 @@ class Scene:
     # [sizing] inputs, checked, in the file's units (kW, r/min, deg, MPa, mm):
     # the paper states equations (1)-(9) in these units.
     sizing: dict | None = None
+    required_margin: float = 0.15  # resonance separation margin, fraction
     raw: dict = field(default_factory=dict, repr=False, compare=False)
 
 
@@ -200,6 +201,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "needle_width_mm": Key(float, "needle width h, mm", lambda v: v >= 0, ">= 0"),
         "drive_teeth": Key(int, "teeth on the driving gear Z_drive", lambda v: v >= 1, ">= 1"),
         "driven_teeth": Key(int, "teeth on the driven gear Z_driven", lambda v: v >= 1, ">= 1"),
+    },
+    "resonance": {
+        "required_margin_percent": Key(
+            float, "least separation |f - k f_exc| / (k f_exc) between a mode and an "
+            "excitation harmonic, % (default 15)", lambda v: 0 < v < 100, "in (0, 100)",
+            default=15.0, required=False),
     },
     "mesh": {
         "element_size_mm": Key(float, "element size away from the grooves, mm", _positive, "> 0"),
@@ -307,6 +314,7 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     shaft_t = validate_table(source, "shaft", data.get("shaft", {}), SCHEMA["shaft"])
     mat_t = validate_table(source, "material", data.get("material", {}), SCHEMA["material"])
     mesh_t = validate_table(source, "mesh", data.get("mesh", {}), SCHEMA["mesh"])
+    res_t = validate_table(source, "resonance", data.get("resonance", {}), SCHEMA["resonance"])
     sizing = None
     if "sizing" in data:
         sizing = validate_table(source, "sizing", data["sizing"], SCHEMA["sizing"])
@@ -358,7 +366,8 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
                         order=mesh_t["order"])
     name = top["name"] or Path(source).stem
     return Scene(name=name, source=source, shaft=shaft, material=material, grooves=grooves,
-                 mesh=mesh, excitations=tuple(excitations), sizing=sizing, raw=data)
+                 mesh=mesh, excitations=tuple(excitations), sizing=sizing,
+                 required_margin=res_t["required_margin_percent"] / 100, raw=data)
 
 
 def _check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:

@@ -1,0 +1,78 @@
+"""The design report: one Markdown file with the tables, the pictures and a verdict."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .export import atomic_path
+
+
+def _table(head: list[str], rows: list[list[str]]) -> list[str]:
+    out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    out += ["| " + " | ".join(r) + " |" for r in rows]
+    return out
+
+
+def verdict_line(verdict) -> str:
+    if verdict.ok:
+        a = verdict.approaches[0]
+        return (f"**VERDICT: PASS** - no natural frequency within {100 * verdict.required:g} % "
+                f"of any excitation harmonic (closest: mode {a.mode}, {a.frequency:.1f} Hz, vs "
+                f"{a.source} x{a.order} at {a.excitation:.1f} Hz: {100 * a.margin:.0f} % apart)")
+    a = verdict.violations[0]
+    return (f"**VERDICT: FAIL** - mode {a.mode} ({a.frequency:.1f} Hz, {a.kind}) is only "
+            f"{100 * a.margin:.1f} % from {a.source} x{a.order} at {a.excitation:.1f} Hz "
+            f"(required {100 * verdict.required:g} %)")
+
+
+def write_report(path: str | Path, result, verdict, sizing=None, pictures=(),
+                 files=(), errors=None) -> Path:
+    """report.md beside the exported files; picture paths are written relative to it."""
+    path = Path(path)
+    scene, m = result.scene, result.modes
+    lines = [f"# Modal design report: {scene.name}", "", verdict_line(verdict), ""]
+    g = scene.grooves
+    lines += ["## Shaft", "",
+              f"- {scene.shaft.length * 1e3:g} mm long, {scene.shaft.diameter * 1e3:g} mm "
+              f"diameter, {scene.material.name} (E = {scene.material.youngs_modulus / 1e6:g} MPa, "
+              f"nu = {scene.material.poisson_ratio:g}, rho = {scene.material.density:g} kg/m^3)"]
+    if g:
+        hands = " and ".join("right" if h > 0 else "left" for h in g.hands)
+        lines.append(f"- grooves: {hands}-hand, pitch {g.pitch * 1e3:g} mm, width "
+                     f"{g.width * 1e3:g} mm (axial), depth {g.depth * 1e3:g} mm, root radius "
+                     f"{g.root_radius * 1e3:g} mm, over {g.length * 1e3:g} mm from "
+                     f"{g.start * 1e3:g} mm; removed volume {result.shape.groove_volume_cad * 1e9:.1f}"
+                     f" mm^3 (analytic {result.shape.groove_volume_analytic * 1e9:.1f} mm^3)")
+    lines += [f"- mesh: P{scene.mesh.order}, {m.n_dofs} DOFs, {result.mesh.n_elements} elements",
+              ""]
+    if sizing is not None:
+        lines += ["## Sizing (paper equations 1-9)", ""]
+        lines += _table(["eq.", "symbol", "value", "unit", "quantity", "note"],
+                        [[q.equation, q.symbol, f"{q.value:.4g}", q.unit, q.name, q.note]
+                         for q in sizing.quantities])
+        lines += [""] + [f"- LIMIT BROKEN: {v}" for v in sizing.violations] + [""]
+    lines += ["## Natural frequencies (free-free)", ""]
+    rows = []
+    for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
+        err = "" if errors is None else f"{100 * errors[i]:.2g} %"
+        rows.append([str(i + 1), f"{f:.2f}", kind, f"{r:.1e}", err])
+    lines += _table(["mode", "frequency (Hz)", "kind", "residual", "estimated error"], rows)
+    lines += ["", f"Rigid-body modes: {m.n_rigid}.", ""]
+    lines += ["## Resonance check", ""]
+    lines += _table(
+        ["source", "order", "excitation (Hz)", "closest mode", "frequency (Hz)", "margin",
+         "required", ""],
+        [[a.source, str(a.order), f"{a.excitation:.2f}", str(a.mode), f"{a.frequency:.2f}",
+          f"{100 * a.margin:.1f} %", f"{100 * a.required:g} %", "ok" if a.ok else "TOO CLOSE"]
+         for a in verdict.closest_per_harmonic()])
+    lines.append("")
+    if pictures:
+        lines += ["## Pictures", ""]
+        lines += [f"![{Path(p).stem}]({Path(p).name})" for p in pictures] + [""]
+    if files:
+        lines += ["## Files", ""] + [f"- `{Path(f).name}`" for f in files] + [""]
+    t = result.seconds
+    lines += ["## Run time", "", ", ".join(f"{k} {v:.1f} s" for k, v in t.items()), ""]
+    with atomic_path(path) as tmp:
+        tmp.write_text("\n".join(lines))
+    return path

@@ -1,0 +1,116 @@
+"""Resonance check: how far each natural frequency sits from each excitation harmonic.
+
+For mode frequency f and the k-th harmonic of a source at f_exc, the separation
+margin is |f - k f_exc| / (k f_exc). The check holds when every margin is at
+least the required margin (default 15 %).
+
+The default follows common machinery practice: a flat separation margin of about
+15 % between a natural frequency and any running-speed harmonic. API 684 and
+API 617 tie the required margin to each mode's amplification factor (more margin
+for lightly damped modes, none for critically damped ones); a free-free steel
+shaft without damping data is treated as lightly damped, so set
+`resonance.required_margin_percent` higher if your damping calls for it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .scene import Excitation
+
+DEFAULT_MARGIN = 0.15
+
+
+@dataclass(frozen=True)
+class Approach:
+    """One mode against one source harmonic."""
+
+    mode: int            # 1-based elastic mode number
+    frequency: float     # Hz
+    kind: str
+    source: str
+    order: int
+    excitation: float    # k f_exc, Hz
+    margin: float        # |f - k f_exc| / (k f_exc)
+    required: float
+
+    @property
+    def ok(self) -> bool:
+        return self.margin >= self.required
+
+
+@dataclass
+class ResonanceVerdict:
+    approaches: list[Approach]   # every pair, closest first
+    required: float
+
+    @property
+    def ok(self) -> bool:
+        return all(a.ok for a in self.approaches)
+
+    @property
+    def violations(self) -> list[Approach]:
+        return [a for a in self.approaches if not a.ok]
+
+    def closest_per_harmonic(self) -> list[Approach]:
+        """For each source harmonic, the mode closest to it."""
+        best: dict[tuple[str, int], Approach] = {}
+        for a in self.approaches:
+            key = (a.source, a.order)
+            if key not in best or a.margin < best[key].margin:
+                best[key] = a
+        return sorted(best.values(), key=lambda a: a.margin)
+
+    def as_dict(self) -> dict:
+        return {
+            "ok": self.ok,
+            "required_margin": self.required,
+            "approaches": [
+                {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,
+                 "order": a.order, "excitation_hz": a.excitation, "margin": a.margin,
+                 "ok": a.ok}
+                for a in self.approaches
+            ],
+        }
+
+
+def check_resonance(frequencies: np.ndarray, kinds: list[str],
+                    excitations: tuple[Excitation, ...] | list[Excitation],
+                    required: float = DEFAULT_MARGIN) -> ResonanceVerdict:
+    """Separation margin of every mode from every harmonic of every source."""
+    out = []
+    for exc in excitations:
+        for k in exc.orders:
+            fk = k * exc.frequency
+            for i, (f, kind) in enumerate(zip(frequencies, kinds)):
+                out.append(Approach(mode=i + 1, frequency=float(f), kind=kind, source=exc.name,
+                                    order=k, excitation=fk, margin=float(abs(f - fk) / fk),
+                                    required=required))
+    out.sort(key=lambda a: a.margin)
+    return ResonanceVerdict(approaches=out, required=required)
+
+
+def format_verdict(v: ResonanceVerdict) -> str:
+    lines = [f"{'source':<10} {'order':>5} {'excitation':>13}  {'closest mode':>12} "
+             f"{'frequency':>12}  {'kind':<8} {'margin':>9}  {'required':>8}"]
+    for a in v.closest_per_harmonic():
+        lines.append(
+            f"{a.source:<10} {a.order:>5} {a.excitation:>10.2f} Hz  {a.mode:>12} "
+            f"{a.frequency:>9.2f} Hz  {a.kind:<8} {100 * a.margin:>8.1f} %  "
+            f"{100 * a.required:>6.1f} %  {'ok' if a.ok else 'TOO CLOSE'}"
+        )
+    lines.append("")
+    if v.ok:
+        lines.append(f"verdict: PASS - every mode is at least {100 * v.required:g} % away from "
+                     "every excitation harmonic")
+    else:
+        worst = v.violations[0]
+        lines.append(
+            f"verdict: FAIL - {len(v.violations)} mode/harmonic pair(s) closer than "
+            f"{100 * v.required:g} %; closest: mode {worst.mode} at {worst.frequency:.2f} Hz vs "
+            f"{worst.source} x{worst.order} at {worst.excitation:.2f} Hz "
+            f"({100 * worst.margin:.1f} %)"
+        )
+    return "\n".join(lines)
