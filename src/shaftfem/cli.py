@@ -53,7 +53,7 @@ def format_modes(result) -> str:
     lines = [
         f"scene {scene.name}: P{scene.mesh.order}, {m.n_dofs} DOFs, "
         f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm "
-        f"(grooves {scene.mesh.groove_size * 1e3:g} mm)",
+        f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factorizer}",
         f"rigid-body modes: {m.n_rigid} (all below {max(m.rigid_frequencies):.1e} Hz)",
         "",
     ]
@@ -78,7 +78,8 @@ def _run(args):
     from .scene import load_scene
 
     scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
-    return run_modes(scene, use_cache=not args.no_cache, progress=_Progress(args.quiet))
+    return run_modes(scene, use_cache=not args.no_cache, progress=_Progress(args.quiet),
+                     factorizer=args.solver)
 
 
 def _verdict(args, result):
@@ -196,6 +197,9 @@ def build_parser() -> argparse.ArgumentParser:
             c.add_argument("--out", metavar="DIR", required=out == "required",
                            help="output folder" + ("" if out == "required"
                                                    else " (default: out/SCENE)"))
+        c.add_argument("--solver", choices=("auto", "pardiso", "cholmod", "superlu"),
+                       default="auto", help="sparse factorisation behind shift-invert "
+                       "(default: the fastest installed; superlu is pure SciPy)")
         c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid")
         c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
         c.set_defaults(func=func)

@@ -36,7 +36,7 @@ def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = No
 
 def run_modes(scene: Scene, n_modes: int = 10, use_cache: bool = True,
               progress: Callable[[str], None] | None = None,
-              mass_intorder: int | None = None) -> ModalResult:
+              mass_intorder: int | None = None, factorizer: str = "auto") -> ModalResult:
     """Build, mesh, assemble and solve `scene`; return every intermediate result."""
     from .assembly import assemble
     from .geometry import build_shape
@@ -63,7 +63,8 @@ def run_modes(scene: Scene, n_modes: int = 10, use_cache: bool = True,
     seconds["assembly"] = time.perf_counter() - t
     say(f"{system.n_dofs} DOFs; factorising and solving")
 
-    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar, n_modes)
+    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar, n_modes,
+                           factorizer=factorizer)
     seconds.update(modes.seconds)
     seconds["total"] = time.perf_counter() - t0
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
