@@ -10,6 +10,8 @@ import argparse
 import sys
 import time
 
+import math
+
 from .errors import ShaftfemError
 
 
@@ -35,18 +37,34 @@ def _positive_float(text: str) -> float:
     return v
 
 
+def _estimate(args, result):
+    """The discretisation-error estimate (two coarser solves), unless --no-estimate."""
+    if getattr(args, "no_estimate", False):
+        return None
+    from .study import estimate_errors
+
+    return estimate_errors(result, progress=_Progress(args.quiet), factorizer=args.solver)
+
+
 def _cmd_modes(args) -> int:
     from .export import modes_record, write_json
 
     result = _run(args)
-    print(format_modes(result))
+    est = _estimate(args, result)
+    print(format_modes(result, est))
     if args.json:
-        write_json(args.json, modes_record(result))
+        rec = modes_record(result)
+        if est is not None:
+            for row, e, p, ok in zip(rec["elastic_modes"], est.relative_error,
+                                     est.observed_order, est.reliable):
+                row.update(estimated_error=float(e), observed_order=float(p),
+                           estimate_reliable=bool(ok))
+        write_json(args.json, rec)
         print(f"wrote {args.json}")
     return 0
 
 
-def format_modes(result) -> str:
+def format_modes(result, est=None) -> str:
     """The modes table as a designer reads it (every number with its unit)."""
     m, scene = result.modes, result.scene
     exc = scene.excitations[0] if scene.excitations else None
@@ -58,14 +76,25 @@ def format_modes(result) -> str:
         "",
     ]
     head = f"{'mode':>4}  {'frequency':>12}  {'kind':<8}  {'residual':>9}"
+    if est is not None:
+        head += f"  {'est. error':>10}  {'order':>5}"
     if exc:
         head += f"  {'f / ' + exc.name + ' ' + format(exc.frequency, 'g') + ' Hz':>20}"
     lines.append(head)
     for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
         row = f"{i + 1:>4}  {f:>9.2f} Hz  {kind:<8}  {r:>9.1e}"
+        if est is not None:
+            e, p = est.relative_error[i], est.observed_order[i]
+            mark = " " if est.reliable[i] else "?"
+            row += f"  {100 * e:>7.2f} %{mark}  {p:>5.2f}" if math.isfinite(e) else f"  {'n/a':>10}  {'':>5}"
         if exc:
             row += f"  {f / exc.frequency:>20.2f}"
         lines.append(row)
+    if est is not None:
+        lines.append("")
+        lines.append(f"est. error: estimated discretisation error of each frequency (three "
+                     f"meshes, sizes x1, x{est.ratio:g}, x{est.ratio**2:g}; observed order p)")
+        lines += est.notes()
     t = result.seconds
     lines.append("")
     lines.append("time: " + ", ".join(f"{k} {v:.1f} s" for k, v in t.items()))
@@ -149,14 +178,16 @@ def _cmd_design(args) -> int:
         sizing = size_from_scene(scene)
         print(format_sizing(sizing) + "\n")
     result = _run(args)
-    print(format_modes(result) + "\n")
+    est = _estimate(args, result)
+    print(format_modes(result, est) + "\n")
     verdict = _verdict(args, result)
     print(format_verdict(verdict) + "\n")
     progress("exporting mode shapes, mesh and solid")
-    files = export_modes(result, out)
+    errors = None if est is None else est.relative_error
+    files = export_modes(result, out, errors)
     progress("rendering pictures")
     pics = [render_geometry(result, out / "geometry.png"), render_modes(result, out / "modes.png")]
-    report = write_report(out / "report.md", result, verdict, sizing, pics, files)
+    report = write_report(out / "report.md", result, verdict, sizing, pics, files, est)
     progress(f"report written: {report}")
     print(f"report: {report}")
     print(verdict_line(verdict).replace("**", ""))
@@ -184,7 +215,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sub = p.add_subparsers(dest="command", required=True)
 
-    def modal_command(name: str, help: str, func, json: bool = True, out: str | None = None):
+    def modal_command(name: str, help: str, func, json: bool = True, out: str | None = None,
+                      estimate: bool = False):
         c = sub.add_parser(name, help=help)
         c.add_argument("scene", nargs="?", default=None,
                        help="scene file or name in geometry/ (default: paper2018)")
@@ -200,12 +232,15 @@ def build_parser() -> argparse.ArgumentParser:
         c.add_argument("--solver", choices=("auto", "pardiso", "cholmod", "superlu"),
                        default="auto", help="sparse factorisation behind shift-invert "
                        "(default: the fastest installed; superlu is pure SciPy)")
+        if estimate:
+            c.add_argument("--no-estimate", action="store_true",
+                           help="skip the error estimate (two extra solves on coarser meshes)")
         c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid")
         c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
         c.set_defaults(func=func)
         return c
 
-    modal_command("modes", "first ten free-free natural frequencies", _cmd_modes)
+    modal_command("modes", "first ten free-free natural frequencies", _cmd_modes, estimate=True)
     c = modal_command("check", "resonance check against the scene's excitations (exit 1 if "
                       "a margin is violated)", _cmd_check)
     c.add_argument("--margin", type=_positive_float, metavar="PERCENT",
@@ -215,7 +250,7 @@ def build_parser() -> argparse.ArgumentParser:
     modal_command("render", "PNG pictures of the shaft and its first eight modes", _cmd_render,
                   json=False, out="required")
     d = modal_command("design", "sizing, modes, resonance check, files, pictures and a report",
-                      _cmd_design, json=False, out="optional")
+                      _cmd_design, json=False, out="optional", estimate=True)
     d.add_argument("--margin", type=_positive_float, metavar="PERCENT",
                    help="required separation margin, %% (default: scene, else 15)")
 

@@ -24,6 +24,10 @@ from .errors import MeshError
 from .scene import Grooves, MeshSettings, Shaft
 
 MIN_JACOBIAN_RATIO = 0.02  # smallest det J / largest det J allowed within one element
+INCLUDE_FLAT_EDGES = True  # grade towards the floor arcs at the groove ends too
+# Distance (in units of the size jump) over which the element size grows from the
+# edge size to the groove size: 1 means each element is about twice its inner neighbour.
+EDGE_GRADING = 1.0
 
 
 @dataclass
@@ -85,7 +89,7 @@ def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], l
     for _, c in gmsh.model.getEntities(1):
         xyz = _sample(gmsh, 1, c, 5)
         r = np.hypot(xyz[:, 0], xyz[:, 1])
-        if np.all(np.abs(r - floor) < tol) and np.ptp(xyz[:, 2]) > 1e-4:
+        if np.all(np.abs(r - floor) < tol) and (INCLUDE_FLAT_EDGES or np.ptp(xyz[:, 2]) > 1e-4):
             edges.append(c)
             longest = max(longest, float(np.sum(np.linalg.norm(np.diff(xyz, axis=0), axis=1))))
     return faces, edges, longest * 6 / 5
@@ -115,7 +119,7 @@ def _size_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> None:
         f.setNumber(t, "SizeMin", s.edge_size)
         f.setNumber(t, "SizeMax", s.groove_size)
         f.setNumber(t, "DistMin", 0.5 * s.edge_size)
-        f.setNumber(t, "DistMax", 0.5 * s.edge_size + 2.5 * (s.groove_size - s.edge_size))
+        f.setNumber(t, "DistMax", 0.5 * s.edge_size + EDGE_GRADING * (s.groove_size - s.edge_size))
         fields.append(t)
     if fields:
         m = f.add("Min")

@@ -66,6 +66,11 @@ def _n_bodies(K: sp.csr_matrix) -> int:
 
 
 FACTORIZERS = ("pardiso", "cholmod", "superlu")
+# 'auto' takes SuperLU below this many DOFs: there its solves give residuals of
+# 1e-10..1e-12 and the factorisation is a small part of the time, while PARDISO's
+# residuals reached 1e-7 on the plain cylinder (28k DOFs). Above it factorisation
+# dominates and PARDISO is 7x faster (benchmarks/).
+AUTO_SUPERLU_BELOW = 150_000
 
 
 def available_factorizers() -> list[str]:
@@ -82,10 +87,11 @@ def factorize(A: sp.spmatrix, backend: str = "auto"):
 
     'pardiso' (Intel MKL PARDISO via pypardiso, SPD mode), 'cholmod' (CHOLMOD via
     cholespy), 'superlu' (SciPy, COLAMD ordering: the pure-SciPy path), or 'auto'
-    for the fastest one installed. All give the same modes (tests check 1e-8).
+    (SuperLU for small systems, else the fastest installed). All give the same
+    frequencies (a test checks 1e-8).
     """
     if backend == "auto":
-        backend = available_factorizers()[0]
+        backend = "superlu" if A.shape[0] < AUTO_SUPERLU_BELOW else available_factorizers()[0]
     if backend == "pardiso":
         import pypardiso
 

@@ -26,7 +26,7 @@ def verdict_line(verdict) -> str:
 
 
 def write_report(path: str | Path, result, verdict, sizing=None, pictures=(),
-                 files=(), errors=None) -> Path:
+                 files=(), estimate=None) -> Path:
     """report.md beside the exported files; picture paths are written relative to it."""
     path = Path(path)
     scene, m = result.scene, result.modes
@@ -54,10 +54,18 @@ def write_report(path: str | Path, result, verdict, sizing=None, pictures=(),
     lines += ["## Natural frequencies (free-free)", ""]
     rows = []
     for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
-        err = "" if errors is None else f"{100 * errors[i]:.2g} %"
+        err = ""
+        if estimate is not None:
+            err = f"{100 * estimate.relative_error[i]:.2g} %"
+            err += f" (p = {estimate.observed_order[i]:.2f})"
+            err += "" if estimate.reliable[i] else " unreliable"
         rows.append([str(i + 1), f"{f:.2f}", kind, f"{r:.1e}", err])
     lines += _table(["mode", "frequency (Hz)", "kind", "residual", "estimated error"], rows)
-    lines += ["", f"Rigid-body modes: {m.n_rigid}.", ""]
+    lines += ["", f"Rigid-body modes: {m.n_rigid}."]
+    if estimate is not None:
+        lines += [f"Estimated error: three meshes (sizes x1, x{estimate.ratio:g}, "
+                  f"x{estimate.ratio**2:g}), observed order p per mode."] + estimate.notes()
+    lines.append("")
     lines += ["## Resonance check", ""]
     lines += _table(
         ["source", "order", "excitation (Hz)", "closest mode", "frequency (Hz)", "margin",
