@@ -95,6 +95,8 @@ def format_modes(result, est=None) -> str:
         lines.append(f"est. error: estimated discretisation error of each frequency (three "
                      f"meshes, sizes x1, x{est.ratio:g}, x{est.ratio**2:g}; observed order p)")
         lines += est.notes()
+    for w in result.warnings:
+        lines.append(f"WARNING: {w}")
     t = result.seconds
     lines.append("")
     lines.append("time: " + ", ".join(f"{k} {v:.1f} s" for k, v in t.items()))

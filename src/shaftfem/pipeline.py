@@ -21,6 +21,7 @@ class ModalResult:
     system: object      # assembly.System
     modes: object       # modal.Modes
     seconds: dict = field(default_factory=dict)
+    warnings: list = field(default_factory=list)
 
 
 def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None) -> Scene:
@@ -68,4 +69,22 @@ def run_modes(scene: Scene, n_modes: int = 10, use_cache: bool = True,
     seconds.update(modes.seconds)
     seconds["total"] = time.perf_counter() - t0
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
-                       seconds=seconds)
+                       seconds=seconds, warnings=scene_warnings(scene))
+
+
+def scene_warnings(scene: Scene) -> list[str]:
+    """Cases the method handles poorly: said, never silently computed."""
+    out = []
+    m, R = scene.mesh, scene.shaft.radius
+    if m.size > R:
+        out.append(f"element size {m.size * 1e3:g} mm exceeds the shaft radius "
+                   f"({R * 1e3:g} mm): fewer than two elements across the section, the "
+                   "frequencies can be far from converged (see the error estimate)")
+    nu = scene.material.poisson_ratio
+    if m.order == 1 and nu > 0.45:
+        out.append(f"P1 (linear) elements lock for a nearly incompressible material "
+                   f"(nu = {nu:g}): bending frequencies come out too high; use order 2")
+    if scene.grooves is not None and m.groove_size > scene.grooves.width:
+        out.append(f"groove element size {m.groove_size * 1e3:g} mm exceeds the groove width "
+                   f"({scene.grooves.width * 1e3:g} mm): the grooves are barely resolved")
+    return out
