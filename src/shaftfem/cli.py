@@ -196,6 +196,79 @@ def _cmd_design(args) -> int:
     return 0 if verdict.ok else 1
 
 
+def _cmd_study(args) -> int:
+    import csv
+    from pathlib import Path
+
+    from .export import atomic_path
+    from .scene import load_scene
+    from .study import run_study, study_reference, study_table
+
+    scene = load_scene(args.scene)
+    ladders = {2: args.p2, 1: args.p1}
+    runs = run_study(scene, {k: v for k, v in ladders.items() if v}, args.solver,
+                     progress=_Progress(args.quiet))
+    ref, est = study_reference(runs, singular=scene.grooves is not None)
+    top = [r for r in runs if r.order == max(ladders)][-1]
+    rows = study_table(runs, ref, top.kinds)
+    out = Path(args.out)
+    with atomic_path(out / "study.csv") as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    cols = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "factorisation_s",
+            "eigensolve_s", "total_s", "peak_memory_mb", "max_rel_error"]
+    md = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    for r in rows:
+        md.append("| " + " | ".join(f"{r[c]:.2e}" if c == "max_rel_error" else str(r[c])
+                                    for c in cols) + " |")
+    md += ["", "Reference: Richardson extrapolation of the three finest P"
+           f"{max(ladders)} runs; observed order per mode: "
+           + ", ".join(f"{p:.2f}" for p in est.observed_order)]
+    md += est.notes()
+    with atomic_path(out / "study.md") as tmp:
+        tmp.write_text("\n".join(md) + "\n")
+    _study_plot(rows, out / "study.png")
+    print("\n".join(md))
+    print(f"wrote {out / 'study.csv'}, {out / 'study.md'}, {out / 'study.png'}")
+    return 0
+
+
+def _study_plot(rows, path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .export import atomic_path
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for el in sorted({r["element"] for r in rows}):
+        rs = sorted((r for r in rows if r["element"] == el), key=lambda r: r["total_s"])
+        ax.loglog([r["total_s"] for r in rs], [r["max_rel_error"] for r in rs], "o-", label=el)
+        for r in rs:
+            ax.annotate(f"{r['size_mm']:g} mm", (r["total_s"], r["max_rel_error"]),
+                        fontsize=7, textcoords="offset points", xytext=(4, 4))
+    ax.set_xlabel("wall time of the run, s")
+    ax.set_ylabel("max relative frequency error, modes 1-10")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
+    plt.close(fig)
+
+
+def _sizes(text: str) -> list[float]:
+    try:
+        v = [float(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected sizes in mm, e.g. 12,9,6.75") from None
+    if any(x <= 0 for x in v):
+        raise argparse.ArgumentTypeError(f"{text!r}: sizes must be > 0")
+    return v
+
+
 def _cmd_size(args) -> int:
     from .sizing import format_sizing, size_from_scene
     from .export import write_json
@@ -255,6 +328,17 @@ def build_parser() -> argparse.ArgumentParser:
                       _cmd_design, json=False, out="optional", estimate=True)
     d.add_argument("--margin", type=_positive_float, metavar="PERCENT",
                    help="required separation margin, %% (default: scene, else 15)")
+
+    st = sub.add_parser("study", help="work-precision study: a ladder of P1 and P2 meshes")
+    st.add_argument("scene", nargs="?", default=None,
+                    help="scene file or name in geometry/ (default: paper2018)")
+    st.add_argument("--p2", type=_sizes, default=[12.0, 9.0, 6.75, 5.0625],
+                    help="P2 element sizes, mm (geometric; the three finest make the reference)")
+    st.add_argument("--p1", type=_sizes, default=[8.0, 6.0, 4.5], help="P1 element sizes, mm")
+    st.add_argument("--out", default="out/study", help="output folder (default: out/study)")
+    st.add_argument("--solver", choices=("auto", "pardiso", "cholmod", "superlu"), default="auto")
+    st.add_argument("-q", "--quiet", action="store_true")
+    st.set_defaults(func=_cmd_study)
 
     s = sub.add_parser("size", help="size the screw shaft from its duty (paper eqs. 1-9)")
     s.add_argument("scene", nargs="?", default=None,

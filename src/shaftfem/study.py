@@ -142,3 +142,81 @@ def estimate_errors(result, ratio: float = RATIO, progress=None,
     est.reliable[missing] = False
     est.relative_error[missing] = np.nan
     return est
+
+
+# --------------------------------------------------------------------------
+# The work-precision study: a ladder of meshes, P1 and P2
+
+
+@dataclass
+class StudyRun:
+    order: int
+    size_mm: float
+    dofs: int
+    seconds: dict
+    peak_memory_mb: float
+    frequencies: np.ndarray
+    kinds: list
+
+
+def _one_run(scene, size_mm: float, order: int, factorizer: str) -> dict:
+    """Run in a fresh process, so that its peak memory is its own."""
+    import resource
+
+    from .pipeline import run_modes, with_mesh
+
+    r = run_modes(with_mesh(scene, size_mm, order), factorizer=factorizer)
+    return {"dofs": r.modes.n_dofs, "seconds": r.seconds,
+            "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+            "frequencies": r.modes.frequencies, "kinds": r.modes.kinds}
+
+
+def run_study(scene, ladders: dict[int, list[float]], factorizer: str = "auto",
+              progress=None) -> list[StudyRun]:
+    """Solve `scene` at every (order, size) of the ladders, each in its own process."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    say = progress or (lambda _m: None)
+    runs = []
+    ctx = mp.get_context("spawn")
+    for order, sizes in ladders.items():
+        for h in sorted(sizes, reverse=True):
+            say(f"study: P{order} at {h:g} mm")
+            with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
+                d = pool.submit(_one_run, scene, h, order, factorizer).result()
+            runs.append(StudyRun(order=order, size_mm=h, **d))
+    return runs
+
+
+def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, ErrorEstimate]:
+    """Richardson extrapolation of the three finest runs of the highest order."""
+    top = max(r.order for r in runs)
+    best = sorted([r for r in runs if r.order == top], key=lambda r: r.size_mm)[:3]
+    if len(best) < 3:
+        raise ValueError("the study needs at least three meshes of the highest order")
+    ratio = (best[2].size_mm / best[0].size_mm) ** 0.5
+    f1 = best[0].frequencies
+    f = [f1]
+    for r in best[1:]:
+        idx = match_modes(best[0].kinds, f1, r.kinds, r.frequencies)
+        f.append(r.frequencies[np.maximum(idx, 0)])
+    est = richardson(f[0], f[1], f[2], ratio, top, singular)
+    ref = np.where(np.isfinite(est.extrapolated), est.extrapolated, f1)
+    return ref, est
+
+
+def study_table(runs: list[StudyRun], reference: np.ndarray, ref_kinds: list) -> list[dict]:
+    rows = []
+    for r in runs:
+        idx = match_modes(ref_kinds, reference, r.kinds, r.frequencies)
+        f = r.frequencies[np.maximum(idx, 0)]
+        err = np.abs(f / reference - 1)
+        rows.append({
+            "element": f"P{r.order}", "size_mm": r.size_mm, "dofs": r.dofs,
+            **{f"{k}_s": round(v, 3) for k, v in r.seconds.items()},
+            "peak_memory_mb": round(r.peak_memory_mb),
+            "max_rel_error": float(err.max()),
+            **{f"f{i + 1}_hz": float(x) for i, x in enumerate(f)},
+        })
+    return rows
