@@ -42,3 +42,11 @@ if ! .venv/bin/python -c "$probe" >/dev/null 2>&1; then
         libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1 libgl1 libxrender1 libx11-6 >/dev/null
     .venv/bin/python -c "$probe" >/dev/null 2>&1 || echo "setup: warning: off-screen rendering does not work; pictures will fail" >&2
 fi
+
+# CalculiX (ccx) is the independent solver the tests compare with; optional.
+if ! command -v ccx >/dev/null 2>&1; then
+    echo "setup: installing CalculiX (calculix-ccx) for the cross-check tests" >&2
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq calculix-ccx >/dev/null; } \
+        || echo "setup: warning: could not install calculix-ccx; its cross-check tests will skip" >&2
+fi

@@ -140,9 +140,16 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_export(args) -> int:
-    from .export import export_modes
+    from pathlib import Path
+
+    from .export import export_modes, write_calculix
 
     result = _run(args)
+    if args.format == "calculix":
+        deck = write_calculix(result, Path(args.out) / "shaft.inp")
+        print(f"wrote {deck} (run: cd {deck.parent} && ccx -i shaft; frequencies in "
+              "shaft.dat, full precision in shaft.eig)")
+        return 0
     files = export_modes(result, args.out)
     print(f"wrote {len(files)} files to {args.out}: " + ", ".join(f.name for f in files))
     return 0
@@ -320,8 +327,11 @@ def build_parser() -> argparse.ArgumentParser:
                       "a margin is violated)", _cmd_check)
     c.add_argument("--margin", type=_positive_float, metavar="PERCENT",
                    help="required separation margin, %% (default: scene, else 15)")
-    modal_command("export", "mode shapes (VTU/PVD), tables (CSV/JSON), mesh (MSH), solid "
-                  "(STEP/BREP)", _cmd_export, json=False, out="required")
+    e = modal_command("export", "mode shapes (VTU/PVD), tables (CSV/JSON), mesh (MSH), solid "
+                      "(STEP/BREP); or a CalculiX deck", _cmd_export, json=False, out="required")
+    e.add_argument("--format", choices=("vtk", "calculix"), default="vtk",
+                   help="vtk: mode shapes and tables (default); calculix: shaft.inp, a C3D10 "
+                   "*FREQUENCY deck of the same mesh and material")
     modal_command("render", "PNG pictures of the shaft and its first eight modes", _cmd_render,
                   json=False, out="required")
     d = modal_command("design", "sizing, modes, resonance check, files, pictures and a report",

@@ -179,3 +179,83 @@ def export_modes(result, out: str | Path, errors: np.ndarray | None = None) -> l
         export_solid(result.shape.brep, stage / "shaft.step", stage / "shaft.brep")
         written = sorted(p.name for p in stage.iterdir())
     return [Path(out) / n for n in written]
+
+
+# --------------------------------------------------------------------------
+# CalculiX: the same mesh and material as a *FREQUENCY deck, for an independent solve
+
+
+def calculix_deck(result, n_eigen: int = 16) -> str:
+    """A complete CalculiX input deck (SI units) for the free-free modes of `result`'s mesh.
+
+    meshio writes the nodes and the 10-node tetrahedra (its tetra10 node order is
+    the Abaqus C3D10 order; gmsh's differs by swapping nodes 8 and 9, which meshio
+    undid on reading). Numbers are written with 13 significant digits: CalculiX
+    reads at most 20 characters per field.
+    """
+    import io as _io
+
+    import meshio
+
+    mesh, mat = result.mesh, result.scene.material
+    if mesh.order != 2:
+        raise ValueError("the CalculiX export writes C3D10 (second-order) meshes only")
+    buf = _io.StringIO()
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "mesh.inp"
+        meshio.write(path, meshio.Mesh(mesh.points, [("tetra10", mesh.cells)]),
+                     file_format="abaqus", float_fmt=".12e")
+        text = path.read_text()
+    text = text.replace("*ELEMENT, TYPE=C3D10MH", "*ELEMENT, TYPE=C3D10, ELSET=EALL")
+    if "TYPE=C3D10, ELSET=EALL" not in text:
+        raise RuntimeError("unexpected element card from meshio's Abaqus writer")
+    buf.write(text.rstrip() + "\n")
+    buf.write(
+        f"** free-free modal analysis of {result.scene.name} written by shaftfem (SI units)\n"
+        f"*MATERIAL, NAME=M1\n*ELASTIC\n{mat.youngs_modulus:.10e}, {mat.poisson_ratio:.10g}\n"
+        f"*DENSITY\n{mat.density:.10e}\n"
+        "*SOLID SECTION, ELSET=EALL, MATERIAL=M1\n"
+        # STORAGE=YES: the eigenvalues also go, in full double precision, to the binary
+        # .eig file (the .dat table prints 7 digits only)
+        f"*STEP\n*FREQUENCY, STORAGE=YES\n{n_eigen}\n*END STEP\n"
+    )
+    return buf.getvalue()
+
+
+def write_calculix(result, path: str | Path, n_eigen: int = 16) -> Path:
+    with atomic_path(path) as tmp:
+        tmp.write_text(calculix_deck(result, n_eigen))
+    return Path(path)
+
+
+def read_calculix_frequencies(dat: str | Path) -> np.ndarray:
+    """Frequencies (Hz, cycles/time) from the eigenvalue table of a CalculiX .dat file."""
+    import re
+
+    lines = Path(dat).read_text().splitlines()
+    start = next((i for i, l in enumerate(lines) if "E I G E N V A L U E   O U T P U T" in l),
+                 None)
+    if start is None:
+        raise ValueError(f"{dat}: no eigenvalue output")
+    num = r"[-+]?\d+\.\d*E[-+]\d+"
+    row = re.compile(rf"^\s*(\d+)\s+({num})\s+({num})\s+({num})\s+({num})\s*$")
+    freqs = []
+    for line in lines[start + 1:]:
+        m = row.match(line)
+        if m:
+            freqs.append(float(m.group(4)))
+        elif freqs and line.strip() and "P A R T I C I P A T I O N" in line:
+            break
+    return np.array(freqs)
+
+
+def read_calculix_eig(eig: str | Path) -> np.ndarray:
+    """Frequencies (Hz) in full precision from CalculiX's binary .eig file.
+
+    Layout written by ccx 2.20 for *FREQUENCY, STORAGE=YES: four 32-bit integers
+    (the last is the number of eigenvalues), then the eigenvalues w^2 as doubles.
+    """
+    b = Path(eig).read_bytes()
+    n = int(np.frombuffer(b[:16], dtype=np.int32)[3])
+    lam = np.frombuffer(b[16:16 + 8 * n], dtype=np.float64)
+    return np.sqrt(np.abs(lam)) / (2 * np.pi)
