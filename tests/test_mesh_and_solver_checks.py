@@ -6,7 +6,7 @@ import pytest
 from shaftfem import modal
 from shaftfem.assembly import assemble
 from shaftfem.errors import MeshError, SolverError
-from shaftfem.mesh import check_jacobians, jacobian_ratio
+from shaftfem.mesh import check_jacobians, jacobian_ratio, straighten_bad_elements
 
 
 def test_curved_mesh_has_positive_jacobians(cylinder):
@@ -27,6 +27,13 @@ def test_inverted_element_is_refused(cylinder):
     assert jacobian_ratio(pts, cells) < 0
     with pytest.raises(MeshError, match="inverted"):
         check_jacobians(pts, cells)
+    # the repair: straight edges for the bad element, valid again, the others untouched
+    fixed, n = straighten_bad_elements(pts, cells)
+    sharing = np.any(cells == mid, axis=1)  # the moved node spoils its neighbours too
+    assert 1 <= n <= sharing.sum()
+    assert check_jacobians(fixed, cells) > 0.02
+    keep = np.setdiff1d(np.arange(len(pts)), cells[sharing].ravel())
+    assert np.array_equal(fixed[keep], pts[keep])
 
 
 def test_mesh_volume_matches_the_cylinder(cylinder):
@@ -52,7 +59,7 @@ def test_disconnected_mesh_is_an_error(cylinder):
     shifted = m.points + np.array([1.0, 0.0, 0.0])
     two = ShaftMesh(points=np.vstack([m.points, shifted]),
                     cells=np.vstack([m.cells, m.cells + len(m.points)]), order=2,
-                    min_jacobian_ratio=m.min_jacobian_ratio, optimized_high_order=False,
+                    min_jacobian_ratio=m.min_jacobian_ratio, straightened=0,
                     seconds=0.0)
     sys_ = assemble(two.to_skfem(), 2, cylinder.scene.material)
     with pytest.raises(SolverError, match="2 disconnected parts"):

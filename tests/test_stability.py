@@ -67,7 +67,7 @@ def test_same_shaft_in_mm_gives_the_same_hz(cylinder):
 
     m, mesh = cylinder.scene.material, cylinder.mesh
     mm = ShaftMesh(points=mesh.points * 1e3, cells=mesh.cells, order=2,
-                   min_jacobian_ratio=mesh.min_jacobian_ratio, optimized_high_order=False,
+                   min_jacobian_ratio=mesh.min_jacobian_ratio, straightened=0,
                    seconds=0.0)
     modes = _solve(mm.to_skfem(), 2, Material("40Cr (t, mm, s)", m.youngs_modulus * 1e-6,
                                               m.poisson_ratio, m.density * 1e-12))

@@ -276,6 +276,14 @@ def _sizes(text: str) -> list[float]:
     return v
 
 
+def _cmd_paper(args) -> int:
+    from .report import format_paper_comparison
+
+    result = _run(args)
+    print(format_paper_comparison(result))
+    return 0
+
+
 def _cmd_size(args) -> int:
     from .sizing import format_sizing, size_from_scene
     from .export import write_json
@@ -339,6 +347,8 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--margin", type=_positive_float, metavar="PERCENT",
                    help="required separation margin, %% (default: scene, else 15)")
 
+    modal_command("paper", "the paper's Table 2 beside our frequencies", _cmd_paper,
+                  json=False)
     st = sub.add_parser("study", help="work-precision study: a ladder of P1 and P2 meshes")
     st.add_argument("scene", nargs="?", default=None,
                     help="scene file or name in geometry/ (default: paper2018)")

@@ -38,7 +38,7 @@ class ShaftMesh:
     cells: np.ndarray
     order: int
     min_jacobian_ratio: float
-    optimized_high_order: bool
+    straightened: int  # P2 elements whose curved edges were straightened to stay valid
     seconds: float
 
     @property
@@ -162,13 +162,6 @@ def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: Mesh
                 gmsh.model.mesh.setOrder(2)
         except Exception as exc:  # gmsh raises a bare Exception with its log line
             raise MeshError(f"gmsh could not mesh the solid: {exc}") from None
-        optimized = False
-        if settings.order == 2 and _worst_scaled_jacobian(gmsh) <= MIN_JACOBIAN_RATIO:
-            # Curving P2 edges onto the helical faces can invert thin elements; gmsh's
-            # high-order optimiser repairs them (only done when needed: it is slow).
-            opt("Mesh.HighOrderOptimize", 2)
-            gmsh.model.mesh.optimize("HighOrder")
-            optimized = True
         fd, tmp = tempfile.mkstemp(suffix=".msh")
         os.close(fd)
         try:
@@ -187,9 +180,12 @@ def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: Mesh
     if sector:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)
+    straightened = 0
+    if settings.order == 2:
+        points, straightened = straighten_bad_elements(points, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
-                     optimized_high_order=optimized, seconds=time.perf_counter() - t0)
+                     straightened=straightened, seconds=time.perf_counter() - t0)
 
 
 def _quarter_cylinder(gmsh, shaft: Shaft) -> None:
@@ -231,14 +227,32 @@ def _compact(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndar
     return np.ascontiguousarray(points[used]), remap[cells]
 
 
-def _worst_scaled_jacobian(gmsh) -> float:
-    worst = math.inf
-    for etype in gmsh.model.mesh.getElementTypes(3):
-        tags, _ = gmsh.model.mesh.getElementsByType(etype)
-        if len(tags):
-            q = gmsh.model.mesh.getElementQualities(tags, "minSJ")
-            worst = min(worst, float(np.min(q)))
-    return worst
+# Edges of a 10-node tetrahedron in VTK/meshio order: node 4 + k sits on EDGES[k].
+EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
+
+
+def straighten_bad_elements(points: np.ndarray, cells: np.ndarray,
+                            rounds: int = 5) -> tuple[np.ndarray, int]:
+    """Move the edge nodes of badly curved P2 elements back to their edges' midpoints.
+
+    Curving second-order tets onto the helical groove faces can invert thin
+    elements. gmsh's high-order optimiser repairs them but is slow and has aborted
+    the whole process (an uncaught C++ exception) on this geometry, so such
+    elements are made straight-sided instead: always valid, at a local geometric
+    error of the order of the element's curvature. Returns the new points and
+    how many elements were straightened.
+    """
+    points = points.copy()
+    done = np.zeros(len(cells), dtype=bool)
+    for _ in range(rounds):
+        bad = (element_jacobian_ratios(points, cells) <= MIN_JACOBIAN_RATIO) & ~done
+        if not bad.any():
+            break
+        for k, (a, b) in enumerate(EDGES):
+            c = cells[bad]
+            points[c[:, 4 + k]] = 0.5 * (points[c[:, a]] + points[c[:, b]])
+        done |= bad
+    return points, int(done.sum())
 
 
 def check_jacobians(points: np.ndarray, cells: np.ndarray) -> float:
@@ -254,7 +268,12 @@ def check_jacobians(points: np.ndarray, cells: np.ndarray) -> float:
 
 
 def jacobian_ratio(points: np.ndarray, cells: np.ndarray) -> float:
-    """Smallest over elements of min(det J) / max(det J), sampled at nodes and inside.
+    """Smallest over elements of min(det J) / max |det J|, sampled at nodes and inside."""
+    return float(np.min(element_jacobian_ratios(points, cells)))
+
+
+def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Per element min(det J) / max |det J|, sampled at nodes and inside.
 
     Negative means an inverted element; the determinant is evaluated with
     scikit-fem's isoparametric mapping, the one the assembly integrates with.
@@ -274,4 +293,4 @@ def jacobian_ratio(points: np.ndarray, cells: np.ndarray) -> float:
     det = mapping.detDF(np.array(pts).T)
     sign = np.sign(np.median(det))
     det = sign * det
-    return float(np.min(det.min(axis=1) / np.abs(det).max(axis=1)))
+    return det.min(axis=1) / np.abs(det).max(axis=1)

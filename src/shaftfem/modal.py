@@ -73,7 +73,7 @@ FACTORIZERS = ("pardiso", "cholmod", "superlu")
 # 1e-10..1e-12 and the factorisation is a small part of the time, while PARDISO's
 # residuals reached 1e-7 on the plain cylinder (28k DOFs). Above it factorisation
 # dominates and PARDISO is 7x faster (benchmarks/).
-AUTO_SUPERLU_BELOW = 150_000
+AUTO_SUPERLU_BELOW = 60_000
 
 
 def available_factorizers() -> list[str]:

@@ -84,3 +84,43 @@ def write_report(path: str | Path, result, verdict, sizing=None, pictures=(),
     with atomic_path(path) as tmp:
         tmp.write_text("\n".join(lines))
     return path
+
+
+# --------------------------------------------------------------------------
+# The paper's Table 2 beside ours
+
+# ANSYS, 1 mm elements, free-free, rigid-body modes not listed (Fu et al. 2018, Table 2)
+PAPER_TABLE2_HZ = (432.16, 433.60, 1158.30, 1166.40, 2149.90, 2195.20, 3500.60, 3594.30,
+                   3687.50, 5257.80)
+
+
+def paper_comparison(result) -> list[dict]:
+    """Mode by mode: the paper's frequency, ours, the difference and the ratios to mode 1."""
+    f = result.modes.frequencies
+    rows = []
+    for i, (p, ours, kind) in enumerate(zip(PAPER_TABLE2_HZ, f, result.modes.kinds)):
+        rows.append({"mode": i + 1, "paper_hz": p, "shaftfem_hz": float(ours), "kind": kind,
+                     "difference_percent": 100 * (ours / p - 1),
+                     "paper_ratio_to_mode1": p / PAPER_TABLE2_HZ[0],
+                     "shaftfem_ratio_to_mode1": float(ours / f[0])})
+    return rows
+
+
+def format_paper_comparison(result) -> str:
+    s, m = result.scene.shaft, result.scene.material
+    ct = (m.shear_modulus / m.density) ** 0.5
+    torsion = ct / (2 * s.length)
+    lines = [f"{'mode':>4} {'paper':>10} {'shaftfem':>10} {'diff':>8}  {'kind':<8} "
+             f"{'f/f1 paper':>10} {'f/f1 ours':>10}"]
+    for r in paper_comparison(result):
+        lines.append(f"{r['mode']:>4} {r['paper_hz']:>7.2f} Hz {r['shaftfem_hz']:>7.2f} Hz "
+                     f"{r['difference_percent']:>+7.1f} %  {r['kind']:<8} "
+                     f"{r['paper_ratio_to_mode1']:>10.3f} {r['shaftfem_ratio_to_mode1']:>10.3f}")
+    nearest = min(PAPER_TABLE2_HZ, key=lambda p: abs(p - torsion))
+    lines += [
+        "",
+        f"first torsion of a uniform {s.diameter * 1e3:g} mm shaft {s.length * 1e3:g} mm long: "
+        f"c_t / 2L = {torsion:.0f} Hz; the paper's nearest mode is {nearest:.1f} Hz "
+        f"({100 * (nearest / torsion - 1):+.0f} %)",
+    ]
+    return "\n".join(lines)

@@ -1,0 +1,23 @@
+"""Helpers for the benchmark scripts: a run in a fresh process, so its peak memory is its own."""
+
+import multiprocessing as mp
+import platform
+from concurrent.futures import ProcessPoolExecutor
+
+
+def in_fresh_process(fn, *args, **kwargs):
+    with ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("spawn")) as pool:
+        return pool.submit(fn, *args, **kwargs).result()
+
+
+def machine() -> str:
+    import os
+
+    mem = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30
+    return f"{os.cpu_count()} cores, {mem:.0f} GB, {platform.processor() or platform.machine()}"
+
+
+def peak_mb() -> float:
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
