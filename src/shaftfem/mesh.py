@@ -24,7 +24,6 @@ from .errors import MeshError
 from .scene import Grooves, MeshSettings, Shaft
 
 MIN_JACOBIAN_RATIO = 0.02  # smallest det J / largest det J allowed within one element
-INCLUDE_FLAT_EDGES = True  # grade towards the floor arcs at the groove ends too
 # Distance (in units of the size jump) over which the element size grows from the
 # edge size to the groove size: 1 means each element is about twice its inner neighbour.
 EDGE_GRADING = 1.0
@@ -89,7 +88,9 @@ def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], l
     for _, c in gmsh.model.getEntities(1):
         xyz = _sample(gmsh, 1, c, 5)
         r = np.hypot(xyz[:, 0], xyz[:, 1])
-        if np.all(np.abs(r - floor) < tol) and (INCLUDE_FLAT_EDGES or np.ptp(xyz[:, 2]) > 1e-4):
+        # every curve on the floor radius: the helical floor edges, and the arcs where
+        # the grooves' flat ends meet the floor (sharp re-entrant edges)
+        if np.all(np.abs(r - floor) < tol):
             edges.append(c)
             longest = max(longest, float(np.sum(np.linalg.norm(np.diff(xyz, axis=0), axis=1))))
     return faces, edges, longest * 6 / 5
