@@ -103,17 +103,8 @@ def factorize(A: sp.spmatrix, backend: str = "auto"):
         upper.sort_indices()
         solver.factorize(upper)
 
-        if hasattr(solver, "_call_pardiso"):
-            # pypardiso's public solve() hashes the whole matrix on every call to see
-            # whether it is factorised already: 30 ms per Lanczos step here. Go
-            # straight to the solve phase (33) with the factors we just made.
-            solver.set_phase(33)
-
-            def solve(b):
-                return solver._call_pardiso(upper, np.asfortranarray(b, dtype=float))
-        else:  # pragma: no cover - other pypardiso versions
-            def solve(b):
-                return solver.solve(upper, np.ascontiguousarray(b))
+        def solve(b):
+            return solver.solve(upper, np.asarray(b, dtype=float))
         return solve, backend
     if backend == "cholmod":
         from cholespy import CholeskySolverD, MatrixType
