@@ -284,6 +284,25 @@ def _cmd_paper(args) -> int:
     return 0
 
 
+def _cmd_sweep(args) -> int:
+    from pathlib import Path
+
+    from .sweep import load_sweep, run_sweep
+
+    sweep = load_sweep(args.sweep)
+    out = Path(args.out)
+    rows = run_sweep(sweep, out / "results.csv", workers=args.workers,
+                     scheduler=args.scheduler, estimate=args.estimate,
+                     progress=_Progress(args.quiet))
+    ok = sum(r["status"] == "ok" for r in rows)
+    print(f"{len(rows)} variants in {out / 'results.csv'}: {ok} ok, {len(rows) - ok} failed")
+    for r in rows:
+        if r["status"] != "ok":
+            print(f"  failed {r['id']}: " + ", ".join(f"{p} = {r[p]}" for p in sweep.parameters)
+                  + f": {r['error']}")
+    return 0
+
+
 def _cmd_size(args) -> int:
     from .sizing import format_sizing, size_from_scene
     from .export import write_json
@@ -349,6 +368,17 @@ def build_parser() -> argparse.ArgumentParser:
 
     modal_command("paper", "the paper's Table 2 beside our frequencies", _cmd_paper,
                   json=False)
+    sw = sub.add_parser("sweep", help="run many variants of a scene on Dask (resumable)")
+    sw.add_argument("sweep", help="sweep file (TOML): base scene and parameter axes or points")
+    sw.add_argument("--out", default="out/sweep", help="folder for results.csv (default out/sweep)")
+    sw.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    sw.add_argument("--scheduler", metavar="ADDRESS",
+                    help="an existing Dask scheduler, e.g. tcp://host:8786, instead of a local one")
+    sw.add_argument("--estimate", action="store_true",
+                    help="also estimate each frequency's error (three solves per variant)")
+    sw.add_argument("-q", "--quiet", action="store_true")
+    sw.set_defaults(func=_cmd_sweep)
+
     st = sub.add_parser("study", help="work-precision study: a ladder of P1 and P2 meshes")
     st.add_argument("scene", nargs="?", default=None,
                     help="scene file or name in geometry/ (default: paper2018)")

@@ -1,0 +1,210 @@
+"""Design sweeps: many variants of one scene, each a full modal run, on Dask.
+
+A sweep file (TOML) names a base scene and the values of any numeric scene keys:
+
+    base = "paper2018"              # scene name in geometry/ or a path
+    mesh_size_mm = 12               # optional: element size for every variant
+    [axes]                          # full grid over these ("table.key" = values)
+    "grooves.depth_mm" = [2.0, 3.0, 4.0]
+    "shaft.length_mm" = {start = 500, stop = 600, num = 3}
+    # or, instead of [axes], an explicit list:
+    # points = [{"grooves.depth_mm" = 2.0, "shaft.length_mm" = 520}, ...]
+
+Each variant runs in a Dask worker process (gmsh keeps global state, so one
+thread per process). Every finished variant is appended to the results CSV at
+once, so an interrupted sweep resumes where it stopped; a variant that fails
+(bad geometry, a failed boolean) is recorded with its error and the rest go on.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import itertools
+import json
+import math
+import os
+import time
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from .errors import SceneError
+
+N_MODES = 10
+
+
+@dataclass(frozen=True)
+class Sweep:
+    base: str
+    mesh_size_mm: float | None
+    variants: list[dict]        # each: {"table.key": value in file units}
+    parameters: list[str]
+
+
+def _axis_values(name: str, spec) -> list[float]:
+    if isinstance(spec, list) and spec and all(isinstance(v, (int, float)) and not
+                                               isinstance(v, bool) for v in spec):
+        return [float(v) for v in spec]
+    if isinstance(spec, dict) and set(spec) == {"start", "stop", "num"}:
+        n = spec["num"]
+        if not isinstance(n, int) or n < 1:
+            raise SceneError(f"axes.{name}.num = {n!r}: must be an integer >= 1")
+        a, b = float(spec["start"]), float(spec["stop"])
+        return [a + (b - a) * i / max(n - 1, 1) for i in range(n)]
+    raise SceneError(f"axes.{name} = {spec!r}: expected a list of numbers or "
+                     "{start = ..., stop = ..., num = ...}")
+
+
+def load_sweep(path: str | Path) -> Sweep:
+    """Read a sweep file and expand it into variants (every override checked for form)."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise SceneError(f"sweep file {str(path)!r}: no such file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+    allowed = {"base", "mesh_size_mm", "axes", "points"}
+    for key in data:
+        if key not in allowed:
+            raise SceneError(f"{path.name}: {key}: unknown key; allowed: {', '.join(sorted(allowed))}")
+    if "base" not in data or not isinstance(data["base"], str):
+        raise SceneError(f"{path.name}: base: missing (the scene the variants start from)")
+    if ("axes" in data) == ("points" in data):
+        raise SceneError(f"{path.name}: give either [axes] (a grid) or points (a list)")
+    if "axes" in data:
+        names = list(data["axes"])
+        values = [_axis_values(n, data["axes"][n]) for n in names]
+        variants = [dict(zip(names, combo)) for combo in itertools.product(*values)]
+    else:
+        variants = [{k: float(v) for k, v in p.items()} for p in data["points"]]
+        names = sorted({k for v in variants for k in v})
+    for n in names:
+        if n.count(".") != 1:
+            raise SceneError(f"{path.name}: {n!r}: a parameter is 'table.key', e.g. 'grooves.depth_mm'")
+    size = data.get("mesh_size_mm")
+    if size is not None and (not isinstance(size, (int, float)) or size <= 0):
+        raise SceneError(f"{path.name}: mesh_size_mm = {size!r}: must be a number > 0")
+    base = data["base"]
+    if not Path(base).is_absolute() and (path.parent / base).suffix == ".toml":
+        base = str(path.parent / base)
+    return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names)
+
+
+def variant_id(overrides: dict) -> str:
+    text = json.dumps({k: round(v, 12) for k, v in sorted(overrides.items())})
+    return hashlib.sha1(text.encode()).hexdigest()[:12]
+
+
+def run_variant(base: str, overrides: dict, mesh_size_mm: float | None = None,
+                estimate: bool = False) -> dict:
+    """One variant, start to finish; never raises: a failure is a row with its error."""
+    t0 = time.perf_counter()
+    row = {"id": variant_id(overrides), **overrides}
+    try:
+        from .pipeline import run_modes, with_mesh
+        from .resonance import check_resonance
+        from .scene import load_scene
+
+        scene = with_mesh(load_scene(base, overrides=overrides), mesh_size_mm)
+        r = run_modes(scene)
+        m = r.modes
+        for i in range(N_MODES):
+            row[f"f{i + 1}_hz"] = float(m.frequencies[i])
+            row[f"kind{i + 1}"] = m.kinds[i]
+        if estimate:
+            from .study import estimate_errors
+
+            est = estimate_errors(r)
+            for i in range(N_MODES):
+                row[f"err{i + 1}"] = float(est.relative_error[i])
+        if scene.excitations:
+            v = check_resonance(m.frequencies, m.kinds, scene.excitations, scene.required_margin)
+            row["min_margin"] = v.approaches[0].margin
+            row["margin_ok"] = v.ok
+        row["dofs"] = m.n_dofs
+        row["status"] = "ok"
+        row["error"] = ""
+    except Exception as exc:  # recorded, so that one bad variant does not stop the sweep
+        row["status"] = "failed"
+        row["error"] = f"{type(exc).__name__}: {exc}".replace("\n", " ")
+    row["wall_s"] = round(time.perf_counter() - t0, 3)
+    row["worker_pid"] = os.getpid()
+    return row
+
+
+COLUMNS_TAIL = (["dofs"] + [f"f{i + 1}_hz" for i in range(N_MODES)]
+                + [f"kind{i + 1}" for i in range(N_MODES)]
+                + [f"err{i + 1}" for i in range(N_MODES)]
+                + ["min_margin", "margin_ok", "status", "error", "wall_s", "worker_pid"])
+
+
+def read_results(path: str | Path) -> list[dict]:
+    path = Path(path)
+    if not path.exists():
+        return []
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _drop_partial_line(path: Path) -> None:
+    """A sweep killed while writing can leave half a row: cut it off before appending."""
+    if not path.exists() or path.stat().st_size == 0:
+        return
+    data = path.read_bytes()
+    if not data.endswith(b"\n"):
+        keep = data.rfind(b"\n") + 1
+        with open(path, "r+b") as fh:
+            fh.truncate(keep)
+
+
+def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
+              scheduler: str | None = None, estimate: bool = False,
+              progress: Callable[[str], None] | None = None) -> list[dict]:
+    """Run every variant not yet in `results` on Dask; append each row as it finishes."""
+    from distributed import Client, LocalCluster, as_completed
+
+    say = progress or (lambda _m: None)
+    results = Path(results)
+    _drop_partial_line(results)
+    done = {r["id"] for r in read_results(results)}
+    todo = [v for v in sweep.variants if variant_id(v) not in done]
+    say(f"sweep: {len(sweep.variants)} variants, {len(done)} already in {results.name}, "
+        f"{len(todo)} to run")
+    if not todo:
+        return read_results(results)
+    columns = ["id"] + sweep.parameters + COLUMNS_TAIL
+    new_file = not results.exists() or results.stat().st_size == 0
+    results.parent.mkdir(parents=True, exist_ok=True)
+    if scheduler:
+        client, cluster = Client(scheduler), None
+    else:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               dashboard_address=None)
+        client = Client(cluster)
+    t0, n_ok, n_failed = time.perf_counter(), 0, 0
+    try:
+        futures = [client.submit(run_variant, sweep.base, v, sweep.mesh_size_mm, estimate,
+                                 pure=False) for v in todo]
+        with open(results, "a", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=columns, extrasaction="ignore")
+            if new_file:
+                w.writeheader()
+            for fut in as_completed(futures):
+                row = fut.result()
+                w.writerow(row)
+                fh.flush()
+                os.fsync(fh.fileno())
+                n_ok += row["status"] == "ok"
+                n_failed += row["status"] != "ok"
+                k = n_ok + n_failed
+                left = (time.perf_counter() - t0) / k * (len(todo) - k)
+                say(f"sweep: {k}/{len(todo)} done ({n_failed} failed), about "
+                    f"{math.ceil(left)} s left")
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return read_results(results)
