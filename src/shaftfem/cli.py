@@ -287,7 +287,7 @@ def _cmd_paper(args) -> int:
 def _cmd_sweep(args) -> int:
     from pathlib import Path
 
-    from .sweep import load_sweep, run_sweep
+    from .sweep import load_sweep, plot_sweep, run_sweep
 
     sweep = load_sweep(args.sweep)
     out = Path(args.out)
@@ -296,10 +296,32 @@ def _cmd_sweep(args) -> int:
                      progress=_Progress(args.quiet))
     ok = sum(r["status"] == "ok" for r in rows)
     print(f"{len(rows)} variants in {out / 'results.csv'}: {ok} ok, {len(rows) - ok} failed")
+    pics = plot_sweep(rows, sweep.parameters, out)
+    if pics:
+        print("plots: " + ", ".join(str(p) for p in pics))
     for r in rows:
         if r["status"] != "ok":
             print(f"  failed {r['id']}: " + ", ".join(f"{p} = {r[p]}" for p in sweep.parameters)
                   + f": {r['error']}")
+    return 0
+
+
+def _cmd_calibrate(args) -> int:
+    from pathlib import Path
+
+    from .calibrate import calibrate, load_calibration
+    from .export import write_json
+
+    cal = load_calibration(args.calibration)
+    out = Path(args.out)
+    res = calibrate(cal, out, workers=args.workers, progress=_Progress(args.quiet))
+    print(res.format(cal))
+    write_json(out / "calibration.json", {
+        "parameters": res.parameters, "std": res.std, "grid_best": res.grid_best,
+        "targets_hz": cal.targets, "model_hz": res.frequencies,
+        "residuals_sigma": res.residuals_sigma, "chi2": res.chi2,
+        "evaluations": res.evaluations})
+    print(f"wrote {out / 'calibration.json'}")
     return 0
 
 
@@ -378,6 +400,14 @@ def build_parser() -> argparse.ArgumentParser:
                     help="also estimate each frequency's error (three solves per variant)")
     sw.add_argument("-q", "--quiet", action="store_true")
     sw.set_defaults(func=_cmd_sweep)
+
+    ca = sub.add_parser("calibrate", help="find unknown scene values that reproduce target "
+                        "frequencies (grid on Dask, then least squares)")
+    ca.add_argument("calibration", help="calibration file (TOML): base, unknowns, targets")
+    ca.add_argument("--out", default="out/calibrate", help="output folder (default out/calibrate)")
+    ca.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    ca.add_argument("-q", "--quiet", action="store_true")
+    ca.set_defaults(func=_cmd_calibrate)
 
     st = sub.add_parser("study", help="work-precision study: a ladder of P1 and P2 meshes")
     st.add_argument("scene", nargs="?", default=None,

@@ -208,3 +208,55 @@ def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
         if cluster is not None:
             cluster.close()
     return read_results(results)
+
+
+def plot_sweep(rows: list[dict], parameters: list[str], out: str | Path) -> list[Path]:
+    """PNG per swept parameter (each frequency against it) and a resonance-margin map."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .export import atomic_path
+
+    ok = [r for r in rows if r["status"] == "ok"]
+    out = Path(out)
+    written = []
+    if not ok:
+        return written
+    for p in parameters:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        x = [float(r[p]) for r in ok]
+        for i in range(1, N_MODES + 1):
+            ax.plot(x, [float(r[f"f{i}_hz"]) for r in ok], "o", ms=4, label=f"mode {i}")
+        ax.set_xlabel(p)
+        ax.set_ylabel("natural frequency, Hz")
+        ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, ncol=2)
+        fig.tight_layout()
+        path = out / f"frequencies_vs_{p.replace('.', '_')}.png"
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=110, format="png")
+        plt.close(fig)
+        written.append(path)
+    if ok[0].get("min_margin") not in (None, ""):
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        margin = [100 * float(r["min_margin"]) for r in ok]
+        if len(parameters) >= 2:
+            sc = ax.scatter([float(r[parameters[0]]) for r in ok],
+                            [float(r[parameters[1]]) for r in ok], c=margin, cmap="RdYlGn", s=80)
+            ax.set_ylabel(parameters[1])
+            fig.colorbar(sc, label="smallest separation margin, %")
+        else:
+            ax.plot([float(r[parameters[0]]) for r in ok], margin, "o")
+            ax.set_ylabel("smallest separation margin, %")
+        ax.set_xlabel(parameters[0])
+        ax.grid(True, alpha=0.3)
+        fig.tight_layout()
+        path = out / "resonance_margin.png"
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=110, format="png")
+        plt.close(fig)
+        written.append(path)
+    return written

@@ -1,0 +1,156 @@
+"""Calibration: which values of unknown scene keys reproduce target frequencies?
+
+A calibration file (TOML):
+
+    base = "paper2018"
+    mesh_size_mm = 12.0
+    grid = 4                                   # points per unknown in the coarse grid
+    [unknowns]                                 # scene keys with bounds, file units
+    "shaft.length_mm" = {min = 500.0, max = 600.0}
+    "grooves.depth_mm" = {min = 2.0, max = 4.0}
+    [targets]
+    frequencies_hz = [432.16, 433.60, 1158.30, 1166.40, 2149.90, 2195.20]
+    uncertainty_percent = 1.0                  # one value, or one per frequency
+
+Method: the sweep engine evaluates a coarse grid (on Dask); from its best point
+SciPy's `least_squares` (trust region, bounds) minimises the weighted residuals
+r_i = (f_i - t_i) / sigma_i. How well each parameter is determined comes from
+the Jacobian at the optimum: cov = (J^T J)^-1 in units of the residuals, so the
+standard deviation says how far a parameter may move before the fit worsens by
+one sigma. Note that every evaluation re-meshes: a finite-difference step
+smaller than a few percent of a parameter's range would see mesh noise.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .errors import SceneError
+from .sweep import Sweep, run_sweep, run_variant
+
+
+@dataclass(frozen=True)
+class Calibration:
+    base: str
+    mesh_size_mm: float | None
+    unknowns: dict          # name -> (min, max)
+    targets: np.ndarray     # Hz
+    sigma: np.ndarray       # Hz
+    grid: int
+
+
+@dataclass
+class CalibrationResult:
+    parameters: dict        # name -> best value
+    std: dict               # name -> standard deviation (same units)
+    frequencies: np.ndarray
+    residuals_sigma: np.ndarray
+    chi2: float
+    evaluations: int
+    grid_best: dict
+
+    def format(self, cal: Calibration) -> str:
+        lines = ["parameter                best value     std. dev.   bounds"]
+        for k, v in self.parameters.items():
+            lo, hi = cal.unknowns[k]
+            lines.append(f"{k:<24} {v:>10.3f}  {self.std[k]:>12.3g}   [{lo:g}, {hi:g}]")
+        lines += ["", "mode   target (Hz)    model (Hz)    diff     in sigma"]
+        for i, (t, f, r) in enumerate(zip(cal.targets, self.frequencies, self.residuals_sigma)):
+            lines.append(f"{i + 1:>4}  {t:>11.2f}  {f:>12.2f}  {100 * (f / t - 1):>+6.2f} %  {r:>+8.2f}")
+        lines += ["", f"chi^2 = {self.chi2:.3g} for {len(cal.targets)} targets and "
+                  f"{len(self.parameters)} unknowns; {self.evaluations} modal runs"]
+        return "\n".join(lines)
+
+
+def load_calibration(path: str | Path) -> Calibration:
+    path = Path(path)
+    try:
+        d = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise SceneError(f"calibration file {str(path)!r}: no such file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+    for key in ("base", "unknowns", "targets"):
+        if key not in d:
+            raise SceneError(f"{path.name}: {key}: missing")
+    unknowns = {}
+    for name, b in d["unknowns"].items():
+        if not (isinstance(b, dict) and {"min", "max"} <= set(b) and b["min"] < b["max"]):
+            raise SceneError(f"{path.name}: unknowns.{name} = {b!r}: expected {{min = .., max = ..}} "
+                             "with min < max")
+        unknowns[name] = (float(b["min"]), float(b["max"]))
+    t = d["targets"]
+    targets = np.asarray(t.get("frequencies_hz", []), dtype=float)
+    if targets.size == 0 or np.any(targets <= 0):
+        raise SceneError(f"{path.name}: targets.frequencies_hz: expected positive frequencies")
+    u = np.broadcast_to(np.asarray(t.get("uncertainty_percent", 1.0), dtype=float), targets.shape)
+    if np.any(u <= 0):
+        raise SceneError(f"{path.name}: targets.uncertainty_percent: must be > 0")
+    grid = d.get("grid", 3)
+    if not isinstance(grid, int) or grid < 2:
+        raise SceneError(f"{path.name}: grid = {grid!r}: must be an integer >= 2")
+    base = d["base"]
+    if (path.parent / base).suffix == ".toml":
+        base = str(path.parent / base)
+    return Calibration(base=base, mesh_size_mm=d.get("mesh_size_mm"), unknowns=unknowns,
+                       targets=targets, sigma=targets * u / 100, grid=grid)
+
+
+def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
+              progress: Callable[[str], None] | None = None) -> CalibrationResult:
+    from scipy.optimize import least_squares
+
+    say = progress or (lambda _m: None)
+    names = list(cal.unknowns)
+    lo = np.array([cal.unknowns[n][0] for n in names])
+    hi = np.array([cal.unknowns[n][1] for n in names])
+    n_t = len(cal.targets)
+
+    def residual_of(row: dict) -> np.ndarray:
+        if row["status"] != "ok":
+            return np.full(n_t, 1e3)
+        f = np.array([float(row[f"f{i + 1}_hz"]) for i in range(n_t)])
+        return (f - cal.targets) / cal.sigma
+
+    # 1. coarse grid on the sweep engine (resumable like any sweep)
+    axes = [np.linspace(a, b, cal.grid) for a, b in zip(lo, hi)]
+    variants = [dict(zip(names, map(float, p))) for p in np.array(np.meshgrid(*axes)).reshape(
+        len(names), -1).T]
+    rows = run_sweep(Sweep(cal.base, cal.mesh_size_mm, variants, names),
+                     Path(workdir) / "grid.csv", workers=workers, progress=say)
+    chi2 = [float(np.sum(residual_of(r) ** 2)) for r in rows]
+    best = rows[int(np.argmin(chi2))]
+    x0 = np.array([float(best[n]) for n in names])
+    say(f"calibrate: best grid point {dict(zip(names, x0))}, chi^2 = {min(chi2):.3g}")
+
+    # 2. local least squares in scaled coordinates s = (x - lo) / (hi - lo)
+    count = {"n": len(rows)}
+
+    def fun(s: np.ndarray) -> np.ndarray:
+        x = lo + s * (hi - lo)
+        count["n"] += 1
+        return residual_of(run_variant(cal.base, dict(zip(names, map(float, x))),
+                                       cal.mesh_size_mm))
+
+    s0 = (x0 - lo) / (hi - lo)
+    fit = least_squares(fun, s0, bounds=(0.0, 1.0), diff_step=0.02, x_scale=1.0,
+                        max_nfev=30)
+    x = lo + fit.x * (hi - lo)
+    # parameter covariance from the Jacobian of the sigma-weighted residuals
+    J = fit.jac * 1.0
+    try:
+        cov_s = np.linalg.inv(J.T @ J)
+        std = np.sqrt(np.clip(np.diag(cov_s), 0, None)) * (hi - lo)
+    except np.linalg.LinAlgError:
+        std = np.full(len(names), math.inf)
+    f = cal.targets + fit.fun * cal.sigma
+    return CalibrationResult(parameters=dict(zip(names, map(float, x))),
+                             std=dict(zip(names, map(float, std))), frequencies=f,
+                             residuals_sigma=fit.fun, chi2=float(np.sum(fit.fun ** 2)),
+                             evaluations=count["n"], grid_best=dict(zip(names, map(float, x0))))
