@@ -127,7 +127,7 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     chi2 = [float(np.sum(residual_of(r) ** 2)) for r in rows]
     best = rows[int(np.argmin(chi2))]
     x0 = np.array([float(best[n]) for n in names])
-    say(f"calibrate: best grid point {dict(zip(names, x0))}, chi^2 = {min(chi2):.3g}")
+    say(f"calibrate: best grid point {dict(zip(names, map(float, x0)))}, chi^2 = {min(chi2):.3g}")
 
     # 2. local least squares in scaled coordinates s = (x - lo) / (hi - lo)
     count = {"n": len(rows)}
@@ -135,8 +135,12 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     def fun(s: np.ndarray) -> np.ndarray:
         x = lo + s * (hi - lo)
         count["n"] += 1
-        return residual_of(run_variant(cal.base, dict(zip(names, map(float, x))),
-                                       cal.mesh_size_mm))
+        r = residual_of(run_variant(cal.base, dict(zip(names, map(float, x))),
+                                    cal.mesh_size_mm))
+        say(f"calibrate: run {count['n']}: "
+            + ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, x))
+            + f": chi^2 = {np.sum(r ** 2):.3g}")
+        return r
 
     s0 = (x0 - lo) / (hi - lo)
     fit = least_squares(fun, s0, bounds=(0.0, 1.0), diff_step=0.02, x_scale=1.0,
