@@ -1,7 +1,6 @@
 """Bad scene input: a one-line error naming the key, exit code 2, no traceback."""
 
 import re
-from pathlib import Path
 
 import pytest
 

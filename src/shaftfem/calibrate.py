@@ -24,7 +24,6 @@ smaller than a few percent of a parameter's range would see mesh noise.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -32,6 +31,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import SceneError
+from .scene import read_toml, scene_beside
 from .sweep import Sweep, run_sweep, run_variant
 
 
@@ -70,12 +70,7 @@ class CalibrationResult:
 
 def load_calibration(path: str | Path) -> Calibration:
     path = Path(path)
-    try:
-        d = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise SceneError(f"calibration file {str(path)!r}: no such file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+    d = read_toml(path, "calibration file")
     for key in ("base", "unknowns", "targets"):
         if key not in d:
             raise SceneError(f"{path.name}: {key}: missing")
@@ -95,9 +90,7 @@ def load_calibration(path: str | Path) -> Calibration:
     grid = d.get("grid", 3)
     if not isinstance(grid, int) or grid < 2:
         raise SceneError(f"{path.name}: grid = {grid!r}: must be an integer >= 2")
-    base = d["base"]
-    if (path.parent / base).suffix == ".toml":
-        base = str(path.parent / base)
+    base = scene_beside(d["base"], path)
     return Calibration(base=base, mesh_size_mm=d.get("mesh_size_mm"), unknowns=unknowns,
                        targets=targets, sigma=targets * u / 100, grid=grid)
 

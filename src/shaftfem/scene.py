@@ -286,13 +286,29 @@ def resolve_scene_path(scene: str | Path | None) -> Path:
     return p
 
 
+def read_toml(path: str | Path, what: str = "file") -> dict:
+    """A TOML file as a dict; a missing or malformed file is a SceneError naming it."""
+    path = Path(path)
+    try:
+        return tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise SceneError(f"{what} {str(path)!r}: no such file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+
+
+def scene_beside(base: str, file: str | Path) -> str:
+    """A scene named in another file (sweep, calibration): a relative .toml path is taken
+    relative to that file; a bare name stays a name in geometry/."""
+    if not Path(base).is_absolute() and Path(base).suffix == ".toml":
+        return str(Path(file).parent / base)
+    return base
+
+
 def load_scene(scene: str | Path | None = None, overrides: dict | None = None) -> Scene:
     """Read and check a scene file; `overrides` maps 'table.key' to a value in file units."""
     path = resolve_scene_path(scene)
-    try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+    data = read_toml(path, "scene")
     for dotted, value in (overrides or {}).items():
         table, key = dotted.split(".")
         data.setdefault(table, {})[key] = value

@@ -25,12 +25,12 @@ import json
 import math
 import os
 import time
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
 from .errors import SceneError
+from .scene import read_toml, scene_beside
 
 N_MODES = 10
 
@@ -60,12 +60,7 @@ def _axis_values(name: str, spec) -> list[float]:
 def load_sweep(path: str | Path) -> Sweep:
     """Read a sweep file and expand it into variants (every override checked for form)."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise SceneError(f"sweep file {str(path)!r}: no such file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+    data = read_toml(path, "sweep file")
     allowed = {"base", "mesh_size_mm", "axes", "points"}
     for key in data:
         if key not in allowed:
@@ -87,9 +82,7 @@ def load_sweep(path: str | Path) -> Sweep:
     size = data.get("mesh_size_mm")
     if size is not None and (not isinstance(size, (int, float)) or size <= 0):
         raise SceneError(f"{path.name}: mesh_size_mm = {size!r}: must be a number > 0")
-    base = data["base"]
-    if not Path(base).is_absolute() and (path.parent / base).suffix == ".toml":
-        base = str(path.parent / base)
+    base = scene_beside(data["base"], path)
     return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names)
 
 
