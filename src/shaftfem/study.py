@@ -81,6 +81,10 @@ def richardson(f1: np.ndarray, f2: np.ndarray, f3: np.ndarray, ratio: float,
     err = np.empty(n)
     fx = np.empty(n)
     for i in range(n):
+        if not (np.isfinite(d21[i]) and np.isfinite(d32[i])):
+            # a mode missing on a coarser mesh (nan): nothing can be estimated
+            err[i] = fx[i] = np.nan
+            continue
         if d21[i] != 0 and d32[i] != 0 and np.sign(d21[i]) == np.sign(d32[i]):
             p[i] = math.log(d32[i] / d21[i]) / math.log(ratio)
         if np.isfinite(p[i]) and P_MIN <= p[i] <= p_max:
@@ -99,20 +103,19 @@ def richardson(f1: np.ndarray, f2: np.ndarray, f3: np.ndarray, ratio: float,
                          ratio=ratio)
 
 
-def match_modes(ref_kinds: list[str], ref_f: np.ndarray, kinds: list[str],
-                f: np.ndarray) -> np.ndarray:
-    """Indices into (kinds, f) of the modes that correspond to the reference's.
+def matched_frequencies(ref_kinds: list[str], kinds: list[str], f: np.ndarray) -> np.ndarray:
+    """The frequencies `f` (of modes `kinds`) reordered to correspond to the reference modes.
 
     Modes are matched in order within each kind (bending, torsion, axial, mixed),
     so that a torsion mode overtaking a bending pair on a coarse mesh is still
-    compared with its own kind. Unmatched modes get -1.
+    compared with its own kind. A reference mode without a counterpart gets nan.
     """
-    out = np.full(len(ref_f), -1)
+    out = np.full(len(ref_kinds), np.nan)
     for kind in set(ref_kinds):
         mine = [i for i, k in enumerate(ref_kinds) if k == kind]
         theirs = [i for i, k in enumerate(kinds) if k == kind]
         for a, b in zip(mine, theirs):
-            out[a] = b
+            out[a] = f[b]
     return out
 
 
@@ -129,18 +132,11 @@ def estimate_errors(result, ratio: float = RATIO, progress=None,
         say(f"error estimate: coarser mesh {k} of 2 ({size_mm:.3g} mm)")
         runs.append(run_modes(with_mesh(scene, size_mm), factorizer=factorizer))
     m = result.modes
-    f = [m.frequencies]
-    for r in runs:
-        idx = match_modes(m.kinds, m.frequencies, r.modes.kinds, r.modes.frequencies)
-        g = np.where(idx >= 0, r.modes.frequencies[np.maximum(idx, 0)], np.nan)
-        f.append(g)
+    f = [m.frequencies] + [matched_frequencies(m.kinds, r.modes.kinds, r.modes.frequencies)
+                           for r in runs]
     # grooves end in sharp re-entrant edges: the singular rate applies
-    est = richardson(f[0], np.nan_to_num(f[1], nan=0.0), np.nan_to_num(f[2], nan=0.0),
-                     ratio, scene.mesh.order, singular=scene.grooves is not None)
-    # a mode with no counterpart of its kind on a coarse mesh cannot be estimated
-    missing = ~np.isfinite(f[1]) | ~np.isfinite(f[2])
-    est.reliable[missing] = False
-    est.relative_error[missing] = np.nan
+    est = richardson(f[0], f[1], f[2], ratio, scene.mesh.order,
+                     singular=scene.grooves is not None)
     return est
 
 
@@ -197,10 +193,7 @@ def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, E
         raise ValueError("the study needs at least three meshes of the highest order")
     ratio = (best[2].size_mm / best[0].size_mm) ** 0.5
     f1 = best[0].frequencies
-    f = [f1]
-    for r in best[1:]:
-        idx = match_modes(best[0].kinds, f1, r.kinds, r.frequencies)
-        f.append(r.frequencies[np.maximum(idx, 0)])
+    f = [f1] + [matched_frequencies(best[0].kinds, r.kinds, r.frequencies) for r in best[1:]]
     est = richardson(f[0], f[1], f[2], ratio, top, singular)
     ref = np.where(np.isfinite(est.extrapolated), est.extrapolated, f1)
     return ref, est
@@ -209,14 +202,13 @@ def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, E
 def study_table(runs: list[StudyRun], reference: np.ndarray, ref_kinds: list) -> list[dict]:
     rows = []
     for r in runs:
-        idx = match_modes(ref_kinds, reference, r.kinds, r.frequencies)
-        f = r.frequencies[np.maximum(idx, 0)]
-        err = np.abs(f / reference - 1)
+        f = matched_frequencies(ref_kinds, r.kinds, r.frequencies)
+        err = np.abs(f / reference - 1)  # nan where a mode has no counterpart
         rows.append({
             "element": f"P{r.order}", "size_mm": r.size_mm, "dofs": r.dofs,
             **{f"{k}_s": round(v, 3) for k, v in r.seconds.items()},
             "peak_memory_mb": round(r.peak_memory_mb),
-            "max_rel_error": float(err.max()),
+            "max_rel_error": float(np.nanmax(err)),
             **{f"f{i + 1}_hz": float(x) for i, x in enumerate(f)},
         })
     return rows
