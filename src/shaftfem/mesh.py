@@ -249,8 +249,8 @@ def straighten_bad_elements(points: np.ndarray, cells: np.ndarray,
         bad = (element_jacobian_ratios(points, cells) <= MIN_JACOBIAN_RATIO) & ~done
         if not bad.any():
             break
+        c = cells[bad]
         for k, (a, b) in enumerate(EDGES):
-            c = cells[bad]
             points[c[:, 4 + k]] = 0.5 * (points[c[:, a]] + points[c[:, b]])
         done |= bad
     return points, int(done.sum())
