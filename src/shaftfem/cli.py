@@ -7,10 +7,9 @@ Every error is one line on stderr naming what was wrong; no traceback.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import time
-
-import math
 
 from .errors import ShaftfemError
 
@@ -103,12 +102,12 @@ def format_modes(result, est=None) -> str:
     return "\n".join(lines)
 
 
-def _run(args):
-    """Load the scene (with CLI mesh overrides) and run the modal chain."""
+def _run(args, scene=None):
+    """Load the scene (unless given), apply the CLI mesh overrides, run the modal chain."""
     from .pipeline import run_modes, with_mesh
     from .scene import load_scene
 
-    scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
+    scene = with_mesh(scene or load_scene(args.scene), args.mesh_size, args.order)
     return run_modes(scene, use_cache=not args.no_cache, progress=_Progress(args.quiet),
                      factorizer=args.solver)
 
@@ -186,7 +185,7 @@ def _cmd_design(args) -> int:
         progress("sizing (equations 1-9)")
         sizing = size_from_scene(scene)
         print(format_sizing(sizing) + "\n")
-    result = _run(args)
+    result = _run(args, scene)
     est = _estimate(args, result)
     print(format_modes(result, est) + "\n")
     verdict = _verdict(args, result)
@@ -204,66 +203,28 @@ def _cmd_design(args) -> int:
 
 
 def _cmd_study(args) -> int:
-    import csv
     from pathlib import Path
 
-    from .export import atomic_path
+    from .export import atomic_path, write_csv
+    from .report import study_markdown
     from .scene import load_scene
-    from .study import run_study, study_reference, study_table
+    from .study import plot_study, run_study, study_reference, study_table
 
     scene = load_scene(args.scene)
-    ladders = {2: args.p2, 1: args.p1}
-    runs = run_study(scene, {k: v for k, v in ladders.items() if v}, args.solver,
-                     progress=_Progress(args.quiet))
+    ladders = {k: v for k, v in {2: args.p2, 1: args.p1}.items() if v}
+    runs = run_study(scene, ladders, args.solver, progress=_Progress(args.quiet))
     ref, est = study_reference(runs, singular=scene.grooves is not None)
     top = [r for r in runs if r.order == max(ladders)][-1]
     rows = study_table(runs, ref, top.kinds)
     out = Path(args.out)
-    with atomic_path(out / "study.csv") as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    cols = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "factorisation_s",
-            "eigensolve_s", "total_s", "peak_memory_mb", "max_rel_error"]
-    md = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
-    for r in rows:
-        md.append("| " + " | ".join(f"{r[c]:.2e}" if c == "max_rel_error" else str(r[c])
-                                    for c in cols) + " |")
-    md += ["", "Reference: Richardson extrapolation of the three finest P"
-           f"{max(ladders)} runs; observed order per mode: "
-           + ", ".join(f"{p:.2f}" for p in est.observed_order)]
-    md += est.notes()
+    write_csv(out / "study.csv", rows)
+    md = study_markdown(rows, est, max(ladders))
     with atomic_path(out / "study.md") as tmp:
-        tmp.write_text("\n".join(md) + "\n")
-    _study_plot(rows, out / "study.png")
-    print("\n".join(md))
+        tmp.write_text(md)
+    plot_study(rows, out / "study.png")
+    print(md)
     print(f"wrote {out / 'study.csv'}, {out / 'study.md'}, {out / 'study.png'}")
     return 0
-
-
-def _study_plot(rows, path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .export import atomic_path
-
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for el in sorted({r["element"] for r in rows}):
-        rs = sorted((r for r in rows if r["element"] == el), key=lambda r: r["total_s"])
-        ax.loglog([r["total_s"] for r in rs], [r["max_rel_error"] for r in rs], "o-", label=el)
-        for r in rs:
-            ax.annotate(f"{r['size_mm']:g} mm", (r["total_s"], r["max_rel_error"]),
-                        fontsize=7, textcoords="offset points", xytext=(4, 4))
-    ax.set_xlabel("wall time of the run, s")
-    ax.set_ylabel("max relative frequency error, modes 1-10")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=120, format="png")
-    plt.close(fig)
 
 
 def _sizes(text: str) -> list[float]:
@@ -347,7 +308,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True)
 
     def modal_command(name: str, help: str, func, json: bool = True, out: str | None = None,
-                      estimate: bool = False):
+                      estimate: bool = False, margin: bool = False):
         c = sub.add_parser(name, help=help)
         c.add_argument("scene", nargs="?", default=None,
                        help="scene file or name in geometry/ (default: paper2018)")
@@ -363,6 +324,9 @@ def build_parser() -> argparse.ArgumentParser:
         c.add_argument("--solver", choices=("auto", "pardiso", "cholmod", "superlu"),
                        default="auto", help="sparse factorisation behind shift-invert "
                        "(default: the fastest installed; superlu is pure SciPy)")
+        if margin:
+            c.add_argument("--margin", type=_positive_float, metavar="PERCENT",
+                           help="required separation margin, %% (default: scene, else 15)")
         if estimate:
             c.add_argument("--no-estimate", action="store_true",
                            help="skip the error estimate (two extra solves on coarser meshes)")
@@ -372,10 +336,8 @@ def build_parser() -> argparse.ArgumentParser:
         return c
 
     modal_command("modes", "first ten free-free natural frequencies", _cmd_modes, estimate=True)
-    c = modal_command("check", "resonance check against the scene's excitations (exit 1 if "
-                      "a margin is violated)", _cmd_check)
-    c.add_argument("--margin", type=_positive_float, metavar="PERCENT",
-                   help="required separation margin, %% (default: scene, else 15)")
+    modal_command("check", "resonance check against the scene's excitations (exit 1 if "
+                  "a margin is violated)", _cmd_check, margin=True)
     e = modal_command("export", "mode shapes (VTU/PVD), tables (CSV/JSON), mesh (MSH), solid "
                       "(STEP/BREP); or a CalculiX deck", _cmd_export, json=False, out="required")
     e.add_argument("--format", choices=("vtk", "calculix"), default="vtk",
@@ -383,10 +345,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "*FREQUENCY deck of the same mesh and material")
     modal_command("render", "PNG pictures of the shaft and its first eight modes", _cmd_render,
                   json=False, out="required")
-    d = modal_command("design", "sizing, modes, resonance check, files, pictures and a report",
-                      _cmd_design, json=False, out="optional", estimate=True)
-    d.add_argument("--margin", type=_positive_float, metavar="PERCENT",
-                   help="required separation margin, %% (default: scene, else 15)")
+    modal_command("design", "sizing, modes, resonance check, files, pictures and a report",
+                  _cmd_design, json=False, out="optional", estimate=True, margin=True)
 
     modal_command("paper", "the paper's Table 2 beside our frequencies", _cmd_paper,
                   json=False)

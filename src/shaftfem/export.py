@@ -46,6 +46,16 @@ def write_json(path: str | Path, data: dict) -> None:
         tmp.write_text(json.dumps(data, indent=2, default=_plain) + "\n")
 
 
+def write_csv(path: str | Path, rows: list[dict]) -> None:
+    """Rows of equal keys as CSV, header from the first row (atomic)."""
+    import csv
+
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
 def modes_record(result) -> dict:
     """The JSON form of a pipeline.ModalResult (units in the key names)."""
     m, scene = result.modes, result.scene
@@ -145,8 +155,6 @@ def staged_directory(out: str | Path):
 def export_modes(result, out: str | Path, errors: np.ndarray | None = None) -> list[Path]:
     """mode_NN.vtu per elastic mode (+ modes.pvd), modes.csv, modes.json, mesh.msh,
     shaft.brep and shaft.step; returns the files written."""
-    import csv
-
     import meshio
 
     from .geometry import export_solid
@@ -168,10 +176,7 @@ def export_modes(result, out: str | Path, errors: np.ndarray | None = None) -> l
         pvd += ["  </Collection>", "</VTKFile>", ""]
         (stage / "modes.pvd").write_text("\n".join(pvd))
         rows = modes_table(result, errors)
-        with open(stage / "modes.csv", "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows(rows)
+        write_csv(stage / "modes.csv", rows)
         (stage / "modes.json").write_text(json.dumps(
             {**modes_record(result), "modes": rows}, indent=2, default=_plain) + "\n")
         meshio.write(stage / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)]),

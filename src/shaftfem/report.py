@@ -124,3 +124,19 @@ def format_paper_comparison(result) -> str:
         f"({100 * (nearest / torsion - 1):+.0f} %)",
     ]
     return "\n".join(lines)
+
+
+STUDY_COLUMNS = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "factorisation_s",
+                 "eigensolve_s", "total_s", "peak_memory_mb", "max_rel_error"]
+
+
+def study_markdown(rows: list[dict], estimate, order: int) -> str:
+    """The study table in Markdown, with how its reference was made."""
+    lines = _table(STUDY_COLUMNS, [
+        [f"{r[c]:.2e}" if c == "max_rel_error" else str(r[c]) for c in STUDY_COLUMNS]
+        for r in rows])
+    lines += ["", f"Reference: Richardson extrapolation of the three finest P{order} runs; "
+              "observed order per mode: "
+              + ", ".join(f"{p:.2f}" for p in estimate.observed_order)]
+    lines += estimate.notes()
+    return "\n".join(lines) + "\n"

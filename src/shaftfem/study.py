@@ -212,3 +212,29 @@ def study_table(runs: list[StudyRun], reference: np.ndarray, ref_kinds: list) ->
             **{f"f{i + 1}_hz": float(x) for i, x in enumerate(f)},
         })
     return rows
+
+
+def plot_study(rows: list[dict], path) -> None:
+    """Log-log PNG of the max relative frequency error against wall time, per element."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .export import atomic_path
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for el in sorted({r["element"] for r in rows}):
+        rs = sorted((r for r in rows if r["element"] == el), key=lambda r: r["total_s"])
+        ax.loglog([r["total_s"] for r in rs], [r["max_rel_error"] for r in rs], "o-", label=el)
+        for r in rs:
+            ax.annotate(f"{r['size_mm']:g} mm", (r["total_s"], r["max_rel_error"]),
+                        fontsize=7, textcoords="offset points", xytext=(4, 4))
+    ax.set_xlabel("wall time of the run, s")
+    ax.set_ylabel("max relative frequency error, modes 1-10")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
+    plt.close(fig)
