@@ -1,6 +1,12 @@
 """Helpers for the benchmark scripts: a run in a fresh process, so its peak memory is its own."""
 
-import multiprocessing as mp
+import os
+
+# As the CLI does (src/shaftfem/cli.py): one OpenBLAS thread, set before NumPy loads,
+# in this process and in the fresh processes it spawns.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import multiprocessing as mp  # noqa: E402
 import platform
 from concurrent.futures import ProcessPoolExecutor
 

@@ -2,6 +2,9 @@ import os
 import sys
 from pathlib import Path
 
+# As the CLI does (src/shaftfem/cli.py): one OpenBLAS thread, set before NumPy loads.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))  # tests/references.py

@@ -6,12 +6,21 @@ Every error is one line on stderr naming what was wrong; no traceback.
 
 from __future__ import annotations
 
-import argparse
-import math
-import sys
-import time
+import os
 
-from .errors import ShaftfemError
+# One OpenBLAS thread, set before NumPy and SciPy load (a later runtime limit does
+# not have the same effect). MKL PARDISO's threads do the heavy work; NumPy's
+# OpenBLAS pool, started beside them, fought MKL's for the cores and doubled the
+# eigensolve of the paper's shaft on 2 cores (5.4 s -> 2.8 s without it;
+# benchmarks/end_to_end.py). A user's own setting wins.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import argparse  # noqa: E402
+import math  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+
+from .errors import ShaftfemError  # noqa: E402
 
 
 class _Progress:
@@ -330,7 +339,7 @@ def build_parser() -> argparse.ArgumentParser:
         if estimate:
             c.add_argument("--no-estimate", action="store_true",
                            help="skip the error estimate (two extra solves on coarser meshes)")
-        c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid")
+        c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid and the mesh")
         c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
         c.set_defaults(func=func)
         return c

@@ -5,17 +5,24 @@ faces, `edge_size` at the groove's inner floor edges (where a sharp corner makes
 the elastic field singular), graded in between. Second-order elements are
 curved onto the CAD surfaces; every element's Jacobian determinant is checked
 and a mesh with an inverted or degenerate element is refused.
+
+Meshes are cached beside the shapes (``$SHAFTFEM_CACHE/meshes``), keyed by the
+solid's BREP, the shaft and groove parameters, the settings, this module's
+meshing constants and the gmsh version: a re-run of an unchanged scene (a new
+excitation, another margin) skips meshing and gets the very same nodes.
 """
 
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import io
+import json
 import math
 import os
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +34,8 @@ MIN_JACOBIAN_RATIO = 0.02  # smallest det J / largest det J allowed within one e
 # Distance (in units of the size jump) over which the element size grows from the
 # edge size to the groove size: 1 means each element is about twice its inner neighbour.
 EDGE_GRADING = 1.0
+# Bump when the meshing changes, so old cached meshes are not reused.
+MESH_VERSION = 1
 
 
 @dataclass
@@ -39,6 +48,7 @@ class ShaftMesh:
     min_jacobian_ratio: float
     straightened: int  # P2 elements whose curved edges were straightened to stay valid
     seconds: float
+    from_cache: bool = False
 
     @property
     def n_elements(self) -> int:
@@ -128,9 +138,49 @@ def _size_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> None:
         f.setAsBackgroundMesh(m)
 
 
+def mesh_key(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings) -> str:
+    """A hash of everything the mesh depends on."""
+    import gmsh
+
+    h = hashlib.sha256()
+    if grooves is not None:  # ungrooved shafts are meshed from the parameters alone
+        h.update(Path(brep).read_bytes())
+    payload = {
+        "version": MESH_VERSION, "gmsh": gmsh.__version__,
+        "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
+        "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
+        "settings": asdict(settings),
+    }
+    h.update(json.dumps(payload, sort_keys=True, default=lambda v: round(v, 12)).encode())
+    return h.hexdigest()[:20]
+
+
 def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
-               write_msh: Path | None = None) -> ShaftMesh:
-    """Mesh the solid in `brep` with tetrahedra of the settings' order and sizes."""
+               use_cache: bool = True) -> ShaftMesh:
+    """Mesh the solid in `brep` (or fetch the same mesh from the cache)."""
+    from .geometry import cache_dir
+
+    t0 = time.perf_counter()
+    path = cache_dir() / "meshes" / f"{mesh_key(brep, shaft, grooves, settings)}.npz"
+    if use_cache and path.exists():
+        with np.load(path) as z:
+            return ShaftMesh(points=z["points"], cells=z["cells"], order=int(z["order"]),
+                             min_jacobian_ratio=float(z["ratio"]),
+                             straightened=int(z["straightened"]),
+                             seconds=time.perf_counter() - t0, from_cache=True)
+    mesh = _generate(brep, shaft, grooves, settings)
+    mesh.seconds = time.perf_counter() - t0
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(suffix=".npz", dir=path.parent)
+    with os.fdopen(fd, "wb") as f:
+        np.savez(f, points=mesh.points, cells=mesh.cells, order=mesh.order,
+                 ratio=mesh.min_jacobian_ratio, straightened=mesh.straightened)
+    os.replace(tmp, path)
+    return mesh
+
+
+def _generate(brep: Path, shaft: Shaft, grooves: Grooves | None,
+              settings: MeshSettings) -> ShaftMesh:
     import meshio
 
     from .geometry import gmsh_session
@@ -171,8 +221,6 @@ def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: Mesh
                 m = meshio.read(tmp)
         finally:
             os.unlink(tmp)
-        if write_msh is not None:
-            gmsh.write(str(write_msh))
     cell_type = "tetra10" if settings.order == 2 else "tetra"
     cells = m.cells_dict.get(cell_type)
     if cells is None or len(cells) == 0:

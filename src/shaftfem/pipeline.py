@@ -54,9 +54,10 @@ def run_modes(scene: Scene, n_modes: int = 10, use_cache: bool = True,
     say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
 
     t = time.perf_counter()
-    mesh = mesh_shape(shape.brep, scene.shaft, scene.grooves, scene.mesh)
+    mesh = mesh_shape(shape.brep, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache)
     seconds["mesh"] = time.perf_counter() - t
-    say(f"mesh: {mesh.n_elements} elements; assembling K and M")
+    say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
+        "assembling K and M")
 
     t = time.perf_counter()
     system = assemble(mesh.to_skfem(), scene.mesh.order, scene.material,
