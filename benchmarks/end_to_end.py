@@ -75,7 +75,7 @@ def main() -> None:
     finally:
         shutil.rmtree(cache, ignore_errors=True)
     stages = ["cad", "mesh", "assembly", "factorisation", "eigensolve", "export", "total"]
-    print(f"machine: {machine()}; paper2018, mesh {size or 'as in the scene'} mm, "
+    print(f"machine: {machine()}; paper2018, mesh {size + ' mm' if size else 'of the scene'}, "
           f"{warm['dofs']} DOFs, solver {warm['solver']}\n")
     print("| run | " + " | ".join(f"{s} (s)" for s in stages) + " | peak memory (MB) |")
     print("|---|" + "---|" * (len(stages) + 1))

@@ -72,3 +72,24 @@ def test_a_shift_that_misses_the_rigid_modes_is_an_error(cylinder, monkeypatch):
     s = cylinder.system
     with pytest.raises(SolverError, match="rigid-body modes"):
         modal.modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+
+
+def test_mesh_cache_returns_the_same_mesh_and_misses_on_a_change(tmp_path, monkeypatch):
+    from dataclasses import replace
+
+    from shaftfem.mesh import mesh_shape
+    from shaftfem.scene import load_scene
+
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
+    scene = load_scene("plain_cylinder")
+    coarse = replace(scene.mesh, size=16e-3, groove_size=16e-3, edge_size=16e-3)
+    first = mesh_shape(tmp_path / "none.brep", scene.shaft, None, coarse)
+    again = mesh_shape(tmp_path / "none.brep", scene.shaft, None, coarse)
+    assert not first.from_cache and again.from_cache
+    assert np.array_equal(first.points, again.points) and np.array_equal(first.cells, again.cells)
+    assert again.straightened == first.straightened
+    finer = mesh_shape(tmp_path / "none.brep", scene.shaft, None, replace(coarse, size=12e-3))
+    assert not finer.from_cache and finer.n_elements > first.n_elements
+    other = mesh_shape(tmp_path / "none.brep", replace(scene.shaft, length=0.5), None, coarse)
+    assert not other.from_cache and other.points[:, 2].max() == pytest.approx(0.5)
+    assert len(list((tmp_path / "meshes").glob("*.npz"))) == 3
