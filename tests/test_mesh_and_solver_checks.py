@@ -93,3 +93,37 @@ def test_mesh_cache_returns_the_same_mesh_and_misses_on_a_change(tmp_path, monke
     other = mesh_shape(tmp_path / "none.brep", replace(scene.shaft, length=0.5), None, coarse)
     assert not other.from_cache and other.points[:, 2].max() == pytest.approx(0.5)
     assert len(list((tmp_path / "meshes").glob("*.npz"))) == 3
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_threaded_assembly_equals_one_piece(order, tmp_path, monkeypatch):
+    """K and M are assembled over element chunks in threads; on a fresh mesh (no
+    cached mapping yet) they must equal scikit-fem's one-piece assembly."""
+    from dataclasses import replace
+
+    from shaftfem.assembly import MASS_INTORDER, scalar_mass, stiffness
+    from shaftfem.mesh import mesh_shape
+    from shaftfem.scene import load_scene
+
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
+    scene = load_scene("plain_cylinder")
+    settings = replace(scene.mesh, size=12e-3, groove_size=12e-3, edge_size=12e-3, order=order)
+    mesh = mesh_shape(tmp_path / "none.brep", scene.shaft, None, settings)
+    mat = scene.material
+    system = assemble(mesh.to_skfem(), order, mat)
+    one = mesh.to_skfem()
+    K = stiffness(one, order, *mat.lame)
+    Ms = mat.density * scalar_mass(one, order, MASS_INTORDER[order])
+    assert abs(system.K - K).max() <= 1e-13 * abs(K).max()
+    assert abs(system.mass_scalar - Ms).max() <= 1e-13 * abs(Ms).max()
+
+
+def test_stiffness_that_resists_a_translation_is_refused(cylinder):
+    from shaftfem.assembly import _check_translations
+    from shaftfem.errors import AssemblyError
+
+    K = cylinder.system.K.copy()
+    _check_translations(K, cylinder.system.nodes)  # the real one passes
+    K.data[: K.nnz // 10] *= 1.01  # a corrupted block of rows
+    with pytest.raises(AssemblyError, match="rigid translation"):
+        _check_translations(K, cylinder.system.nodes)

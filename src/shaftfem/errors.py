@@ -19,3 +19,7 @@ class MeshError(ShaftfemError):
 
 class SolverError(ShaftfemError):
     """The eigen solve did not give what a free elastic body must give."""
+
+
+class AssemblyError(ShaftfemError):
+    """K or M failed a physical check (a rigid translation must cost no energy)."""
