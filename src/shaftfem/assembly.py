@@ -60,6 +60,10 @@ def _element(order: int):
 
 
 def _threads() -> int:
+    """Assembly threads: $SHAFTFEM_THREADS if set (sweep workers set 1), else one per core."""
+    env = os.environ.get("SHAFTFEM_THREADS", "")
+    if env.isdigit() and int(env) > 0:
+        return int(env)
     return max(1, min(os.cpu_count() or 1, 8))
 
 

@@ -174,8 +174,10 @@ def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
     if scheduler:
         client, cluster = Client(scheduler), None
     else:
+        # the workers already share the cores: one assembly thread each
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+                               dashboard_address=None,
+                               env={"SHAFTFEM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
         client = Client(cluster)
     t0, n_ok, n_failed = time.perf_counter(), 0, 0
     try:
