@@ -27,6 +27,9 @@ RIGID_BODY_MODES = 6
 SHIFT_FACTOR = 1e-8
 # A mode counts as rigid below this fraction of the same scale (f ~ 1e-5 f_scale).
 RIGID_FACTOR = 1e-10
+# Relative residual ||K x - w^2 M x|| / ||K x|| above which an elastic mode gets a
+# Davidson correction step (solve_modes).
+RESIDUAL_TARGET = 3e-9
 
 
 @dataclass
@@ -149,13 +152,39 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = 10,
     except sp.linalg.ArpackNoConvergence as exc:
         raise SolverError(f"the eigen solver did not converge: {exc}") from None
     # One step of subspace iteration with the same factors, then Rayleigh-Ritz:
-    # it takes ARPACK's vectors down to round-off residuals and splits
+    # it takes ARPACK's vectors (residuals ~1e-6) down to ~1e-9 and splits
     # near-repeated pairs cleanly.
     Y = solve(np.asarray(M @ X))
-    lam, Q = eigh(Y.T @ (K @ Y), Y.T @ (M @ Y))
-    X = Y @ Q
+    lam, X = _rayleigh_ritz(K, M, Y, k)
+    # The highest wanted mode improves least in that step when the next mode is
+    # close above it (its residual came out anywhere from 2e-9 to 1.5e-8 on the
+    # paper's shaft, depending on ARPACK's start). One Davidson step - the
+    # residuals through the same factors, added to the basis - takes every elastic
+    # mode with a residual above RESIDUAL_TARGET to ~2e-9 or below (measured over
+    # repeated runs; 0.3 s at 86k DOFs, only when needed).
+    KX = K @ X
+    R = KX - (M @ X) * lam
+    elastic = lam > RIGID_FACTOR * scale
+    rel = np.linalg.norm(R, axis=0) / np.maximum(np.linalg.norm(KX, axis=0), 1e-300)
+    poor = elastic & (rel > RESIDUAL_TARGET)
+    if poor.any():
+        Z = solve(R[:, poor])
+        for _ in range(2):  # M-orthogonal to X and M-normalised: a well-conditioned basis
+            Z -= X @ (X.T @ (M @ Z))
+            Z /= np.sqrt(np.einsum("ij,ij->j", Z, M @ Z))
+        try:
+            lam, X = _rayleigh_ritz(K, M, np.hstack([X, Z]), k)
+        except np.linalg.LinAlgError:
+            pass  # corrections that are (nearly) dependent: keep the step before
     t2 = time.perf_counter()
     return lam, X, scale, {"factorisation": t1 - t0, "eigensolve": t2 - t1}, used
+
+
+def _rayleigh_ritz(K: sp.spmatrix, M: sp.spmatrix, V: np.ndarray, k: int
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """The k lowest Ritz pairs of (K, M) in the span of V's columns."""
+    lam, Q = eigh(V.T @ (K @ V), V.T @ (M @ V))
+    return lam[:k], V @ Q[:, :k]
 
 
 def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
