@@ -23,6 +23,11 @@ import time  # noqa: E402
 from .errors import ShaftfemError  # noqa: E402
 
 
+# modal.FACTORIZERS plus "auto"; spelled out here because the CLI must not import
+# SciPy before a command needs it (`shaftfem size` loads no solver).
+SOLVERS = ("auto", "pardiso", "cholmod", "superlu")
+
+
 class _Progress:
     """Progress lines with elapsed time on stderr, for the long steps."""
 
@@ -330,7 +335,7 @@ def build_parser() -> argparse.ArgumentParser:
             c.add_argument("--out", metavar="DIR", required=out == "required",
                            help="output folder" + ("" if out == "required"
                                                    else " (default: out/SCENE)"))
-        c.add_argument("--solver", choices=("auto", "pardiso", "cholmod", "superlu"),
+        c.add_argument("--solver", choices=SOLVERS,
                        default="auto", help="sparse factorisation behind shift-invert "
                        "(default: the fastest installed; superlu is pure SciPy)")
         if margin:
@@ -385,7 +390,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="P2 element sizes, mm (geometric; the three finest make the reference)")
     st.add_argument("--p1", type=_sizes, default=[8.0, 6.0, 4.5], help="P1 element sizes, mm")
     st.add_argument("--out", default="out/study", help="output folder (default: out/study)")
-    st.add_argument("--solver", choices=("auto", "pardiso", "cholmod", "superlu"), default="auto")
+    st.add_argument("--solver", choices=SOLVERS, default="auto")
     st.add_argument("-q", "--quiet", action="store_true")
     st.set_defaults(func=_cmd_study)
 

@@ -169,7 +169,6 @@ def mesh_shape(brep: Path, shaft: Shaft, grooves: Grooves | None, settings: Mesh
                              straightened=int(z["straightened"]),
                              seconds=time.perf_counter() - t0, from_cache=True)
     mesh = _generate(brep, shaft, grooves, settings)
-    mesh.seconds = time.perf_counter() - t0
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(suffix=".npz", dir=path.parent)
     with os.fdopen(fd, "wb") as f:
