@@ -30,6 +30,9 @@ RIGID_FACTOR = 1e-10
 # Relative residual ||K x - w^2 M x|| / ||K x|| above which an elastic mode gets a
 # Davidson correction step (solve_modes).
 RESIDUAL_TARGET = 3e-9
+# ARPACK's start vector: fixed, so that a run is repeatable to the last bit (a random
+# start moved the paper shaft's frequencies by up to 6e-12 between runs).
+START_SEED = 2018
 
 
 @dataclass
@@ -147,8 +150,9 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = 10,
     t1 = time.perf_counter()
     op = sp.linalg.LinearOperator(A.shape, matvec=solve, matmat=solve, dtype=float)
     try:
+        v0 = np.random.default_rng(START_SEED).standard_normal(n_dofs)
         lam, X = eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol,
-                       ncv=min(n_dofs, max(2 * k + 1, 40)))
+                       ncv=min(n_dofs, max(2 * k + 1, 40)), v0=v0)
     except sp.linalg.ArpackNoConvergence as exc:
         raise SolverError(f"the eigen solver did not converge: {exc}") from None
     # One step of subspace iteration with the same factors, then Rayleigh-Ritz:
