@@ -1,13 +1,13 @@
 """Helpers for the benchmark scripts: a run in a fresh process, so its peak memory is its own."""
 
-import os
+# As the CLI does: one OpenBLAS thread, set before NumPy loads, in this process and
+# (through the environment) in the fresh processes it spawns (shaftfem.runtime).
+import shaftfem.runtime
 
-# As the CLI does (src/shaftfem/cli.py): one OpenBLAS thread, set before NumPy loads,
-# in this process and in the fresh processes it spawns.
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+shaftfem.runtime.configure_threads()
 
 import multiprocessing as mp  # noqa: E402
-import platform
+import platform  # noqa: E402
 from concurrent.futures import ProcessPoolExecutor
 
 

@@ -31,7 +31,7 @@ def one(groove_mm: float, root_radius_mm: float | None) -> dict:
     h = groove_mm * 1e-3
     scene = replace(scene, mesh=replace(scene.mesh, groove_size=h, edge_size=h))
     r = run_modes(scene)
-    return {"h": groove_mm, "dofs": r.modes.n_dofs, "total_s": r.seconds["total"],
+    return {"h": groove_mm, "dofs": r.modes.n_dofs, "total_s": r.timings.total,
             "peak_mb": peak_mb(), "f": r.modes.frequencies.tolist()}
 
 

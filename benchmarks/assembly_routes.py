@@ -44,7 +44,7 @@ def main(size_mm: float) -> None:
 
     scene = with_mesh(load_scene("paper2018"), size_mm)
     shape = build_shape(scene.shaft, scene.grooves)
-    mesh = mesh_shape(shape.brep, scene.shaft, scene.grooves, scene.mesh).to_skfem()
+    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh).to_skfem()
     lam, mu = scene.material.lame
 
     t0 = time.perf_counter()

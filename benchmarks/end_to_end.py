@@ -43,7 +43,7 @@ def one(cache: str, mesh_mm: str | None, out: str) -> dict:
     r = run_modes(scene)
     t = time.perf_counter()
     export_modes(r, out)
-    sec = dict(r.seconds)
+    sec = dict(r.timings.items())
     sec["export"] = time.perf_counter() - t
     sec["total"] = time.perf_counter() - t0
     write_calculix(r, Path(out) / "shaft.inp")

@@ -16,10 +16,10 @@ from dataclasses import replace
 import numpy as np
 
 from shaftfem.pipeline import run_modes, with_mesh
-from shaftfem.report import PAPER_TABLE2_HZ
+from shaftfem.paper2018 import TABLE2_HZ
 from shaftfem.scene import load_scene
 
-PAPER = np.array(PAPER_TABLE2_HZ)
+PAPER = np.array(TABLE2_HZ)
 
 
 def variant(depth=None, width=None, grooved_length=None):

@@ -36,20 +36,20 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|")
     base = run_modes(scene(550, 32, 8))
     row("cylinder 32 x 550, P2 8 mm", base.modes)
-    sk, m = base.mesh.to_skfem(), base.scene.material
+    sk, m = base.mesh, base.scene.material
     for k in (1e6, 1e-6):
-        s = assemble(sk, 2, replace(m, youngs_modulus=m.youngs_modulus * k))
+        s = assemble(sk, replace(m, youngs_modulus=m.youngs_modulus * k))
         md = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
         err = np.max(np.abs(md.frequencies / base.modes.frequencies / np.sqrt(k) - 1))
         row(f"E x {k:g}", md, f"f ~ sqrt(E): {err:.1e}")
-    s = assemble(sk, 2, replace(m, density=m.density * 1e3))
+    s = assemble(sk, replace(m, density=m.density * 1e3))
     md = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
     row("density x 1000", md, f"f ~ 1/sqrt(rho): "
         f"{np.max(np.abs(md.frequencies * np.sqrt(1e3) / base.modes.frequencies - 1)):.1e}")
     from shaftfem.mesh import ShaftMesh
 
-    mm = ShaftMesh(base.mesh.points * 1e3, base.mesh.cells, 2, 1.0, 0, 0.0).to_skfem()
-    s = assemble(mm, 2, Material("mm", m.youngs_modulus * 1e-6, m.poisson_ratio, m.density * 1e-12))
+    mm = ShaftMesh(base.mesh.points * 1e3, base.mesh.cells, 2, 1.0, 0, 0.0)
+    s = assemble(mm, Material("mm", m.youngs_modulus * 1e-6, m.poisson_ratio, m.density * 1e-12))
     md = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
     row("same shaft in mm, MPa, t/mm^3", md,
         f"same Hz: {np.max(np.abs(md.frequencies / base.modes.frequencies - 1)):.1e}")

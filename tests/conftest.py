@@ -2,8 +2,10 @@ import os
 import sys
 from pathlib import Path
 
-# As the CLI does (src/shaftfem/cli.py): one OpenBLAS thread, set before NumPy loads.
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+# As the CLI does: one OpenBLAS thread, set before NumPy loads (shaftfem.runtime).
+import shaftfem.runtime  # noqa: E402
+
+shaftfem.runtime.configure_threads()
 
 import pytest
 

@@ -61,7 +61,7 @@ def test_disconnected_mesh_is_an_error(cylinder):
                     cells=np.vstack([m.cells, m.cells + len(m.points)]), order=2,
                     min_jacobian_ratio=m.min_jacobian_ratio, straightened=0,
                     seconds=0.0)
-    sys_ = assemble(two.to_skfem(), 2, cylinder.scene.material)
+    sys_ = assemble(two, cylinder.scene.material)
     with pytest.raises(SolverError, match="2 disconnected parts"):
         modal.modal_analysis(sys_.K, sys_.M, sys_.nodes, sys_.mass_scalar)
 
@@ -77,20 +77,23 @@ def test_a_shift_that_misses_the_rigid_modes_is_an_error(cylinder, monkeypatch):
 def test_mesh_cache_returns_the_same_mesh_and_misses_on_a_change(tmp_path, monkeypatch):
     from dataclasses import replace
 
+    from shaftfem.geometry import build_shape
     from shaftfem.mesh import mesh_shape
     from shaftfem.scene import load_scene
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")
     coarse = replace(scene.mesh, size=16e-3, groove_size=16e-3, edge_size=16e-3)
-    first = mesh_shape(tmp_path / "none.brep", scene.shaft, None, coarse)
-    again = mesh_shape(tmp_path / "none.brep", scene.shaft, None, coarse)
+    shape = build_shape(scene.shaft, None)
+    first = mesh_shape(shape, scene.shaft, None, coarse)
+    again = mesh_shape(shape, scene.shaft, None, coarse)
     assert not first.from_cache and again.from_cache
     assert np.array_equal(first.points, again.points) and np.array_equal(first.cells, again.cells)
     assert again.straightened == first.straightened
-    finer = mesh_shape(tmp_path / "none.brep", scene.shaft, None, replace(coarse, size=12e-3))
+    finer = mesh_shape(shape, scene.shaft, None, replace(coarse, size=12e-3))
     assert not finer.from_cache and finer.n_elements > first.n_elements
-    other = mesh_shape(tmp_path / "none.brep", replace(scene.shaft, length=0.5), None, coarse)
+    short = replace(scene.shaft, length=0.5)
+    other = mesh_shape(build_shape(short, None), short, None, coarse)
     assert not other.from_cache and other.points[:, 2].max() == pytest.approx(0.5)
     assert len(list((tmp_path / "meshes").glob("*.npz"))) == 3
 
@@ -102,15 +105,16 @@ def test_threaded_assembly_equals_one_piece(order, tmp_path, monkeypatch):
     from dataclasses import replace
 
     from shaftfem.assembly import MASS_INTORDER, scalar_mass, stiffness
+    from shaftfem.geometry import build_shape
     from shaftfem.mesh import mesh_shape
     from shaftfem.scene import load_scene
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")
     settings = replace(scene.mesh, size=12e-3, groove_size=12e-3, edge_size=12e-3, order=order)
-    mesh = mesh_shape(tmp_path / "none.brep", scene.shaft, None, settings)
+    mesh = mesh_shape(build_shape(scene.shaft, None), scene.shaft, None, settings)
     mat = scene.material
-    system = assemble(mesh.to_skfem(), order, mat)
+    system = assemble(mesh, mat)
     one = mesh.to_skfem()
     K = stiffness(one, order, *mat.lame)
     Ms = mat.density * scalar_mass(one, order, MASS_INTORDER[order])

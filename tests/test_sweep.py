@@ -8,8 +8,8 @@ import time
 
 import pytest
 
-from shaftfem.sweep import (load_sweep, plot_sweep, read_results, run_sweep, run_variant,
-                            variant_id)
+from shaftfem.plots import sweep_plots
+from shaftfem.sweep import load_sweep, read_results, run_sweep, run_variant, variant_id
 
 SWEEP = """
 base = "plain_cylinder"
@@ -32,7 +32,7 @@ def test_two_workers_give_the_same_results_as_one_by_one(sweep_file, tmp_path):
     assert len(sweep.variants) == 6
     rows = run_sweep(sweep, tmp_path / "results.csv", workers=2)
     assert len(rows) == 6 and all(r["status"] == "ok" for r in rows)
-    pics = plot_sweep(rows, sweep.parameters, tmp_path)
+    pics = sweep_plots(rows, sweep.parameters, sweep.n_modes, tmp_path)
     assert len(pics) == 3 and all(p.stat().st_size > 10_000 for p in pics)
     assert len({r["worker_pid"] for r in rows}) == 2  # really two processes
     by_id = {r["id"]: r for r in rows}

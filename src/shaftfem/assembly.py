@@ -20,7 +20,6 @@ same matrix to 3e-16).
 
 from __future__ import annotations
 
-import os
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -29,6 +28,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .errors import AssemblyError
+from .runtime import assembly_threads
 from .scene import Material
 
 # Quadrature orders: 2 integrates P2 stiffness exactly on straight tets (4 points,
@@ -37,14 +37,20 @@ STIFFNESS_INTORDER = {1: 1, 2: 2}
 MASS_INTORDER = {1: 2, 2: 4}
 
 
-@dataclass
+@dataclass(frozen=True)
 class System:
-    """K (N/m) and M (kg) in CSR form, with the nodes their DOFs belong to."""
+    """K (N/m) and M (kg) in CSR form, with the nodes their DOFs belong to.
+
+    Displacement DOF 3 n + c is component c of scalar node n; `point_dofs[i]` is
+    the scalar node of the mesh's point i, so u at the points is
+    X.reshape(-1, 3)[point_dofs].
+    """
 
     K: sp.csr_matrix
     M: sp.csr_matrix
     mass_scalar: sp.csr_matrix  # scalar consistent mass, kg (for energy splits)
     nodes: np.ndarray           # (n_nodes, 3) positions of the scalar DOFs, m
+    point_dofs: np.ndarray      # (n_points,) scalar node of each mesh point
     order: int
     seconds: float
 
@@ -52,19 +58,16 @@ class System:
     def n_dofs(self) -> int:
         return self.K.shape[0]
 
+    def at_points(self, X: np.ndarray) -> np.ndarray:
+        """Displacement vectors (n_dofs, m) at the mesh's points: (m, n_points, 3)."""
+        n = self.nodes.shape[0]
+        return np.stack([X[:, k].reshape(n, 3)[self.point_dofs] for k in range(X.shape[1])])
+
 
 def _element(order: int):
     from skfem import ElementTetP1, ElementTetP2
 
     return ElementTetP2() if order == 2 else ElementTetP1()
-
-
-def _threads() -> int:
-    """Assembly threads: $SHAFTFEM_THREADS if set (sweep workers set 1), else one per core."""
-    env = os.environ.get("SHAFTFEM_THREADS", "")
-    if env.isdigit() and int(env) > 0:
-        return int(env)
-    return max(1, min(os.cpu_count() or 1, 8))
 
 
 def _chunks(skmesh, n: int, first: int = 64) -> list[np.ndarray]:
@@ -80,14 +83,17 @@ def _sum(parts) -> sp.csr_matrix:
     return total.tocsr()
 
 
-def assemble(skmesh, order: int, material: Material, mass_intorder: int | None = None) -> System:
-    """K and M of `skmesh` (scikit-fem MeshTet1/MeshTet2) with P`order` elements."""
+def assemble(mesh, material: Material, mass_intorder: int | None = None,
+             threads: int | None = None) -> System:
+    """K and M of a mesh.ShaftMesh with P1/P2 elements (its order), on `threads`
+    threads (default: one per core)."""
     from skfem import Basis
 
     t0 = time.perf_counter()
+    skmesh, order = mesh.to_skfem(), mesh.order
     lam, mu = material.lame
     intorder = mass_intorder or MASS_INTORDER[order]
-    n = _threads()
+    n = assembly_threads(threads)
     k_chunks, m_chunks = _chunks(skmesh, 2 * n), _chunks(skmesh, n)
     # scikit-fem fills a mesh's cached data (the affine map, the Jacobians) lazily
     # and not thread-safely: a P1 matrix assembled cold in two threads came out
@@ -100,10 +106,23 @@ def assemble(skmesh, order: int, material: Material, mass_intorder: int | None =
         K = _sum(k_parts + [f.result() for f in k_jobs])
         Ms = (material.density * _sum(m_parts + [f.result() for f in m_jobs])).tocsr()
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
-    nodes = np.ascontiguousarray(Basis(skmesh, _element(order), intorder=1).doflocs.T)
+    basis = Basis(skmesh, _element(order), intorder=1)
+    nodes = np.ascontiguousarray(basis.doflocs.T)
     _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
+                  point_dofs=point_dofs(mesh.cells, basis.element_dofs, nodes, mesh.points),
                   order=order, seconds=time.perf_counter() - t0)
+
+
+def point_dofs(cells: np.ndarray, element_dofs: np.ndarray, nodes: np.ndarray,
+               points: np.ndarray) -> np.ndarray:
+    """The scalar DOF of every mesh point: column j of `cells` is local DOF j of the
+    scalar basis (mesh.skfem_mesh). Checked against the positions."""
+    out = np.full(points.shape[0], -1, dtype=np.int64)
+    out[cells.T] = element_dofs
+    if np.any(out < 0) or np.max(np.abs(nodes[out] - points)) > 1e-12 * np.abs(points).max():
+        raise AssemblyError("the mesh's points and the basis' DOF nodes do not correspond")
+    return out
 
 
 def _check_translations(K: sp.csr_matrix, nodes: np.ndarray) -> None:

@@ -31,7 +31,8 @@ from typing import Callable
 import numpy as np
 
 from .errors import SceneError
-from .scene import read_toml, scene_beside
+from .scene import load_scene, scene_beside
+from .schema import DEFAULT_MODE_COUNT, read_toml
 from .sweep import Sweep, run_sweep, run_variant
 
 
@@ -43,9 +44,10 @@ class Calibration:
     targets: np.ndarray     # Hz
     sigma: np.ndarray       # Hz
     grid: int
+    n_modes: int = DEFAULT_MODE_COUNT  # modes per evaluation: the base scene's, or the targets'
 
 
-@dataclass
+@dataclass(frozen=True)
 class CalibrationResult:
     parameters: dict        # name -> best value
     std: dict               # name -> standard deviation (same units)
@@ -55,17 +57,12 @@ class CalibrationResult:
     evaluations: int
     grid_best: dict
 
-    def format(self, cal: Calibration) -> str:
-        lines = ["parameter                best value     std. dev.   bounds"]
-        for k, v in self.parameters.items():
-            lo, hi = cal.unknowns[k]
-            lines.append(f"{k:<24} {v:>10.3f}  {self.std[k]:>12.3g}   [{lo:g}, {hi:g}]")
-        lines += ["", "mode   target (Hz)    model (Hz)    diff     in sigma"]
-        for i, (t, f, r) in enumerate(zip(cal.targets, self.frequencies, self.residuals_sigma)):
-            lines.append(f"{i + 1:>4}  {t:>11.2f}  {f:>12.2f}  {100 * (f / t - 1):>+6.2f} %  {r:>+8.2f}")
-        lines += ["", f"chi^2 = {self.chi2:.3g} for {len(cal.targets)} targets and "
-                  f"{len(self.parameters)} unknowns; {self.evaluations} modal runs"]
-        return "\n".join(lines)
+    def as_dict(self, cal: Calibration) -> dict:
+        """The JSON record of the fit (units in the key names)."""
+        return {"parameters": self.parameters, "std": self.std, "grid_best": self.grid_best,
+                "targets_hz": cal.targets, "model_hz": self.frequencies,
+                "residuals_sigma": self.residuals_sigma, "chi2": self.chi2,
+                "evaluations": self.evaluations}
 
 
 def load_calibration(path: str | Path) -> Calibration:
@@ -91,8 +88,9 @@ def load_calibration(path: str | Path) -> Calibration:
     if not isinstance(grid, int) or grid < 2:
         raise SceneError(f"{path.name}: grid = {grid!r}: must be an integer >= 2")
     base = scene_beside(d["base"], path)
+    n_modes = max(len(targets), load_scene(base).modes.count)
     return Calibration(base=base, mesh_size_mm=d.get("mesh_size_mm"), unknowns=unknowns,
-                       targets=targets, sigma=targets * u / 100, grid=grid)
+                       targets=targets, sigma=targets * u / 100, grid=grid, n_modes=n_modes)
 
 
 def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
@@ -115,7 +113,7 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     axes = [np.linspace(a, b, cal.grid) for a, b in zip(lo, hi)]
     variants = [dict(zip(names, map(float, p))) for p in np.array(np.meshgrid(*axes)).reshape(
         len(names), -1).T]
-    rows = run_sweep(Sweep(cal.base, cal.mesh_size_mm, variants, names),
+    rows = run_sweep(Sweep(cal.base, cal.mesh_size_mm, variants, names, cal.n_modes),
                      Path(workdir) / "grid.csv", workers=workers, progress=say)
     chi2 = [float(np.sum(residual_of(r) ** 2)) for r in rows]
     best = rows[int(np.argmin(chi2))]
@@ -129,7 +127,7 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
         x = lo + s * (hi - lo)
         count["n"] += 1
         r = residual_of(run_variant(cal.base, dict(zip(names, map(float, x))),
-                                    cal.mesh_size_mm))
+                                    cal.mesh_size_mm, n_modes=cal.n_modes))
         say(f"calibrate: run {count['n']}: "
             + ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, x))
             + f": chi^2 = {np.sum(r ** 2):.3g}")

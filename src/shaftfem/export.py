@@ -1,63 +1,27 @@
-"""Files out: every file is written to a temporary name beside it, then renamed.
+"""Files out: mode shapes for ParaView, tables, the mesh, the solid, a CalculiX deck.
 
-A failed or interrupted run therefore never leaves a half-written file behind.
+Every file is written under a temporary name beside it and renamed, and a set
+of files into a staging folder moved at the end (shaftfem.store): a failed or
+interrupted run never leaves a half-written file behind.
 """
 
 from __future__ import annotations
 
-import json
-import os
 import tempfile
-from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .store import json_text, staged_directory, write_csv, write_text
 
-@contextmanager
-def atomic_path(path: str | Path):
-    """Yield a temporary path next to `path`; move it into place only on success."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
-        yield Path(tmp)
-        os.chmod(tmp, 0o644)  # mkstemp makes 0600; results are for sharing
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+if TYPE_CHECKING:
+    from .pipeline import ModalResult
+    from .study import ErrorEstimate
 
 
-def _plain(obj):
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, (np.floating, np.integer, np.bool_)):
-        return obj.item()
-    if isinstance(obj, Path):
-        return str(obj)
-    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
-
-
-def write_json(path: str | Path, data: dict) -> None:
-    with atomic_path(path) as tmp:
-        tmp.write_text(json.dumps(data, indent=2, default=_plain) + "\n")
-
-
-def write_csv(path: str | Path, rows: list[dict]) -> None:
-    """Rows of equal keys as CSV, header from the first row (atomic)."""
-    import csv
-
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-
-
-def modes_record(result) -> dict:
-    """The JSON form of a pipeline.ModalResult (units in the key names)."""
+def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
+    """The JSON form of a modal run (units in the key names): `modes --json` and modes.json."""
     m, scene = result.modes, result.scene
     return {
         "scene": scene.name,
@@ -72,94 +36,53 @@ def modes_record(result) -> dict:
         },
         "rigid_body_modes": m.n_rigid,
         "rigid_body_frequencies_hz": m.rigid_frequencies,
-        "elastic_modes": [
-            {
-                "mode": i + 1,
-                "frequency_hz": float(f),
-                "kind": kind,
-                "residual": float(r),
-                "energy_fraction": {"axial": float(e[0]), "radial": float(e[1]),
-                                    "tangential": float(e[2])},
-            }
-            for i, (f, kind, r, e) in enumerate(zip(m.frequencies, m.kinds, m.residuals, m.energy))
-        ],
+        "modes": modes_table(result, est),
         "mass_orthonormality_error": m.orthonormality_error,
         "groove_volume_mm3": {
             "cad": result.shape.groove_volume_cad * 1e9,
             "analytic": result.shape.groove_volume_analytic * 1e9,
         },
-        "timings_s": result.seconds,
+        "timings_s": dict(result.timings.items()),
     }
 
 
-# --------------------------------------------------------------------------
-# Mode shapes and the solid, for ParaView, CAD and other solvers
-
-
-def nodal_shapes(result) -> np.ndarray:
-    """Mode shapes at the mesh's nodes: (n_modes, n_points, 3), m / sqrt(kg).
-
-    The solver's DOFs sit on scikit-fem's P1/P2 nodes, which are the mesh's own
-    nodes in another order; they are matched by position.
-    """
-    from scipy.spatial import cKDTree
-
-    nodes, points = result.system.nodes, result.mesh.points
-    dist, idx = cKDTree(nodes).query(points)
-    if dist.max() > 1e-12:
-        raise RuntimeError("mesh nodes and solver DOF nodes do not coincide")
-    X = result.modes.shapes  # (3 n, m), interleaved
-    n = nodes.shape[0]
-    return np.stack([X[:, k].reshape(n, 3)[idx] for k in range(X.shape[1])])
-
-
-def field_name(mode: int, frequency: float) -> str:
-    return f"mode_{mode:02d}_{frequency:.2f}Hz"
-
-
-def modes_table(result, errors: np.ndarray | None = None) -> list[dict]:
-    """One row per elastic mode: the content of modes.csv and modes.json."""
+def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[dict]:
+    """One row per elastic mode: the content of modes.csv and of the record's "modes"."""
+    m = result.modes
     rows = []
-    for i, (f, kind) in enumerate(zip(result.modes.frequencies, result.modes.kinds)):
+    for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
+        e = m.energy[i]
         rows.append({
             "mode": i + 1,
             "frequency_hz": float(f),
             "omega_rad_s": float(2 * np.pi * f),
             "period_s": float(1 / f),
             "kind": kind,
-            "estimated_error": None if errors is None else float(errors[i]),
+            "residual": float(m.residuals[i]),
+            "backward_error": float(m.backward_errors[i]),
+            "energy_axial": float(e[0]),
+            "energy_radial": float(e[1]),
+            "energy_tangential": float(e[2]),
+            "estimated_error": None if est is None else float(est.relative_error[i]),
+            "observed_order": None if est is None else float(est.observed_order[i]),
+            "estimate_reliable": None if est is None else bool(est.reliable[i]),
         })
     return rows
 
 
-@contextmanager
-def staged_directory(out: str | Path):
-    """Write a set of files into a hidden staging folder; move them into `out` at the end.
-
-    On any failure the staging folder is removed and `out` gets none of the files.
-    """
-    import shutil
-
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=".staging-", dir=out))
-    try:
-        yield stage
-        for f in sorted(stage.iterdir()):
-            os.chmod(f, 0o644)
-            os.replace(f, out / f.name)
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
+def field_name(mode: int, frequency: float) -> str:
+    return f"mode_{mode:02d}_{frequency:.2f}Hz"
 
 
-def export_modes(result, out: str | Path, errors: np.ndarray | None = None) -> list[Path]:
+def export_modes(result: ModalResult, out: str | Path,
+                 est: ErrorEstimate | None = None) -> list[Path]:
     """mode_NN.vtu per elastic mode (+ modes.pvd), modes.csv, modes.json, mesh.msh,
     shaft.brep and shaft.step; returns the files written."""
     import meshio
 
-    from .geometry import export_solid
+    from .occ import write_solid
 
-    shapes = nodal_shapes(result)
+    shapes = result.shapes_at_points()
     mesh = result.mesh
     names = []
     with staged_directory(out) as stage:
@@ -175,13 +98,12 @@ def export_modes(result, out: str | Path, errors: np.ndarray | None = None) -> l
                 for k, n in enumerate(names)]
         pvd += ["  </Collection>", "</VTKFile>", ""]
         (stage / "modes.pvd").write_text("\n".join(pvd))
-        rows = modes_table(result, errors)
-        write_csv(stage / "modes.csv", rows)
-        (stage / "modes.json").write_text(json.dumps(
-            {**modes_record(result), "modes": rows}, indent=2, default=_plain) + "\n")
+        write_csv(stage / "modes.csv", modes_table(result, est))
+        (stage / "modes.json").write_text(json_text(modes_record(result, est)))
         meshio.write(stage / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)]),
                      file_format="gmsh", binary=False)
-        export_solid(result.shape.brep, stage / "shaft.step", stage / "shaft.brep")
+        write_solid(result.shape.brep, result.scene.shaft,
+                    [stage / "shaft.step", stage / "shaft.brep"])
         written = sorted(p.name for p in stage.iterdir())
     return [Path(out) / n for n in written]
 
@@ -190,7 +112,7 @@ def export_modes(result, out: str | Path, errors: np.ndarray | None = None) -> l
 # CalculiX: the same mesh and material as a *FREQUENCY deck, for an independent solve
 
 
-def calculix_deck(result, n_eigen: int = 16) -> str:
+def calculix_deck(result: ModalResult, n_eigen: int = 16) -> str:
     """A complete CalculiX input deck (SI units) for the free-free modes of `result`'s mesh.
 
     meshio writes the nodes and the 10-node tetrahedra (its tetra10 node order is
@@ -227,10 +149,9 @@ def calculix_deck(result, n_eigen: int = 16) -> str:
     return buf.getvalue()
 
 
-def write_calculix(result, path: str | Path, n_eigen: int = 16) -> Path:
-    with atomic_path(path) as tmp:
-        tmp.write_text(calculix_deck(result, n_eigen))
-    return Path(path)
+def write_calculix(result: ModalResult, path: str | Path, n_eigen: int | None = None) -> Path:
+    """shaft.inp: `n_eigen` eigenvalues (default: ours plus the six rigid-body modes)."""
+    return write_text(path, calculix_deck(result, n_eigen or result.modes.count + 6))
 
 
 def read_calculix_frequencies(dat: str | Path) -> np.ndarray:

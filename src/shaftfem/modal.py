@@ -1,16 +1,18 @@
 """Free-free natural frequencies and mode shapes: (K - w^2 M) x = 0.
 
 K of a free body is singular (six rigid-body modes at 0 Hz), so the pencil is
-solved with shift-invert Lanczos (SciPy `eigsh`, SuperLU) about a small negative
-shift sigma, where K - sigma M is positive definite. The six rigid-body modes
-must come out near 0 Hz; anything else is reported as an error with its cause.
+solved with shift-invert Lanczos (SciPy `eigsh`) about a small negative shift
+sigma, where K - sigma M is positive definite, factorised by MKL PARDISO,
+CHOLMOD or SuperLU. The six rigid-body modes must come out near 0 Hz; anything
+else is reported as an error with its cause.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
@@ -35,7 +37,12 @@ RESIDUAL_TARGET = 3e-9
 START_SEED = 2018
 
 
-@dataclass
+# With a frequency limit instead of a count, the Krylov space grows (twice the
+# modes each time) until a mode above the limit is found, up to this many modes.
+MAX_MODES = 200
+
+
+@dataclass(frozen=True)
 class Modes:
     """The first elastic modes of a free body, lowest first.
 
@@ -56,16 +63,29 @@ class Modes:
     orthonormality_error: float
     shift: float
     n_dofs: int
-    seconds: dict = field(default_factory=dict)
-    factorizer: str = ""
+    factorizer: str
+    factorisation_seconds: float
+    eigensolve_seconds: float
 
     @property
     def n_rigid(self) -> int:
         return len(self.rigid_frequencies)
 
     @property
-    def omegas(self) -> np.ndarray:
-        return 2 * math.pi * self.frequencies
+    def count(self) -> int:
+        return len(self.frequencies)
+
+
+@dataclass(frozen=True)
+class EigenSolution:
+    """The lowest eigenpairs of (K, M): w^2 (rad^2/s^2) and M-normalised vectors."""
+
+    eigenvalues: np.ndarray
+    vectors: np.ndarray
+    scale: float          # median of diag K / diag M, rad^2/s^2
+    factorizer: str
+    factorisation_seconds: float
+    eigensolve_seconds: float
 
 
 def _n_bodies(K: sp.csr_matrix) -> int:
@@ -134,21 +154,39 @@ def factorize(A: sp.spmatrix, backend: str = "auto"):
 
 
 def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = 10,
-                tol: float = 0.0, factorizer: str = "auto"
-                ) -> tuple[np.ndarray, np.ndarray, float, dict, str]:
-    """Lowest n_modes + 6 eigenpairs (w^2 in rad^2/s^2, M-normalised vectors), the
-    scale of diag K / diag M, stage timings (s) and the factoriser used."""
-    n_dofs = K.shape[0]
-    k = n_modes + RIGID_BODY_MODES
-    if n_dofs <= k + 2:
-        raise SolverError(f"the mesh has only {n_dofs} DOFs; {k} modes need more")
+                tol: float = 0.0, factorizer: str = "auto",
+                max_frequency: float | None = None) -> EigenSolution:
+    """The lowest n_modes + 6 eigenpairs; with `max_frequency` (Hz), more until one
+    lies above it (the factorisation is reused)."""
     scale = float(np.median(K.diagonal() / M.diagonal()))
     sigma = -SHIFT_FACTOR * scale
     t0 = time.perf_counter()
     A = (K - sigma * M).tocsr()
     solve, used = factorize(A, factorizer)
     t1 = time.perf_counter()
-    op = sp.linalg.LinearOperator(A.shape, matvec=solve, matmat=solve, dtype=float)
+    k = n_modes + RIGID_BODY_MODES
+    while True:
+        lam, X = _lanczos(K, M, k, sigma, scale, solve, tol)
+        if max_frequency is None or lam[-1] > (2 * math.pi * max_frequency) ** 2:
+            break
+        if k >= MAX_MODES + RIGID_BODY_MODES:
+            raise SolverError(f"more than {MAX_MODES} modes lie below {max_frequency:g} Hz; "
+                              "lower the frequency limit")
+        k = min(2 * k, MAX_MODES + RIGID_BODY_MODES)
+    return EigenSolution(eigenvalues=lam, vectors=X, scale=scale, factorizer=used,
+                         factorisation_seconds=t1 - t0,
+                         eigensolve_seconds=time.perf_counter() - t1)
+
+
+def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: float,
+             solve: Callable[[np.ndarray], np.ndarray], tol: float
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """k eigenpairs nearest sigma by shift-invert Lanczos through `solve` = (K - sigma M)^-1,
+    refined by one subspace step and, where needed, one Davidson step."""
+    n_dofs = K.shape[0]
+    if n_dofs <= k + 2:
+        raise SolverError(f"the mesh has only {n_dofs} DOFs; {k} modes need more")
+    op = sp.linalg.LinearOperator(K.shape, matvec=solve, matmat=solve, dtype=float)
     try:
         v0 = np.random.default_rng(START_SEED).standard_normal(n_dofs)
         lam, X = eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol,
@@ -177,8 +215,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = 10,
             lam, X = _rayleigh_ritz(K, M, np.hstack([X, Z]), k)
         except np.linalg.LinAlgError:
             pass  # corrections that are (nearly) dependent: keep the step before
-    t2 = time.perf_counter()
-    return lam, X, scale, {"factorisation": t1 - t0, "eigensolve": t2 - t1}, used
+    return lam, X
 
 
 def _residuals(K: sp.spmatrix, M: sp.spmatrix, X: np.ndarray, lam: np.ndarray):
@@ -197,15 +234,17 @@ def _rayleigh_ritz(K: sp.spmatrix, M: sp.spmatrix, V: np.ndarray, k: int
 
 def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                    mass_scalar: sp.csr_matrix, n_modes: int = 10,
-                   factorizer: str = "auto") -> Modes:
-    """Solve, separate the six rigid-body modes, check and classify the elastic ones."""
+                   factorizer: str = "auto", max_frequency: float | None = None) -> Modes:
+    """Solve, separate the six rigid-body modes, check and classify the elastic ones:
+    the lowest `n_modes`, or with `max_frequency` (Hz) every one below it (at least one)."""
     n_bodies = _n_bodies(K)
     if n_bodies != 1:
         raise SolverError(
             f"the mesh has {n_bodies} disconnected parts; a free body must be one piece "
             f"(it would have {RIGID_BODY_MODES * n_bodies} rigid-body modes)"
         )
-    lam, X, scale, seconds, used = solve_modes(K, M, n_modes, factorizer=factorizer)
+    sol = solve_modes(K, M, n_modes, factorizer=factorizer, max_frequency=max_frequency)
+    lam, X, scale = sol.eigenvalues, sol.vectors, sol.scale
     rigid_limit = RIGID_FACTOR * scale
     if lam[0] < -rigid_limit:
         raise SolverError(
@@ -222,6 +261,8 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
             f"found {n_rigid} modes below {f_limit:.3g} Hz where one free body has "
             f"{RIGID_BODY_MODES} rigid-body modes: {why}"
         )
+    if max_frequency is not None:
+        n_modes = max(1, int(np.sum(lam[~is_rigid] < (2 * math.pi * max_frequency) ** 2)))
     lam_e, X_e = lam[~is_rigid][:n_modes], X[:, ~is_rigid][:, :n_modes]
     # M-normalise explicitly (ARPACK's vectors are, up to round-off)
     X_e = X_e / np.sqrt(np.einsum("ij,ij->j", X_e, M @ X_e))
@@ -239,8 +280,9 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     return Modes(frequencies=freqs, shapes=X_e, residuals=residuals, backward_errors=backward,
                  kinds=[classify(e) for e in energy], energy=energy,
                  rigid_frequencies=rigid, orthonormality_error=ortho,
-                 shift=-SHIFT_FACTOR * scale, n_dofs=K.shape[0], seconds=seconds,
-                 factorizer=used)
+                 shift=-SHIFT_FACTOR * scale, n_dofs=K.shape[0], factorizer=sol.factorizer,
+                 factorisation_seconds=sol.factorisation_seconds,
+                 eigensolve_seconds=sol.eigensolve_seconds)
 
 
 def energy_split(X: np.ndarray, nodes: np.ndarray, mass_scalar: sp.csr_matrix) -> np.ndarray:

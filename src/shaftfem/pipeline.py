@@ -7,21 +7,48 @@ and keeps what each produced and how long it took.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
-from typing import Callable
+from dataclasses import dataclass, fields, replace
+from typing import TYPE_CHECKING, Callable, Iterator
 
 from .scene import Scene
 
+if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
+    import numpy as np
 
-@dataclass
+    from .assembly import System
+    from .geometry import ShaftShape
+    from .mesh import ShaftMesh
+    from .modal import Modes
+
+
+@dataclass(frozen=True)
+class Timings:
+    """Wall time of each step of one modal run, s."""
+
+    cad: float
+    mesh: float
+    assembly: float
+    factorisation: float
+    eigensolve: float
+    total: float
+
+    def items(self) -> Iterator[tuple[str, float]]:
+        return ((f.name, getattr(self, f.name)) for f in fields(self))
+
+
+@dataclass(frozen=True)
 class ModalResult:
     scene: Scene
-    shape: object       # geometry.ShaftShape
-    mesh: object        # mesh.ShaftMesh
-    system: object      # assembly.System
-    modes: object       # modal.Modes
-    seconds: dict = field(default_factory=dict)
-    warnings: list = field(default_factory=list)
+    shape: ShaftShape
+    mesh: ShaftMesh
+    system: System
+    modes: Modes
+    timings: Timings
+    warnings: tuple[str, ...] = ()
+
+    def shapes_at_points(self) -> np.ndarray:
+        """Mode shapes at the mesh's points: (n_modes, n_points, 3), m / sqrt(kg)."""
+        return self.system.at_points(self.modes.shapes)
 
 
 def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None) -> Scene:
@@ -35,45 +62,60 @@ def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = No
     return replace(scene, mesh=m)
 
 
-def run_modes(scene: Scene, n_modes: int = 10, use_cache: bool = True,
+def with_modes(scene: Scene, count: int | None = None,
+               max_frequency: float | None = None) -> Scene:
+    """The scene asking for another number of modes, or every mode below max_frequency (Hz)."""
+    if count is None and max_frequency is None:
+        return scene
+    req = scene.modes
+    if count is not None:
+        req = replace(req, count=count, max_frequency=None)
+    if max_frequency is not None:
+        req = replace(req, max_frequency=max_frequency)
+    return replace(scene, modes=req)
+
+
+def run_modes(scene: Scene, use_cache: bool = True,
               progress: Callable[[str], None] | None = None,
-              mass_intorder: int | None = None, factorizer: str = "auto") -> ModalResult:
-    """Build, mesh, assemble and solve `scene`; return every intermediate result."""
+              factorizer: str = "auto", threads: int | None = None) -> ModalResult:
+    """Build, mesh, assemble and solve `scene`; return every intermediate result.
+
+    `threads`: assembly threads (default one per core; sweep workers use 1)."""
     from .assembly import assemble
     from .geometry import build_shape
     from .mesh import mesh_shape
     from .modal import modal_analysis
 
     say = progress or (lambda _msg: None)
-    seconds = {}
     t0 = time.perf_counter()
 
     say("building the shaft's solid (CAD)")
     shape = build_shape(scene.shaft, scene.grooves, use_cache=use_cache)
-    seconds["cad"] = time.perf_counter() - t0
+    t_cad = time.perf_counter() - t0
     say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
 
     t = time.perf_counter()
-    mesh = mesh_shape(shape.brep, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache)
-    seconds["mesh"] = time.perf_counter() - t
+    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache)
+    t_mesh = time.perf_counter() - t
     say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
         "assembling K and M")
 
     t = time.perf_counter()
-    system = assemble(mesh.to_skfem(), scene.mesh.order, scene.material,
-                      mass_intorder=mass_intorder)
-    seconds["assembly"] = time.perf_counter() - t
+    system = assemble(mesh, scene.material, threads=threads)
+    t_assembly = time.perf_counter() - t
     say(f"{system.n_dofs} DOFs; factorising and solving")
 
-    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar, n_modes,
-                           factorizer=factorizer)
-    seconds.update(modes.seconds)
-    seconds["total"] = time.perf_counter() - t0
+    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
+                           scene.modes.count, factorizer=factorizer,
+                           max_frequency=scene.modes.max_frequency)
+    timings = Timings(cad=t_cad, mesh=t_mesh, assembly=t_assembly,
+                      factorisation=modes.factorisation_seconds,
+                      eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
-                       seconds=seconds, warnings=scene_warnings(scene))
+                       timings=timings, warnings=scene_warnings(scene, modes))
 
 
-def scene_warnings(scene: Scene) -> list[str]:
+def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
     """Cases the method handles poorly: said, never silently computed."""
     out = []
     m, R = scene.mesh, scene.shaft.radius
@@ -88,4 +130,8 @@ def scene_warnings(scene: Scene) -> list[str]:
     if scene.grooves is not None and m.groove_size > scene.grooves.width:
         out.append(f"groove element size {m.groove_size * 1e3:g} mm exceeds the groove width "
                    f"({scene.grooves.width * 1e3:g} mm): the grooves are barely resolved")
-    return out
+    fmax = scene.modes.max_frequency
+    if modes is not None and fmax is not None and modes.frequencies[0] >= fmax:
+        out.append(f"no elastic mode below {fmax:g} Hz; the lowest "
+                   f"({modes.frequencies[0]:.2f} Hz) is shown")
+    return tuple(out)

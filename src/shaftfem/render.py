@@ -8,10 +8,14 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .export import atomic_path, nodal_shapes
+from .store import atomic_path
+
+if TYPE_CHECKING:
+    from .pipeline import ModalResult
 
 GEOMETRY_SIZE = (1600, 500)
 MODES_SIZE = (1600, 1000)
@@ -24,7 +28,6 @@ def _pyvista():
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import pyvista as pv
 
-    pv.OFF_SCREEN = True
     return pv
 
 
@@ -56,7 +59,7 @@ def _side_view(plotter, length_mm: float, zoom: float = 1.6) -> None:
     plotter.camera.zoom(zoom)
 
 
-def render_geometry(result, path: str | Path) -> Path:
+def render_geometry(result: ModalResult, path: str | Path) -> Path:
     """A PNG of the shaft's solid (its mesh surface), seen from the side."""
     pv = _pyvista()
     grid = _grid(pv, result.mesh)
@@ -73,11 +76,11 @@ def render_geometry(result, path: str | Path) -> Path:
     return Path(path)
 
 
-def render_modes(result, path: str | Path, n: int = MODES_SHOWN) -> Path:
+def render_modes(result: ModalResult, path: str | Path, n: int = MODES_SHOWN) -> Path:
     """A grid PNG of the first n mode shapes, deformed and coloured by |u| (like Fig. 2)."""
     pv = _pyvista()
     grid = _grid(pv, result.mesh)
-    shapes = nodal_shapes(result)
+    shapes = result.shapes_at_points()
     n = min(n, len(shapes))
     L = result.scene.shaft.length * 1e3
     cols = 2

@@ -15,12 +15,17 @@ shaft without damping data is treated as lightly damped, so set
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .schema import DEFAULT_MARGIN_PERCENT
 from .scene import Excitation
 
-DEFAULT_MARGIN = 0.15
+if TYPE_CHECKING:
+    from .pipeline import ModalResult
+
+DEFAULT_MARGIN = DEFAULT_MARGIN_PERCENT / 100
 
 
 @dataclass(frozen=True)
@@ -92,25 +97,11 @@ def check_resonance(frequencies: np.ndarray, kinds: list[str],
     return ResonanceVerdict(approaches=out, required=required)
 
 
-def format_verdict(v: ResonanceVerdict) -> str:
-    lines = [f"{'source':<10} {'order':>5} {'excitation':>13}  {'closest mode':>12} "
-             f"{'frequency':>12}  {'kind':<8} {'margin':>9}  {'required':>8}"]
-    for a in v.closest_per_harmonic():
-        lines.append(
-            f"{a.source:<10} {a.order:>5} {a.excitation:>10.2f} Hz  {a.mode:>12} "
-            f"{a.frequency:>9.2f} Hz  {a.kind:<8} {100 * a.margin:>8.1f} %  "
-            f"{100 * a.required:>6.1f} %  {'ok' if a.ok else 'TOO CLOSE'}"
-        )
-    lines.append("")
-    if v.ok:
-        lines.append(f"verdict: PASS - every mode is at least {100 * v.required:g} % away from "
-                     "every excitation harmonic")
-    else:
-        worst = v.violations[0]
-        lines.append(
-            f"verdict: FAIL - {len(v.violations)} mode/harmonic pair(s) closer than "
-            f"{100 * v.required:g} %; closest: mode {worst.mode} at {worst.frequency:.2f} Hz vs "
-            f"{worst.source} x{worst.order} at {worst.excitation:.2f} Hz "
-            f"({100 * worst.margin:.1f} %)"
-        )
-    return "\n".join(lines)
+def check_result(result: ModalResult, required: float | None = None) -> ResonanceVerdict | None:
+    """The modes of a run against its scene's excitations (None if it has none); the
+    required margin (fraction) defaults to the scene's."""
+    scene = result.scene
+    if not scene.excitations:
+        return None
+    return check_resonance(result.modes.frequencies, result.modes.kinds, scene.excitations,
+                           scene.required_margin if required is None else required)

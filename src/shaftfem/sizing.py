@@ -29,11 +29,6 @@ from .scene import Scene
 # Bands: d < 30, 30 <= d <= 100, d > 100.
 KEYWAY_TABLE = {1: (7.0, 5.0, 3.0), 2: (15.0, 10.0, 7.0)}
 
-# What the paper states, for comparison (never used as input).
-PAPER = {"d2_mm": 29.88, "D_mm": 32.0, "D0_mm": 32.3, "L_mm": 320.0, "B_mm": 360.0,
-         "P_mm": 80.0}
-
-
 @dataclass
 class Quantity:
     symbol: str
@@ -41,7 +36,6 @@ class Quantity:
     value: float
     unit: str
     equation: str
-    note: str = ""
 
 
 @dataclass
@@ -64,7 +58,6 @@ class SizingResult:
             "quantities": [q.__dict__ for q in self.quantities],
             "limits_ok": self.ok,
             "violations": self.violations,
-            "paper": PAPER,
         }
 
 
@@ -111,8 +104,7 @@ def size_screw(s: dict) -> SizingResult:
 
     ratio = s["drive_teeth"] / s["driven_teeth"]
     pitch = s["feed_step_mm"] / ratio
-    add("P", "groove pitch from feed step and gears, P = b Z_driven / Z_drive", pitch, "mm", "(1)",
-        _vs_paper(pitch, "P_mm"))
+    add("P", "groove pitch from feed step and gears, P = b Z_driven / Z_drive", pitch, "mm", "(1)")
     T = torque_nmm(s["power_kw"], s["speed_rpm"])
     add("T", "shaft torque", T, "N mm", "(5)")
     alpha = s["pressure_angle_deg"]
@@ -131,22 +123,20 @@ def size_screw(s: dict) -> SizingResult:
     d2 = min_mean_diameter_mm(T, lead, rho, s["psi"], s["allowable_pressure_mpa"])
     F = axial_load_n(T, d2, lead, rho)
     add("F", "axial load at the smallest d2", F, "N", "(2)")
-    add("d2", "smallest mean diameter meeting the wear condition", d2, "mm", "(6)-(7)",
-        _vs_paper(d2, "d2_mm"))
+    add("d2", "smallest mean diameter meeting the wear condition", d2, "mm", "(6)-(7)")
     pct = keyway_increase_percent(d2, s["keyways"])
     d_key = d2 * (1 + pct / 100)
     add("k", f"keyway allowance for {s['keyways']} keyway(s) (Table 1)", pct, "%", "Table 1")
     add("d_k", "diameter with the keyway allowance", d_key, "mm", "Table 1")
     step = s["rounding_step_mm"]
     D = math.ceil(d_key / step - 1e-9) * step
-    add("D", f"shaft diameter, rounded up to {step:g} mm", D, "mm", "Table 1",
-        _vs_paper(D, "D_mm"))
+    add("D", f"shaft diameter, rounded up to {step:g} mm", D, "mm", "Table 1")
     D0 = D + 2 * s["crest_clearance_mm"]
-    add("D0", "thread major diameter, D + 2 a_c", D0, "mm", "-", _vs_paper(D0, "D0_mm"))
+    add("D0", "thread major diameter, D + 2 a_c", D0, "mm", "-")
     L = s["feed_step_mm"] * (s["picks_per_row"] - 1)
-    add("L", "box travel", L, "mm", "(8)", _vs_paper(L, "L_mm"))
+    add("L", "box travel", L, "mm", "(8)")
     B = L + s["needle_width_mm"]
-    add("B", "box floor width", B, "mm", "(9)", _vs_paper(B, "B_mm"))
+    add("B", "box floor width", B, "mm", "(9)")
 
     if alpha > s["allowable_pressure_angle_deg"]:
         bad.append(f"pressure angle {alpha:g} deg exceeds the allowable "
@@ -154,29 +144,7 @@ def size_screw(s: dict) -> SizingResult:
     return SizingResult(quantities=q, violations=bad)
 
 
-def _vs_paper(value: float, key: str) -> str:
-    paper = PAPER[key]
-    if abs(value - paper) <= 0.005 * max(1.0, abs(paper)):
-        return f"paper: {paper:g} (matches)"
-    return f"paper states {paper:g}; the equations give {value:.4g} ({100 * (value / paper - 1):+.1f} %)"
-
-
 def size_from_scene(scene: Scene) -> SizingResult:
     if scene.sizing is None:
         raise SceneError(f"{scene.source}: no [sizing] table: `shaftfem size` needs one")
     return size_screw(scene.sizing)
-
-
-def format_sizing(r: SizingResult) -> str:
-    lines = [f"{'eq.':<8} {'symbol':<5} {'value':>12}  {'unit':<5} quantity"]
-    for q in r.quantities:
-        line = f"{q.equation:<8} {q.symbol:<5} {q.value:>12.4f}  {q.unit:<5} {q.name}"
-        if q.note:
-            line += f"  [{q.note}]"
-        lines.append(line)
-    lines.append("")
-    if r.ok:
-        lines.append("limits: all hold (pressure angle within the self-locking limit)")
-    else:
-        lines += [f"LIMIT BROKEN: {v}" for v in r.violations]
-    return "\n".join(lines)

@@ -19,8 +19,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
+
+from .pipeline import Timings
+
+if TYPE_CHECKING:
+    from .pipeline import ModalResult
 
 # Eigenvalue errors of smooth problems fall as h^(2k) for P_k elements.
 SMOOTH_ORDER = {1: 2.0, 2: 4.0}
@@ -40,15 +46,6 @@ class ErrorEstimate:
     reliable: np.ndarray         # (n,) bool
     extrapolated: np.ndarray     # (n,) Richardson-extrapolated frequency, Hz
     ratio: float
-
-    def notes(self) -> list[str]:
-        bad = [i + 1 for i, ok in enumerate(self.reliable) if not ok]
-        if not bad:
-            return []
-        return [f"error estimate unreliable for mode(s) {', '.join(map(str, bad))}: the meshes "
-                "are not yet in the asymptotic range (non-monotone or implausible observed "
-                f"order); shown with an assumed order p = {FALLBACK_ORDER:g} and safety "
-                f"factor {SAFETY_FALLBACK:g}. Refine (--mesh-size) to tighten it."]
 
 
 # Eigenvalue errors near a re-entrant edge fall as h^(2 lambda): for the 270 degree
@@ -119,10 +116,11 @@ def matched_frequencies(ref_kinds: list[str], kinds: list[str], f: np.ndarray) -
     return out
 
 
-def estimate_errors(result, ratio: float = RATIO, progress=None,
-                    factorizer: str = "auto") -> ErrorEstimate:
+def estimate_errors(result: ModalResult, ratio: float = RATIO,
+                    progress: Callable[[str], None] | None = None,
+                    factorizer: str = "auto", threads: int | None = None) -> ErrorEstimate:
     """Error estimate for a finished run: solve the same scene on two coarser meshes."""
-    from .pipeline import run_modes, with_mesh
+    from .pipeline import run_modes, with_mesh, with_modes
 
     say = progress or (lambda _m: None)
     scene = result.scene
@@ -130,29 +128,40 @@ def estimate_errors(result, ratio: float = RATIO, progress=None,
     for k in (1, 2):
         size_mm = scene.mesh.size * 1e3 * ratio**k
         say(f"error estimate: coarser mesh {k} of 2 ({size_mm:.3g} mm)")
-        runs.append(run_modes(with_mesh(scene, size_mm), factorizer=factorizer))
+        # the same modes, counted (a frequency limit could select others on a coarse mesh)
+        coarse = with_modes(with_mesh(scene, size_mm), count=result.modes.count)
+        runs.append(run_modes(coarse, factorizer=factorizer, threads=threads))
     m = result.modes
     f = [m.frequencies] + [matched_frequencies(m.kinds, r.modes.kinds, r.modes.frequencies)
                            for r in runs]
     # grooves end in sharp re-entrant edges: the singular rate applies
-    est = richardson(f[0], f[1], f[2], ratio, scene.mesh.order,
-                     singular=scene.grooves is not None)
-    return est
+    return richardson(f[0], f[1], f[2], ratio, scene.mesh.order,
+                      singular=scene.grooves is not None)
 
 
 # --------------------------------------------------------------------------
 # The work-precision study: a ladder of meshes, P1 and P2
 
 
-@dataclass
+@dataclass(frozen=True)
 class StudyRun:
     order: int
     size_mm: float
     dofs: int
-    seconds: dict
+    timings: Timings
     peak_memory_mb: float
     frequencies: np.ndarray
-    kinds: list
+    kinds: list[str]
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    """The study's runs as table rows, its reference frequencies and how they were made."""
+
+    rows: list[dict]
+    reference: np.ndarray
+    estimate: ErrorEstimate
+    order: int        # element order of the reference runs
 
 
 def _one_run(scene, size_mm: float, order: int, factorizer: str) -> dict:
@@ -162,7 +171,7 @@ def _one_run(scene, size_mm: float, order: int, factorizer: str) -> dict:
     from .pipeline import run_modes, with_mesh
 
     r = run_modes(with_mesh(scene, size_mm, order), factorizer=factorizer)
-    return {"dofs": r.modes.n_dofs, "seconds": r.seconds,
+    return {"dofs": r.modes.n_dofs, "timings": r.timings,
             "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
             "frequencies": r.modes.frequencies, "kinds": r.modes.kinds}
 
@@ -183,6 +192,15 @@ def run_study(scene, ladders: dict[int, list[float]], factorizer: str = "auto",
                 d = pool.submit(_one_run, scene, h, order, factorizer).result()
             runs.append(StudyRun(order=order, size_mm=h, **d))
     return runs
+
+
+def summarize_study(runs: list[StudyRun], singular: bool) -> StudyResult:
+    """Reference from the finest runs of the highest order, and every run's error against it."""
+    ref, est = study_reference(runs, singular)
+    top = max(r.order for r in runs)
+    finest = min((r for r in runs if r.order == top), key=lambda r: r.size_mm)
+    return StudyResult(rows=study_table(runs, ref, finest.kinds), reference=ref, estimate=est,
+                       order=top)
 
 
 def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, ErrorEstimate]:
@@ -206,35 +224,9 @@ def study_table(runs: list[StudyRun], reference: np.ndarray, ref_kinds: list) ->
         err = np.abs(f / reference - 1)  # nan where a mode has no counterpart
         rows.append({
             "element": f"P{r.order}", "size_mm": r.size_mm, "dofs": r.dofs,
-            **{f"{k}_s": round(v, 3) for k, v in r.seconds.items()},
+            **{f"{k}_s": round(v, 3) for k, v in r.timings.items()},
             "peak_memory_mb": round(r.peak_memory_mb),
             "max_rel_error": float(np.nanmax(err)),
             **{f"f{i + 1}_hz": float(x) for i, x in enumerate(f)},
         })
     return rows
-
-
-def plot_study(rows: list[dict], path) -> None:
-    """Log-log PNG of the max relative frequency error against wall time, per element."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .export import atomic_path
-
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for el in sorted({r["element"] for r in rows}):
-        rs = sorted((r for r in rows if r["element"] == el), key=lambda r: r["total_s"])
-        ax.loglog([r["total_s"] for r in rs], [r["max_rel_error"] for r in rs], "o-", label=el)
-        for r in rs:
-            ax.annotate(f"{r['size_mm']:g} mm", (r["total_s"], r["max_rel_error"]),
-                        fontsize=7, textcoords="offset points", xytext=(4, 4))
-    ax.set_xlabel("wall time of the run, s")
-    ax.set_ylabel("max relative frequency error, modes 1-10")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=120, format="png")
-    plt.close(fig)

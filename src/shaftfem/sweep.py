@@ -19,9 +19,7 @@ once, so an interrupted sweep resumes where it stopped; a variant that fails
 from __future__ import annotations
 
 import csv
-import hashlib
 import itertools
-import json
 import math
 import os
 import time
@@ -30,9 +28,10 @@ from pathlib import Path
 from typing import Callable
 
 from .errors import SceneError
-from .scene import read_toml, scene_beside
-
-N_MODES = 10
+from .runtime import worker_env
+from .scene import load_scene, scene_beside
+from .schema import read_toml
+from .store import content_key
 
 
 @dataclass(frozen=True)
@@ -41,6 +40,7 @@ class Sweep:
     mesh_size_mm: float | None
     variants: list[dict]        # each: {"table.key": value in file units}
     parameters: list[str]
+    n_modes: int                # the lowest n_modes of every variant are recorded
 
 
 def _axis_values(name: str, spec) -> list[float]:
@@ -83,35 +83,39 @@ def load_sweep(path: str | Path) -> Sweep:
     if size is not None and (not isinstance(size, (int, float)) or size <= 0):
         raise SceneError(f"{path.name}: mesh_size_mm = {size!r}: must be a number > 0")
     base = scene_beside(data["base"], path)
-    return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names)
+    return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names,
+                 n_modes=load_scene(base).modes.count)
 
 
 def variant_id(overrides: dict) -> str:
-    text = json.dumps({k: round(v, 12) for k, v in sorted(overrides.items())})
-    return hashlib.sha1(text.encode()).hexdigest()[:12]
+    return content_key({k: round(v, 12) for k, v in overrides.items()}, length=12)
 
 
 def run_variant(base: str, overrides: dict, mesh_size_mm: float | None = None,
-                estimate: bool = False) -> dict:
-    """One variant, start to finish; never raises: a failure is a row with its error."""
+                estimate: bool = False, n_modes: int | None = None,
+                threads: int | None = None) -> dict:
+    """One variant, start to finish; never raises: a failure is a row with its error.
+
+    Records the lowest `n_modes` (default: the scene's count) on `threads` assembly
+    threads."""
     t0 = time.perf_counter()
     row = {"id": variant_id(overrides), **overrides}
     try:
-        from .pipeline import run_modes, with_mesh
+        from .pipeline import run_modes, with_mesh, with_modes
         from .resonance import check_resonance
-        from .scene import load_scene
 
         scene = with_mesh(load_scene(base, overrides=overrides), mesh_size_mm)
-        r = run_modes(scene)
+        scene = with_modes(scene, count=n_modes or scene.modes.count)
+        r = run_modes(scene, threads=threads)
         m = r.modes
-        for i in range(N_MODES):
+        for i in range(m.count):
             row[f"f{i + 1}_hz"] = float(m.frequencies[i])
             row[f"kind{i + 1}"] = m.kinds[i]
         if estimate:
             from .study import estimate_errors
 
-            est = estimate_errors(r)
-            for i in range(N_MODES):
+            est = estimate_errors(r, threads=threads)
+            for i in range(m.count):
                 row[f"err{i + 1}"] = float(est.relative_error[i])
         if scene.excitations:
             v = check_resonance(m.frequencies, m.kinds, scene.excitations, scene.required_margin)
@@ -128,10 +132,12 @@ def run_variant(base: str, overrides: dict, mesh_size_mm: float | None = None,
     return row
 
 
-COLUMNS_TAIL = (["dofs"] + [f"f{i + 1}_hz" for i in range(N_MODES)]
-                + [f"kind{i + 1}" for i in range(N_MODES)]
-                + [f"err{i + 1}" for i in range(N_MODES)]
-                + ["min_margin", "margin_ok", "status", "error", "wall_s", "worker_pid"])
+def columns(parameters: list[str], n_modes: int) -> list[str]:
+    """The results table's columns: the swept parameters, then per mode f, kind, error."""
+    per_mode = [f"{c}{i + 1}{u}" for c, u in (("f", "_hz"), ("kind", ""), ("err", ""))
+                for i in range(n_modes)]
+    return (["id"] + parameters + ["dofs"] + per_mode
+            + ["min_margin", "margin_ok", "status", "error", "wall_s", "worker_pid"])
 
 
 def read_results(path: str | Path) -> list[dict]:
@@ -168,23 +174,22 @@ def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
         f"{len(todo)} to run")
     if not todo:
         return read_results(results)
-    columns = ["id"] + sweep.parameters + COLUMNS_TAIL
     new_file = not results.exists() or results.stat().st_size == 0
     results.parent.mkdir(parents=True, exist_ok=True)
     if scheduler:
-        client, cluster = Client(scheduler), None
+        client, cluster, threads = Client(scheduler), None, None
     else:
         # the workers already share the cores: one assembly thread each
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None,
-                               env={"SHAFTFEM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
-        client = Client(cluster)
+                               dashboard_address=None, env=worker_env())
+        client, threads = Client(cluster), 1
     t0, n_ok, n_failed = time.perf_counter(), 0, 0
     try:
         futures = [client.submit(run_variant, sweep.base, v, sweep.mesh_size_mm, estimate,
-                                 pure=False) for v in todo]
+                                 sweep.n_modes, threads, pure=False) for v in todo]
         with open(results, "a", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=columns, extrasaction="ignore")
+            w = csv.DictWriter(fh, fieldnames=columns(sweep.parameters, sweep.n_modes),
+                               extrasaction="ignore")
             if new_file:
                 w.writeheader()
             for fut in as_completed(futures):
@@ -203,55 +208,3 @@ def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
         if cluster is not None:
             cluster.close()
     return read_results(results)
-
-
-def plot_sweep(rows: list[dict], parameters: list[str], out: str | Path) -> list[Path]:
-    """PNG per swept parameter (each frequency against it) and a resonance-margin map."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .export import atomic_path
-
-    ok = [r for r in rows if r["status"] == "ok"]
-    out = Path(out)
-    written = []
-    if not ok:
-        return written
-    for p in parameters:
-        fig, ax = plt.subplots(figsize=(7, 4.5))
-        x = [float(r[p]) for r in ok]
-        for i in range(1, N_MODES + 1):
-            ax.plot(x, [float(r[f"f{i}_hz"]) for r in ok], "o", ms=4, label=f"mode {i}")
-        ax.set_xlabel(p)
-        ax.set_ylabel("natural frequency, Hz")
-        ax.set_yscale("log")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7, ncol=2)
-        fig.tight_layout()
-        path = out / f"frequencies_vs_{p.replace('.', '_')}.png"
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=110, format="png")
-        plt.close(fig)
-        written.append(path)
-    if ok[0].get("min_margin") not in (None, ""):
-        fig, ax = plt.subplots(figsize=(6, 4.5))
-        margin = [100 * float(r["min_margin"]) for r in ok]
-        if len(parameters) >= 2:
-            sc = ax.scatter([float(r[parameters[0]]) for r in ok],
-                            [float(r[parameters[1]]) for r in ok], c=margin, cmap="RdYlGn", s=80)
-            ax.set_ylabel(parameters[1])
-            fig.colorbar(sc, label="smallest separation margin, %")
-        else:
-            ax.plot([float(r[parameters[0]]) for r in ok], margin, "o")
-            ax.set_ylabel("smallest separation margin, %")
-        ax.set_xlabel(parameters[0])
-        ax.grid(True, alpha=0.3)
-        fig.tight_layout()
-        path = out / "resonance_margin.png"
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=110, format="png")
-        plt.close(fig)
-        written.append(path)
-    return written

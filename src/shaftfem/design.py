@@ -1,0 +1,78 @@
+"""The design workflow: sizing, modes with error estimates, the resonance verdict,
+files, pictures and a report, in one call.
+
+    from shaftfem.design import run_design
+    from shaftfem.scene import load_scene
+    d = run_design(load_scene("paper2018"), "out/paper2018")
+    d.ok, d.report
+
+A scene without [[excitation]] sources gets everything but the verdict (the
+report says there was nothing to check against); a scene without [sizing]
+skips the sizing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Callable
+
+from .scene import Scene
+
+if TYPE_CHECKING:
+    from .pipeline import ModalResult
+    from .resonance import ResonanceVerdict
+    from .sizing import SizingResult
+    from .study import ErrorEstimate
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    sizing: SizingResult | None
+    result: ModalResult
+    estimate: ErrorEstimate | None
+    verdict: ResonanceVerdict | None   # None: the scene has no excitations
+    files: list[Path]
+    pictures: list[Path]
+    report: Path
+
+    @property
+    def ok(self) -> bool:
+        """No mode too close to an excitation harmonic (also when there was none)."""
+        return self.verdict is None or self.verdict.ok
+
+
+def run_design(scene: Scene, out: str | Path, margin: float | None = None,
+               estimate: bool = True, use_cache: bool = True, factorizer: str = "auto",
+               progress: Callable[[str], None] | None = None) -> DesignResult:
+    """Everything a designer signs off, written to `out`. `margin`: required separation
+    (fraction), default the scene's."""
+    from .export import export_modes
+    from .pipeline import run_modes
+    from .render import render_geometry, render_modes
+    from .report import write_report
+    from .resonance import check_result
+    from .sizing import size_screw
+
+    say = progress or (lambda _m: None)
+    out = Path(out)
+    sizing = None
+    if scene.sizing is not None:
+        say("sizing (equations 1-9)")
+        sizing = size_screw(scene.sizing)
+    result = run_modes(scene, use_cache=use_cache, progress=say, factorizer=factorizer)
+    est = None
+    if estimate:
+        from .study import estimate_errors
+
+        est = estimate_errors(result, progress=say, factorizer=factorizer)
+    verdict = check_result(result, margin)
+    say("exporting mode shapes, mesh and solid")
+    files = export_modes(result, out, est)
+    say("rendering pictures")
+    pictures = [render_geometry(result, out / "geometry.png"),
+                render_modes(result, out / "modes.png")]
+    report = write_report(out / "report.md", result, verdict, sizing, pictures, files, est)
+    say(f"report written: {report}")
+    return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
+                        files=files, pictures=pictures, report=report)

@@ -1,0 +1,44 @@
+"""Thread pools, set in one place.
+
+MKL PARDISO's threads do the heavy work of the eigensolve. NumPy's OpenBLAS
+pool, started beside them, fights MKL's for the cores: on 2 cores it doubled
+the paper shaft's eigensolve (5.4 s against 2.8 s, benchmarks/end_to_end.py).
+OpenBLAS reads its thread count once, when NumPy loads, and a later runtime
+limit did not have the same effect, so `configure_threads()` must run before
+NumPy is imported. The CLI, the sweep workers, the tests and the benchmarks
+call it first; a library user does the same:
+
+    import shaftfem.runtime
+    shaftfem.runtime.configure_threads()   # before numpy / scipy / shaftfem.pipeline
+
+A user's own OPENBLAS_NUM_THREADS wins.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import warnings
+
+BLAS_THREADS = 1
+
+
+def configure_threads() -> None:
+    """One OpenBLAS thread (unless the user set one), before NumPy loads."""
+    if "numpy" in sys.modules and "OPENBLAS_NUM_THREADS" not in os.environ:
+        warnings.warn("shaftfem.runtime.configure_threads() ran after NumPy was imported: "
+                      "OpenBLAS keeps its own thread pool and the eigensolve may be slower",
+                      RuntimeWarning, stacklevel=2)
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", str(BLAS_THREADS))
+
+
+def assembly_threads(requested: int | None = None) -> int:
+    """Threads for assembling K and M: `requested`, else one per core (at most 8)."""
+    if requested is not None:
+        return max(1, int(requested))
+    return max(1, min(os.cpu_count() or 1, 8))
+
+
+def worker_env() -> dict[str, str]:
+    """Environment for worker processes that share the cores with their siblings."""
+    return {"OPENBLAS_NUM_THREADS": str(BLAS_THREADS)}

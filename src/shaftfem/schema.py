@@ -1,0 +1,199 @@
+"""The scene file's schema: every key, its unit, what it must satisfy.
+
+Declarative on purpose: `validate_table` checks any table against its entry
+here, so a new key is one line, and every error names the file, the key, the
+value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+from .errors import SceneError
+
+# A flat separation margin of about 15 % between a natural frequency and any
+# running-speed harmonic is common machinery practice (see shaftfem.resonance).
+DEFAULT_MARGIN_PERCENT = 15.0
+DEFAULT_MODE_COUNT = 10
+MAX_MODE_COUNT = 200
+
+
+@dataclass(frozen=True)
+class Key:
+    kind: type | tuple  # float, int, str, or ("list", str)
+    doc: str
+    check: Callable[[Any], bool] | None = None
+    allowed: str = ""
+    default: Any = None
+    required: bool = True
+
+
+def _positive(v: float) -> bool:
+    return v > 0
+
+
+SCHEMA: dict[str, dict[str, Key]] = {
+    "": {
+        "name": Key(str, "short name of the scene", required=False),
+        "description": Key(str, "free text", required=False),
+    },
+    "shaft": {
+        "length_mm": Key(float, "overall shaft length, mm", _positive, "> 0"),
+        "diameter_mm": Key(float, "outer diameter, mm", _positive, "> 0"),
+    },
+    "material": {
+        "name": Key(str, "material name", required=False, default="steel"),
+        "youngs_modulus_mpa": Key(float, "Young's modulus E, MPa", _positive, "> 0"),
+        "poisson_ratio": Key(
+            float, "Poisson's ratio", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)"
+        ),
+        "density_kg_m3": Key(float, "density, kg/m^3", _positive, "> 0"),
+    },
+    "grooves": {
+        "hands": Key(
+            ("list", str),
+            'groove hands, e.g. ["right", "left"]',
+            lambda v: 1 <= len(v) <= 2
+            and all(h in ("right", "left") for h in v)
+            and len(set(v)) == len(v),
+            'one or two of "right", "left", each at most once',
+        ),
+        "pitch_mm": Key(float, "helix pitch (lead), mm", _positive, "> 0"),
+        "width_mm": Key(float, "groove width along the shaft axis, mm", _positive, "> 0"),
+        "depth_mm": Key(float, "groove depth, mm", _positive, "> 0"),
+        "root_radius_mm": Key(
+            float, "fillet radius at the groove's floor corners, mm (0 = sharp)",
+            lambda v: v >= 0, ">= 0", default=0.0, required=False,
+        ),
+        "grooved_length_mm": Key(float, "axial length of the grooved zone, mm", _positive, "> 0"),
+        "start_mm": Key(
+            float, "distance from the shaft's left end to the grooved zone, mm "
+            "(default: the zone is centred)", lambda v: v >= 0, ">= 0", required=False,
+        ),
+    },
+    "excitation": {  # an array of tables: [[excitation]]
+        "name": Key(str, "name of the source, e.g. engine"),
+        "speed_rpm": Key(float, "speed of the source, r/min (f = n / 60 Hz)", _positive, "> 0"),
+        "orders": Key(("list", int), "harmonic orders that excite, e.g. [1, 2]",
+                      lambda v: len(v) >= 1 and all(k >= 1 for k in v), "integers >= 1",
+                      default=[1], required=False),
+    },
+    "sizing": {  # the paper's screw sizing, equations (1)-(9); see shaftfem.sizing
+        "power_kw": Key(float, "power through the shaft, kW", _positive, "> 0"),
+        "speed_rpm": Key(float, "shaft speed n, r/min", _positive, "> 0"),
+        "friction_coefficient": Key(float, "friction coefficient f of the groove pair",
+                                    lambda v: 0 < v < 1, "in (0, 1)"),
+        "lead_angle_deg": Key(float, "helix lead angle lambda, deg", lambda v: 0 < v < 90,
+                              "in (0, 90)"),
+        "pressure_angle_deg": Key(float, "groove pressure angle alpha, deg",
+                                  lambda v: 0 < v < 90, "in (0, 90)"),
+        "allowable_pressure_angle_deg": Key(
+            float, "largest pressure angle before self-locking, deg", lambda v: 0 < v < 90,
+            "in (0, 90)", default=38.0, required=False),
+        "allowable_pressure_mpa": Key(float, "allowable bearing pressure P_p, MPa", _positive,
+                                      "> 0"),
+        "psi": Key(float, "nut-height factor psi", _positive, "> 0"),
+        "keyways": Key(int, "keyways in the section: 0, 1 or 2 (180 deg apart)",
+                       lambda v: v in (0, 1, 2), "0, 1 or 2", default=0, required=False),
+        "rounding_step_mm": Key(float, "the diameter is rounded up to a multiple of this, mm",
+                                _positive, "> 0", default=1.0, required=False),
+        "crest_clearance_mm": Key(float, "crest clearance a_c, mm", lambda v: v >= 0, ">= 0"),
+        "feed_step_mm": Key(float, "box feed step b per pick, mm", _positive, "> 0"),
+        "picks_per_row": Key(int, "picks per row n", lambda v: v >= 2, ">= 2"),
+        "needle_width_mm": Key(float, "needle width h, mm", lambda v: v >= 0, ">= 0"),
+        "drive_teeth": Key(int, "teeth on the driving gear Z_drive", lambda v: v >= 1, ">= 1"),
+        "driven_teeth": Key(int, "teeth on the driven gear Z_driven", lambda v: v >= 1, ">= 1"),
+    },
+    "resonance": {
+        "required_margin_percent": Key(
+            float, "least separation |f - k f_exc| / (k f_exc) between a mode and an "
+            f"excitation harmonic, % (default {DEFAULT_MARGIN_PERCENT:g})",
+            lambda v: 0 < v < 100, "in (0, 100)", default=DEFAULT_MARGIN_PERCENT,
+            required=False),
+    },
+    "modes": {
+        "count": Key(int, f"elastic modes to compute (default {DEFAULT_MODE_COUNT})",
+                     lambda v: 1 <= v <= MAX_MODE_COUNT, f"in [1, {MAX_MODE_COUNT}]",
+                     default=DEFAULT_MODE_COUNT, required=False),
+        "max_frequency_hz": Key(
+            float, "compute every elastic mode below this frequency, Hz (instead of a count)",
+            _positive, "> 0", required=False),
+    },
+    "mesh": {
+        "element_size_mm": Key(float, "element size away from the grooves, mm", _positive, "> 0"),
+        "groove_element_size_mm": Key(
+            float, "element size in the grooved zone, mm (default: element_size_mm / 2)",
+            _positive, "> 0", required=False,
+        ),
+        "edge_element_size_mm": Key(
+            float, "element size at the groove's inner floor edges, mm "
+            "(default: the root radius, or groove size / 3 for sharp corners)",
+            _positive, "> 0", required=False,
+        ),
+        "order": Key(int, "element order: 1 (P1) or 2 (P2)", lambda v: v in (1, 2), "1 or 2",
+                     default=2, required=False),
+    },
+}
+
+
+
+def where(source: str, table: str, key: str) -> str:
+    return f"{source}: {table + '.' if table else ''}{key}"
+
+
+def _coerce(source: str, table: str, key: str, spec: Key, value: Any) -> Any:
+    at = where(source, table, key)
+    if spec.kind is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise SceneError(f"{at} = {value!r}: expected a number ({spec.doc})")
+        value = float(value)
+        if not math.isfinite(value):
+            raise SceneError(f"{at} = {value!r}: expected a finite number ({spec.doc})")
+    elif spec.kind is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise SceneError(f"{at} = {value!r}: expected an integer ({spec.doc})")
+    elif spec.kind is str:
+        if not isinstance(value, str):
+            raise SceneError(f"{at} = {value!r}: expected a string ({spec.doc})")
+    elif isinstance(spec.kind, tuple) and spec.kind[0] == "list":
+        if not isinstance(value, list) or not all(isinstance(v, spec.kind[1]) for v in value):
+            raise SceneError(f"{at} = {value!r}: expected a list ({spec.doc})")
+    if spec.check is not None and not spec.check(value):
+        raise SceneError(f"{at} = {value!r}: must be {spec.allowed} ({spec.doc})")
+    return value
+
+
+def validate_table(source: str, table: str, data: Any, schema: dict[str, Key]) -> dict:
+    """Check one table against its schema; return it with defaults filled in."""
+    if not isinstance(data, dict):
+        raise SceneError(f"{source}: [{table}] must be a table")
+    out = {}
+    for key, value in data.items():
+        if table == "" and key in SCHEMA and key:
+            continue  # sub-tables are checked on their own
+        if key not in schema:
+            raise SceneError(
+                f"{where(source, table, key)}: unknown key; allowed: {', '.join(schema)}"
+            )
+        out[key] = _coerce(source, table, key, schema[key], value)
+    for key, spec in schema.items():
+        if key not in out:
+            if spec.required:
+                raise SceneError(f"{where(source, table, key)}: missing ({spec.doc})")
+            out[key] = spec.default
+    return out
+
+
+def read_toml(path: str | Path, what: str = "file") -> dict:
+    """A TOML file as a dict; a missing or malformed file is a SceneError naming it."""
+    path = Path(path)
+    try:
+        return tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise SceneError(f"{what} {str(path)!r}: no such file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None

@@ -1,0 +1,106 @@
+"""Where results live: content keys, the cache folder, atomic files and staged folders.
+
+Every file shaftfem writes appears whole or not at all: it is written under a
+temporary name beside its final one and renamed into place (a rename within
+one folder is atomic). Cache entries are named by a hash of everything they
+depend on, so a changed input can never fetch a stale result.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import json
+import os
+import shutil
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Iterator
+
+import numpy as np
+
+
+def cache_dir() -> Path:
+    """The cache root: $SHAFTFEM_CACHE, else ~/.cache/shaftfem."""
+    root = os.environ.get("SHAFTFEM_CACHE") or Path.home() / ".cache" / "shaftfem"
+    return Path(root)
+
+
+def content_key(payload: dict, files: tuple[Path, ...] = (), length: int = 20) -> str:
+    """A hex hash of `payload` (JSON, floats rounded to 12 digits) and the bytes of `files`."""
+    h = hashlib.sha256()
+    for f in files:
+        h.update(Path(f).read_bytes())
+    text = json.dumps(payload, sort_keys=True, default=lambda v: round(v, 12))
+    h.update(text.encode())
+    return h.hexdigest()[:length]
+
+
+@contextmanager
+def atomic_path(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path next to `path`; move it into place only on success."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        os.chmod(tmp, 0o644)  # mkstemp makes 0600; results are for sharing
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def write_text(path: str | Path, text: str) -> Path:
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)
+    return Path(path)
+
+
+def plain(obj):
+    """JSON form of NumPy values and paths (json.dumps' `default`)."""
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, (np.floating, np.integer, np.bool_)):
+        return obj.item()
+    if isinstance(obj, Path):
+        return str(obj)
+    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
+
+
+def json_text(data: dict) -> str:
+    return json.dumps(data, indent=2, default=plain) + "\n"
+
+
+def write_json(path: str | Path, data: dict) -> Path:
+    return write_text(path, json_text(data))
+
+
+def write_csv(path: str | Path, rows: list[dict]) -> Path:
+    """Rows of equal keys as CSV, header from the first row (atomic)."""
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    return Path(path)
+
+
+@contextmanager
+def staged_directory(out: str | Path) -> Iterator[Path]:
+    """Write a set of files into a hidden staging folder; move them into `out` at the end.
+
+    On any failure the staging folder is removed and `out` gets none of the files.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(prefix=".staging-", dir=out))
+    try:
+        yield stage
+        for f in sorted(stage.iterdir()):
+            os.chmod(f, 0o644)
+            os.replace(f, out / f.name)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)

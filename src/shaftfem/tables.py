@@ -1,0 +1,201 @@
+"""Every text table shaftfem prints or writes: terminal tables and Markdown.
+
+Pure formatting: each function takes a result and returns text, every number
+with its unit.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .calibrate import Calibration, CalibrationResult
+    from .pipeline import ModalResult
+    from .resonance import ResonanceVerdict
+    from .sizing import SizingResult
+    from .study import ErrorEstimate, StudyResult
+
+
+def markdown(head: list[str], rows: list[list[str]]) -> list[str]:
+    """A Markdown table, as lines."""
+    out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    return out + ["| " + " | ".join(r) + " |" for r in rows]
+
+
+def timings_line(result: ModalResult) -> str:
+    return ", ".join(f"{k} {v:.1f} s" for k, v in result.timings.items())
+
+
+def estimate_notes(est: ErrorEstimate) -> list[str]:
+    """How the estimate was made, and where it cannot be trusted."""
+    from .study import FALLBACK_ORDER, SAFETY_FALLBACK
+
+    lines = [f"est. error: estimated discretisation error of each frequency (three meshes, "
+             f"sizes x1, x{est.ratio:g}, x{est.ratio**2:g}; observed order p)"]
+    bad = [i + 1 for i, ok in enumerate(est.reliable) if not ok]
+    if bad:
+        lines.append(
+            f"error estimate unreliable for mode(s) {', '.join(map(str, bad))}: the meshes are "
+            "not yet in the asymptotic range (non-monotone or implausible observed order); "
+            f"shown with an assumed order p = {FALLBACK_ORDER:g} and safety factor "
+            f"{SAFETY_FALLBACK:g}. Refine (--mesh-size) to tighten it.")
+    return lines
+
+
+def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
+    """The modes table as a designer reads it."""
+    m, scene = result.modes, result.scene
+    exc = scene.excitations[0] if scene.excitations else None
+    lines = [
+        f"scene {scene.name}: P{scene.mesh.order}, {m.n_dofs} DOFs, "
+        f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm "
+        f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factorizer}",
+        f"rigid-body modes: {m.n_rigid} (all below {max(m.rigid_frequencies):.1e} Hz)",
+        "",
+    ]
+    head = f"{'mode':>4}  {'frequency':>12}  {'kind':<8}  {'residual':>9}"
+    if est is not None:
+        head += f"  {'est. error':>10}  {'order':>5}"
+    if exc:
+        head += f"  {'f / ' + exc.name + ' ' + format(exc.frequency, 'g') + ' Hz':>20}"
+    lines.append(head)
+    for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
+        row = f"{i + 1:>4}  {f:>9.2f} Hz  {kind:<8}  {r:>9.1e}"
+        if est is not None:
+            e, p = est.relative_error[i], est.observed_order[i]
+            mark = " " if est.reliable[i] else "?"
+            row += (f"  {100 * e:>7.2f} %{mark}  {p:>5.2f}" if math.isfinite(e)
+                    else f"  {'n/a':>10}  {'':>5}")
+        if exc:
+            row += f"  {f / exc.frequency:>20.2f}"
+        lines.append(row)
+    if est is not None:
+        lines += [""] + estimate_notes(est)
+    lines += [f"WARNING: {w}" for w in result.warnings]
+    lines += ["", "time: " + timings_line(result)]
+    return "\n".join(lines)
+
+
+def verdict_text(v: ResonanceVerdict) -> str:
+    lines = [f"{'source':<10} {'order':>5} {'excitation':>13}  {'closest mode':>12} "
+             f"{'frequency':>12}  {'kind':<8} {'margin':>9}  {'required':>8}"]
+    for a in v.closest_per_harmonic():
+        lines.append(
+            f"{a.source:<10} {a.order:>5} {a.excitation:>10.2f} Hz  {a.mode:>12} "
+            f"{a.frequency:>9.2f} Hz  {a.kind:<8} {100 * a.margin:>8.1f} %  "
+            f"{100 * a.required:>6.1f} %  {'ok' if a.ok else 'TOO CLOSE'}")
+    lines += ["", "verdict: " + verdict_line(v).replace("**", "")]
+    return "\n".join(lines)
+
+
+def verdict_line(v: ResonanceVerdict | None) -> str:
+    """One line: PASS or FAIL with the closest approach (Markdown bold)."""
+    if v is None:
+        return ("**VERDICT: NOT CHECKED** - the scene has no [[excitation]] sources; add them "
+                "to check the modes against the excitation harmonics")
+    if v.ok:
+        a = v.approaches[0]
+        return (f"**VERDICT: PASS** - no natural frequency within {100 * v.required:g} % "
+                f"of any excitation harmonic (closest: mode {a.mode}, {a.frequency:.1f} Hz, vs "
+                f"{a.source} x{a.order} at {a.excitation:.1f} Hz: {100 * a.margin:.0f} % apart)")
+    a = v.violations[0]
+    return (f"**VERDICT: FAIL** - {len(v.violations)} mode/harmonic pair(s) closer than "
+            f"{100 * v.required:g} %; closest: mode {a.mode} ({a.frequency:.1f} Hz, {a.kind}) "
+            f"is only {100 * a.margin:.1f} % from {a.source} x{a.order} at "
+            f"{a.excitation:.1f} Hz")
+
+
+def verdict_markdown(v: ResonanceVerdict) -> list[str]:
+    return markdown(
+        ["source", "order", "excitation (Hz)", "closest mode", "frequency (Hz)", "margin",
+         "required", ""],
+        [[a.source, str(a.order), f"{a.excitation:.2f}", str(a.mode), f"{a.frequency:.2f}",
+          f"{100 * a.margin:.1f} %", f"{100 * a.required:g} %", "ok" if a.ok else "TOO CLOSE"]
+         for a in v.closest_per_harmonic()])
+
+
+def sizing_text(r: SizingResult) -> str:
+    lines = [f"{'eq.':<8} {'symbol':<5} {'value':>12}  {'unit':<5} quantity"]
+    lines += [f"{q.equation:<8} {q.symbol:<5} {q.value:>12.4f}  {q.unit:<5} {q.name}"
+              for q in r.quantities]
+    lines.append("")
+    if r.ok:
+        lines.append("limits: all hold (pressure angle within the self-locking limit)")
+    else:
+        lines += [f"LIMIT BROKEN: {v}" for v in r.violations]
+    return "\n".join(lines)
+
+
+def sizing_markdown(r: SizingResult) -> list[str]:
+    lines = markdown(["eq.", "symbol", "value", "unit", "quantity"],
+                     [[q.equation, q.symbol, f"{q.value:.4g}", q.unit, q.name]
+                      for q in r.quantities])
+    return lines + [""] + [f"- LIMIT BROKEN: {v}" for v in r.violations]
+
+
+def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> list[str]:
+    m = result.modes
+    rows = []
+    for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
+        err = ""
+        if est is not None:
+            err = f"{100 * est.relative_error[i]:.2g} % (p = {est.observed_order[i]:.2f})"
+            err += "" if est.reliable[i] else " unreliable"
+        rows.append([str(i + 1), f"{f:.2f}", kind, f"{r:.1e}", err])
+    return markdown(["mode", "frequency (Hz)", "kind", "residual", "estimated error"], rows)
+
+
+def calibration_text(res: CalibrationResult, cal: Calibration) -> str:
+    lines = ["parameter                best value     std. dev.   bounds"]
+    for k, v in res.parameters.items():
+        lo, hi = cal.unknowns[k]
+        lines.append(f"{k:<24} {v:>10.3f}  {res.std[k]:>12.3g}   [{lo:g}, {hi:g}]")
+    lines += ["", "mode   target (Hz)    model (Hz)    diff     in sigma"]
+    for i, (t, f, r) in enumerate(zip(cal.targets, res.frequencies, res.residuals_sigma)):
+        lines.append(f"{i + 1:>4}  {t:>11.2f}  {f:>12.2f}  {100 * (f / t - 1):>+6.2f} %  "
+                     f"{r:>+8.2f}")
+    lines += ["", f"chi^2 = {res.chi2:.3g} for {len(cal.targets)} targets and "
+              f"{len(res.parameters)} unknowns; {res.evaluations} modal runs"]
+    return "\n".join(lines)
+
+
+STUDY_COLUMNS = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "factorisation_s",
+                 "eigensolve_s", "total_s", "peak_memory_mb", "max_rel_error"]
+
+
+def study_markdown(study: StudyResult) -> str:
+    """The study table in Markdown, with how its reference was made."""
+    lines = markdown(STUDY_COLUMNS, [
+        [f"{r[c]:.2e}" if c == "max_rel_error" else str(r[c]) for c in STUDY_COLUMNS]
+        for r in study.rows])
+    est = study.estimate
+    lines += ["", f"Reference: Richardson extrapolation of the three finest P{study.order} runs; "
+              "observed order per mode: " + ", ".join(f"{p:.2f}" for p in est.observed_order)]
+    lines += estimate_notes(est)[1:]
+    return "\n".join(lines) + "\n"
+
+
+def paper_text(result: ModalResult, sizing: SizingResult | None) -> str:
+    """The paper's Table 2 (and stated sizing) beside ours."""
+    from . import paper2018
+
+    lines = [f"{'mode':>4} {'paper':>10} {'shaftfem':>10} {'diff':>8}  {'kind':<8} "
+             f"{'f/f1 paper':>10} {'f/f1 ours':>10}"]
+    for r in paper2018.compare_modes(result.modes.frequencies, result.modes.kinds):
+        lines.append(f"{r.mode:>4} {r.paper_hz:>7.2f} Hz {r.ours_hz:>7.2f} Hz "
+                     f"{r.difference_percent:>+7.1f} %  {r.kind:<8} "
+                     f"{r.paper_ratio:>10.3f} {r.ours_ratio:>10.3f}")
+    s, m = result.scene.shaft, result.scene.material
+    torsion = (m.shear_modulus / m.density) ** 0.5 / (2 * s.length)
+    nearest = paper2018.nearest_to(torsion)
+    lines += ["", f"first torsion of a uniform {s.diameter * 1e3:g} mm shaft {s.length * 1e3:g} mm "
+              f"long: c_t / 2L = {torsion:.0f} Hz; the paper's nearest mode is {nearest:.1f} Hz "
+              f"({100 * (nearest / torsion - 1):+.0f} %)"]
+    if sizing is not None:
+        lines += ["", "sizing (equations 1-9) against the paper's stated results:"]
+        for c in paper2018.compare_sizing(sizing):
+            said = "matches" if c.matches else f"{c.difference_percent:+.1f} %"
+            lines.append(f"  {c.symbol:<3} equations {c.ours_mm:>8.2f} mm, paper "
+                         f"{c.paper_mm:>7.2f} mm ({said})")
+    return "\n".join(lines)
