@@ -148,10 +148,9 @@ def _cmd_design(args) -> int:
     if d.sizing is not None:
         print(sizing_text(d.sizing) + "\n")
     print(modes_text(d.result, d.estimate) + "\n")
-    if d.verdict is not None:
-        print(verdict_text(d.verdict) + "\n")
-    print(f"report: {d.report}")
-    print(verdict_line(d.verdict).replace("**", ""))
+    print(verdict_text(d.verdict) if d.verdict is not None
+          else verdict_line(None).replace("**", ""))
+    print(f"\nreport: {d.report}")
     return 0 if d.ok else 1
 
 

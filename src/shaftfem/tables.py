@@ -85,7 +85,7 @@ def verdict_text(v: ResonanceVerdict) -> str:
             f"{a.source:<10} {a.order:>5} {a.excitation:>10.2f} Hz  {a.mode:>12} "
             f"{a.frequency:>9.2f} Hz  {a.kind:<8} {100 * a.margin:>8.1f} %  "
             f"{100 * a.required:>6.1f} %  {'ok' if a.ok else 'TOO CLOSE'}")
-    lines += ["", "verdict: " + verdict_line(v).replace("**", "")]
+    lines += ["", verdict_line(v).replace("**", "")]
     return "\n".join(lines)
 
 
