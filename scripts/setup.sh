@@ -43,6 +43,15 @@ if ! .venv/bin/python -c "$probe" >/dev/null 2>&1; then
     .venv/bin/python -c "$probe" >/dev/null 2>&1 || echo "setup: warning: off-screen rendering does not work; pictures will fail" >&2
 fi
 
+# ParaView (pvpython) opens the exported modes in the tests, headless; xvfb-run gives the
+# exported ParaView script a screen to render on. Optional: those tests skip without them.
+if ! command -v pvpython >/dev/null 2>&1 || ! command -v xvfb-run >/dev/null 2>&1; then
+    echo "setup: installing ParaView and xvfb for the ParaView tests (about 440 MB)" >&2
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq paraview xvfb >/dev/null; } \
+        || echo "setup: warning: could not install paraview/xvfb; the ParaView tests will skip" >&2
+fi
+
 # CalculiX (ccx) is the independent solver the tests compare with; optional.
 if ! command -v ccx >/dev/null 2>&1; then
     echo "setup: installing CalculiX (calculix-ccx) for the cross-check tests" >&2

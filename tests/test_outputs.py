@@ -57,17 +57,31 @@ def exported(cylinder, tmp_path_factory):
 
 
 def test_vtu_shapes_read_back_exactly_and_are_mass_orthonormal(cylinder, exported):
+    import pyvista as pv
+
+    from shaftfem.export import KIND_FIELD, KINDS
+
     nodes, M, X = cylinder.system.nodes, cylinder.system.M, cylinder.modes.shapes
-    Y = np.zeros_like(X)
+    Y, Z = np.zeros_like(X), np.zeros_like(X)
+    every = meshio.read(exported / "modes_all.vtu")
     for k in range(X.shape[1]):
         m = meshio.read(exported / f"mode_{k + 1:02d}.vtu")
         assert m.cells[0].type == "tetra10"
-        (name, u), = m.point_data.items()
-        assert name.endswith(f"{cylinder.modes.frequencies[k]:.2f}Hz")
+        assert set(m.point_data) == {"displacement", "displacement_magnitude"}
+        assert m.field_data["mode"][0] == k + 1
+        assert m.field_data["frequency_hz"][0] == cylinder.modes.frequencies[k]
+        assert KINDS[m.field_data[KIND_FIELD][0]] == cylinder.modes.kinds[k]
+        u = m.point_data["displacement"]
+        assert np.allclose(m.point_data["displacement_magnitude"], np.linalg.norm(u, axis=1))
         dist, idx = cKDTree(m.points).query(nodes)
         assert dist.max() < 1e-12
         Y[:, k] = u[idx].ravel()
+        Z[:, k] = every.point_data[f"mode_{k + 1:02d}"][idx].ravel()
+        # pyvista (VTK's reader) sees the same vectors
+        g = pv.read(exported / f"mode_{k + 1:02d}.vtu")
+        assert np.array_equal(np.asarray(g.point_data["displacement"]), u)
     assert np.max(np.abs(Y - X)) < 1e-12 * np.max(np.abs(X))
+    assert np.array_equal(Y, Z)
     assert np.max(np.abs(Y.T @ (M @ Y) - np.eye(Y.shape[1]))) < 1e-8
 
 
@@ -91,8 +105,10 @@ def test_tables_solid_and_mesh_are_written(cylinder, exported):
 
 
 def test_failure_mid_export_leaves_no_file(cylinder, tmp_path, monkeypatch):
+    from shaftfem import vtkio
+
     calls = {"n": 0}
-    real = meshio.write
+    real = vtkio.write_vtu
 
     def flaky(*a, **k):
         calls["n"] += 1
@@ -100,22 +116,50 @@ def test_failure_mid_export_leaves_no_file(cylinder, tmp_path, monkeypatch):
             raise OSError("disk full (injected)")
         return real(*a, **k)
 
-    monkeypatch.setattr(meshio, "write", flaky)
+    monkeypatch.setattr(vtkio, "write_vtu", flaky)
     out = tmp_path / "out"
     with pytest.raises(OSError, match="injected"):
         export_modes(cylinder, out)
     assert list(out.iterdir()) == []
 
 
-def test_render_writes_non_blank_pngs(cylinder, tmp_path):
+def test_pictures_have_a_panel_per_mode_a_colour_bar_and_moving_gifs(cylinder, tmp_path):
     from PIL import Image
 
-    from shaftfem.render import GEOMETRY_SIZE, MODES_SIZE, render_geometry, render_modes
+    from shaftfem.pipeline import run_modes, with_modes
+    from shaftfem.render import (BAR_HEIGHT, GEOMETRY_SIZE, GIF_FRAMES, GIF_SIZE, PANEL_SIZE,
+                                 render_geometry, render_mode_gifs, render_modes)
 
-    for fn, size in ((render_geometry, GEOMETRY_SIZE), (render_modes, MODES_SIZE)):
-        path = fn(cylinder, tmp_path / f"{fn.__name__}.png")
-        img = np.asarray(Image.open(path).convert("RGB"))
-        assert img.shape[:2] == (size[1], size[0])
-        background = np.all(img == 255, axis=2)
-        assert 0.02 < 1 - background.mean() < 0.9  # something drawn, not everything
-        assert len(np.unique(img.reshape(-1, 3), axis=0)) > 50  # shaded, not a flat fill
+    def drawn(img):  # fraction of pixels that are not the white background
+        return 1 - np.all(img == 255, axis=2).mean()
+
+    geo = np.asarray(Image.open(render_geometry(cylinder, tmp_path / "g.png")).convert("RGB"))
+    assert geo.shape[:2] == (GEOMETRY_SIZE[1], GEOMETRY_SIZE[0]) and 0.02 < drawn(geo) < 0.9
+
+    three = run_modes(with_modes(cylinder.scene, count=3))  # three modes: panels 1-3 of 4
+    img = np.asarray(Image.open(render_modes(three, tmp_path / "m.png")).convert("RGB"))
+    (w, h), rows = PANEL_SIZE, 2
+    assert img.shape[:2] == (rows * h + BAR_HEIGHT, 2 * w)
+    panels = [img[r * h + 25:(r + 1) * h - 5, c * w + 5:(c + 1) * w - 5]
+              for r in range(rows) for c in range(2)]
+    for p in panels[:3]:
+        assert 0.05 < drawn(p) < 0.9
+        assert len(np.unique(p.reshape(-1, 3), axis=0)) > 50  # shaded and coloured
+    assert drawn(panels[3]) < 0.01  # no fourth mode was asked for
+    bar = img[rows * h + 10:rows * h + BAR_HEIGHT // 2, int(0.32 * 2 * w):int(0.68 * 2 * w)]
+    # the colour bar: viridis runs from dark purple to yellow
+    assert drawn(bar) > 0.2
+    colours = bar.reshape(-1, 3).astype(int)
+    assert np.any((colours[:, 0] > 200) & (colours[:, 1] > 200) & (colours[:, 2] < 100))  # yellow
+    assert np.any((colours[:, 0] < 100) & (colours[:, 1] < 50) & (colours[:, 2] > 60))   # purple
+
+    gifs = render_mode_gifs(three, tmp_path)
+    assert [g.name for g in gifs] == ["mode_01.gif", "mode_02.gif", "mode_03.gif"]
+    for g in gifs:
+        im = Image.open(g)
+        assert im.n_frames == GIF_FRAMES and im.size == GIF_SIZE
+        frames = []
+        for i in (0, GIF_FRAMES // 4):
+            im.seek(i)
+            frames.append(np.asarray(im.convert("RGB")))
+        assert np.any(frames[0] != frames[1])  # it moves

@@ -31,7 +31,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import SceneError
-from .scene import load_scene, scene_beside
+from .scene import load_scene, read_scene_text, scene_beside
 from .schema import DEFAULT_MODE_COUNT, read_toml
 from .sweep import Sweep, run_sweep, run_variant
 
@@ -113,7 +113,8 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     axes = [np.linspace(a, b, cal.grid) for a, b in zip(lo, hi)]
     variants = [dict(zip(names, map(float, p))) for p in np.array(np.meshgrid(*axes)).reshape(
         len(names), -1).T]
-    rows = run_sweep(Sweep(cal.base, cal.mesh_size_mm, variants, names, cal.n_modes),
+    base = read_scene_text(cal.base)  # read once here; its content goes to the workers
+    rows = run_sweep(Sweep(base, cal.mesh_size_mm, variants, names, cal.n_modes),
                      Path(workdir) / "grid.csv", workers=workers, progress=say)
     chi2 = [float(np.sum(residual_of(r) ** 2)) for r in rows]
     best = rows[int(np.argmin(chi2))]
@@ -126,7 +127,7 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     def fun(s: np.ndarray) -> np.ndarray:
         x = lo + s * (hi - lo)
         count["n"] += 1
-        r = residual_of(run_variant(cal.base, dict(zip(names, map(float, x))),
+        r = residual_of(run_variant(base, dict(zip(names, map(float, x))),
                                     cal.mesh_size_mm, n_modes=cal.n_modes))
         say(f"calibrate: run {count['n']}: "
             + ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, x))

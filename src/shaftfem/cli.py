@@ -127,13 +127,13 @@ def _cmd_export(args) -> int:
 
 
 def _cmd_render(args) -> int:
-    from .render import render_geometry, render_modes
+    from .render import render_geometry, render_mode_gifs, render_modes
 
     result = _run(args)
     out = Path(args.out)
-    a = render_geometry(result, out / "geometry.png")
-    b = render_modes(result, out / "modes.png")
-    print(f"wrote {a} and {b}")
+    files = [render_geometry(result, out / "geometry.png"), render_modes(result, out / "modes.png"),
+             *render_mode_gifs(result, out)]
+    print(f"wrote {len(files)} pictures to {out}: " + ", ".join(f.name for f in files))
     return 0
 
 
@@ -279,7 +279,8 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--format", choices=("vtk", "calculix"), default="vtk",
                    help="vtk: mode shapes and tables (default); calculix: shaft.inp, a C3D10 "
                    "*FREQUENCY deck of the same mesh and material")
-    modal_command("render", "PNG pictures of the shaft and its first eight modes", _cmd_render,
+    modal_command("render", "pictures: the shaft, every mode (PNG) and each mode moving (GIF)",
+                  _cmd_render,
                   json=False, out="required")
     modal_command("design", "sizing, modes, resonance check, files, pictures and a report",
                   _cmd_design, json=False, out="optional", estimate=True, margin=True)

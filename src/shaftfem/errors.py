@@ -21,5 +21,9 @@ class SolverError(ShaftfemError):
     """The eigen solve did not give what a free elastic body must give."""
 
 
+class ClusterError(ShaftfemError):
+    """A Dask cluster that cannot run the work: no workers, or workers without this shaftfem."""
+
+
 class AssemblyError(ShaftfemError):
     """K or M failed a physical check (a rigid translation must cost no energy)."""

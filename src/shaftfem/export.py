@@ -70,34 +70,44 @@ def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[d
     return rows
 
 
-def field_name(mode: int, frequency: float) -> str:
-    return f"mode_{mode:02d}_{frequency:.2f}Hz"
+KINDS = ("bending", "torsion", "axial", "mixed")
+# Field data must be numeric for meshio to read the files back; the name says the code.
+KIND_FIELD = "kind: " + ", ".join(f"{i} {k}" for i, k in enumerate(KINDS))
 
 
 def export_modes(result: ModalResult, out: str | Path,
                  est: ErrorEstimate | None = None) -> list[Path]:
-    """mode_NN.vtu per elastic mode (+ modes.pvd), modes.csv, modes.json, mesh.msh,
-    shaft.brep and shaft.step; returns the files written."""
+    """Mode shapes for ParaView (mode_NN.vtu, modes.pvd, modes_all.vtu, open_in_paraview.py),
+    modes.csv, modes.json, mesh.msh, shaft.brep and shaft.step; returns the files written."""
+    import shutil
+
     import meshio
 
     from .occ import write_solid
+    from .vtkio import write_vtu
 
     shapes = result.shapes_at_points()
-    mesh = result.mesh
+    mesh, m = result.mesh, result.modes
     names = []
     with staged_directory(out) as stage:
-        for k, (f, u) in enumerate(zip(result.modes.frequencies, shapes)):
-            name = f"mode_{k + 1:02d}.vtu"
-            m = meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)],
-                            point_data={field_name(k + 1, f): u})
-            meshio.write(stage / name, m)
-            names.append(name)
+        # one array name in every step, so that a filter set up on one mode shows them all
+        for k, (f, kind, u) in enumerate(zip(m.frequencies, m.kinds, shapes)):
+            names.append(f"mode_{k + 1:02d}.vtu")
+            write_vtu(stage / names[-1], mesh,
+                      {"displacement": u, "displacement_magnitude": np.linalg.norm(u, axis=1)},
+                      {"mode": k + 1, "frequency_hz": float(f), KIND_FIELD: KINDS.index(kind)})
         pvd = ['<?xml version="1.0"?>',
                '<VTKFile type="Collection" version="0.1">', "  <Collection>"]
         pvd += [f'    <DataSet timestep="{k + 1}" part="0" file="{n}"/>'
                 for k, n in enumerate(names)]
         pvd += ["  </Collection>", "</VTKFile>", ""]
         (stage / "modes.pvd").write_text("\n".join(pvd))
+        # every mode in one file, as named arrays (for tools that read one file)
+        write_vtu(stage / "modes_all.vtu", mesh,
+                  {f"mode_{k + 1:02d}": u for k, u in enumerate(shapes)},
+                  {"frequency_hz": m.frequencies, KIND_FIELD: [KINDS.index(k) for k in m.kinds]})
+        shutil.copyfile(Path(__file__).with_name("paraview_view.py"),
+                        stage / "open_in_paraview.py")
         write_csv(stage / "modes.csv", modes_table(result, est))
         (stage / "modes.json").write_text(json_text(modes_record(result, est)))
         meshio.write(stage / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)]),

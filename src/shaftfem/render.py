@@ -2,10 +2,18 @@
 
 pyvista (VTK) is imported here and nowhere else. On a machine without a display
 VTK renders through EGL; the set-up command installs what that needs.
+
+A mode shape has no physical amplitude (it is mass-normalised), so every picture
+draws its largest displacement as DRAWN_FRACTION of the shaft's length and
+colours by |u| / max |u| of that mode (VTK's fonts have no "|", so the colour
+bar says it in words); the shaft at rest is drawn in
+translucent grey behind it. Each mode is seen across its own plane of motion,
+so that a bending mode's deflection is in the picture, not towards the viewer.
 """
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -18,8 +26,13 @@ if TYPE_CHECKING:
     from .pipeline import ModalResult
 
 GEOMETRY_SIZE = (1600, 500)
-MODES_SIZE = (1600, 1000)
-MODES_SHOWN = 8
+PANEL_SIZE = (800, 200)        # pixels per mode in modes.png, two modes a row
+BAR_HEIGHT = 110               # pixels of the strip with the colour bar and the legend
+GIF_SIZE = (800, 260)
+GIF_FRAMES = 16                # frames per period in each mode's GIF
+DRAWN_FRACTION = 0.06          # the largest displacement is drawn as 6 % of the length
+CMAP = "viridis"
+COLOUR_LABEL = "displacement / largest displacement of the mode"
 
 
 def _pyvista():
@@ -31,16 +44,6 @@ def _pyvista():
     return pv
 
 
-def _grid(pv, mesh):
-    from vtkmodules.util.vtkConstants import VTK_QUADRATIC_TETRA, VTK_TETRA
-
-    ctype = VTK_QUADRATIC_TETRA if mesh.order == 2 else VTK_TETRA
-    n = mesh.cells.shape[1]
-    cells = np.hstack([np.full((mesh.n_elements, 1), n), mesh.cells]).ravel()
-    return pv.UnstructuredGrid(cells, np.full(mesh.n_elements, ctype, dtype=np.uint8),
-                               mesh.points * 1e3)  # mm, as a designer reads it
-
-
 def _surface(grid, subdivision: int):
     """Outer surface of a quadratic grid, its curved faces subdivided for drawing."""
     try:
@@ -50,59 +53,132 @@ def _surface(grid, subdivision: int):
         return grid.extract_surface(nonlinear_subdivision=subdivision)
 
 
-def _side_view(plotter, length_mm: float, zoom: float = 1.6) -> None:
-    # the shaft lies along z; look at it from the side, z running left to right
-    plotter.camera_position = [(0.0, -2.2 * length_mm, length_mm / 2),
-                               (0.0, 0.0, length_mm / 2), (1.0, 0.0, 0.0)]
-    plotter.camera.elevation = 20
-    plotter.reset_camera(bounds=None)
-    plotter.camera.zoom(zoom)
+def _grid(pv, result: ModalResult):
+    from .vtkio import grid
+
+    return pv.wrap(grid(result.mesh, scale=1e3))  # mm, as a designer reads it
+
+
+def _side_view(plotter, length: float, aspect: float, plane: np.ndarray | None = None) -> None:
+    """Parallel projection across the shaft (axis z, left to right), filling the panel.
+
+    `plane`: the unit lateral direction the mode moves in; it is drawn upwards."""
+    up = np.array([1.0, 0.0, 0.0]) if plane is None else np.array([plane[0], plane[1], 0.0])
+    eye = np.array([-up[1], up[0], 0.0])
+    centre = np.array([0.0, 0.0, length / 2])
+    plotter.camera_position = [tuple(centre + 3 * length * eye), tuple(centre), tuple(up)]
+    plotter.enable_parallel_projection()
+    plotter.camera.parallel_scale = 0.56 * length / aspect
+
+
+def _plane(u: np.ndarray) -> np.ndarray:
+    """The lateral direction (x, y) of largest motion: the principal axis of (u_x, u_y)."""
+    w, v = np.linalg.eigh(u[:, :2].T @ u[:, :2])
+    return v[:, np.argmax(w)]
+
+
+def _mode_surface(grid, u: np.ndarray, length: float):
+    """The surface of `grid` (mm) carrying the mode's displacement u (at the grid's points),
+    scaled for drawing, and its |u| / max |u|; and the mode's plane of motion."""
+    mag = np.linalg.norm(u, axis=1)
+    g = grid.copy(deep=False)
+    g.point_data["u"] = u * (DRAWN_FRACTION * length / mag.max())
+    g.point_data[COLOUR_LABEL] = mag / mag.max()
+    return _surface(g, 1), _plane(u)
 
 
 def render_geometry(result: ModalResult, path: str | Path) -> Path:
     """A PNG of the shaft's solid (its mesh surface), seen from the side."""
     pv = _pyvista()
-    grid = _grid(pv, result.mesh)
-    surf = _surface(grid, 2)
+    surf = _surface(_grid(pv, result), 2)
     p = pv.Plotter(off_screen=True, window_size=GEOMETRY_SIZE)
     p.set_background("white")
     p.add_mesh(surf, color="#b0b8c0", smooth_shading=True, specular=0.4)
     p.add_text(f"{result.scene.name}: {result.scene.shaft.length * 1e3:g} x "
                f"{result.scene.shaft.diameter * 1e3:g} mm", font_size=12, color="black")
-    _side_view(p, result.scene.shaft.length * 1e3, zoom=2.3)
+    length = result.scene.shaft.length * 1e3
+    p.camera_position = [(0.0, -2.2 * length, length / 2), (0.0, 0.0, length / 2), (1, 0, 0)]
+    p.camera.elevation = 20
+    p.reset_camera()
+    p.camera.zoom(2.3)
     with atomic_path(path) as tmp:
         p.screenshot(str(tmp))
     p.close()
     return Path(path)
 
 
-def render_modes(result: ModalResult, path: str | Path, n: int = MODES_SHOWN) -> Path:
-    """A grid PNG of the first n mode shapes, deformed and coloured by |u| (like Fig. 2)."""
+def _draw_mode(p, rest, surf, plane, length: float, aspect: float, title: str):
+    """Draw one mode into the current (sub)plot; return the warped mesh drawn."""
+    warped = surf.warp_by_vector("u")
+    p.add_mesh(rest, color="grey", opacity=0.25)
+    p.add_mesh(warped, scalars=COLOUR_LABEL, cmap=CMAP, clim=(0.0, 1.0),
+               show_scalar_bar=False, smooth_shading=True)
+    p.add_text(title, position="upper_left", font_size=9, color="black")
+    _side_view(p, length, aspect, plane)
+    return warped
+
+
+def render_modes(result: ModalResult, path: str | Path) -> Path:
+    """One PNG with a panel per mode (two a row), deformed, coloured by |u| / max |u|,
+    with one colour bar and the drawing scale stated below them."""
     pv = _pyvista()
-    grid = _grid(pv, result.mesh)
-    shapes = result.shapes_at_points()
-    n = min(n, len(shapes))
-    L = result.scene.shaft.length * 1e3
-    cols = 2
-    rows = (n + cols - 1) // cols
-    p = pv.Plotter(off_screen=True, window_size=MODES_SIZE, shape=(rows, cols), border=False)
+    m = result.modes
+    n, cols = m.count, 2
+    rows = math.ceil(n / cols)
+    w, h = PANEL_SIZE
+    size = (cols * w, rows * h + BAR_HEIGHT)
+    p = pv.Plotter(off_screen=True, window_size=size, shape=(rows + 1, cols), border=True,
+                   border_color="lightgrey", groups=[(rows, slice(None))],
+                   row_weights=[h] * rows + [BAR_HEIGHT])
     p.set_background("white")
-    for k in range(n):
-        u = shapes[k]
-        mag = np.linalg.norm(u, axis=1)
-        scale = 0.06 * L / (mag.max() * 1e3)  # largest displacement drawn as 6 % of L
-        g = grid.copy()
-        g.point_data["u"] = u * 1e3
-        g.point_data["|u| (scaled)"] = mag / mag.max()
-        warped = _surface(g.warp_by_vector("u", factor=scale), 1)
+    length = result.scene.shaft.length * 1e3
+    grid = _grid(pv, result)
+    rest = _surface(grid, 1)
+    for k, u in enumerate(result.shapes_at_points()):
+        surf, plane = _mode_surface(grid, u, length)
         p.subplot(k // cols, k % cols)
-        p.add_mesh(warped, scalars="|u| (scaled)", cmap="jet", show_scalar_bar=False,
-                   smooth_shading=True)
-        f = result.modes.frequencies[k]
-        p.add_text(f"mode {k + 1}: {f:.1f} Hz ({result.modes.kinds[k]})", font_size=10,
-                   color="black")
-        _side_view(p, L)
+        _draw_mode(p, rest, surf, plane, length, w / h,
+                   f"mode {k + 1}: {m.frequencies[k]:.1f} Hz, {m.kinds[k]}")
+    p.subplot(rows, 0)
+    bar = pv.Line((0, 0, 0), (1, 0, 0), resolution=8)
+    bar.point_data[COLOUR_LABEL] = np.linspace(0.0, 1.0, bar.n_points)
+    p.add_mesh(bar, scalars=COLOUR_LABEL, cmap=CMAP, clim=(0.0, 1.0), opacity=0.0,
+               show_scalar_bar=False)
+    p.add_scalar_bar(title=COLOUR_LABEL, vertical=False, position_x=0.3, position_y=0.45,
+                     width=0.4, height=0.45, color="black", title_font_size=14,
+                     label_font_size=12, n_labels=6, fmt="%.1f")
+    p.add_text(f"deformation drawn to scale: largest displacement = {100 * DRAWN_FRACTION:g} % "
+               f"of the {length:g} mm shaft; grey: the shaft at rest", position="lower_edge",
+               font_size=9, color="black")
     with atomic_path(path) as tmp:
         p.screenshot(str(tmp))
     p.close()
     return Path(path)
+
+
+def render_mode_gifs(result: ModalResult, out: str | Path, frames: int = GIF_FRAMES
+                     ) -> list[Path]:
+    """mode_NN.gif per mode: one period of the motion, `frames` frames."""
+    pv = _pyvista()
+    out = Path(out)
+    m = result.modes
+    length = result.scene.shaft.length * 1e3
+    grid = _grid(pv, result)
+    rest = _surface(grid, 1)
+    written = []
+    for k, u_points in enumerate(result.shapes_at_points()):
+        surf, plane = _mode_surface(grid, u_points, length)
+        base, u = np.array(surf.points), np.array(surf.point_data["u"])
+        p = pv.Plotter(off_screen=True, window_size=GIF_SIZE)
+        p.set_background("white")
+        shown = _draw_mode(p, rest, surf, plane, length, GIF_SIZE[0] / GIF_SIZE[1],
+                           f"mode {k + 1}: {m.frequencies[k]:.1f} Hz, {m.kinds[k]}")
+        path = out / f"mode_{k + 1:02d}.gif"
+        with atomic_path(path) as tmp:
+            p.open_gif(str(tmp), fps=frames // 2)
+            for i in range(frames):
+                shown.points = base + math.sin(2 * math.pi * i / frames) * u
+                p.write_frame()
+            p.close()  # the GIF is written out when its plotter closes
+        written.append(path)
+    return written

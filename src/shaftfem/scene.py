@@ -7,6 +7,7 @@ in SI units (m, Pa, kg/m^3, W, rad/s), which is all the solver ever sees.
 
 from __future__ import annotations
 
+import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -148,14 +149,39 @@ def scene_beside(base: str, file: str | Path) -> str:
     return base
 
 
-def load_scene(scene: str | Path | None = None, overrides: dict | None = None) -> Scene:
-    """Read and check a scene file; `overrides` maps 'table.key' to a value in file units."""
+@dataclass(frozen=True)
+class SceneText:
+    """A scene file's content and its name: what travels to a worker that cannot see
+    the user's files (a sweep on a cluster)."""
+
+    text: str
+    source: str
+
+
+def read_scene_text(scene: str | Path | SceneText | None = None) -> SceneText:
+    """The content of a scene file (a path, or the name of a shipped scene), checked."""
+    if isinstance(scene, SceneText):
+        return scene
     path = resolve_scene_path(scene)
-    data = read_toml(path, "scene")
+    read_toml(path, "scene")  # a missing or malformed file is named here
+    out = SceneText(text=path.read_text(), source=path.name)
+    load_scene(out)  # and a bad value too, before anything is sent anywhere
+    return out
+
+
+def load_scene(scene: str | Path | SceneText | None = None,
+               overrides: dict | None = None) -> Scene:
+    """Read and check a scene (a file, a shipped scene's name, or a SceneText);
+    `overrides` maps 'table.key' to a value in file units."""
+    if isinstance(scene, SceneText):
+        data, source = tomllib.loads(scene.text), scene.source
+    else:
+        path = resolve_scene_path(scene)
+        data, source = read_toml(path, "scene"), path.name
     for dotted, value in (overrides or {}).items():
         table, key = dotted.split(".")
         data.setdefault(table, {})[key] = value
-    return scene_from_dict(data, source=path.name)
+    return scene_from_dict(data, source=source)
 
 
 def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:

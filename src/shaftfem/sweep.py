@@ -11,7 +11,10 @@ A sweep file (TOML) names a base scene and the values of any numeric scene keys:
     # points = [{"grooves.depth_mm" = 2.0, "shaft.length_mm" = 520}, ...]
 
 Each variant runs in a Dask worker process (gmsh keeps global state, so one
-thread per process). Every finished variant is appended to the results CSV at
+thread per process). The client reads and checks the base scene and sends its
+content with every variant, so a worker needs no access to the user's files:
+on a cluster (`--scheduler`), only the same shaftfem version, which is checked
+when the sweep connects. Every finished variant is appended to the results CSV at
 once, so an interrupted sweep resumes where it stopped; a variant that fails
 (bad geometry, a failed boolean) is recorded with its error and the rest go on.
 """
@@ -27,16 +30,16 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from .errors import SceneError
+from .errors import ClusterError, SceneError
 from .runtime import worker_env
-from .scene import load_scene, scene_beside
+from .scene import SceneText, load_scene, read_scene_text, scene_beside
 from .schema import read_toml
 from .store import content_key
 
 
 @dataclass(frozen=True)
 class Sweep:
-    base: str
+    base: SceneText             # the base scene's content, read by the client
     mesh_size_mm: float | None
     variants: list[dict]        # each: {"table.key": value in file units}
     parameters: list[str]
@@ -82,7 +85,7 @@ def load_sweep(path: str | Path) -> Sweep:
     size = data.get("mesh_size_mm")
     if size is not None and (not isinstance(size, (int, float)) or size <= 0):
         raise SceneError(f"{path.name}: mesh_size_mm = {size!r}: must be a number > 0")
-    base = scene_beside(data["base"], path)
+    base = read_scene_text(scene_beside(data["base"], path))
     return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names,
                  n_modes=load_scene(base).modes.count)
 
@@ -91,12 +94,12 @@ def variant_id(overrides: dict) -> str:
     return content_key({k: round(v, 12) for k, v in overrides.items()}, length=12)
 
 
-def run_variant(base: str, overrides: dict, mesh_size_mm: float | None = None,
+def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | None = None,
                 estimate: bool = False, n_modes: int | None = None,
                 threads: int | None = None) -> dict:
     """One variant, start to finish; never raises: a failure is a row with its error.
 
-    Records the lowest `n_modes` (default: the scene's count) on `threads` assembly
+    `base`: the scene's content (as sent to workers), or a scene file or name. Records the lowest `n_modes` (default: the scene's count) on `threads` assembly
     threads."""
     t0 = time.perf_counter()
     row = {"id": variant_id(overrides), **overrides}
@@ -140,6 +143,43 @@ def columns(parameters: list[str], n_modes: int) -> list[str]:
             + ["min_margin", "margin_ok", "status", "error", "wall_s", "worker_pid"])
 
 
+def worker_version() -> str:
+    """The shaftfem version of the process that runs this (a worker)."""
+    from . import __version__
+
+    return __version__
+
+
+def _connect(address: str):
+    """A client of the cluster at `address` whose workers all run this shaftfem version."""
+    from distributed import Client
+
+    from . import __version__
+
+    try:
+        client = Client(address, timeout="10s")
+    except OSError as exc:
+        raise ClusterError(f"no Dask scheduler answers at {address}: {exc}") from None
+    try:
+        client.wait_for_workers(1, timeout=60)
+        versions = client.run(worker_version)
+    except TimeoutError:
+        client.close()
+        raise ClusterError(f"the Dask scheduler at {address} has no workers (waited 60 s)") from None
+    except Exception as exc:  # a worker that cannot even import shaftfem
+        client.close()
+        raise ClusterError(f"the workers at {address} cannot run shaftfem "
+                           f"({type(exc).__name__}: {exc}); install shaftfem {__version__} "
+                           "in the workers' environment") from None
+    wrong = {w: v for w, v in versions.items() if v != __version__}
+    if wrong:
+        client.close()
+        raise ClusterError(f"the workers at {address} run another shaftfem than this one "
+                           f"({__version__}): " + ", ".join(f"{w}: {v}" for w, v in wrong.items())
+                           + f"; install shaftfem {__version__} on them")
+    return client
+
+
 def read_results(path: str | Path) -> list[dict]:
     path = Path(path)
     if not path.exists():
@@ -177,7 +217,7 @@ def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
     new_file = not results.exists() or results.stat().st_size == 0
     results.parent.mkdir(parents=True, exist_ok=True)
     if scheduler:
-        client, cluster, threads = Client(scheduler), None, None
+        client, cluster, threads = _connect(scheduler), None, None
     else:
         # the workers already share the cores: one assembly thread each
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,

@@ -1,0 +1,88 @@
+"""A sweep on a real Dask cluster: a scheduler and two workers started as separate
+processes (`dask scheduler`, `dask worker`), which cannot see the user's files."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from shaftfem.errors import ClusterError
+from shaftfem.scene import GEOMETRY_DIR
+from shaftfem.sweep import load_sweep, run_sweep, run_variant, variant_id
+
+DASK = str(Path(sys.executable).with_name("dask"))
+
+
+@pytest.fixture(scope="module")
+def cluster(tmp_path_factory):
+    """The scheduler's address; the workers run in a folder of their own."""
+    home = tmp_path_factory.mktemp("cluster")
+    info = home / "scheduler.json"
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    procs = [subprocess.Popen([DASK, "scheduler", "--scheduler-file", str(info), "--port", "0",
+                               "--no-dashboard"], cwd=home, env=env, start_new_session=True,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    deadline = time.time() + 60
+    while not info.exists() and time.time() < deadline:
+        time.sleep(0.2)
+    for _ in range(2):
+        procs.append(subprocess.Popen(
+            [DASK, "worker", "--scheduler-file", str(info), "--nthreads", "1",
+             "--no-dashboard"], cwd=home, env=env, start_new_session=True,
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    import json
+
+    yield json.loads(info.read_text())["address"]
+    for p in procs:
+        os.killpg(p.pid, signal.SIGTERM)
+    for p in procs:
+        try:
+            p.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+
+
+def _user_sweep(folder: Path) -> Path:
+    """The user's own scene (not a shipped one) and a sweep of it, in the user's folder."""
+    folder.mkdir()
+    (folder / "my_shaft.toml").write_text(
+        (GEOMETRY_DIR / "plain_cylinder.toml").read_text().replace('name = "plain_cylinder"',
+                                                                   'name = "my_shaft"'))
+    (folder / "sweep.toml").write_text('base = "my_shaft.toml"\nmesh_size_mm = 16.0\n'
+                                       '[axes]\n"shaft.length_mm" = [500.0, 560.0]\n'
+                                       '"shaft.diameter_mm" = [30.0, 34.0]\n')
+    return folder / "sweep.toml"
+
+
+def test_a_sweep_runs_where_the_scene_file_is_not(cluster, tmp_path):
+    import shutil
+
+    sweep = load_sweep(_user_sweep(tmp_path / "user"))
+    local = {variant_id(v): run_variant(sweep.base, v, sweep.mesh_size_mm)
+             for v in sweep.variants}
+    shutil.rmtree(tmp_path / "user")  # nobody can read the scene file now
+    rows = run_sweep(sweep, tmp_path / "out" / "results.csv", scheduler=cluster)
+    assert len(rows) == 4 and all(r["status"] == "ok" for r in rows), rows
+    assert len({r["worker_pid"] for r in rows} - {str(os.getpid())}) >= 1  # not done here
+    for r in rows:
+        for i in range(1, sweep.n_modes + 1):
+            assert abs(float(r[f"f{i}_hz"]) / local[r["id"]][f"f{i}_hz"] - 1) < 1e-10
+
+
+def test_workers_of_another_version_are_refused(cluster, tmp_path, monkeypatch):
+    import shaftfem
+
+    sweep = load_sweep(_user_sweep(tmp_path / "user"))
+    monkeypatch.setattr(shaftfem, "__version__", "0.0.0-other")
+    with pytest.raises(ClusterError, match="another shaftfem than this one"):
+        run_sweep(sweep, tmp_path / "out" / "results.csv", scheduler=cluster)
+
+
+def test_no_scheduler_is_a_clear_error(tmp_path):
+    sweep = load_sweep(_user_sweep(tmp_path / "user"))
+    with pytest.raises(ClusterError, match="no Dask scheduler answers"):
+        run_sweep(sweep, tmp_path / "out" / "results.csv", scheduler="tcp://127.0.0.1:9")
