@@ -146,9 +146,12 @@ def test_pictures_have_a_panel_per_mode_a_colour_bar_and_moving_gifs(cylinder, t
         assert 0.05 < drawn(p) < 0.9
         assert len(np.unique(p.reshape(-1, 3), axis=0)) > 50  # shaded and coloured
     assert drawn(panels[3]) < 0.01  # no fourth mode was asked for
-    bar = img[rows * h + 10:rows * h + BAR_HEIGHT // 2, int(0.32 * 2 * w):int(0.68 * 2 * w)]
-    # the colour bar: viridis runs from dark purple to yellow
-    assert drawn(bar) > 0.2
+    # the colour bar's coloured band: 30-42 % of the strip's height from its bottom
+    top = rows * h + BAR_HEIGHT
+    bar = img[top - int(0.42 * BAR_HEIGHT):top - int(0.30 * BAR_HEIGHT),
+              int(0.32 * 2 * w):int(0.68 * 2 * w)]
+    # viridis runs from dark purple to yellow
+    assert drawn(bar) > 0.5
     colours = bar.reshape(-1, 3).astype(int)
     assert np.any((colours[:, 0] > 200) & (colours[:, 1] > 200) & (colours[:, 2] < 100))  # yellow
     assert np.any((colours[:, 0] < 100) & (colours[:, 1] < 50) & (colours[:, 2] > 60))   # purple

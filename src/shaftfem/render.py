@@ -144,9 +144,11 @@ def render_modes(result: ModalResult, path: str | Path) -> Path:
     bar.point_data[COLOUR_LABEL] = np.linspace(0.0, 1.0, bar.n_points)
     p.add_mesh(bar, scalars=COLOUR_LABEL, cmap=CMAP, clim=(0.0, 1.0), opacity=0.0,
                show_scalar_bar=False)
-    p.add_scalar_bar(title=COLOUR_LABEL, vertical=False, position_x=0.3, position_y=0.45,
-                     width=0.4, height=0.45, color="black", title_font_size=14,
-                     label_font_size=12, n_labels=6, fmt="%.1f")
+    sb = p.add_scalar_bar(title=COLOUR_LABEL, vertical=False, position_x=0.3, position_y=0.28,
+                          width=0.4, height=0.42, color="black", label_font_size=12,
+                          n_labels=6, fmt="%.1f")
+    sb.SetTitle("")  # said above the bar instead: VTK sets a bar's title onto its numbers
+    p.add_text(COLOUR_LABEL, position="upper_edge", font_size=9, color="black")
     p.add_text(f"deformation drawn to scale: largest displacement = {100 * DRAWN_FRACTION:g} % "
                f"of the {length:g} mm shaft; grey: the shaft at rest", position="lower_edge",
                font_size=9, color="black")
