@@ -99,13 +99,13 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
                 threads: int | None = None) -> dict:
     """One variant, start to finish; never raises: a failure is a row with its error.
 
-    `base`: the scene's content (as sent to workers), or a scene file or name. Records the lowest `n_modes` (default: the scene's count) on `threads` assembly
-    threads."""
+    `base`: the scene's content (as sent to workers), or a scene file or name. Records
+    the lowest `n_modes` (default: the scene's count), assembled on `threads` threads."""
     t0 = time.perf_counter()
     row = {"id": variant_id(overrides), **overrides}
     try:
         from .pipeline import run_modes, with_mesh, with_modes
-        from .resonance import check_resonance
+        from .resonance import check_result
 
         scene = with_mesh(load_scene(base, overrides=overrides), mesh_size_mm)
         scene = with_modes(scene, count=n_modes or scene.modes.count)
@@ -120,8 +120,8 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
             est = estimate_errors(r, threads=threads)
             for i in range(m.count):
                 row[f"err{i + 1}"] = float(est.relative_error[i])
-        if scene.excitations:
-            v = check_resonance(m.frequencies, m.kinds, scene.excitations, scene.required_margin)
+        v = check_result(r)
+        if v is not None:
             row["min_margin"] = v.approaches[0].margin
             row["margin_ok"] = v.ok
         row["dofs"] = m.n_dofs
