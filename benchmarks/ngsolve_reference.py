@@ -1,0 +1,88 @@
+"""An independent reference for the paper's shaft: NGSolve, p-refinement on the same solid.
+
+A different discretisation of the exported BREP/STEP: netgen's own curved mesh and
+NGSolve's H1 elements of order 2, 3, 4, ... on it (shaftfem has P2 only). The
+eigenproblem is the same free-free pencil, solved as shaftfem does (shift-invert
+Lanczos through MKL PARDISO) so that only the discretisation differs. NGSolve is a
+benchmark tool, never a runtime need; it lives in a venv of its own:
+
+    python3 -m venv .venv-ngsolve
+    .venv-ngsolve/bin/pip install ngsolve scipy pypardiso
+    .venv/bin/shaftfem export --out out/solid                 # writes out/solid/shaft.step
+    .venv-ngsolve/bin/python benchmarks/ngsolve_reference.py out/solid/shaft.step 16 8 2,3,4
+
+Arguments: STEP file, element size away from the grooves (mm), on the groove faces
+(mm), orders. Prints the ten elastic frequencies per order. Material: the paper's 40Cr.
+"""
+
+import math
+import sys
+import time
+
+import numpy as np
+import scipy.sparse as sp
+from netgen.occ import Glue, OCCGeometry
+from ngsolve import BilinearForm, Grad, InnerProduct, Mesh, Sym, VectorH1, div, dx
+from scipy.sparse.linalg import LinearOperator, eigsh
+
+E, NU, RHO = 2.11e11, 0.277, 7870.0   # 40Cr, as geometry/paper2018.toml
+RADIUS = 0.016                         # m: faces inside it are groove faces
+N_ELASTIC = 10
+
+
+def csr(mat) -> sp.csr_matrix:
+    r, c, v = mat.COO()
+    return sp.csr_matrix((np.array(v), (np.array(r), np.array(c))), shape=(mat.height, mat.width))
+
+
+def frequencies(K: sp.csr_matrix, M: sp.csr_matrix, k: int = N_ELASTIC + 6) -> np.ndarray:
+    """Lowest k eigenfrequencies (Hz) of the free body, shift-invert about a negative shift."""
+    import pypardiso
+
+    sigma = -(2 * math.pi * 100.0) ** 2
+    upper = sp.triu((K - sigma * M).tocsr(), format="csr")
+    upper.sort_indices()
+    solver = pypardiso.PyPardisoSolver(mtype=2)
+    solver.factorize(upper)
+    op = LinearOperator(K.shape, matvec=lambda b: solver.solve(upper, np.asarray(b, float)),
+                        dtype=float)
+    lam = eigsh(K, k=k, M=M, sigma=sigma, OPinv=op, which="LM", tol=1e-12,
+                return_eigenvectors=False)
+    return np.sqrt(np.abs(np.sort(lam))) / (2 * math.pi)
+
+
+def main() -> None:
+    path, size, groove = sys.argv[1], float(sys.argv[2]) * 1e-3, float(sys.argv[3]) * 1e-3
+    orders = [int(p) for p in sys.argv[4].split(",")]
+    mu, lam = E / (2 * (1 + NU)), E * NU / ((1 + NU) * (1 - 2 * NU))
+    t0 = time.perf_counter()
+    shape = Glue(list(OCCGeometry(path).shape.solids))  # one conforming body
+    for face in shape.faces:
+        if math.hypot(face.center.x, face.center.y) < RADIUS - 1e-5:
+            face.maxh = groove
+    # curved high-order elements carry the fillets: no curvature-driven refinement
+    mesh = Mesh(OCCGeometry(shape).GenerateMesh(maxh=size, curvaturesafety=0.7,
+                                                segmentsperedge=0.3, grading=0.5))
+    print(f"netgen: {mesh.ne} tetrahedra in {time.perf_counter() - t0:.1f} s", flush=True)
+    print("| order | DOFs | s | " + " | ".join(f"f{i + 1} (Hz)" for i in range(N_ELASTIC)) + " |")
+    print("|---|---|---|" + "---|" * N_ELASTIC)
+    for p in orders:
+        t = time.perf_counter()
+        mesh.Curve(max(p, 2))
+        fes = VectorH1(mesh, order=p)
+        u, v = fes.TnT()
+        a = BilinearForm(2 * mu * InnerProduct(Sym(Grad(u)), Sym(Grad(v))) * dx
+                         + lam * div(u) * div(v) * dx)
+        m = BilinearForm(RHO * u * v * dx)
+        a.Assemble()
+        m.Assemble()
+        f = frequencies(csr(a.mat), csr(m.mat))
+        rigid, elastic = f[:6], f[6:]
+        if np.max(rigid) > 1.0 or np.min(elastic) < 1.0:
+            raise SystemExit(f"order {p}: expected 6 rigid-body modes, got {f[:8]}")
+        print(f"| {p} | {fes.ndof} | {time.perf_counter() - t:.0f} | "
+              + " | ".join(f"{x:.3f}" for x in elastic) + " |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
