@@ -108,3 +108,25 @@ def test_installed_package_finds_its_scenes_from_any_folder(tmp_path):
     modes = subprocess.run([exe, "modes", "--mesh-size", "16", "--no-estimate", "-q"], **run)
     assert modes.returncode == 0, modes.stderr
     assert "scene paper2018" in modes.stdout and "rigid-body modes: 6" in modes.stdout
+
+
+@pytest.mark.parametrize("raised,code", [
+    ("MeshError", 3), ("SolverError", 3), ("ClusterError", 3), ("SceneError", 2),
+    ("OSError", 3), ("RuntimeError", 3)])
+def test_exit_status_says_what_failed(monkeypatch, capsys, raised, code):
+    """A resonance is 1, bad input 2, anything failing inside the computation 3: one line,
+    no traceback, whatever raised it (ours, the disk, or an untranslated library error)."""
+    import builtins
+
+    from shaftfem import errors, pipeline
+
+    exc = getattr(errors, raised, None) or getattr(builtins, raised)
+
+    def broken(*_a, **_k):
+        raise exc("injected failure\nsecond line")
+
+    monkeypatch.setattr(pipeline, "run_modes", broken)
+    assert main(["check", "plain_cylinder", "-q"]) == code
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "injected failure second line" in err
+    assert "Traceback" not in err

@@ -1,17 +1,19 @@
 """`shaftfem` on the command line: parse, call one library function, print, exit code.
 
-Exit codes: 0 success, 1 a check failed (resonance), 2 bad input or a failed step.
-Every error is one line on stderr naming what was wrong; no traceback.
+Exit codes: 0 success, 1 a check failed (resonance), 2 bad input, 3 a failure inside
+the computation (mesher, solver, cache, disk, cluster). Every error is one line on
+stderr naming what was wrong; no traceback (SHAFTFEM_DEBUG=1 shows one).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
 
-from .errors import SceneError, ShaftfemError
+from .errors import EXIT_COMPUTATION, SceneError, ShaftfemError
 
 # modal.FACTORIZERS plus "auto"; spelled out here because the CLI must not import
 # SciPy before a command needs it (`shaftfem size` loads no solver).
@@ -333,11 +335,24 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return args.func(args)
     except ShaftfemError as exc:
-        print(f"shaftfem: error: {exc}", file=sys.stderr)
-        return 2
+        print(f"shaftfem: error: {_one_line(exc)}", file=sys.stderr)
+        return exc.exit_code
     except KeyboardInterrupt:
         print("shaftfem: interrupted", file=sys.stderr)
         return 130
+    except OSError as exc:  # the disk: a folder that is a file, no space, no permission
+        print(f"shaftfem: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_COMPUTATION
+    except Exception as exc:  # not translated where it happened: still one line, exit 3
+        if os.environ.get("SHAFTFEM_DEBUG"):
+            raise
+        print(f"shaftfem: error: the computation failed unexpectedly: {type(exc).__name__}: "
+              f"{_one_line(exc)} (set SHAFTFEM_DEBUG=1 for the traceback)", file=sys.stderr)
+        return EXIT_COMPUTATION
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
 
 
 if __name__ == "__main__":

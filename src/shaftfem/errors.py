@@ -1,12 +1,24 @@
-"""The errors shaftfem raises on purpose: each one is a sentence a designer can act on."""
+"""The errors shaftfem raises on purpose: each one is a sentence a designer can act on.
+
+Each class carries the command line's exit status, so that a CI gate can tell a
+resonance (1) from bad input (2) and from a failure inside the computation (3).
+"""
+
+EXIT_CHECK_FAILED = 1   # a check failed: a mode too close to an excitation harmonic
+EXIT_BAD_INPUT = 2      # a scene, sweep or calibration file or an argument is wrong
+EXIT_COMPUTATION = 3    # the mesher, the solver, a cache, the disk or the cluster failed
 
 
 class ShaftfemError(Exception):
-    """Base class: the CLI prints the message on one line and exits nonzero."""
+    """Base class: the CLI prints the message on one line and exits with `exit_code`."""
+
+    exit_code = EXIT_COMPUTATION
 
 
 class SceneError(ShaftfemError, ValueError):
     """A scene file is missing, malformed, or has a value outside what is allowed."""
+
+    exit_code = EXIT_BAD_INPUT
 
 
 class GeometryError(ShaftfemError):
