@@ -68,9 +68,12 @@ def test_a_killed_sweep_resumes_without_recomputing(sweep_file, tmp_path):
 
 def test_an_impossible_variant_is_recorded_and_the_rest_finish(tmp_path):
     f = tmp_path / "sweep.toml"
-    # 16.0 mm deep grooves in a 32 mm shaft: deeper than the radius allows
+    # 16.0 mm deep grooves in a 32 mm shaft: deeper than the radius allows (a short shaft
+    # with one grooved cell keeps the good variant's CAD build to seconds)
+    short = '"shaft.length_mm" = 120.0, "grooves.grooved_length_mm" = 40.0'
     f.write_text('base = "paper2018"\nmesh_size_mm = 16.0\n'
-                 'points = [{"grooves.depth_mm" = 2.0}, {"grooves.depth_mm" = 16.0}]\n')
+                 f'points = [{{"grooves.depth_mm" = 2.0, {short}}}, '
+                 f'{{"grooves.depth_mm" = 16.0, {short}}}]\n')
     rows = run_sweep(load_sweep(f), tmp_path / "results.csv", workers=2)
     status = {float(r["grooves.depth_mm"]): r for r in rows}
     assert status[2.0]["status"] == "ok"

@@ -26,12 +26,14 @@ def test_design_without_excitations_reports_not_checked(tmp_path, capsys):
     scene = tmp_path / "quiet.toml"
     scene.write_text(re.sub(r"(?s)\[\[excitation\]\].*", "", CYL))
     out = tmp_path / "out"
-    assert main(["design", str(scene), "--out", str(out), "--mesh-size", "16",
+    assert main(["design", str(scene), "--out", str(out), "--mesh-size", "16", "--modes", "3",
                  "--no-estimate", "-q"]) == 0
     assert "NOT CHECKED" in capsys.readouterr().out
     report = (out / "report.md").read_text()
     assert "NOT CHECKED" in report and "nothing to check against" in report
-    assert len(list(csv.DictReader(open(out / "modes.csv")))) == 10
+    assert len(list(csv.DictReader(open(out / "modes.csv")))) == 3
+    assert sorted(p.name for p in out.glob("*.gif")) == ["mode_01.gif", "mode_02.gif",
+                                                          "mode_03.gif"]
     # `check` still refuses: there is nothing to check
     assert main(["check", str(scene), "--mesh-size", "16", "-q"]) == 2
 

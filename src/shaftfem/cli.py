@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import warnings
 import time
 from pathlib import Path
 
@@ -333,7 +334,9 @@ def main(argv: list[str] | None = None) -> int:
     configure_threads()  # before NumPy loads (shaftfem.runtime says why)
     args = build_parser().parse_args(argv)
     try:
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return args.func(args)
     except ShaftfemError as exc:
         print(f"shaftfem: error: {_one_line(exc)}", file=sys.stderr)
         return exc.exit_code
@@ -349,6 +352,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"shaftfem: error: the computation failed unexpectedly: {type(exc).__name__}: "
               f"{_one_line(exc)} (set SHAFTFEM_DEBUG=1 for the traceback)", file=sys.stderr)
         return EXIT_COMPUTATION
+
+
+def _show_warning(message, category, *_args, **_kwargs) -> None:
+    print(f"shaftfem: warning: {_one_line(message)}", file=sys.stderr)
 
 
 def _one_line(exc: BaseException) -> str:

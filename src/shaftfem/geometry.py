@@ -17,10 +17,11 @@ from pathlib import Path
 from .errors import GeometryError
 from .profile import groove_volume
 from .scene import Grooves, Shaft
-from .store import atomic_path, cache_dir, content_key, write_json
+from .store import atomic_path, cache_dir, checksum, content_key, discard, write_json
 
-# Bump when the construction changes, so old cached shapes are not reused.
-CONSTRUCTION_VERSION = 3
+# Bump when the construction or the cache entry changes, so old cached shapes are not
+# reused (4: entries carry checksums).
+CONSTRUCTION_VERSION = 4
 VOLUME_TOLERANCE = 0.01         # removed volume vs analytic groove volume
 
 
@@ -61,9 +62,11 @@ def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -
     key = shape_key(shaft, grooves)
     folder = cache_dir() / "shapes"
     brep, meta_file = folder / f"{key}.brep", folder / f"{key}.json"
-    if use_cache and brep.exists() and meta_file.exists():
-        meta = json.loads(meta_file.read_text())
-        return ShaftShape(brep=brep, from_cache=True, **meta)
+    if use_cache and (brep.exists() or meta_file.exists()):
+        meta, why = _verified(brep, meta_file)
+        if meta is not None:
+            return ShaftShape(brep=brep, from_cache=True, **meta)
+        discard(f"solid {key}", why, brep, meta_file)
 
     from .occ import build_solid
 
@@ -80,5 +83,31 @@ def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -
                 f"{100 * VOLUME_TOLERANCE:.0f} %): the CAD booleans went wrong")
     meta = dict(volume=volume, groove_volume_analytic=v_grooves, groove_volume_cad=removed,
                 n_volumes=n_volumes, build_seconds=time.perf_counter() - t0)
-    write_json(meta_file, meta)
+    write_json(meta_file, {**meta, "brep_sha256": checksum(brep.read_bytes()),
+                           "sha256": _meta_checksum(meta)})
     return ShaftShape(brep=brep, from_cache=False, **meta)
+
+
+META_KEYS = ("volume", "groove_volume_analytic", "groove_volume_cad", "n_volumes",
+             "build_seconds")
+
+
+def _meta_checksum(meta: dict) -> str:
+    return checksum(json.dumps({k: meta[k] for k in META_KEYS}, sort_keys=True).encode())
+
+
+def _verified(brep: Path, meta_file: Path) -> tuple[dict | None, str]:
+    """The cached solid's metadata if the entry is whole and unaltered, else (None, why).
+
+    The BREP's checksum is checked before anything reads it: OpenCASCADE can crash the
+    whole process on a damaged BREP."""
+    try:
+        stored = json.loads(meta_file.read_text())
+        meta = {k: stored[k] for k in META_KEYS}
+        if stored["sha256"] != _meta_checksum(meta):
+            return None, "its metadata do not match their checksum"
+        if stored["brep_sha256"] != checksum(brep.read_bytes()):
+            return None, "the BREP file does not match its checksum"
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        return None, f"{type(exc).__name__}: {exc}"
+    return meta, ""

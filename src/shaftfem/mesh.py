@@ -23,11 +23,12 @@ import numpy as np
 from .errors import MeshError
 from .geometry import ShaftShape
 from .scene import Grooves, MeshSettings, Shaft, cell_type
-from .store import atomic_path, cache_dir, content_key
+from .store import atomic_path, cache_dir, checksum, content_key, discard
 
 MIN_JACOBIAN_RATIO = 0.02  # smallest det J / largest det J allowed within one element
-# Bump when the meshing changes, so old cached meshes are not reused.
-MESH_VERSION = 1
+# Bump when the meshing or the cache entry changes, so old cached meshes are not reused
+# (2: entries carry checksums).
+MESH_VERSION = 2
 
 
 def skfem_mesh(points: np.ndarray, cells: np.ndarray):
@@ -85,18 +86,42 @@ def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
                settings: MeshSettings, use_cache: bool = True) -> ShaftMesh:
     """Mesh the solid (or fetch the same mesh from the cache)."""
     t0 = time.perf_counter()
-    path = cache_dir() / "meshes" / f"{mesh_key(shape, shaft, grooves, settings)}.npz"
+    key = mesh_key(shape, shaft, grooves, settings)
+    path = cache_dir() / "meshes" / f"{key}.npz"
     if use_cache and path.exists():
-        with np.load(path) as z:
-            return ShaftMesh(points=z["points"], cells=z["cells"], order=int(z["order"]),
-                             min_jacobian_ratio=float(z["ratio"]),
-                             straightened=int(z["straightened"]),
-                             seconds=time.perf_counter() - t0, from_cache=True)
+        cached, why = _load(path)
+        if cached is not None:
+            return ShaftMesh(**cached, seconds=time.perf_counter() - t0, from_cache=True)
+        discard(f"mesh {key}", why, path)
     mesh = _generate(shape, shaft, grooves, settings)
+    fields = dict(points=mesh.points, cells=mesh.cells, order=np.int64(mesh.order),
+                  ratio=np.float64(mesh.min_jacobian_ratio),
+                  straightened=np.int64(mesh.straightened))
     with atomic_path(path) as tmp:
-        np.savez(tmp, points=mesh.points, cells=mesh.cells, order=mesh.order,
-                 ratio=mesh.min_jacobian_ratio, straightened=mesh.straightened)
+        np.savez(tmp, **fields, sha256=np.str_(_checksum(fields)))
     return mesh
+
+
+def _checksum(fields: dict) -> str:
+    return checksum(*(np.ascontiguousarray(fields[k]).tobytes()
+                      for k in ("points", "cells", "order", "ratio", "straightened")))
+
+
+def _load(path: Path) -> tuple[dict | None, str]:
+    """A cached mesh's fields if the file is whole and unaltered, else (None, why)."""
+    import zipfile
+
+    try:
+        with np.load(path) as z:
+            fields = {k: z[k] for k in ("points", "cells", "order", "ratio", "straightened")}
+            stored = str(z["sha256"])
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+        return None, f"{type(exc).__name__}: {exc}"
+    if stored != _checksum(fields):
+        return None, "its content does not match its checksum"
+    return dict(points=fields["points"], cells=fields["cells"], order=int(fields["order"]),
+                min_jacobian_ratio=float(fields["ratio"]),
+                straightened=int(fields["straightened"])), ""
 
 
 def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,

@@ -3,7 +3,9 @@
 Every file shaftfem writes appears whole or not at all: it is written under a
 temporary name beside its final one and renamed into place (a rename within
 one folder is atomic). Cache entries are named by a hash of everything they
-depend on, so a changed input can never fetch a stale result.
+depend on, so a changed input can never fetch a stale result, and carry a
+checksum of their content, so a damaged entry (truncated, emptied, garbled or
+altered) is never used: it is discarded, said in one line, and rebuilt.
 """
 
 from __future__ import annotations
@@ -14,11 +16,31 @@ import json
 import os
 import shutil
 import tempfile
+import warnings
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Iterator
 
 import numpy as np
+
+
+class CacheWarning(UserWarning):
+    """A cache entry failed its check; it is discarded and rebuilt."""
+
+
+def checksum(*parts: bytes) -> str:
+    h = hashlib.sha256()
+    for p in parts:
+        h.update(p)
+    return h.hexdigest()
+
+
+def discard(what: str, why: str, *paths: Path) -> None:
+    """Remove a damaged cache entry, saying so in one line."""
+    warnings.warn(f"cached {what} is damaged ({why}); discarded and rebuilt", CacheWarning,
+                  stacklevel=3)
+    for p in paths:
+        Path(p).unlink(missing_ok=True)
 
 
 def cache_dir() -> Path:

@@ -1,0 +1,83 @@
+"""Damaged cache entries are detected before use, said in one line, and rebuilt.
+
+A short grooved shaft (one half-pitch cell) keeps each rebuild to seconds. Every
+kind of entry (the solid's BREP, its metadata, the mesh) is truncated, emptied,
+garbled and altered in value; the next run must warn and give the clean run's
+frequencies.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from shaftfem.pipeline import run_modes, with_mesh, with_modes
+from shaftfem.scene import load_scene
+from shaftfem.store import CacheWarning
+
+
+def _scene():
+    s = load_scene("paper2018", overrides={"shaft.length_mm": 120.0,
+                                           "grooves.grooved_length_mm": 40.0})
+    return with_modes(with_mesh(s, 16.0), count=3)
+
+
+def _truncate(p):
+    p.write_bytes(p.read_bytes()[: len(p.read_bytes()) * 3 // 4])
+
+
+def _empty(p):
+    p.write_bytes(b"")
+
+
+def _garble(p):
+    b = bytearray(p.read_bytes())
+    mid = len(b) // 2
+    b[mid:mid + 64] = bytes(255 - x for x in b[mid:mid + 64])
+    p.write_bytes(bytes(b))
+
+
+def _alter(p):
+    """A plausible, well-formed entry with one value changed (the checksum left as it was)."""
+    if p.suffix == ".json":
+        meta = json.loads(p.read_text())
+        meta["volume"] *= 1.01
+        p.write_text(json.dumps(meta))
+    elif p.suffix == ".npz":
+        with np.load(p) as z:
+            fields = {k: z[k] for k in z.files}
+        fields["points"] = fields["points"] * 1.01
+        with open(p, "wb") as fh:
+            np.savez(fh, **fields)
+    else:  # BREP text: one coordinate digit changed
+        text = p.read_text()
+        i = text.index("0.016")
+        p.write_text(text[:i] + "0.017" + text[i + 5:])
+
+
+@pytest.fixture(scope="module")
+def clean(tmp_path_factory):
+    import os
+
+    os.environ["SHAFTFEM_CACHE"] = str(tmp_path_factory.mktemp("cache"))
+    return run_modes(_scene()).modes.frequencies
+
+
+@pytest.mark.parametrize("damage", [_truncate, _empty, _garble, _alter])
+@pytest.mark.parametrize("entry", ["brep", "meta", "mesh"])
+def test_a_damaged_entry_is_rebuilt(clean, entry, damage):
+    from shaftfem.store import cache_dir
+
+    pattern = {"brep": "shapes/*.brep", "meta": "shapes/*.json", "mesh": "meshes/*.npz"}[entry]
+    (path,) = cache_dir().glob(pattern)  # the clean run's, or the last case's rebuild
+    damage(path)
+    with pytest.warns(CacheWarning, match="damaged"):
+        f = run_modes(_scene()).modes.frequencies
+    assert np.max(np.abs(f / clean - 1)) < 1e-9
+    # and the rebuilt entry is good: no warning the next time
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", CacheWarning)
+        again = run_modes(_scene())
+    assert again.mesh.from_cache and again.shape.from_cache
