@@ -77,3 +77,40 @@ def test_both_shipped_scenes_load():
         s = load_scene(name)
         assert s.shaft.diameter == pytest.approx(0.032)
     assert load_scene("plain_cylinder").grooves is None
+
+
+HUGE = [("length_mm", "1e300", "shaft.length_mm"), ("diameter_mm", "1e300", "shaft.diameter_mm"),
+        ("pitch_mm", "1e300", "grooves.pitch_mm"),
+        ("youngs_modulus_mpa", "1e300", "material.youngs_modulus_mpa"),
+        ("density_kg_m3", "1e300", "material.density_kg_m3"),
+        ("power_kw", "1e300", "sizing.power_kw"),
+        ("rounding_step_mm", "1e300", "sizing.rounding_step_mm"),
+        ("speed_rpm", "inf", "excitation[0].speed_rpm"), ("depth_mm", "nan", "grooves.depth_mm")]
+
+
+@pytest.mark.parametrize("key,value,named", HUGE)
+def test_absurd_values_are_refused_before_any_work(tmp_path, capsys, key, value, named):
+    f = tmp_path / "bad.toml"
+    text = PAPER
+    if named.startswith("excitation"):
+        text = text.replace("speed_rpm = 3600.0", f"speed_rpm = {value}")
+    else:
+        text = _edit(PAPER, key, value)
+    f.write_text(text)
+    assert main(["modes", str(f), "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and named in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("args", [
+    ["check", "--mesh-size", "inf"], ["check", "--mesh-size", "nan"],
+    ["check", "--mesh-size", "1e9"], ["check", "--mesh-size", "600"],
+    ["check", "--margin", "inf"], ["check", "--margin", "100"], ["modes", "--modes", "0"],
+    ["modes", "--modes", "many"], ["modes", "--max-frequency", "nan"],
+    ["study", "--p2", "12,0"], ["sweep", "no_such_sweep.toml"], ["size", "no_such_scene"],
+    ["modes", "--order", "3"], ["frobnicate"]])
+def test_bad_command_lines_are_one_line_and_exit_2(capsys, args):
+    argv = args[:1] + (["plain_cylinder"] if args[0] in ("check", "modes") else []) + args[1:]
+    assert main(argv + (["-q"] if args[0] in ("check", "modes") else [])) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "error" in err and "Traceback" not in err

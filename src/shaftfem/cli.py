@@ -14,7 +14,7 @@ import warnings
 import time
 from pathlib import Path
 
-from .errors import EXIT_COMPUTATION, SceneError, ShaftfemError
+from .errors import EXIT_BAD_INPUT, EXIT_COMPUTATION, SceneError, ShaftfemError
 
 # modal.FACTORIZERS plus "auto"; spelled out here because the CLI must not import
 # SciPy before a command needs it (`shaftfem size` loads no solver).
@@ -33,19 +33,25 @@ class _Progress:
             print(f"[{time.perf_counter() - self.t0:7.1f} s] {msg}", file=sys.stderr, flush=True)
 
 
-def _positive(kind):
+def _number(kind, high: float, exclusive: bool = False):
+    """An argparse type: a finite number in (0, high] ((0, high) if exclusive)."""
     def parse(text: str):
         try:
             v = kind(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{text!r} is not {kind.__name__}") from None
-        if not v > 0:
-            raise argparse.ArgumentTypeError(f"{text!r} must be > 0")
+        if not (0 < v < high if exclusive else 0 < v <= high):  # also refuses nan and inf
+            raise argparse.ArgumentTypeError(
+                f"{text!r} must be in (0, {high:g}{')' if exclusive else ']'}")
         return v
     return parse
 
 
-_positive_float, _positive_int = _positive(float), _positive(int)
+_size_mm = _number(float, 20_000)
+_percent = _number(float, 100, exclusive=True)
+_hz = _number(float, 1e7)
+_count = _number(int, 200)
+_workers = _number(int, 1024)
 
 
 def _sizes(text: str) -> list[float]:
@@ -53,8 +59,8 @@ def _sizes(text: str) -> list[float]:
         v = [float(x) for x in text.split(",") if x.strip()]
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r}: expected sizes in mm, e.g. 12,9,6.75") from None
-    if any(x <= 0 for x in v):
-        raise argparse.ArgumentTypeError(f"{text!r}: sizes must be > 0")
+    if not v or not all(0 < x <= 20_000 for x in v):
+        raise argparse.ArgumentTypeError(f"{text!r}: sizes must be in (0, 20000] mm")
     return v
 
 
@@ -235,8 +241,16 @@ def _cmd_size(args) -> int:
 SCENE_HELP = "scene file or name of a shipped scene (default: paper2018)"
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors on one line like every other error (exit 2)."""
+
+    def error(self, message: str):
+        print(f"{self.prog}: error: {message} (see {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(EXIT_BAD_INPUT)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="shaftfem",
         description="Finite-element modal analysis of machine shafts (free-free).",
     )
@@ -246,12 +260,12 @@ def build_parser() -> argparse.ArgumentParser:
                       estimate: bool = False, margin: bool = False):
         c = sub.add_parser(name, help=help)
         c.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
-        c.add_argument("--mesh-size", type=_positive_float, metavar="MM",
+        c.add_argument("--mesh-size", type=_size_mm, metavar="MM",
                        help="element size away from the grooves, mm (groove sizes scale with it)")
         c.add_argument("--order", type=int, choices=(1, 2), help="element order (default: scene)")
-        c.add_argument("--modes", type=_positive_int, metavar="N",
+        c.add_argument("--modes", type=_count, metavar="N",
                        help="number of elastic modes (default: the scene's [modes] count, else 10)")
-        c.add_argument("--max-frequency", type=_positive_float, metavar="HZ",
+        c.add_argument("--max-frequency", type=_hz, metavar="HZ",
                        help="every elastic mode below this frequency, Hz, instead of a count")
         if json:
             c.add_argument("--json", metavar="FILE", help="also write the results as JSON")
@@ -263,7 +277,7 @@ def build_parser() -> argparse.ArgumentParser:
                        default="auto", help="sparse factorisation behind shift-invert "
                        "(default: the fastest installed; superlu is pure SciPy)")
         if margin:
-            c.add_argument("--margin", type=_positive_float, metavar="PERCENT",
+            c.add_argument("--margin", type=_percent, metavar="PERCENT",
                            help="required separation margin, %% (default: scene, else 15)")
         if estimate:
             c.add_argument("--no-estimate", action="store_true",
@@ -293,7 +307,7 @@ def build_parser() -> argparse.ArgumentParser:
     sw = sub.add_parser("sweep", help="run many variants of a scene on Dask (resumable)")
     sw.add_argument("sweep", help="sweep file (TOML): base scene and parameter axes or points")
     sw.add_argument("--out", default="out/sweep", help="folder for results.csv (default out/sweep)")
-    sw.add_argument("--workers", type=_positive_int, default=2,
+    sw.add_argument("--workers", type=_workers, default=2,
                     help="local worker processes (default 2)")
     sw.add_argument("--scheduler", metavar="ADDRESS",
                     help="an existing Dask scheduler, e.g. tcp://host:8786, instead of a local one")
@@ -306,7 +320,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "frequencies (grid on Dask, then least squares)")
     ca.add_argument("calibration", help="calibration file (TOML): base, unknowns, targets")
     ca.add_argument("--out", default="out/calibrate", help="output folder (default out/calibrate)")
-    ca.add_argument("--workers", type=_positive_int, default=2,
+    ca.add_argument("--workers", type=_workers, default=2,
                     help="local worker processes (default 2)")
     ca.add_argument("-q", "--quiet", action="store_true")
     ca.set_defaults(func=_cmd_calibrate)
@@ -332,7 +346,10 @@ def main(argv: list[str] | None = None) -> int:
     from .runtime import configure_threads
 
     configure_threads()  # before NumPy loads (shaftfem.runtime says why)
-    args = build_parser().parse_args(argv)
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:  # --help (0) or a bad command line (2, already said)
+        return int(exc.code or 0)
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _show_warning

@@ -10,6 +10,7 @@ import time
 from dataclasses import dataclass, fields, replace
 from typing import TYPE_CHECKING, Callable, Iterator
 
+from .errors import SceneError
 from .scene import Scene
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
@@ -55,6 +56,9 @@ def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = No
     """The scene with another element size (all sizes scaled alike) and/or order."""
     m = scene.mesh
     if size_mm is not None:
+        if not 0 < size_mm <= scene.shaft.length * 1e3:  # also refuses nan and inf
+            raise SceneError(f"element size {size_mm:g} mm: must be > 0 and not exceed the "
+                             f"shaft length ({scene.shaft.length * 1e3:g} mm)")
         k = size_mm * 1e-3 / m.size
         m = replace(m, size=m.size * k, groove_size=m.groove_size * k, edge_size=m.edge_size * k)
     if order is not None:

@@ -32,8 +32,14 @@ class Key:
     required: bool = True
 
 
-def _positive(v: float) -> bool:
-    return v > 0
+def upto(high: float, why: str, low: float = 0.0, closed_low: bool = False):
+    """A check and its words: low < v <= high (low <= v with closed_low), and why the cap.
+
+    The caps are far beyond any machine shaft; they keep absurd values (1e300) away
+    from the CAD kernel and the solvers, which fail on them without a useful message."""
+    def check(v: float) -> bool:
+        return (low <= v if closed_low else low < v) and v <= high
+    return check, f"in {'[' if closed_low else '('}{low:g}, {high:g}] ({why})"
 
 
 SCHEMA: dict[str, dict[str, Key]] = {
@@ -42,16 +48,17 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "description": Key(str, "free text", required=False),
     },
     "shaft": {
-        "length_mm": Key(float, "overall shaft length, mm", _positive, "> 0"),
-        "diameter_mm": Key(float, "outer diameter, mm", _positive, "> 0"),
+        "length_mm": Key(float, "overall shaft length, mm", *upto(20_000, "a shaft up to 20 m")),
+        "diameter_mm": Key(float, "outer diameter, mm", *upto(2_000, "up to 2 m")),
     },
     "material": {
         "name": Key(str, "material name", required=False, default="steel"),
-        "youngs_modulus_mpa": Key(float, "Young's modulus E, MPa", _positive, "> 0"),
+        "youngs_modulus_mpa": Key(float, "Young's modulus E, MPa",
+                                  *upto(1.2e6, "up to 1200 GPa, above diamond")),
         "poisson_ratio": Key(
             float, "Poisson's ratio", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)"
         ),
-        "density_kg_m3": Key(float, "density, kg/m^3", _positive, "> 0"),
+        "density_kg_m3": Key(float, "density, kg/m^3", *upto(25_000, "above osmium")),
     },
     "grooves": {
         "hands": Key(
@@ -62,29 +69,33 @@ SCHEMA: dict[str, dict[str, Key]] = {
             and len(set(v)) == len(v),
             'one or two of "right", "left", each at most once',
         ),
-        "pitch_mm": Key(float, "helix pitch (lead), mm", _positive, "> 0"),
-        "width_mm": Key(float, "groove width along the shaft axis, mm", _positive, "> 0"),
-        "depth_mm": Key(float, "groove depth, mm", _positive, "> 0"),
+        "pitch_mm": Key(float, "helix pitch (lead), mm", *upto(20_000, "up to 20 m")),
+        "width_mm": Key(float, "groove width along the shaft axis, mm",
+                         *upto(10_000, "up to 10 m")),
+        "depth_mm": Key(float, "groove depth, mm", *upto(1_000, "up to 1 m")),
         "root_radius_mm": Key(
             float, "fillet radius at the groove's floor corners, mm (0 = sharp)",
-            lambda v: v >= 0, ">= 0", default=0.0, required=False,
+            *upto(1_000, "up to 1 m", closed_low=True), default=0.0, required=False,
         ),
-        "grooved_length_mm": Key(float, "axial length of the grooved zone, mm", _positive, "> 0"),
+        "grooved_length_mm": Key(float, "axial length of the grooved zone, mm",
+                                  *upto(20_000, "up to 20 m")),
         "start_mm": Key(
             float, "distance from the shaft's left end to the grooved zone, mm "
-            "(default: the zone is centred)", lambda v: v >= 0, ">= 0", required=False,
+            "(default: the zone is centred)", *upto(20_000, "up to 20 m", closed_low=True),
+            required=False,
         ),
     },
     "excitation": {  # an array of tables: [[excitation]]
         "name": Key(str, "name of the source, e.g. engine"),
-        "speed_rpm": Key(float, "speed of the source, r/min (f = n / 60 Hz)", _positive, "> 0"),
+        "speed_rpm": Key(float, "speed of the source, r/min (f = n / 60 Hz)",
+                         *upto(1e6, "up to 10^6 r/min")),
         "orders": Key(("list", int), "harmonic orders that excite, e.g. [1, 2]",
                       lambda v: len(v) >= 1 and all(k >= 1 for k in v), "integers >= 1",
                       default=[1], required=False),
     },
     "sizing": {  # the paper's screw sizing, equations (1)-(9); see shaftfem.sizing
-        "power_kw": Key(float, "power through the shaft, kW", _positive, "> 0"),
-        "speed_rpm": Key(float, "shaft speed n, r/min", _positive, "> 0"),
+        "power_kw": Key(float, "power through the shaft, kW", *upto(1e6, "up to 1 GW")),
+        "speed_rpm": Key(float, "shaft speed n, r/min", *upto(1e6, "up to 10^6 r/min")),
         "friction_coefficient": Key(float, "friction coefficient f of the groove pair",
                                     lambda v: 0 < v < 1, "in (0, 1)"),
         "lead_angle_deg": Key(float, "helix lead angle lambda, deg", lambda v: 0 < v < 90,
@@ -94,19 +105,24 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "allowable_pressure_angle_deg": Key(
             float, "largest pressure angle before self-locking, deg", lambda v: 0 < v < 90,
             "in (0, 90)", default=38.0, required=False),
-        "allowable_pressure_mpa": Key(float, "allowable bearing pressure P_p, MPa", _positive,
-                                      "> 0"),
-        "psi": Key(float, "nut-height factor psi", _positive, "> 0"),
+        "allowable_pressure_mpa": Key(float, "allowable bearing pressure P_p, MPa",
+                                      *upto(10_000, "up to 10 GPa")),
+        "psi": Key(float, "nut-height factor psi", *upto(100, "the usual 1.2-3.5, at most 100")),
         "keyways": Key(int, "keyways in the section: 0, 1 or 2 (180 deg apart)",
                        lambda v: v in (0, 1, 2), "0, 1 or 2", default=0, required=False),
         "rounding_step_mm": Key(float, "the diameter is rounded up to a multiple of this, mm",
-                                _positive, "> 0", default=1.0, required=False),
-        "crest_clearance_mm": Key(float, "crest clearance a_c, mm", lambda v: v >= 0, ">= 0"),
-        "feed_step_mm": Key(float, "box feed step b per pick, mm", _positive, "> 0"),
-        "picks_per_row": Key(int, "picks per row n", lambda v: v >= 2, ">= 2"),
-        "needle_width_mm": Key(float, "needle width h, mm", lambda v: v >= 0, ">= 0"),
-        "drive_teeth": Key(int, "teeth on the driving gear Z_drive", lambda v: v >= 1, ">= 1"),
-        "driven_teeth": Key(int, "teeth on the driven gear Z_driven", lambda v: v >= 1, ">= 1"),
+                                *upto(100, "up to 100 mm"), default=1.0, required=False),
+        "crest_clearance_mm": Key(float, "crest clearance a_c, mm",
+                                   *upto(100, "up to 100 mm", closed_low=True)),
+        "feed_step_mm": Key(float, "box feed step b per pick, mm", *upto(10_000, "up to 10 m")),
+        "picks_per_row": Key(int, "picks per row n",
+                             *upto(10_000, "up to 10,000", low=2, closed_low=True)),
+        "needle_width_mm": Key(float, "needle width h, mm",
+                                *upto(10_000, "up to 10 m", closed_low=True)),
+        "drive_teeth": Key(int, "teeth on the driving gear Z_drive",
+                           *upto(10_000, "up to 10,000", low=1, closed_low=True)),
+        "driven_teeth": Key(int, "teeth on the driven gear Z_driven",
+                            *upto(10_000, "up to 10,000", low=1, closed_low=True)),
     },
     "resonance": {
         "required_margin_percent": Key(
@@ -121,18 +137,19 @@ SCHEMA: dict[str, dict[str, Key]] = {
                      default=DEFAULT_MODE_COUNT, required=False),
         "max_frequency_hz": Key(
             float, "compute every elastic mode below this frequency, Hz (instead of a count)",
-            _positive, "> 0", required=False),
+            *upto(1e7, "up to 10 MHz"), required=False),
     },
     "mesh": {
-        "element_size_mm": Key(float, "element size away from the grooves, mm", _positive, "> 0"),
+        "element_size_mm": Key(float, "element size away from the grooves, mm",
+                               *upto(20_000, "at most the shaft length, up to 20 m")),
         "groove_element_size_mm": Key(
             float, "element size in the grooved zone, mm (default: element_size_mm / 2)",
-            _positive, "> 0", required=False,
+            *upto(20_000, "at most element_size_mm"), required=False,
         ),
         "edge_element_size_mm": Key(
             float, "element size at the groove's inner floor edges, mm "
             "(default: the root radius, or groove size / 3 for sharp corners)",
-            _positive, "> 0", required=False,
+            *upto(20_000, "at most element_size_mm"), required=False,
         ),
         "order": Key(int, "element order: 1 (P1) or 2 (P2)", lambda v: v in (1, 2), "1 or 2",
                      default=2, required=False),
