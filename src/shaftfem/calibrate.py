@@ -32,7 +32,7 @@ import numpy as np
 
 from .errors import SceneError
 from .scene import load_scene, read_scene_text, scene_beside
-from .schema import DEFAULT_MODE_COUNT, read_toml
+from .schema import DEFAULT_MODE_COUNT, known_keys, number, parameter, read_toml
 from .sweep import Sweep, run_sweep, run_variant
 
 
@@ -66,31 +66,55 @@ class CalibrationResult:
 
 
 def load_calibration(path: str | Path) -> Calibration:
+    """Read and check a calibration file (every entry, before any modal run)."""
     path = Path(path)
-    d = read_toml(path, "calibration file")
+    src = path.name
+    d = known_keys(src, read_toml(path, "calibration file"),
+                   {"base", "mesh_size_mm", "grid", "unknowns", "targets"})
     for key in ("base", "unknowns", "targets"):
         if key not in d:
-            raise SceneError(f"{path.name}: {key}: missing")
+            raise SceneError(f"{src}: {key}: missing")
+    if not isinstance(d["base"], str):
+        raise SceneError(f"{src}: base = {d['base']!r}: must be a scene name or file")
+    if not isinstance(d["unknowns"], dict) or not d["unknowns"]:
+        raise SceneError(f"{src}: unknowns = {d['unknowns']!r}: must be a table of at least "
+                         "one scene key with bounds, e.g. \"shaft.length_mm\" = "
+                         "{min = 500, max = 600}")
     unknowns = {}
     for name, b in d["unknowns"].items():
-        if not (isinstance(b, dict) and {"min", "max"} <= set(b) and b["min"] < b["max"]):
-            raise SceneError(f"{path.name}: unknowns.{name} = {b!r}: expected {{min = .., max = ..}} "
-                             "with min < max")
-        unknowns[name] = (float(b["min"]), float(b["max"]))
-    t = d["targets"]
-    targets = np.asarray(t.get("frequencies_hz", []), dtype=float)
-    if targets.size == 0 or np.any(targets <= 0):
-        raise SceneError(f"{path.name}: targets.frequencies_hz: expected positive frequencies")
-    u = np.broadcast_to(np.asarray(t.get("uncertainty_percent", 1.0), dtype=float), targets.shape)
-    if np.any(u <= 0):
-        raise SceneError(f"{path.name}: targets.uncertainty_percent: must be > 0")
+        where = f"unknowns.{parameter(src, name)}"
+        known_keys(src, b, {"min", "max"}, where)
+        lo = number(src, f"{where}.min", b.get("min"), -1e300, 1e300)
+        hi = number(src, f"{where}.max", b.get("max"), -1e300, 1e300)
+        if not lo < hi:
+            raise SceneError(f"{src}: {where}: min = {lo:g} must be below max = {hi:g}")
+        unknowns[name] = (lo, hi)
+    t = known_keys(src, d["targets"], {"frequencies_hz", "uncertainty_percent"}, "targets")
+    freqs = t.get("frequencies_hz")
+    if not isinstance(freqs, list) or not freqs:
+        raise SceneError(f"{src}: targets.frequencies_hz = {freqs!r}: must be a list of "
+                         "frequencies in Hz")
+    targets = np.array([number(src, f"targets.frequencies_hz[{i}]", f, 0, 1e7)
+                        for i, f in enumerate(freqs)])
+    u = t.get("uncertainty_percent", 1.0)
+    if isinstance(u, list):
+        if len(u) != len(targets):
+            raise SceneError(f"{src}: targets.uncertainty_percent has {len(u)} values for "
+                             f"{len(targets)} frequencies: give one, or one per frequency")
+        u = [number(src, f"targets.uncertainty_percent[{i}]", x, 0, 100)
+             for i, x in enumerate(u)]
+    else:
+        u = number(src, "targets.uncertainty_percent", u, 0, 100)
     grid = d.get("grid", 3)
-    if not isinstance(grid, int) or grid < 2:
-        raise SceneError(f"{path.name}: grid = {grid!r}: must be an integer >= 2")
+    if isinstance(grid, bool) or not isinstance(grid, int) or not 2 <= grid <= 20:
+        raise SceneError(f"{src}: grid = {grid!r}: must be an integer in [2, 20]")
+    size = d.get("mesh_size_mm")
+    if size is not None:
+        size = number(src, "mesh_size_mm", size, 0, 20_000)
     base = scene_beside(d["base"], path)
     n_modes = max(len(targets), load_scene(base).modes.count)
-    return Calibration(base=base, mesh_size_mm=d.get("mesh_size_mm"), unknowns=unknowns,
-                       targets=targets, sigma=targets * u / 100, grid=grid, n_modes=n_modes)
+    return Calibration(base=base, mesh_size_mm=size, unknowns=unknowns, targets=targets,
+                       sigma=targets * np.asarray(u) / 100, grid=grid, n_modes=n_modes)
 
 
 def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,

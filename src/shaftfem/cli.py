@@ -211,7 +211,7 @@ def _cmd_sweep(args) -> int:
         if r["status"] != "ok":
             print(f"  failed {r['id']}: " + ", ".join(f"{p} = {r[p]}" for p in sweep.parameters)
                   + f": {r['error']}")
-    return 0
+    return 0 if ok else EXIT_COMPUTATION  # nothing usable came out
 
 
 def _cmd_calibrate(args) -> int:

@@ -214,3 +214,37 @@ def read_toml(path: str | Path, what: str = "file") -> dict:
         raise SceneError(f"{what} {str(path)!r}: no such file") from None
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+
+
+# --------------------------------------------------------------------------
+# Checks for the other files the tool reads (sweeps, calibrations): each error names
+# the file, the key, the value and what is allowed.
+
+
+def known_keys(source: str, data: object, allowed: set[str], where_: str = "") -> dict:
+    """`data` must be a table whose keys are all in `allowed`."""
+    if not isinstance(data, dict):
+        raise SceneError(f"{source}: {where_ or 'the file'} = {data!r}: must be a table")
+    for key in data:
+        if key not in allowed:
+            raise SceneError(f"{source}: {where_ + '.' if where_ else ''}{key}: unknown key; "
+                             f"allowed: {', '.join(sorted(allowed))}")
+    return data
+
+
+def number(source: str, key: str, value: object, low: float, high: float) -> float:
+    """A finite number with low < value <= high."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
+            math.isfinite(value) and low < value <= high):
+        raise SceneError(f"{source}: {key} = {value!r}: must be a number in ({low:g}, {high:g}]")
+    return float(value)
+
+
+def parameter(source: str, name: object) -> str:
+    """A numeric scene key written 'table.key' (e.g. 'grooves.depth_mm')."""
+    table, _, key = str(name).partition(".")
+    spec = SCHEMA.get(table, {}).get(key) if table else None
+    if not isinstance(name, str) or spec is None or spec.kind not in (float, int):
+        raise SceneError(f"{source}: {name!r}: not a numeric scene key; a parameter is "
+                         "'table.key', e.g. 'grooves.depth_mm' or 'shaft.length_mm'")
+    return name

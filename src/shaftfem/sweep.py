@@ -24,6 +24,7 @@ from __future__ import annotations
 import csv
 import itertools
 import math
+from contextlib import contextmanager
 import os
 import time
 from dataclasses import dataclass
@@ -33,7 +34,7 @@ from typing import Callable
 from .errors import ClusterError, SceneError
 from .runtime import worker_env
 from .scene import SceneText, load_scene, read_scene_text, scene_beside
-from .schema import read_toml
+from .schema import known_keys, number, parameter, read_toml
 from .store import content_key
 
 
@@ -46,45 +47,55 @@ class Sweep:
     n_modes: int                # the lowest n_modes of every variant are recorded
 
 
-def _axis_values(name: str, spec) -> list[float]:
-    if isinstance(spec, list) and spec and all(isinstance(v, (int, float)) and not
-                                               isinstance(v, bool) for v in spec):
-        return [float(v) for v in spec]
-    if isinstance(spec, dict) and set(spec) == {"start", "stop", "num"}:
-        n = spec["num"]
-        if not isinstance(n, int) or n < 1:
-            raise SceneError(f"axes.{name}.num = {n!r}: must be an integer >= 1")
-        a, b = float(spec["start"]), float(spec["stop"])
+def _axis_values(source: str, name: str, spec) -> list[float]:
+    where = f"axes.{name}"
+    if isinstance(spec, list):
+        if not spec:
+            raise SceneError(f"{source}: {where} = []: give at least one value")
+        return [number(source, where, v, -1e300, 1e300) for v in spec]
+    if isinstance(spec, dict):
+        known_keys(source, spec, {"start", "stop", "num"}, where)
+        n = spec.get("num")
+        if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 1000:
+            raise SceneError(f"{source}: {where}.num = {n!r}: must be an integer in [1, 1000]")
+        a = number(source, f"{where}.start", spec.get("start"), -1e300, 1e300)
+        b = number(source, f"{where}.stop", spec.get("stop"), -1e300, 1e300)
         return [a + (b - a) * i / max(n - 1, 1) for i in range(n)]
-    raise SceneError(f"axes.{name} = {spec!r}: expected a list of numbers or "
+    raise SceneError(f"{source}: {where} = {spec!r}: expected a list of numbers or "
                      "{start = ..., stop = ..., num = ...}")
 
 
 def load_sweep(path: str | Path) -> Sweep:
-    """Read a sweep file and expand it into variants (every override checked for form)."""
+    """Read a sweep file and expand it into variants (every entry checked for form; the
+    values themselves are checked per variant, where a bad one is recorded as failed)."""
     path = Path(path)
-    data = read_toml(path, "sweep file")
-    allowed = {"base", "mesh_size_mm", "axes", "points"}
-    for key in data:
-        if key not in allowed:
-            raise SceneError(f"{path.name}: {key}: unknown key; allowed: {', '.join(sorted(allowed))}")
-    if "base" not in data or not isinstance(data["base"], str):
-        raise SceneError(f"{path.name}: base: missing (the scene the variants start from)")
+    src = path.name
+    data = known_keys(src, read_toml(path, "sweep file"), {"base", "mesh_size_mm", "axes", "points"})
+    if not isinstance(data.get("base"), str):
+        raise SceneError(f"{src}: base = {data.get('base')!r}: missing or not a scene name "
+                         "or file (the scene the variants start from)")
     if ("axes" in data) == ("points" in data):
-        raise SceneError(f"{path.name}: give either [axes] (a grid) or points (a list)")
+        raise SceneError(f"{src}: give either [axes] (a grid) or points (a list)")
     if "axes" in data:
-        names = list(data["axes"])
-        values = [_axis_values(n, data["axes"][n]) for n in names]
+        axes = data["axes"]
+        if not isinstance(axes, dict) or not axes:
+            raise SceneError(f"{src}: axes = {axes!r}: must be a table of at least one "
+                             "parameter, e.g. \"shaft.length_mm\" = [500, 550]")
+        names = [parameter(src, n) for n in axes]
+        values = [_axis_values(src, n, axes[n]) for n in names]
         variants = [dict(zip(names, combo)) for combo in itertools.product(*values)]
     else:
-        variants = [{k: float(v) for k, v in p.items()} for p in data["points"]]
+        points = data["points"]
+        if not isinstance(points, list) or not points or not all(isinstance(p, dict) and p
+                                                                 for p in points):
+            raise SceneError(f"{src}: points = {points!r}: must be a list of at least one "
+                             "table of parameters")
+        variants = [{parameter(src, k): number(src, f"points[{i}].{k}", v, -1e300, 1e300)
+                     for k, v in p.items()} for i, p in enumerate(points)]
         names = sorted({k for v in variants for k in v})
-    for n in names:
-        if n.count(".") != 1:
-            raise SceneError(f"{path.name}: {n!r}: a parameter is 'table.key', e.g. 'grooves.depth_mm'")
     size = data.get("mesh_size_mm")
-    if size is not None and (not isinstance(size, (int, float)) or size <= 0):
-        raise SceneError(f"{path.name}: mesh_size_mm = {size!r}: must be a number > 0")
+    if size is not None:
+        size = number(src, "mesh_size_mm", size, 0, 20_000)
     base = read_scene_text(scene_beside(data["base"], path))
     return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names,
                  n_modes=load_scene(base).modes.count)
@@ -199,14 +210,45 @@ def _drop_partial_line(path: Path) -> None:
             fh.truncate(keep)
 
 
+@contextmanager
+def _owned(folder: Path):
+    """Hold the sweep's lock on `folder` (a second sweep into it is refused) and give its
+    workers a temp folder there that is removed at the end. The lock is an flock: the
+    system releases it when the process dies, so a killed sweep leaves no stale lock."""
+    import fcntl
+    import shutil
+
+    folder.mkdir(parents=True, exist_ok=True)
+    fh = open(folder / ".sweep.lock", "a+")
+    try:
+        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        fh.close()
+        raise SceneError(f"another sweep is writing into {folder}: wait for it to finish "
+                         "or choose another --out") from None
+    tmp = folder / ".sweep-tmp"
+    try:
+        tmp.mkdir(exist_ok=True)
+        yield tmp
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+        fh.close()
+
+
 def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
               scheduler: str | None = None, estimate: bool = False,
               progress: Callable[[str], None] | None = None) -> list[dict]:
     """Run every variant not yet in `results` on Dask; append each row as it finishes."""
+    results = Path(results)
+    with _owned(results.parent) as tmp:
+        return _run_sweep(sweep, results, workers, scheduler, estimate, progress, tmp)
+
+
+def _run_sweep(sweep: Sweep, results: Path, workers: int, scheduler: str | None,
+               estimate: bool, progress: Callable[[str], None] | None, tmp: Path) -> list[dict]:
     from distributed import Client, LocalCluster, as_completed
 
     say = progress or (lambda _m: None)
-    results = Path(results)
     _drop_partial_line(results)
     done = {r["id"] for r in read_results(results)}
     todo = [v for v in sweep.variants if variant_id(v) not in done]
@@ -221,7 +263,8 @@ def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
     else:
         # the workers already share the cores: one assembly thread each
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None, env=worker_env())
+                               dashboard_address=None,
+                               env={**worker_env(), "TMPDIR": str(tmp)})
         client, threads = Client(cluster), 1
     t0, n_ok, n_failed = time.perf_counter(), 0, 0
     try:
