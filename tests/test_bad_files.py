@@ -55,20 +55,13 @@ def _refused(capsys, argv, named, out):
     assert not out.exists() or not any(p for p in out.rglob("*") if p.is_file())
 
 
-@pytest.mark.parametrize("text,named", SWEEPS)
-def test_bad_sweep_file(tmp_path, capsys, text, named):
-    f = tmp_path / "sweep.toml"
+@pytest.mark.parametrize("command,text,named", [("sweep", t, n) for t, n in SWEEPS]
+                         + [("calibrate", t, n) for t, n in CALS])
+def test_bad_sweep_or_calibration_file(tmp_path, capsys, command, text, named):
+    f = tmp_path / f"{command}.toml"
     f.write_text(text)
     out = tmp_path / "out"
-    _refused(capsys, ["sweep", str(f), "--out", str(out), "-q"], named, out)
-
-
-@pytest.mark.parametrize("text,named", CALS)
-def test_bad_calibration_file(tmp_path, capsys, text, named):
-    f = tmp_path / "cal.toml"
-    f.write_text(text)
-    out = tmp_path / "out"
-    _refused(capsys, ["calibrate", str(f), "--out", str(out), "-q"], named, out)
+    _refused(capsys, [command, str(f), "--out", str(out), "-q"], named, out)
 
 
 def test_a_second_sweep_into_the_same_folder_is_refused(tmp_path, capsys):
