@@ -114,3 +114,29 @@ def test_bad_command_lines_are_one_line_and_exit_2(capsys, args):
     assert main(argv + (["-q"] if args[0] in ("check", "modes") else [])) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "error" in err and "Traceback" not in err
+
+
+def test_a_binary_scene_file_is_bad_input(tmp_path, capsys):
+    f = tmp_path / "shaft.toml"
+    f.write_bytes(bytes(range(256)) * 4)
+    assert main(["modes", str(f), "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "not a text file" in err
+
+
+@pytest.mark.parametrize("option", ["--out-file", "--json-dir"])
+def test_unusable_output_paths_are_refused_before_the_solve(tmp_path, capsys, monkeypatch,
+                                                            option):
+    from shaftfem import pipeline
+
+    def never(*_a, **_k):
+        raise AssertionError("the solve ran")
+
+    monkeypatch.setattr(pipeline, "run_modes", never)
+    a_file = tmp_path / "a_file"
+    a_file.write_text("x")
+    argv = (["export", "plain_cylinder", "--out", str(a_file)] if option == "--out-file"
+            else ["modes", "plain_cylinder", "--json", str(tmp_path)])
+    assert main(argv + ["-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and ("is a file" in err or "is a folder" in err)

@@ -64,6 +64,24 @@ def _sizes(text: str) -> list[float]:
     return v
 
 
+def _check_outputs(args) -> None:
+    """Refuse output paths that cannot work before any heavy work, not after it."""
+    for name, folder in (("json", False), ("out", True)):
+        path = getattr(args, name, None)
+        if path is None:
+            continue
+        p = Path(path)
+        if folder and p.exists() and not p.is_dir():
+            raise SceneError(f"--out {path}: is a file, not a folder")
+        if not folder and p.is_dir():
+            raise SceneError(f"--json {path}: is a folder; give a file name")
+        parent = p if folder else p.parent
+        while not parent.exists() and parent != parent.parent:
+            parent = parent.parent
+        if not os.access(parent, os.W_OK):
+            raise SceneError(f"--{name} {path}: {parent} is not writable")
+
+
 def _scene(args):
     """The scene with the command line's mesh and mode overrides."""
     from .pipeline import with_mesh, with_modes
@@ -353,6 +371,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _show_warning
+            _check_outputs(args)
             return args.func(args)
     except ShaftfemError as exc:
         print(f"shaftfem: error: {_one_line(exc)}", file=sys.stderr)

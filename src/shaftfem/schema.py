@@ -209,9 +209,13 @@ def read_toml(path: str | Path, what: str = "file") -> dict:
     """A TOML file as a dict; a missing or malformed file is a SceneError naming it."""
     path = Path(path)
     try:
-        return tomllib.loads(path.read_text())
+        return tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise SceneError(f"{what} {str(path)!r}: no such file") from None
+    except (IsADirectoryError, PermissionError) as exc:
+        raise SceneError(f"{what} {str(path)!r}: cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise SceneError(f"{path.name}: not a text file (TOML is UTF-8 text)") from None
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
 
