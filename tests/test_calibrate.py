@@ -1,11 +1,13 @@
 """Calibration recovers parameters that the toolkit itself used to make the targets."""
 
 import numpy as np
+import pytest
 
 from shaftfem.calibrate import Calibration, calibrate
 from shaftfem.sweep import run_variant
 
 
+@pytest.mark.slow  # about 70 s: a 3x3 grid and a least-squares fit, each a modal run
 def test_recovers_hidden_length_and_diameter(tmp_path):
     hidden = {"shaft.length_mm": 537.0, "shaft.diameter_mm": 31.2}
     row = run_variant("plain_cylinder", hidden, 16.0)

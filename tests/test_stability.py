@@ -119,6 +119,7 @@ def test_stubby_shaft_l_over_d_1():
         assert abs(f / torsion_hz(1, 0.032, 2.11e11, 0.277, 7870) - 1) < 1e-3
 
 
+@pytest.mark.slow  # about 55 s: the CAD of a 300 mm shaft with 40 % deep grooves
 def test_very_deep_grooves_forty_percent_of_the_radius():
     grooves = {"hands": ["right", "left"], "pitch_mm": 80.0, "width_mm": 8.0,
                "depth_mm": 6.4, "root_radius_mm": 1.0, "grooved_length_mm": 160.0}
