@@ -86,3 +86,30 @@ def test_no_scheduler_is_a_clear_error(tmp_path):
     sweep = load_sweep(_user_sweep(tmp_path / "user"))
     with pytest.raises(ClusterError, match="no Dask scheduler answers"):
         run_sweep(sweep, tmp_path / "out" / "results.csv", scheduler="tcp://127.0.0.1:9")
+
+
+def test_a_calibration_grid_runs_on_the_cluster_without_the_scene_file(cluster, tmp_path):
+    import shutil
+
+    import numpy as np
+
+    from shaftfem.calibrate import calibrate, load_calibration
+    from shaftfem.sweep import read_results
+
+    folder = tmp_path / "user"
+    _user_sweep(folder)
+    hidden = run_variant(str(folder / "my_shaft.toml"), {"shaft.length_mm": 537.0}, 16.0)
+    # targets are the first modes in order (the cylinder's modes 1-2 are one bending pair)
+    targets = ", ".join(f"{hidden[f'f{i}_hz']:.6f}" for i in (1, 2, 3, 4))
+    (folder / "cal.toml").write_text(
+        'base = "my_shaft.toml"\nmesh_size_mm = 16.0\ngrid = 2\n'
+        '[unknowns]\n"shaft.length_mm" = {min = 500.0, max = 600.0}\n'
+        f'[targets]\nfrequencies_hz = [{targets}]\nuncertainty_percent = 0.1\n')
+    cal = load_calibration(folder / "cal.toml")  # reads the scene's content now
+    shutil.rmtree(folder)
+    res = calibrate(cal, tmp_path / "out", scheduler=cluster)
+    assert abs(res.parameters["shaft.length_mm"] / 537.0 - 1) < 0.01
+    grid = read_results(tmp_path / "out" / "grid.csv")
+    assert len(grid) == 2 and all(r["status"] == "ok" for r in grid)
+    assert str(os.getpid()) not in {r["worker_pid"] for r in grid}
+    assert np.isfinite(res.chi2)

@@ -238,7 +238,8 @@ def _cmd_calibrate(args) -> int:
 
     cal = load_calibration(args.calibration)
     out = Path(args.out)
-    res = calibrate(cal, out, workers=args.workers, progress=_Progress(args.quiet))
+    res = calibrate(cal, out, workers=args.workers, progress=_Progress(args.quiet),
+                    scheduler=args.scheduler)
     print(calibration_text(res, cal))
     _write_json(str(out / "calibration.json"), res.as_dict(cal))
     return 0
@@ -322,26 +323,26 @@ def build_parser() -> argparse.ArgumentParser:
     modal_command("paper", "the paper's Table 2 and stated sizing beside ours", _cmd_paper,
                   json=False)
 
-    sw = sub.add_parser("sweep", help="run many variants of a scene on Dask (resumable)")
-    sw.add_argument("sweep", help="sweep file (TOML): base scene and parameter axes or points")
-    sw.add_argument("--out", default="out/sweep", help="folder for results.csv (default out/sweep)")
-    sw.add_argument("--workers", type=_workers, default=2,
-                    help="local worker processes (default 2)")
-    sw.add_argument("--scheduler", metavar="ADDRESS",
-                    help="an existing Dask scheduler, e.g. tcp://host:8786, instead of a local one")
+    def dask_command(name: str, help: str, file_help: str, func):
+        c = sub.add_parser(name, help=help)
+        c.add_argument(name if name == "sweep" else "calibration", help=file_help)
+        c.add_argument("--out", default=f"out/{name}", help=f"output folder (default out/{name})")
+        c.add_argument("--workers", type=_workers, default=2,
+                       help="local worker processes (default 2)")
+        c.add_argument("--scheduler", metavar="ADDRESS",
+                       help="an existing Dask scheduler, e.g. tcp://host:8786, instead of local "
+                       "workers")
+        c.add_argument("-q", "--quiet", action="store_true")
+        c.set_defaults(func=func)
+        return c
+
+    sw = dask_command("sweep", "run many variants of a scene on Dask (resumable)",
+                      "sweep file (TOML): base scene and parameter axes or points", _cmd_sweep)
     sw.add_argument("--estimate", action="store_true",
                     help="also estimate each frequency's error (three solves per variant)")
-    sw.add_argument("-q", "--quiet", action="store_true")
-    sw.set_defaults(func=_cmd_sweep)
-
-    ca = sub.add_parser("calibrate", help="find unknown scene values that reproduce target "
-                        "frequencies (grid on Dask, then least squares)")
-    ca.add_argument("calibration", help="calibration file (TOML): base, unknowns, targets")
-    ca.add_argument("--out", default="out/calibrate", help="output folder (default out/calibrate)")
-    ca.add_argument("--workers", type=_workers, default=2,
-                    help="local worker processes (default 2)")
-    ca.add_argument("-q", "--quiet", action="store_true")
-    ca.set_defaults(func=_cmd_calibrate)
+    dask_command("calibrate", "find unknown scene values that reproduce target frequencies "
+                 "(grid on Dask, then least squares)",
+                 "calibration file (TOML): base, unknowns, targets", _cmd_calibrate)
 
     st = sub.add_parser("study", help="work-precision study: a ladder of P1 and P2 meshes")
     st.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
