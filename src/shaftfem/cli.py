@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 from .errors import EXIT_BAD_INPUT, EXIT_COMPUTATION, SceneError, ShaftfemError
+from .schema import MAX_MODE_COUNT
 
 # modal.FACTORIZERS plus "auto"; spelled out here because the CLI must not import
 # SciPy before a command needs it (`shaftfem size` loads no solver).
@@ -50,7 +51,7 @@ def _number(kind, high: float, exclusive: bool = False):
 _size_mm = _number(float, 20_000)
 _percent = _number(float, 100, exclusive=True)
 _hz = _number(float, 1e7)
-_count = _number(int, 200)
+_count = _number(int, MAX_MODE_COUNT)
 _workers = _number(int, 1024)
 
 
@@ -154,13 +155,11 @@ def _cmd_export(args) -> int:
 
 
 def _cmd_render(args) -> int:
-    from .render import render_geometry, render_mode_gifs, render_modes
+    from .render import render_all
 
     result = _run(args)
-    out = Path(args.out)
-    files = [render_geometry(result, out / "geometry.png"), render_modes(result, out / "modes.png"),
-             *render_mode_gifs(result, out)]
-    print(f"wrote {len(files)} pictures to {out}: " + ", ".join(f.name for f in files))
+    files = render_all(result, args.out)
+    print(f"wrote {len(files)} pictures to {args.out}: " + ", ".join(f.name for f in files))
     return 0
 
 

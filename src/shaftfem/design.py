@@ -49,7 +49,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     (fraction), default the scene's."""
     from .export import export_modes
     from .pipeline import run_modes
-    from .render import render_geometry, render_mode_gifs, render_modes
+    from .render import render_all
     from .report import write_report
     from .resonance import check_result
     from .sizing import size_screw
@@ -70,8 +70,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     say("exporting mode shapes, mesh and solid")
     files = export_modes(result, out, est)
     say("rendering pictures")
-    pictures = [render_geometry(result, out / "geometry.png"),
-                render_modes(result, out / "modes.png"), *render_mode_gifs(result, out)]
+    pictures = render_all(result, out)
     report = write_report(out / "report.md", result, verdict, sizing, pictures, files, est)
     say(f"report written: {report}")
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,

@@ -22,6 +22,7 @@ from scipy.sparse.linalg import eigsh
 from scipy.sparse.linalg import norm as spnorm
 
 from .errors import SolverError
+from .schema import DEFAULT_MODE_COUNT, MAX_MODE_COUNT
 
 RIGID_BODY_MODES = 6
 # sigma = -SHIFT_FACTOR * median(diag K / diag M): scale-free, so frequencies scale
@@ -38,8 +39,8 @@ START_SEED = 2018
 
 
 # With a frequency limit instead of a count, the Krylov space grows (twice the
-# modes each time) until a mode above the limit is found, up to this many modes.
-MAX_MODES = 200
+# modes each time) until a mode above the limit is found, up to MAX_MODES modes.
+MAX_MODES = MAX_MODE_COUNT
 
 
 @dataclass(frozen=True)
@@ -153,7 +154,7 @@ def factorize(A: sp.spmatrix, backend: str = "auto"):
     raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORIZERS)}")
 
 
-def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = 10,
+def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
                 tol: float = 0.0, factorizer: str = "auto",
                 max_frequency: float | None = None) -> EigenSolution:
     """The lowest n_modes + 6 eigenpairs; with `max_frequency` (Hz), more until one
@@ -233,7 +234,7 @@ def _rayleigh_ritz(K: sp.spmatrix, M: sp.spmatrix, V: np.ndarray, k: int
 
 
 def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
-                   mass_scalar: sp.csr_matrix, n_modes: int = 10,
+                   mass_scalar: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
                    factorizer: str = "auto", max_frequency: float | None = None) -> Modes:
     """Solve, separate the six rigid-body modes, check and classify the elastic ones:
     the lowest `n_modes`, or with `max_frequency` (Hz) every one below it (at least one)."""

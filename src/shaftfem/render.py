@@ -184,3 +184,10 @@ def render_mode_gifs(result: ModalResult, out: str | Path, frames: int = GIF_FRA
             p.close()  # the GIF is written out when its plotter closes
         written.append(path)
     return written
+
+
+def render_all(result: ModalResult, out: str | Path) -> list[Path]:
+    """geometry.png, modes.png and mode_NN.gif per mode, in `out`."""
+    out = Path(out)
+    return [render_geometry(result, out / "geometry.png"),
+            render_modes(result, out / "modes.png"), *render_mode_gifs(result, out)]

@@ -12,7 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import SceneError
-from .schema import DEFAULT_MARGIN_PERCENT, SCHEMA, read_toml, validate_table, where
+from .schema import (DEFAULT_MARGIN_PERCENT, DEFAULT_MODE_COUNT, SCHEMA, read_toml,
+                     validate_table, where)
 
 # The scenes shipped with shaftfem: the repository's geometry/ folder, which an
 # installed package carries as shaftfem/scenes (pyproject.toml maps one onto the other).
@@ -108,7 +109,7 @@ class ModeRequest:
     """Which elastic modes to compute: the lowest `count`, or every one below
     `max_frequency` (Hz) when that is set."""
 
-    count: int = 10
+    count: int = DEFAULT_MODE_COUNT
     max_frequency: float | None = None
 
 
