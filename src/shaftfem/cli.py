@@ -117,7 +117,7 @@ def _cmd_modes(args) -> int:
     result = _run(args)
     est = None
     if not args.no_estimate:
-        from .study import estimate_errors
+        from .estimate import estimate_errors
 
         est = estimate_errors(result, progress=_Progress(args.quiet), factorizer=args.solver)
     print(modes_text(result, est))

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
     from .sizing import SizingResult
-    from .study import ErrorEstimate
+    from .estimate import ErrorEstimate
 
 
 @dataclass(frozen=True)
@@ -63,7 +63,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     result = run_modes(scene, use_cache=use_cache, progress=say, factorizer=factorizer)
     est = None
     if estimate:
-        from .study import estimate_errors
+        from .estimate import estimate_errors
 
         est = estimate_errors(result, progress=say, factorizer=factorizer)
     verdict = check_result(result, margin)

@@ -17,7 +17,7 @@ from .store import json_text, staged_directory, write_csv, write_text
 
 if TYPE_CHECKING:
     from .pipeline import ModalResult
-    from .study import ErrorEstimate
+    from .estimate import ErrorEstimate
 
 
 def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
@@ -63,9 +63,10 @@ def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[d
             "energy_axial": float(e[0]),
             "energy_radial": float(e[1]),
             "energy_tangential": float(e[2]),
-            "estimated_error": None if est is None else float(est.relative_error[i]),
-            "observed_order": None if est is None else float(est.observed_order[i]),
-            "estimate_reliable": None if est is None else bool(est.reliable[i]),
+            # FE frequencies converge from above: the truth lies in [f (1 - bound), f]
+            "error_bound_percent": None if est is None else float(100 * est.relative_error[i]),
+            "recovery_estimate_percent": None if est is None else float(100 * est.recovery[i]),
+            "error_bound_confirmed": None if est is None else bool(est.reliable[i]),
         })
     return rows
 

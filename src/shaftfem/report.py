@@ -12,7 +12,7 @@ if TYPE_CHECKING:
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
     from .sizing import SizingResult
-    from .study import ErrorEstimate
+    from .estimate import ErrorEstimate
 
 
 def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,

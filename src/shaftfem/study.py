@@ -1,7 +1,8 @@
-"""How far each frequency is from converged, and what it costs.
+"""The work-precision study: a ladder of meshes, their cost, and a reference from the finest.
 
-Frequencies from meshes of sizes h, r h, r^2 h (same scene, all sizes scaled
-alike) converge as f(h) ~ f* + C h^p. Three of them give, per mode,
+A single run's error bound is shaftfem.estimate's. The study's reference is a
+Richardson extrapolation of its three finest meshes: frequencies from meshes
+of sizes h, r h, r^2 h (same scene, all sizes scaled alike) converge as f(h) ~ f* + C h^p. Three of them give, per mode,
 
     observed order   p = ln((f3 - f2) / (f2 - f1)) / ln r
     error of f1      e = |f1 - f2| / (r^p - 1)          (Richardson)
@@ -19,14 +20,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from .estimate import matched
 from .pipeline import Timings
-
-if TYPE_CHECKING:
-    from .pipeline import ModalResult
 
 # Eigenvalue errors of smooth problems fall as h^(2k) for P_k elements.
 SMOOTH_ORDER = {1: 2.0, 2: 4.0}
@@ -34,11 +32,10 @@ P_MIN = 0.8            # below this the meshes are not in the asymptotic range
 FALLBACK_ORDER = 1.0   # used when the order cannot be measured
 SAFETY = 1.25          # Roache's factor for a three-mesh estimate with measured order
 SAFETY_FALLBACK = 3.0  # and for an estimate whose order had to be assumed
-RATIO = 1.5            # default ratio between the estimate's mesh sizes
 
 
 @dataclass
-class ErrorEstimate:
+class Extrapolation:
     """Per mode: estimated relative error of the finest frequency, observed order, trust."""
 
     relative_error: np.ndarray   # (n,) |f1 - f*| / f1, with the safety factor
@@ -62,7 +59,7 @@ def theoretical_order(element_order: int, singular: bool) -> float:
 
 
 def richardson(f1: np.ndarray, f2: np.ndarray, f3: np.ndarray, ratio: float,
-               element_order: int = 2, singular: bool = False) -> ErrorEstimate:
+               element_order: int = 2, singular: bool = False) -> Extrapolation:
     """Three-mesh error estimate of f1 (finest), f2, f3 (coarser by `ratio` each step).
 
     The order used is the observed one, but never more than the theoretical
@@ -96,47 +93,8 @@ def richardson(f1: np.ndarray, f2: np.ndarray, f3: np.ndarray, ratio: float,
                 ratio**FALLBACK_ORDER - 1)
             err[i] = SAFETY_FALLBACK * e / f1[i]
             fx[i] = np.nan
-    return ErrorEstimate(relative_error=err, observed_order=p, reliable=ok, extrapolated=fx,
+    return Extrapolation(relative_error=err, observed_order=p, reliable=ok, extrapolated=fx,
                          ratio=ratio)
-
-
-def matched_frequencies(ref_kinds: list[str], kinds: list[str], f: np.ndarray) -> np.ndarray:
-    """The frequencies `f` (of modes `kinds`) reordered to correspond to the reference modes.
-
-    Modes are matched in order within each kind (bending, torsion, axial, mixed),
-    so that a torsion mode overtaking a bending pair on a coarse mesh is still
-    compared with its own kind. A reference mode without a counterpart gets nan.
-    """
-    out = np.full(len(ref_kinds), np.nan)
-    for kind in set(ref_kinds):
-        mine = [i for i, k in enumerate(ref_kinds) if k == kind]
-        theirs = [i for i, k in enumerate(kinds) if k == kind]
-        for a, b in zip(mine, theirs):
-            out[a] = f[b]
-    return out
-
-
-def estimate_errors(result: ModalResult, ratio: float = RATIO,
-                    progress: Callable[[str], None] | None = None,
-                    factorizer: str = "auto", threads: int | None = None) -> ErrorEstimate:
-    """Error estimate for a finished run: solve the same scene on two coarser meshes."""
-    from .pipeline import run_modes, with_mesh, with_modes
-
-    say = progress or (lambda _m: None)
-    scene = result.scene
-    runs = []
-    for k in (1, 2):
-        size_mm = scene.mesh.size * 1e3 * ratio**k
-        say(f"error estimate: coarser mesh {k} of 2 ({size_mm:.3g} mm)")
-        # the same modes, counted (a frequency limit could select others on a coarse mesh)
-        coarse = with_modes(with_mesh(scene, size_mm), count=result.modes.count)
-        runs.append(run_modes(coarse, factorizer=factorizer, threads=threads))
-    m = result.modes
-    f = [m.frequencies] + [matched_frequencies(m.kinds, r.modes.kinds, r.modes.frequencies)
-                           for r in runs]
-    # grooves end in sharp re-entrant edges: the singular rate applies
-    return richardson(f[0], f[1], f[2], ratio, scene.mesh.order,
-                      singular=scene.grooves is not None)
 
 
 # --------------------------------------------------------------------------
@@ -160,7 +118,7 @@ class StudyResult:
 
     rows: list[dict]
     reference: np.ndarray
-    estimate: ErrorEstimate
+    estimate: Extrapolation
     order: int        # element order of the reference runs
 
 
@@ -203,7 +161,7 @@ def summarize_study(runs: list[StudyRun], singular: bool) -> StudyResult:
                        order=top)
 
 
-def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, ErrorEstimate]:
+def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, Extrapolation]:
     """Richardson extrapolation of the three finest runs of the highest order."""
     top = max(r.order for r in runs)
     best = sorted([r for r in runs if r.order == top], key=lambda r: r.size_mm)[:3]
@@ -211,7 +169,7 @@ def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, E
         raise ValueError("the study needs at least three meshes of the highest order")
     ratio = (best[2].size_mm / best[0].size_mm) ** 0.5
     f1 = best[0].frequencies
-    f = [f1] + [matched_frequencies(best[0].kinds, r.kinds, r.frequencies) for r in best[1:]]
+    f = [f1] + [matched(best[0].kinds, r.kinds, r.frequencies) for r in best[1:]]
     est = richardson(f[0], f[1], f[2], ratio, top, singular)
     ref = np.where(np.isfinite(est.extrapolated), est.extrapolated, f1)
     return ref, est
@@ -220,7 +178,7 @@ def study_reference(runs: list[StudyRun], singular: bool) -> tuple[np.ndarray, E
 def study_table(runs: list[StudyRun], reference: np.ndarray, ref_kinds: list) -> list[dict]:
     rows = []
     for r in runs:
-        f = matched_frequencies(ref_kinds, r.kinds, r.frequencies)
+        f = matched(ref_kinds, r.kinds, r.frequencies)
         err = np.abs(f / reference - 1)  # nan where a mode has no counterpart
         rows.append({
             "element": f"P{r.order}", "size_mm": r.size_mm, "dofs": r.dofs,

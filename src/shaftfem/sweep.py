@@ -126,7 +126,7 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
             row[f"f{i + 1}_hz"] = float(m.frequencies[i])
             row[f"kind{i + 1}"] = m.kinds[i]
         if estimate:
-            from .study import estimate_errors
+            from .estimate import estimate_errors
 
             est = estimate_errors(r, threads=threads)
             for i in range(m.count):

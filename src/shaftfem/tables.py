@@ -14,7 +14,8 @@ if TYPE_CHECKING:
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
     from .sizing import SizingResult
-    from .study import ErrorEstimate, StudyResult
+    from .estimate import ErrorEstimate
+    from .study import Extrapolation, StudyResult
 
 
 def markdown(head: list[str], rows: list[list[str]]) -> list[str]:
@@ -28,19 +29,30 @@ def timings_line(result: ModalResult) -> str:
 
 
 def estimate_notes(est: ErrorEstimate) -> list[str]:
-    """How the estimate was made, and where it cannot be trusted."""
+    """How the bounds were made, and where they rest on less."""
+    return [f"+- : bound on the discretisation error of each frequency ({est.method}; "
+            "the computed frequencies converge from above)"] + list(est.notes)
+
+
+def extrapolation_notes(est: Extrapolation) -> list[str]:
+    """Where a study's Richardson extrapolation had to assume an order."""
     from .study import FALLBACK_ORDER, SAFETY_FALLBACK
 
-    lines = [f"est. error: estimated discretisation error of each frequency (three meshes, "
-             f"sizes x1, x{est.ratio:g}, x{est.ratio**2:g}; observed order p)"]
     bad = [i + 1 for i, ok in enumerate(est.reliable) if not ok]
-    if bad:
-        lines.append(
-            f"error estimate unreliable for mode(s) {', '.join(map(str, bad))}: the meshes are "
-            "not yet in the asymptotic range (non-monotone or implausible observed order); "
-            f"shown with an assumed order p = {FALLBACK_ORDER:g} and safety factor "
-            f"{SAFETY_FALLBACK:g}. Refine (--mesh-size) to tighten it.")
-    return lines
+    if not bad:
+        return []
+    return [f"extrapolation unreliable for mode(s) {', '.join(map(str, bad))}: the meshes "
+            "are not yet in the asymptotic range (non-monotone or implausible observed "
+            f"order); shown with an assumed order p = {FALLBACK_ORDER:g} and safety factor "
+            f"{SAFETY_FALLBACK:g}."]
+
+
+def bound_text(est: ErrorEstimate, i: int) -> str:
+    """'+- 0.24 %' (two significant digits), '*' marking a bound not confirmed."""
+    e = est.relative_error[i]
+    if not math.isfinite(e):
+        return "n/a"
+    return f"+- {100 * e:.2g} %{'' if est.reliable[i] else '*'}"
 
 
 def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
@@ -56,17 +68,14 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     ]
     head = f"{'mode':>4}  {'frequency':>12}  {'kind':<8}  {'residual':>9}"
     if est is not None:
-        head += f"  {'est. error':>10}  {'order':>5}"
+        head += f"  {'error bound':>11}"
     if exc:
         head += f"  {'f / ' + exc.name + ' ' + format(exc.frequency, 'g') + ' Hz':>20}"
     lines.append(head)
     for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
         row = f"{i + 1:>4}  {f:>9.2f} Hz  {kind:<8}  {r:>9.1e}"
         if est is not None:
-            e, p = est.relative_error[i], est.observed_order[i]
-            mark = " " if est.reliable[i] else "?"
-            row += (f"  {100 * e:>7.2f} %{mark}  {p:>5.2f}" if math.isfinite(e)
-                    else f"  {'n/a':>10}  {'':>5}")
+            row += f"  {bound_text(est, i):>11}"
         if exc:
             row += f"  {f / exc.frequency:>20.2f}"
         lines.append(row)
@@ -140,10 +149,9 @@ def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> lis
     for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
         err = ""
         if est is not None:
-            err = f"{100 * est.relative_error[i]:.2g} % (p = {est.observed_order[i]:.2f})"
-            err += "" if est.reliable[i] else " unreliable"
+            err = bound_text(est, i)
         rows.append([str(i + 1), f"{f:.2f}", kind, f"{r:.1e}", err])
-    return markdown(["mode", "frequency (Hz)", "kind", "residual", "estimated error"], rows)
+    return markdown(["mode", "frequency (Hz)", "kind", "residual", "error bound"], rows)
 
 
 def calibration_text(res: CalibrationResult, cal: Calibration) -> str:
@@ -172,7 +180,7 @@ def study_markdown(study: StudyResult) -> str:
     est = study.estimate
     lines += ["", f"Reference: Richardson extrapolation of the three finest P{study.order} runs; "
               "observed order per mode: " + ", ".join(f"{p:.2f}" for p in est.observed_order)]
-    lines += estimate_notes(est)[1:]
+    lines += extrapolation_notes(est)
     return "\n".join(lines) + "\n"
 
 
