@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 from .errors import EXIT_BAD_INPUT, EXIT_COMPUTATION, SceneError, ShaftfemError
-from .schema import MAX_MODE_COUNT
+from .schema import DEFAULT_MAX_DOFS, MAX_DOFS_LIMIT, MAX_MODE_COUNT
 
 # modal.FACTORIZERS plus "auto"; spelled out here because the CLI must not import
 # SciPy before a command needs it (`shaftfem size` loads no solver).
@@ -53,6 +53,8 @@ _percent = _number(float, 100, exclusive=True)
 _hz = _number(float, 1e7)
 _count = _number(int, MAX_MODE_COUNT)
 _workers = _number(int, 1024)
+_accuracy = _number(float, 50)
+_max_dofs = _number(int, MAX_DOFS_LIMIT)
 
 
 def _sizes(text: str) -> list[float]:
@@ -85,18 +87,33 @@ def _check_outputs(args) -> None:
 
 def _scene(args):
     """The scene with the command line's mesh and mode overrides."""
-    from .pipeline import with_mesh, with_modes
+    from .pipeline import with_accuracy, with_mesh, with_modes
     from .scene import load_scene
 
     scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
+    scene = with_accuracy(scene, args.accuracy, args.max_dofs, fixed=args.mesh_size is not None)
     return with_modes(scene, args.modes, args.max_frequency)
 
 
-def _run(args):
-    from .pipeline import run_modes
+def _bounded(args, estimate: bool = False):
+    """(result, bound or None, adaptation or None) as the command line asks."""
+    from .pipeline import run_bounded
 
-    return run_modes(_scene(args), use_cache=not args.no_cache, progress=_Progress(args.quiet),
-                     factorizer=args.solver)
+    result, est, adapted = run_bounded(_scene(args), estimate=estimate,
+                                       use_cache=not args.no_cache,
+                                       progress=_Progress(args.quiet), factorizer=args.solver)
+    if adapted is not None:
+        print(adapted.summary(), file=sys.stdout if adapted.reached else sys.stderr)
+    return result, est, adapted
+
+
+def _run(args):
+    return _bounded(args)[0]
+
+
+def _accuracy_status(args, adapted) -> int:
+    """1 when a strict accuracy was asked for and not reached."""
+    return 1 if adapted is not None and not adapted.reached and args.strict_accuracy else 0
 
 
 def _margin(args) -> float | None:
@@ -114,16 +131,11 @@ def _cmd_modes(args) -> int:
     from .export import modes_record
     from .tables import modes_text
 
-    result = _run(args)
-    est = None
-    if not args.no_estimate:
-        from .estimate import estimate_errors
-
-        est = estimate_errors(result, progress=_Progress(args.quiet), factorizer=args.solver)
+    result, est, adapted = _bounded(args, estimate=not args.no_estimate)
     print(modes_text(result, est))
     if args.json:
         _write_json(args.json, modes_record(result, est))
-    return 0
+    return _accuracy_status(args, adapted)
 
 
 def _cmd_check(args) -> int:
@@ -177,7 +189,7 @@ def _cmd_design(args) -> int:
     print(verdict_text(d.verdict) if d.verdict is not None
           else verdict_line(None).replace("**", ""))
     print(f"\nreport: {d.report}")
-    return 0 if d.ok else 1
+    return 1 if not d.ok else _accuracy_status(args, d.adapted)
 
 
 def _cmd_study(args) -> int:
@@ -300,6 +312,15 @@ def build_parser() -> argparse.ArgumentParser:
         if estimate:
             c.add_argument("--no-estimate", action="store_true",
                            help="skip the error estimate (two extra solves on coarser meshes)")
+        c.add_argument("--accuracy", type=_accuracy, metavar="PERCENT",
+                       help="adapt the mesh until every frequency's error bound is below "
+                       "PERCENT (default: the scene's [mesh] target_error_percent, else the "
+                       "fixed mesh)")
+        c.add_argument("--max-dofs", type=_max_dofs, metavar="N",
+                       help="DOF budget of the adaptive mesh (default: the scene's, else "
+                       f"{DEFAULT_MAX_DOFS})")
+        c.add_argument("--strict-accuracy", action="store_true",
+                       help="exit 1 when the accuracy asked for is not reached in the budget")
         c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid and the mesh")
         c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
         c.set_defaults(func=func)

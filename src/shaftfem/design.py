@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
     from .sizing import SizingResult
+    from .adapt import Adapted
     from .estimate import ErrorEstimate
 
 
@@ -35,6 +36,7 @@ class DesignResult:
     files: list[Path]
     pictures: list[Path]
     report: Path
+    adapted: Adapted | None = None   # how the mesh was adapted, when it was
 
     @property
     def ok(self) -> bool:
@@ -48,7 +50,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     """Everything a designer signs off, written to `out`. `margin`: required separation
     (fraction), default the scene's."""
     from .export import export_modes
-    from .pipeline import run_modes
+    from .pipeline import run_bounded
     from .render import render_all
     from .report import write_report
     from .resonance import check_result
@@ -60,12 +62,8 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     if scene.sizing is not None:
         say("sizing (equations 1-9)")
         sizing = size_screw(scene.sizing)
-    result = run_modes(scene, use_cache=use_cache, progress=say, factorizer=factorizer)
-    est = None
-    if estimate:
-        from .estimate import estimate_errors
-
-        est = estimate_errors(result, progress=say, factorizer=factorizer)
+    result, est, adapted = run_bounded(scene, estimate=estimate, use_cache=use_cache,
+                                       progress=say, factorizer=factorizer)
     verdict = check_result(result, margin)
     say("exporting mode shapes, mesh and solid")
     files = export_modes(result, out, est)
@@ -74,4 +72,4 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     report = write_report(out / "report.md", result, verdict, sizing, pictures, files, est)
     say(f"report written: {report}")
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
-                        files=files, pictures=pictures, report=report)
+                        files=files, pictures=pictures, report=report, adapted=adapted)

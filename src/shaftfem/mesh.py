@@ -124,12 +124,19 @@ def _load(path: Path) -> tuple[dict | None, str]:
                 straightened=int(fields["straightened"])), ""
 
 
+def remesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
+           sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> ShaftMesh:
+    """A new mesh of the solid following an element-size field (points (N, 3), tets
+    (E, 4), size at each point, m), not cached (shaftfem.adapt caches its last mesh)."""
+    return _generate(shape, shaft, grooves, settings, sizes)
+
+
 def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-              settings: MeshSettings) -> ShaftMesh:
+              settings: MeshSettings, sizes=None) -> ShaftMesh:
     from .occ import mesh_solid
 
     t0 = time.perf_counter()
-    points, cells = mesh_solid(shape.brep, shaft, grooves, settings)
+    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)

@@ -363,10 +363,30 @@ def _quarter_cylinder(gmsh, shaft: Shaft) -> None:
     turn = [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
     gmsh.model.mesh.setPeriodic(2, [planes["x0"]], [planes["y0"]], turn)
 
+def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[float, int]:
+    """Element sizes from a former mesh: `sizes` = (points (N, 3), tets (E, 4), size at
+    each point, m), a list-based view read through a PostView field. Returns the smallest
+    size and the view (to be removed after meshing)."""
+    points, tets, h = sizes
+    xyz = points[tets]
+    data = np.hstack([xyz[:, :, 0], xyz[:, :, 1], xyz[:, :, 2], h[tets]])
+    view = gmsh.view.add("element size")
+    gmsh.view.addListData(view, "SS", len(tets), data.ravel().tolist())
+    f = gmsh.model.mesh.field
+    field = f.add("PostView")
+    f.setNumber(field, "ViewTag", view)
+    f.setAsBackgroundMesh(field)
+    return float(h.min()), view
+
+
 def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
-               settings: MeshSettings) -> tuple[np.ndarray, np.ndarray]:
+               settings: MeshSettings,
+               sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+               ) -> tuple[np.ndarray, np.ndarray]:
     """Tetrahedra of the solid in `brep` (None: a plain shaft's 90-degree sector):
-    points (N, 3) in m and cells (E, 4 or 10) in meshio's node order."""
+    points (N, 3) in m and cells (E, 4 or 10) in meshio's node order. `sizes`: an
+    element-size field (points, tets, size at each point, m) in place of the
+    settings' groove and edge sizes."""
     import meshio
 
     with session("mesh") as s:
@@ -376,14 +396,17 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
         else:
             gmsh.model.occ.importShapes(str(brep))
             gmsh.model.occ.synchronize()
+        smallest, view = min(settings.edge_size, settings.size), None
+        if sizes is not None:
+            smallest, view = _background_sizes(gmsh, sizes)
+        elif grooves is not None:
+            _size_fields(gmsh, shaft, grooves, settings)
         s.option("Mesh.MeshSizeMax", settings.size)
-        s.option("Mesh.MeshSizeMin", min(settings.edge_size, settings.size) * 0.5)
+        s.option("Mesh.MeshSizeMin", smallest * 0.5)
         s.option("Mesh.MeshSizeFromPoints", 0)
         s.option("Mesh.MeshSizeFromCurvature", 0)
         s.option("Mesh.MeshSizeExtendFromBoundary", 0)
         s.option("Mesh.Optimize", 1)
-        if grooves is not None:
-            _size_fields(gmsh, shaft, grooves, settings)
         gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "shaft")
         try:
             gmsh.model.mesh.generate(3)
@@ -391,6 +414,9 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
                 gmsh.model.mesh.setOrder(2)
         except Exception as exc:  # gmsh raises a bare Exception with its log line
             raise MeshError(f"gmsh could not mesh the solid: {exc}") from None
+        finally:
+            if view is not None:
+                gmsh.view.remove(view)
         # through an .msh file and meshio: meshio puts the 10-node tets in VTK order
         fd, tmp = tempfile.mkstemp(suffix=".msh")
         os.close(fd)

@@ -12,7 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import SceneError
-from .schema import (DEFAULT_MARGIN_PERCENT, DEFAULT_MODE_COUNT, SCHEMA, read_toml,
+from .schema import (DEFAULT_MARGIN_PERCENT, DEFAULT_MAX_DOFS, DEFAULT_MODE_COUNT, SCHEMA,
+                     read_toml,
                      validate_table, where)
 
 # The scenes shipped with shaftfem: the repository's geometry/ folder, which an
@@ -127,6 +128,9 @@ class Scene:
     sizing: dict | None = None
     required_margin: float = DEFAULT_MARGIN_PERCENT / 100  # separation margin, fraction
     modes: ModeRequest = ModeRequest()
+    # adaptive meshing: the bound wanted on every frequency (fraction; None: fixed mesh)
+    target_error: float | None = None
+    max_dofs: int = DEFAULT_MAX_DOFS
 
 
 def resolve_scene_path(scene: str | Path | None) -> Path:
@@ -256,7 +260,10 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
                  mesh=mesh, excitations=tuple(excitations), sizing=sizing,
                  required_margin=res_t["required_margin_percent"] / 100,
                  modes=ModeRequest(count=modes_t["count"],
-                                   max_frequency=modes_t["max_frequency_hz"]))
+                                   max_frequency=modes_t["max_frequency_hz"]),
+                 target_error=(None if mesh_t["target_error_percent"] is None
+                               else mesh_t["target_error_percent"] / 100),
+                 max_dofs=mesh_t["max_dofs"])
 
 
 def _check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:

@@ -20,6 +20,9 @@ from .errors import SceneError
 DEFAULT_MARGIN_PERCENT = 15.0
 DEFAULT_MODE_COUNT = 10
 MAX_MODE_COUNT = 200
+# An adaptive mesh stops before it needs more DOFs than this (about 6 GB at the peak).
+DEFAULT_MAX_DOFS = 400_000
+MAX_DOFS_LIMIT = 20_000_000
 
 
 @dataclass(frozen=True)
@@ -153,6 +156,13 @@ SCHEMA: dict[str, dict[str, Key]] = {
         ),
         "order": Key(int, "element order: 1 (P1) or 2 (P2)", lambda v: v in (1, 2), "1 or 2",
                      default=2, required=False),
+        "target_error_percent": Key(
+            float, "bound wanted on every frequency's discretisation error, %: the mesh is "
+            "adapted until it holds (default: the fixed mesh above, with its bound)",
+            *upto(50, "up to 50 %"), required=False),
+        "max_dofs": Key(int, "DOF budget of an adaptive mesh",
+                        lambda v: 1000 <= v <= MAX_DOFS_LIMIT,
+                        f"1000 to {MAX_DOFS_LIMIT}", default=DEFAULT_MAX_DOFS, required=False),
     },
 }
 

@@ -30,7 +30,8 @@ def timings_line(result: ModalResult) -> str:
 
 def estimate_notes(est: ErrorEstimate) -> list[str]:
     """How the bounds were made, and where they rest on less."""
-    return [f"+- : bound on the discretisation error of each frequency ({est.method}; "
+    return [f"+- : bound on the discretisation error of each frequency ({est.method}, "
+            f"plus the mesh's volume difference from the solid, {100 * est.geometry:.1g} %; "
             "the computed frequencies converge from above)"] + list(est.notes)
 
 

@@ -1,0 +1,278 @@
+"""A mesh adapted to a requested accuracy: refine where the modes' error is, until
+every frequency's bound is below the target or the DOF budget is spent.
+
+Each round solves the modes, takes each element's share of each mode's recovery
+estimate (shaftfem.estimate), scaled to the mode's bound, and asks gmsh for a new
+mesh of the cached CAD solid whose element sizes equidistribute that error at
+AIM times the target: for P2 in 3D an element's share falls as h^(2k + 3) = h^7
+where the solution is smooth, so element K shrinks by r_K = (e_K / tau)^(1/7)
+(at most REFINE_MAX per round; where it is not smooth the next round refines
+again). Every round after the first is bounded with the round before as its
+coarser mesh, so no convergence rate is assumed for the bound itself.
+
+The last mesh and what its bound needs from the round before are cached, keyed by
+the scene's mesh key, the target and the budget: a warm re-run solves one mesh.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Callable
+
+import numpy as np
+
+from .store import atomic_path, cache_dir, checksum, content_key, discard
+
+if TYPE_CHECKING:
+    from .estimate import ErrorEstimate
+    from .geometry import ShaftShape
+    from .mesh import ShaftMesh
+    from .pipeline import ModalResult
+    from .scene import Scene
+
+ADAPT_VERSION = 1
+AIM = 0.5             # aim each new mesh at half the target: fewer rounds
+POWER = 7.0           # 2k + d for P2 elements in 3D
+REFINE_MAX = 4.0      # an element shrinks at most this much per round, and never grows:
+                      # each round's error is below the last, as the two-mesh bound needs
+SMALLEST = 0.05e-3    # no element below 0.05 mm
+MAX_ROUNDS = 8
+
+
+@dataclass(frozen=True)
+class Round:
+    dofs: int
+    max_bound: float     # largest bound of the round's frequencies (fraction)
+    seconds: float
+
+
+@dataclass(frozen=True)
+class Adapted:
+    """The final run, its bound, and how it was reached."""
+
+    result: ModalResult
+    estimate: ErrorEstimate
+    target: float        # requested bound, fraction
+    max_dofs: int
+    rounds: tuple[Round, ...]
+    reached: bool
+    why: str             # why the adaptation stopped short ('' when reached)
+    from_cache: bool
+
+    def summary(self) -> str:
+        steps = " -> ".join(f"{r.dofs} DOFs +- {100 * r.max_bound:.2g} %" for r in self.rounds)
+        head = (f"adaptive mesh for +- {100 * self.target:g} %: "
+                f"{'reached' if self.reached else 'NOT reached'}"
+                f"{' (from cache)' if self.from_cache else ''}; {steps}")
+        return head if self.reached else f"{head}\n{self.why}"
+
+
+def element_sizes(mesh: ShaftMesh) -> np.ndarray:
+    """Mean edge length of each element, m."""
+    v = mesh.points[mesh.cells[:, :4]]
+    pairs = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
+    return np.mean([np.linalg.norm(v[:, a] - v[:, b], axis=1) for a, b in pairs], axis=0)
+
+
+def size_field(mesh: ShaftMesh, shares: np.ndarray, target: float, largest: float
+               ) -> tuple[np.ndarray, float]:
+    """Sizes at the mesh's vertices for the next mesh, and its predicted element count.
+
+    shares: (n_modes, n_elements) each element's part of each mode's error (fraction of
+    the frequency); every mode's total is aimed at AIM * target."""
+    h = element_sizes(mesh)
+    aim = AIM * target
+    e = np.maximum(shares, 1e-300)
+    # equidistribution: N' tau = aim with N' = sum (e / tau)^(3 / POWER)
+    tau = (aim / np.sum(e ** (3 / POWER), axis=1)) ** (POWER / (POWER - 3))
+    r = np.max((e / tau[:, None]) ** (1 / POWER), axis=0)
+    r = np.clip(r, 1.0, REFINE_MAX)
+    new = np.clip(h / r, SMALLEST, largest)
+    vertices = mesh.cells[:, :4]
+    at = np.full(mesh.points.shape[0], np.inf)
+    np.minimum.at(at, vertices.ravel(), np.repeat(new, 4))
+    at[~np.isfinite(at)] = largest
+    return at, float(np.sum((h / new) ** 3))
+
+
+def adapt_key(scene: Scene, shape: ShaftShape, target: float, max_dofs: int) -> str:
+    """A hash of everything the adapted mesh depends on."""
+    from .mesh import mesh_key
+
+    payload = {"version": ADAPT_VERSION, "mesh": mesh_key(shape, scene.shaft, scene.grooves,
+                                                           scene.mesh),
+               "target": target, "max_dofs": max_dofs, "modes": scene.modes.count,
+               "max_frequency": scene.modes.max_frequency,
+               "material": [scene.material.youngs_modulus, scene.material.poisson_ratio,
+                            scene.material.density],
+               "constants": [AIM, POWER, REFINE_MAX, SMALLEST, MAX_ROUNDS]}
+    return content_key(payload)
+
+
+FIELDS = ("points", "cells", "order", "ratio", "straightened", "prev_f", "prev_eta",
+          "prev_kinds", "prev_dofs", "round_dofs", "round_bound", "round_seconds", "reached",
+          "why")
+
+
+def _save(path: Path, mesh: ShaftMesh, prev: tuple, rounds: list[Round], reached: bool,
+          why: str) -> None:
+    f, eta, kinds, dofs = prev
+    fields = dict(points=mesh.points, cells=mesh.cells, order=np.int64(mesh.order),
+                  ratio=np.float64(mesh.min_jacobian_ratio),
+                  straightened=np.int64(mesh.straightened), prev_f=f, prev_eta=eta,
+                  prev_kinds=np.array(kinds), prev_dofs=np.int64(dofs),
+                  round_dofs=np.array([r.dofs for r in rounds]),
+                  round_bound=np.array([r.max_bound for r in rounds]),
+                  round_seconds=np.array([r.seconds for r in rounds]),
+                  reached=np.bool_(reached), why=np.str_(why))
+    with atomic_path(path) as tmp:
+        np.savez(tmp, **fields, sha256=np.str_(_checksum(fields)))
+
+
+def _checksum(fields: dict) -> str:
+    return checksum(*(np.ascontiguousarray(fields[k]).tobytes() for k in FIELDS))
+
+
+def _load(path: Path) -> tuple[dict | None, str]:
+    import zipfile
+
+    try:
+        with np.load(path) as z:
+            fields = {k: z[k] for k in FIELDS}
+            stored = str(z["sha256"])
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+        return None, f"{type(exc).__name__}: {exc}"
+    if stored != _checksum(fields):
+        return None, "its content does not match its checksum"
+    return fields, ""
+
+
+def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = True,
+                 progress: Callable[[str], None] | None = None, factorizer: str = "auto",
+                 threads: int | None = None) -> Adapted:
+    """Solve `scene` on meshes adapted until every frequency's bound is below `target`
+    (fraction) or the next mesh would exceed `max_dofs`."""
+    from .geometry import build_shape
+    from .mesh import ShaftMesh, mesh_shape, remesh
+
+    say = progress or (lambda _m: None)
+    t0 = time.perf_counter()
+    shape = build_shape(scene.shaft, scene.grooves, use_cache=use_cache)
+    t_cad = time.perf_counter() - t0
+    key = adapt_key(scene, shape, target, max_dofs)
+    path = cache_dir() / "adapted" / f"{key}.npz"
+    if use_cache and path.exists():
+        z, why = _load(path)
+        if z is not None:
+            say("adapted mesh from cache; solving")
+            mesh = ShaftMesh(points=z["points"], cells=z["cells"], order=int(z["order"]),
+                             min_jacobian_ratio=float(z["ratio"]),
+                             straightened=int(z["straightened"]), seconds=0.0, from_cache=True)
+            prev = (z["prev_f"], z["prev_eta"], [str(k) for k in z["prev_kinds"]],
+                    int(z["prev_dofs"]))
+            rounds = tuple(Round(int(d), float(b), float(s)) for d, b, s in
+                           zip(z["round_dofs"], z["round_bound"], z["round_seconds"]))
+            result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads)
+            return Adapted(result=result, estimate=_bound(result, rec, prev), target=target,
+                           max_dofs=max_dofs, rounds=rounds, reached=bool(z["reached"]),
+                           why=str(z["why"]), from_cache=True)
+        discard(f"adapted mesh {key}", why, path)
+
+    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache)
+    prev, rounds, est = None, [], None
+    reached, why = False, ""
+    while True:
+        t = time.perf_counter()
+        say(f"adaptive round {len(rounds) + 1}: {mesh.n_elements} elements; solving")
+        result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads)
+        if prev is None:
+            # the modes of the first mesh fix which modes are followed from round to round
+            from .pipeline import with_modes
+
+            scene = with_modes(scene, count=result.modes.count)
+            bound = _planning_bound(rec.relative)
+        else:
+            est = _bound(result, rec, prev)
+            bound = est.relative_error
+        rounds.append(Round(result.modes.n_dofs, float(np.max(bound)),
+                            time.perf_counter() - t))
+        say(f"adaptive round {len(rounds)}: {result.modes.n_dofs} DOFs, largest bound "
+            f"{100 * np.max(bound):.2g} %")
+        # modes the coarser mesh cannot confirm (errors below its geometric noise) count
+        # with their recovery bound, marked as such in the table
+        if est is not None and np.max(bound) <= target:
+            reached = True
+            break
+        if len(rounds) >= MAX_ROUNDS:
+            why = (f"stopped after {MAX_ROUNDS} rounds with a largest bound of "
+                   f"{100 * np.max(bound):.2g} %")
+            break
+        # each element's share of each mode's error, scaled up to the mode's bound
+        shares = rec.elements * (bound / np.maximum(rec.relative, 1e-300))[:, None]
+        sizes, n_next = size_field(mesh, shares, target, scene.mesh.size)
+        predicted = int(result.modes.n_dofs * n_next / mesh.n_elements)
+        if predicted > max_dofs:
+            if est is None:  # a bound needs two meshes: take one within the budget
+                scale = (max_dofs / predicted) ** (1 / 3)
+                sizes = np.minimum(sizes / scale, scene.mesh.size)
+            else:
+                why = (f"the next mesh would need about {predicted} DOFs, above the budget "
+                       f"of {max_dofs} DOFs (--max-dofs); the bounds shown are those "
+                       f"reached at {result.modes.n_dofs} DOFs")
+                break
+        prev = (result.modes.frequencies, rec.relative, result.modes.kinds,
+                result.modes.n_dofs)
+        say(f"adaptive round {len(rounds) + 1}: remeshing (about {min(predicted, max_dofs)} "
+            "DOFs)")
+        mesh = remesh(shape, scene.shaft, scene.grooves, scene.mesh,
+                      (mesh.points, mesh.cells[:, :4], sizes))
+    if est is None:
+        raise AssertionError("an adaptive run ends with a bounded round")
+    _save(path, result.mesh, prev, rounds, reached, why)
+    return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
+                   rounds=tuple(rounds), reached=reached, why=why, from_cache=False)
+
+
+def _planning_bound(recovery: np.ndarray) -> np.ndarray:
+    """Before a second mesh exists: the recovery estimate with the safety factor (it may
+    fall short; it only plans the next mesh)."""
+    from .estimate import SAFETY
+
+    return SAFETY * recovery
+
+
+def _solve(scene: Scene, shape, mesh: ShaftMesh, t0: float, t_cad: float, factorizer: str,
+           threads: int | None):
+    """Assemble and solve one mesh; its ModalResult and recovery estimate."""
+    from .assembly import assemble
+    from .estimate import recovery_estimate
+    from .modal import modal_analysis
+    from .pipeline import ModalResult, Timings, scene_warnings
+
+    t = time.perf_counter()
+    system = assemble(mesh, scene.material, threads=threads)
+    t_assembly = time.perf_counter() - t
+    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
+                           scene.modes.count, factorizer=factorizer,
+                           max_frequency=scene.modes.max_frequency)
+    rec = recovery_estimate(mesh, scene.material, modes)
+    timings = Timings(cad=t_cad, mesh=mesh.seconds, assembly=t_assembly,
+                      factorisation=modes.factorisation_seconds,
+                      eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
+    result = ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
+                         timings=timings, warnings=scene_warnings(scene, modes))
+    return result, rec
+
+
+def _bound(result: ModalResult, rec, prev: tuple) -> ErrorEstimate:
+    from .estimate import combine, matched, volume_difference
+
+    f, eta, kinds, dofs = prev
+    m = result.modes
+    return combine(m.frequencies, rec.relative, matched(m.kinds, kinds, f),
+                   matched(m.kinds, kinds, eta), dofs,
+                   method=f"recovery, confirmed on the adaptive round before ({dofs} DOFs)",
+                   geometry=volume_difference(rec.volume, result.shape, result.scene.shaft))
+

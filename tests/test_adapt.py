@@ -1,0 +1,59 @@
+"""Adaptive meshes: the bound falls round by round to the accuracy asked for, the result
+is cached, and a budget too small for the accuracy is said plainly."""
+
+import numpy as np
+import pytest
+from references import torsion_hz
+
+from shaftfem.adapt import run_adaptive
+from shaftfem.cli import main
+from shaftfem.pipeline import with_mesh
+from shaftfem.scene import load_scene
+
+
+@pytest.fixture(scope="module")
+def coarse_cylinder():
+    return with_mesh(load_scene("plain_cylinder"), 12.0)
+
+
+def test_adaptivity_reaches_the_accuracy_with_a_falling_bound(coarse_cylinder):
+    target = 1e-4
+    a = run_adaptive(coarse_cylinder, target, 150_000, use_cache=False)
+    bounds = [r.max_bound for r in a.rounds]
+    assert len(bounds) >= 2 and a.reached and not a.why
+    assert all(b2 < b1 for b1, b2 in zip(bounds, bounds[1:])), bounds
+    assert np.max(a.estimate.relative_error) <= target
+    dofs = [r.dofs for r in a.rounds]
+    assert dofs == sorted(dofs) and dofs[-1] == a.result.modes.n_dofs <= 150_000
+    # the torsion frequency is inside its bound of the exact c_t / 2L, from above
+    s, m = coarse_cylinder.shaft, coarse_cylinder.material
+    i = a.result.modes.kinds.index("torsion")
+    exact = torsion_hz(1, s.length, m.youngs_modulus, m.poisson_ratio, m.density)
+    f = a.result.modes.frequencies[i]
+    assert 0 < f / exact - 1 <= a.estimate.relative_error[i]
+
+    # a warm re-run solves the cached adapted mesh only
+    warm = run_adaptive(coarse_cylinder, target, 150_000)
+    assert warm.from_cache and warm.result.modes.n_dofs == a.result.modes.n_dofs
+    assert np.allclose(warm.result.modes.frequencies, a.result.modes.frequencies, rtol=1e-9)
+    assert np.allclose(warm.estimate.relative_error, a.estimate.relative_error, rtol=1e-6)
+
+
+def test_a_budget_too_small_says_so_and_fails_only_when_strict(capsys):
+    args = ["modes", "plain_cylinder", "--mesh-size", "12", "--accuracy", "0.00001",
+            "--max-dofs", "30000", "-q"]
+    assert main(args) == 0
+    err = capsys.readouterr().err
+    assert "NOT reached" in err and "above the budget of 30000 DOFs" in err
+    assert main(args + ["--strict-accuracy"]) == 1
+    assert "NOT reached" in capsys.readouterr().err
+
+
+def test_every_frequency_is_printed_with_its_bound(capsys):
+    assert main(["modes", "plain_cylinder", "--mesh-size", "12", "--accuracy", "0.01",
+                 "-q"]) == 0
+    out = capsys.readouterr().out
+    assert "adaptive mesh for +- 0.01 %: reached" in out
+    rows = [line for line in out.splitlines() if line.strip()[:2].strip().isdigit()
+            and " Hz " in line]
+    assert len(rows) == 10 and all("+- " in r for r in rows)
