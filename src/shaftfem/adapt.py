@@ -17,7 +17,7 @@ the scene's mesh key, the target and the budget: a warm re-run solves one mesh.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable
 
@@ -276,3 +276,37 @@ def _bound(result: ModalResult, rec, prev: tuple) -> ErrorEstimate:
                    method=f"recovery, confirmed on the adaptive round before ({dofs} DOFs)",
                    geometry=volume_difference(rec.volume, result.shape, result.scene.shaft))
 
+
+def run_bounded(scene: Scene, estimate: bool = True, use_cache: bool = True,
+                progress: Callable[[str], None] | None = None, factorizer: str = "auto",
+                threads: int | None = None) -> tuple[ModalResult, ErrorEstimate | None,
+                                                      Adapted | None]:
+    """The modes with their error bounds: on a mesh adapted to the scene's target_error
+    when it has one, else on its fixed mesh (bounded when `estimate`)."""
+    if scene.target_error is not None:
+        a = run_adaptive(scene, scene.target_error, scene.max_dofs, use_cache=use_cache,
+                         progress=progress, factorizer=factorizer, threads=threads)
+        return a.result, a.estimate, a
+    from .pipeline import run_modes
+
+    result = run_modes(scene, use_cache=use_cache, progress=progress, factorizer=factorizer,
+                       threads=threads)
+    est = None
+    if estimate:
+        from .estimate import estimate_errors
+
+        est = estimate_errors(result, progress=progress, factorizer=factorizer, threads=threads)
+    return result, est, None
+
+
+def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | None = None,
+                  fixed: bool = False) -> Scene:
+    """The scene asking for another bound (percent) and DOF budget; `fixed`: on its
+    fixed mesh (the target is dropped unless one is given here)."""
+    target = scene.target_error
+    if fixed:
+        target = None
+    if percent is not None:
+        target = percent / 100
+    return replace(scene, target_error=target,
+                   max_dofs=scene.max_dofs if max_dofs is None else max_dofs)

@@ -87,7 +87,8 @@ def _check_outputs(args) -> None:
 
 def _scene(args):
     """The scene with the command line's mesh and mode overrides."""
-    from .pipeline import with_accuracy, with_mesh, with_modes
+    from .adapt import with_accuracy
+    from .pipeline import with_mesh, with_modes
     from .scene import load_scene
 
     scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
@@ -97,7 +98,7 @@ def _scene(args):
 
 def _bounded(args, estimate: bool = False):
     """(result, bound or None, adaptation or None) as the command line asks."""
-    from .pipeline import run_bounded
+    from .adapt import run_bounded
 
     result, est, adapted = run_bounded(_scene(args), estimate=estimate,
                                        use_cache=not args.no_cache,
@@ -311,7 +312,7 @@ def build_parser() -> argparse.ArgumentParser:
                            help="required separation margin, %% (default: scene, else 15)")
         if estimate:
             c.add_argument("--no-estimate", action="store_true",
-                           help="skip the error estimate (two extra solves on coarser meshes)")
+                           help="skip the error bound (one more solve on a coarser mesh)")
         c.add_argument("--accuracy", type=_accuracy, metavar="PERCENT",
                        help="adapt the mesh until every frequency's error bound is below "
                        "PERCENT (default: the scene's [mesh] target_error_percent, else the "
@@ -359,7 +360,8 @@ def build_parser() -> argparse.ArgumentParser:
     sw = dask_command("sweep", "run many variants of a scene on Dask (resumable)",
                       "sweep file (TOML): base scene and parameter axes or points", _cmd_sweep)
     sw.add_argument("--estimate", action="store_true",
-                    help="also estimate each frequency's error (three solves per variant)")
+                    help="also bound each frequency's error (one more solve per variant, "
+                    "on a coarser mesh)")
     dask_command("calibrate", "find unknown scene values that reproduce target frequencies "
                  "(grid on Dask, then least squares)",
                  "calibration file (TOML): base, unknowns, targets", _cmd_calibrate)

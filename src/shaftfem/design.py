@@ -50,7 +50,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     """Everything a designer signs off, written to `out`. `margin`: required separation
     (fraction), default the scene's."""
     from .export import export_modes
-    from .pipeline import run_bounded
+    from .adapt import run_bounded
     from .render import render_all
     from .report import write_report
     from .resonance import check_result

@@ -16,8 +16,7 @@ from .scene import Scene
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
     import numpy as np
 
-    from .adapt import Adapted
-    from .estimate import ErrorEstimate
+
     from .assembly import System
     from .geometry import ShaftShape
     from .mesh import ShaftMesh
@@ -119,41 +118,6 @@ def run_modes(scene: Scene, use_cache: bool = True,
                       eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
                        timings=timings, warnings=scene_warnings(scene, modes))
-
-
-def run_bounded(scene: Scene, estimate: bool = True, use_cache: bool = True,
-                progress: Callable[[str], None] | None = None, factorizer: str = "auto",
-                threads: int | None = None) -> tuple[ModalResult, ErrorEstimate | None,
-                                                      Adapted | None]:
-    """The modes with their error bounds: on a mesh adapted to the scene's target_error
-    when it has one, else on its fixed mesh (bounded when `estimate`)."""
-    if scene.target_error is not None:
-        from .adapt import run_adaptive
-
-        a = run_adaptive(scene, scene.target_error, scene.max_dofs, use_cache=use_cache,
-                         progress=progress, factorizer=factorizer, threads=threads)
-        return a.result, a.estimate, a
-    result = run_modes(scene, use_cache=use_cache, progress=progress, factorizer=factorizer,
-                       threads=threads)
-    est = None
-    if estimate:
-        from .estimate import estimate_errors
-
-        est = estimate_errors(result, progress=progress, factorizer=factorizer, threads=threads)
-    return result, est, None
-
-
-def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | None = None,
-                  fixed: bool = False) -> Scene:
-    """The scene asking for another bound (percent) and DOF budget; `fixed`: on its
-    fixed mesh (the target is dropped unless one is given here)."""
-    target = scene.target_error
-    if fixed:
-        target = None
-    if percent is not None:
-        target = percent / 100
-    return replace(scene, target_error=target,
-                   max_dofs=scene.max_dofs if max_dofs is None else max_dofs)
 
 
 def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
