@@ -25,7 +25,7 @@ def one(groove_mm: float, root_radius_mm: float | None) -> dict:
     from shaftfem.pipeline import run_modes
     from shaftfem.scene import load_scene
 
-    scene = load_scene("paper2018")
+    scene = replace(load_scene("paper2018"), max_dofs=20_000_000)  # research runs
     if root_radius_mm is not None:
         scene = replace(scene, grooves=replace(scene.grooves, root_radius=root_radius_mm * 1e-3))
     h = groove_mm * 1e-3

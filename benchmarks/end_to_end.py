@@ -33,7 +33,7 @@ def one(cache: str, mesh_mm: str | None, out: str) -> dict:
     from shaftfem.pipeline import run_modes, with_mesh
     from shaftfem.scene import load_scene
 
-    scene = load_scene("paper2018")
+    scene = replace(load_scene("paper2018"), max_dofs=20_000_000)  # research runs
     if mesh_mm and "/" in mesh_mm:
         s, g, e = (float(x) * 1e-3 for x in mesh_mm.split("/"))
         scene = replace(scene, mesh=replace(scene.mesh, size=s, groove_size=g, edge_size=e))

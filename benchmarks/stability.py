@@ -18,7 +18,7 @@ from shaftfem.scene import Material, scene_from_dict
 def scene(length, diameter, size, nu=0.277, order=2, grooves=None):
     d = {"shaft": {"length_mm": length, "diameter_mm": diameter},
          "material": {"youngs_modulus_mpa": 211000.0, "poisson_ratio": nu, "density_kg_m3": 7870.0},
-         "mesh": {"element_size_mm": size, "order": order}}
+         "mesh": {"element_size_mm": size, "order": order, "max_dofs": 20_000_000}}
     if grooves:
         d["grooves"] = grooves
     return scene_from_dict(d, "stability")

@@ -140,3 +140,23 @@ def test_unusable_output_paths_are_refused_before_the_solve(tmp_path, capsys, mo
     assert main(argv + ["-q"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and ("is a file" in err or "is a folder" in err)
+
+
+def test_a_mesh_beyond_the_dof_budget_is_refused_before_meshing(tmp_path, capsys):
+    """0.5 mm elements on the cylinder would need billions of DOFs: refused at once, with
+    the estimate and the way to raise the budget, exit 2; the scene key works too."""
+    import time
+
+    t0 = time.perf_counter()
+    assert main(["modes", "plain_cylinder", "--mesh-size", "0.5", "-q"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "Traceback" not in err[0]
+    assert re.search(r"about [0-9.e+]+ DOFs and [0-9.e+]+ GB, above the budget of 400000 DOFs",
+                     err[0]) and "--max-dofs" in err[0]
+    assert time.perf_counter() - t0 < 5
+    scene = tmp_path / "small_budget.toml"
+    scene.write_text((GEOMETRY_DIR / "plain_cylinder.toml").read_text()
+                     .replace("order = 2", "order = 2\nmax_dofs = 5000"))
+    assert main(["modes", str(scene), "-q"]) == 2
+    assert "above the budget of 5000 DOFs" in capsys.readouterr().err
+    assert main(["modes", str(scene), "--mesh-size", "12", "--max-dofs", "2000", "-q"]) == 2

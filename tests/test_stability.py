@@ -22,7 +22,7 @@ def _scene(length_mm, diameter_mm, size_mm, nu=0.277, order=2, grooves=None):
         "shaft": {"length_mm": length_mm, "diameter_mm": diameter_mm},
         "material": {"youngs_modulus_mpa": 211000.0, "poisson_ratio": nu,
                      "density_kg_m3": 7870.0},
-        "mesh": {"element_size_mm": size_mm, "order": order},
+        "mesh": {"element_size_mm": size_mm, "order": order, "max_dofs": 2_000_000},
     }
     if grooves:
         d["grooves"] = grooves

@@ -155,10 +155,11 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
     """Solve `scene` on meshes adapted until every frequency's bound is below `target`
     (fraction) or the next mesh would exceed `max_dofs`."""
     from .geometry import build_shape
-    from .mesh import ShaftMesh, mesh_shape, remesh
+    from .mesh import ShaftMesh, check_budget, mesh_shape, remesh
 
     say = progress or (lambda _m: None)
     t0 = time.perf_counter()
+    check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
     shape = build_shape(scene.shaft, scene.grooves, use_cache=use_cache)
     t_cad = time.perf_counter() - t0
     key = adapt_key(scene, shape, target, max_dofs)

@@ -21,6 +21,10 @@ class SceneError(ShaftfemError, ValueError):
     exit_code = EXIT_BAD_INPUT
 
 
+class BudgetError(SceneError):
+    """The mesh asked for would need more DOFs (and memory) than the budget allows."""
+
+
 class GeometryError(ShaftfemError):
     """The CAD construction failed or produced a solid that fails its checks."""
 

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import MeshError
+from .errors import BudgetError, MeshError
 from .geometry import ShaftShape
 from .scene import Grooves, MeshSettings, Shaft, cell_type
 from .store import atomic_path, cache_dir, checksum, content_key, discard
@@ -66,6 +66,59 @@ class ShaftMesh:
     def to_skfem(self):
         """The same mesh as a scikit-fem MeshTet1/MeshTet2."""
         return skfem_mesh(self.points, self.cells)
+
+
+# Tetrahedra gmsh makes per h^3 of volume (a regular tetrahedron fills h^3 / 8.5; gmsh's
+# are less regular), and DOFs per element of a P2 / P1 mesh; fitted on the shipped scenes
+# (within 30 %, enough to refuse a size that is off by orders of magnitude).
+ELEMENTS_PER_H3 = 6.0
+DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5}
+BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (README, "Speed and memory")
+
+
+def _graded(h0: float, h1: float, d0: float, d1: float, measure) -> float:
+    """Elements in a layer whose size is h0 up to distance d0 and grows linearly to h1 at
+    d1, with `measure(x)` the area (or perimeter) at distance x of the feature."""
+    x = np.linspace(0.0, d1, 400)
+    h = np.where(x <= d0, h0, h0 + (h1 - h0) * (x - d0) / max(d1 - d0, 1e-12))
+    return float(np.trapezoid(measure(x) / h**3, x)) * ELEMENTS_PER_H3
+
+
+def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings) -> int:
+    """About how many DOFs `settings` give on this shaft, without meshing: the shaft at
+    the element size, plus a graded layer over the groove faces and a tube around the
+    floor edges (the size fields of occ.py)."""
+    from .occ import EDGE_GRADING
+
+    s, order = settings.size, settings.order
+    volume = np.pi * shaft.radius**2 * shaft.length
+    elements = ELEMENTS_PER_H3 * volume / s**3
+    if grooves is not None:
+        g, gs, es = grooves, settings.groove_size, settings.edge_size
+        r_mid = shaft.radius - g.depth / 2
+        helix = g.length * np.hypot(1.0, 2 * np.pi * r_mid / g.pitch)
+        faces = len(g.hands) * helix * (g.width + 2 * g.depth)
+        if gs < s:
+            elements += _graded(gs, s, 0.5 * gs, 0.5 * gs + 2.5 * (s - gs),
+                                lambda x: np.full_like(x, faces))
+        if es < gs:
+            edges = 2 * len(g.hands) * helix
+            elements += _graded(es, gs, 0.5 * es, 0.5 * es + EDGE_GRADING * (gs - es),
+                                lambda x: edges * np.pi * np.maximum(x, 0.5 * es))
+    return int(elements * DOFS_PER_ELEMENT[order])
+
+
+def check_budget(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
+                 max_dofs: int) -> int:
+    """Refuse, before meshing, a mesh that would need more than `max_dofs` DOFs."""
+    n = estimate_dofs(shaft, grooves, settings)
+    if n > max_dofs:
+        raise BudgetError(
+            f"element size {settings.size * 1e3:g} mm (grooves {settings.groove_size * 1e3:.3g} "
+            f"mm, floor edges {settings.edge_size * 1e3:.3g} mm) would need about {n:.2g} DOFs "
+            f"and {n * BYTES_PER_DOF / 1e9:.2g} GB, above the budget of {max_dofs} DOFs; "
+            "use a larger size, or raise the budget ([mesh] max_dofs or --max-dofs)")
+    return n
 
 
 def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,

@@ -88,11 +88,12 @@ def run_modes(scene: Scene, use_cache: bool = True,
     `threads`: assembly threads (default one per core; sweep workers use 1)."""
     from .assembly import assemble
     from .geometry import build_shape
-    from .mesh import mesh_shape
+    from .mesh import check_budget, mesh_shape
     from .modal import modal_analysis
 
     say = progress or (lambda _msg: None)
     t0 = time.perf_counter()
+    check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
 
     say("building the shaft's solid (CAD)")
     shape = build_shape(scene.shaft, scene.grooves, use_cache=use_cache)
