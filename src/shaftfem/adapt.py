@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-from .store import atomic_path, cache_dir, checksum, content_key, discard
+from .store import cache_dir, content_key, discard, load_arrays, save_arrays
 
 if TYPE_CHECKING:
     from .estimate import ErrorEstimate
@@ -111,42 +111,21 @@ def adapt_key(scene: Scene, shape: ShaftShape, target: float, max_dofs: int) -> 
     return content_key(payload)
 
 
-FIELDS = ("points", "cells", "order", "ratio", "straightened", "prev_f", "prev_eta",
-          "prev_kinds", "prev_dofs", "round_dofs", "round_bound", "round_seconds", "reached",
-          "why")
+HISTORY = ("prev_f", "prev_eta", "prev_kinds", "prev_dofs", "round_dofs", "round_bound",
+           "round_seconds", "reached", "why")
 
 
 def _save(path: Path, mesh: ShaftMesh, prev: tuple, rounds: list[Round], reached: bool,
           why: str) -> None:
+    from .mesh import mesh_arrays
+
     f, eta, kinds, dofs = prev
-    fields = dict(points=mesh.points, cells=mesh.cells, order=np.int64(mesh.order),
-                  ratio=np.float64(mesh.min_jacobian_ratio),
-                  straightened=np.int64(mesh.straightened), prev_f=f, prev_eta=eta,
-                  prev_kinds=np.array(kinds), prev_dofs=np.int64(dofs),
-                  round_dofs=np.array([r.dofs for r in rounds]),
-                  round_bound=np.array([r.max_bound for r in rounds]),
-                  round_seconds=np.array([r.seconds for r in rounds]),
-                  reached=np.bool_(reached), why=np.str_(why))
-    with atomic_path(path) as tmp:
-        np.savez(tmp, **fields, sha256=np.str_(_checksum(fields)))
-
-
-def _checksum(fields: dict) -> str:
-    return checksum(*(np.ascontiguousarray(fields[k]).tobytes() for k in FIELDS))
-
-
-def _load(path: Path) -> tuple[dict | None, str]:
-    import zipfile
-
-    try:
-        with np.load(path) as z:
-            fields = {k: z[k] for k in FIELDS}
-            stored = str(z["sha256"])
-    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
-        return None, f"{type(exc).__name__}: {exc}"
-    if stored != _checksum(fields):
-        return None, "its content does not match its checksum"
-    return fields, ""
+    save_arrays(path, dict(mesh_arrays(mesh), prev_f=f, prev_eta=eta,
+                           prev_kinds=np.array(kinds), prev_dofs=np.int64(dofs),
+                           round_dofs=np.array([r.dofs for r in rounds]),
+                           round_bound=np.array([r.max_bound for r in rounds]),
+                           round_seconds=np.array([r.seconds for r in rounds]),
+                           reached=np.bool_(reached), why=np.str_(why)))
 
 
 def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = True,
@@ -155,7 +134,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
     """Solve `scene` on meshes adapted until every frequency's bound is below `target`
     (fraction) or the next mesh would exceed `max_dofs`."""
     from .geometry import build_shape
-    from .mesh import ShaftMesh, check_budget, mesh_shape, remesh
+    from .mesh import MESH_ARRAYS, check_budget, mesh_from_arrays, mesh_shape, remesh
 
     say = progress or (lambda _m: None)
     t0 = time.perf_counter()
@@ -165,12 +144,10 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
     key = adapt_key(scene, shape, target, max_dofs)
     path = cache_dir() / "adapted" / f"{key}.npz"
     if use_cache and path.exists():
-        z, why = _load(path)
+        z, why = load_arrays(path, MESH_ARRAYS + HISTORY)
         if z is not None:
             say("adapted mesh from cache; solving")
-            mesh = ShaftMesh(points=z["points"], cells=z["cells"], order=int(z["order"]),
-                             min_jacobian_ratio=float(z["ratio"]),
-                             straightened=int(z["straightened"]), seconds=0.0, from_cache=True)
+            mesh = mesh_from_arrays(z, 0.0)
             prev = (z["prev_f"], z["prev_eta"], [str(k) for k in z["prev_kinds"]],
                     int(z["prev_dofs"]))
             rounds = tuple(Round(int(d), float(b), float(s)) for d, b, s in

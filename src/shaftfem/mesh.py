@@ -16,19 +16,18 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict, dataclass
-from pathlib import Path
 
 import numpy as np
 
 from .errors import BudgetError, MeshError
 from .geometry import ShaftShape
 from .scene import Grooves, MeshSettings, Shaft, cell_type
-from .store import atomic_path, cache_dir, checksum, content_key, discard
+from .store import cache_dir, content_key, discard, load_arrays, save_arrays
 
 MIN_JACOBIAN_RATIO = 0.02  # smallest det J / largest det J allowed within one element
 # Bump when the meshing or the cache entry changes, so old cached meshes are not reused
-# (2: entries carry checksums).
-MESH_VERSION = 2
+# (2: entries carry checksums; 3: the checksum covers the arrays in name order).
+MESH_VERSION = 3
 
 
 def skfem_mesh(points: np.ndarray, cells: np.ndarray):
@@ -142,39 +141,31 @@ def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     key = mesh_key(shape, shaft, grooves, settings)
     path = cache_dir() / "meshes" / f"{key}.npz"
     if use_cache and path.exists():
-        cached, why = _load(path)
-        if cached is not None:
-            return ShaftMesh(**cached, seconds=time.perf_counter() - t0, from_cache=True)
+        fields, why = load_arrays(path, MESH_ARRAYS)
+        if fields is not None:
+            return mesh_from_arrays(fields, time.perf_counter() - t0)
         discard(f"mesh {key}", why, path)
     mesh = _generate(shape, shaft, grooves, settings)
-    fields = dict(points=mesh.points, cells=mesh.cells, order=np.int64(mesh.order),
-                  ratio=np.float64(mesh.min_jacobian_ratio),
-                  straightened=np.int64(mesh.straightened))
-    with atomic_path(path) as tmp:
-        np.savez(tmp, **fields, sha256=np.str_(_checksum(fields)))
+    save_arrays(path, mesh_arrays(mesh))
     return mesh
 
 
-def _checksum(fields: dict) -> str:
-    return checksum(*(np.ascontiguousarray(fields[k]).tobytes()
-                      for k in ("points", "cells", "order", "ratio", "straightened")))
+MESH_ARRAYS = ("points", "cells", "order", "ratio", "straightened")
 
 
-def _load(path: Path) -> tuple[dict | None, str]:
-    """A cached mesh's fields if the file is whole and unaltered, else (None, why)."""
-    import zipfile
+def mesh_arrays(mesh: ShaftMesh) -> dict[str, np.ndarray]:
+    """A mesh as the named arrays of a cache entry."""
+    return dict(points=mesh.points, cells=mesh.cells, order=np.int64(mesh.order),
+                ratio=np.float64(mesh.min_jacobian_ratio),
+                straightened=np.int64(mesh.straightened))
 
-    try:
-        with np.load(path) as z:
-            fields = {k: z[k] for k in ("points", "cells", "order", "ratio", "straightened")}
-            stored = str(z["sha256"])
-    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
-        return None, f"{type(exc).__name__}: {exc}"
-    if stored != _checksum(fields):
-        return None, "its content does not match its checksum"
-    return dict(points=fields["points"], cells=fields["cells"], order=int(fields["order"]),
-                min_jacobian_ratio=float(fields["ratio"]),
-                straightened=int(fields["straightened"])), ""
+
+def mesh_from_arrays(fields: dict, seconds: float) -> ShaftMesh:
+    """The mesh of a cache entry's arrays."""
+    return ShaftMesh(points=fields["points"], cells=fields["cells"], order=int(fields["order"]),
+                     min_jacobian_ratio=float(fields["ratio"]),
+                     straightened=int(fields["straightened"]), seconds=seconds,
+                     from_cache=True)
 
 
 def remesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,

@@ -43,6 +43,32 @@ def discard(what: str, why: str, *paths: Path) -> None:
         Path(p).unlink(missing_ok=True)
 
 
+def save_arrays(path: Path, fields: dict[str, np.ndarray]) -> None:
+    """A cache entry of named arrays (.npz), with a checksum of them, written atomically."""
+    with atomic_path(path) as tmp:
+        np.savez(tmp, **fields, sha256=np.str_(_arrays_checksum(fields)))
+
+
+def load_arrays(path: Path, names: tuple[str, ...]) -> tuple[dict | None, str]:
+    """The arrays `names` of a save_arrays entry if it is whole and unaltered, else
+    (None, why)."""
+    import zipfile
+
+    try:
+        with np.load(path) as z:
+            fields = {k: z[k] for k in names}
+            stored = str(z["sha256"])
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+        return None, f"{type(exc).__name__}: {exc}"
+    if stored != _arrays_checksum(fields):
+        return None, "its content does not match its checksum"
+    return fields, ""
+
+
+def _arrays_checksum(fields: dict) -> str:
+    return checksum(*(np.ascontiguousarray(fields[k]).tobytes() for k in sorted(fields)))
+
+
 def cache_dir() -> Path:
     """The cache root: $SHAFTFEM_CACHE, else ~/.cache/shaftfem."""
     root = os.environ.get("SHAFTFEM_CACHE") or Path.home() / ".cache" / "shaftfem"
