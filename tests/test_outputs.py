@@ -120,7 +120,7 @@ def test_failure_mid_export_leaves_no_file(cylinder, tmp_path, monkeypatch):
     out = tmp_path / "out"
     with pytest.raises(OSError, match="injected"):
         export_modes(cylinder, out)
-    assert list(out.iterdir()) == []
+    assert list(out.iterdir()) == []  # not even a manifest
 
 
 def test_pictures_have_a_panel_per_mode_a_colour_bar_and_moving_gifs(cylinder, tmp_path):
@@ -166,3 +166,57 @@ def test_pictures_have_a_panel_per_mode_a_colour_bar_and_moving_gifs(cylinder, t
             im.seek(i)
             frames.append(np.asarray(im.convert("RGB")))
         assert np.any(frames[0] != frames[1])  # it moves
+
+
+KILLER = """
+import os, signal, sys
+from pathlib import Path
+import shaftfem.runtime
+shaftfem.runtime.configure_threads()
+from shaftfem.export import export_modes
+from shaftfem.pipeline import run_modes, with_mesh, with_modes
+from shaftfem.scene import load_scene
+
+out, kill_at = Path(sys.argv[1]), int(sys.argv[2])
+moves, real = [0], os.replace
+
+def replace(src, dst):  # SIGKILL at the kill_at-th move into the visible folder
+    if Path(dst).parent == out:
+        if moves[0] == kill_at:
+            os.kill(os.getpid(), signal.SIGKILL)
+        moves[0] += 1
+    return real(src, dst)
+
+os.replace = replace
+export_modes(run_modes(with_modes(with_mesh(load_scene("plain_cylinder"), 16.0), count=3)), out)
+"""
+
+
+def test_an_export_killed_anywhere_is_complete_or_vouched_for_by_no_manifest(tmp_path):
+    """SIGKILL before the first file is published, in the middle, and after the last file
+    but before the manifest: no manifest vouches for a mixed set, and the next run removes
+    the killed run's staging folder and publishes a complete set."""
+    import os
+    import subprocess
+    import sys
+
+    from shaftfem.export import MANIFEST
+    from shaftfem.store import STAGING, manifest_complete
+
+    out = tmp_path / "out"
+    env = {**os.environ, "SHAFTFEM_CACHE": str(tmp_path / "cache")}
+
+    def run(kill_at):
+        return subprocess.run([sys.executable, "-c", KILLER, str(out), str(kill_at)], env=env,
+                              capture_output=True, text=True, timeout=300).returncode
+
+    assert run(10**6) == 0 and manifest_complete(out, MANIFEST)   # a complete first export
+    n_files = len(list(out.iterdir())) - 1
+    for kill_at in (0, 3, n_files):
+        assert run(kill_at) == -9
+        assert not manifest_complete(out, MANIFEST)
+        assert not (out / MANIFEST).exists()
+        assert [p for p in out.iterdir() if p.name.startswith(STAGING)]  # left by the kill
+    assert run(10**6) == 0 and manifest_complete(out, MANIFEST)
+    assert not [p for p in out.iterdir() if p.name.startswith(STAGING)]
+    assert len(list(out.iterdir())) == n_files + 1

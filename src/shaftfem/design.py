@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING, Callable
 
 from .scene import Scene
 
+MANIFEST = "design.manifest.json"   # lists every file of the last complete design run
+
 if TYPE_CHECKING:
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
@@ -49,10 +51,11 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
                progress: Callable[[str], None] | None = None) -> DesignResult:
     """Everything a designer signs off, written to `out`. `margin`: required separation
     (fraction), default the scene's."""
-    from .export import export_modes
+    from .export import write_mode_files
     from .adapt import run_bounded
-    from .render import render_all
+    from .render import render_into
     from .report import write_report
+    from .store import staged_directory
     from .resonance import check_result
     from .sizing import size_screw
 
@@ -65,11 +68,15 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     result, est, adapted = run_bounded(scene, estimate=estimate, use_cache=use_cache,
                                        progress=say, factorizer=factorizer)
     verdict = check_result(result, margin)
-    say("exporting mode shapes, mesh and solid")
-    files = export_modes(result, out, est)
-    say("rendering pictures")
-    pictures = render_all(result, out)
-    report = write_report(out / "report.md", result, verdict, sizing, pictures, files, est)
+    # every file of the run is published at once, under design.manifest.json
+    with staged_directory(out, MANIFEST) as stage:
+        say("exporting mode shapes, mesh and solid")
+        files = write_mode_files(result, stage, est)
+        say("rendering pictures")
+        pictures = render_into(result, stage)
+        write_report(stage / "report.md", result, verdict, sizing, pictures, files, est)
+    files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
+    report = out / "report.md"
     say(f"report written: {report}")
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
                         files=files, pictures=pictures, report=report, adapted=adapted)

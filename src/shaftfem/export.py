@@ -76,10 +76,22 @@ KINDS = ("bending", "torsion", "axial", "mixed")
 KIND_FIELD = "kind: " + ", ".join(f"{i} {k}" for i, k in enumerate(KINDS))
 
 
+MANIFEST = "export.manifest.json"
+
+
 def export_modes(result: ModalResult, out: str | Path,
                  est: ErrorEstimate | None = None) -> list[Path]:
     """Mode shapes for ParaView (mode_NN.vtu, modes.pvd, modes_all.vtu, open_in_paraview.py),
-    modes.csv, modes.json, mesh.msh, shaft.brep and shaft.step; returns the files written."""
+    modes.csv, modes.json, mesh.msh, shaft.brep and shaft.step, published together in `out`
+    under export.manifest.json; returns the files written."""
+    with staged_directory(out, MANIFEST) as stage:
+        written = write_mode_files(result, stage, est)
+    return [Path(out) / p.name for p in written]
+
+
+def write_mode_files(result: ModalResult, folder: Path,
+                     est: ErrorEstimate | None = None) -> list[Path]:
+    """The files of export_modes, written straight into `folder`."""
     import shutil
 
     import meshio
@@ -90,33 +102,33 @@ def export_modes(result: ModalResult, out: str | Path,
     shapes = result.shapes_at_points()
     mesh, m = result.mesh, result.modes
     names = []
-    with staged_directory(out) as stage:
-        # one array name in every step, so that a filter set up on one mode shows them all
-        for k, (f, kind, u) in enumerate(zip(m.frequencies, m.kinds, shapes)):
-            names.append(f"mode_{k + 1:02d}.vtu")
-            write_vtu(stage / names[-1], mesh,
-                      {"displacement": u, "displacement_magnitude": np.linalg.norm(u, axis=1)},
-                      {"mode": k + 1, "frequency_hz": float(f), KIND_FIELD: KINDS.index(kind)})
-        pvd = ['<?xml version="1.0"?>',
-               '<VTKFile type="Collection" version="0.1">', "  <Collection>"]
-        pvd += [f'    <DataSet timestep="{k + 1}" part="0" file="{n}"/>'
-                for k, n in enumerate(names)]
-        pvd += ["  </Collection>", "</VTKFile>", ""]
-        (stage / "modes.pvd").write_text("\n".join(pvd))
-        # every mode in one file, as named arrays (for tools that read one file)
-        write_vtu(stage / "modes_all.vtu", mesh,
-                  {f"mode_{k + 1:02d}": u for k, u in enumerate(shapes)},
-                  {"frequency_hz": m.frequencies, KIND_FIELD: [KINDS.index(k) for k in m.kinds]})
-        shutil.copyfile(Path(__file__).with_name("paraview_view.py"),
-                        stage / "open_in_paraview.py")
-        write_csv(stage / "modes.csv", modes_table(result, est))
-        (stage / "modes.json").write_text(json_text(modes_record(result, est)))
-        meshio.write(stage / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)]),
-                     file_format="gmsh", binary=False)
-        write_solid(result.shape.brep, result.scene.shaft,
-                    [stage / "shaft.step", stage / "shaft.brep"])
-        written = sorted(p.name for p in stage.iterdir())
-    return [Path(out) / n for n in written]
+    # one array name in every step, so that a filter set up on one mode shows them all
+    for k, (f, kind, u) in enumerate(zip(m.frequencies, m.kinds, shapes)):
+        names.append(f"mode_{k + 1:02d}.vtu")
+        write_vtu(folder / names[-1], mesh,
+                  {"displacement": u, "displacement_magnitude": np.linalg.norm(u, axis=1)},
+                  {"mode": k + 1, "frequency_hz": float(f), KIND_FIELD: KINDS.index(kind)})
+    pvd = ['<?xml version="1.0"?>',
+           '<VTKFile type="Collection" version="0.1">', "  <Collection>"]
+    pvd += [f'    <DataSet timestep="{k + 1}" part="0" file="{n}"/>'
+            for k, n in enumerate(names)]
+    pvd += ["  </Collection>", "</VTKFile>", ""]
+    (folder / "modes.pvd").write_text("\n".join(pvd))
+    # every mode in one file, as named arrays (for tools that read one file)
+    write_vtu(folder / "modes_all.vtu", mesh,
+              {f"mode_{k + 1:02d}": u for k, u in enumerate(shapes)},
+              {"frequency_hz": m.frequencies, KIND_FIELD: [KINDS.index(k) for k in m.kinds]})
+    shutil.copyfile(Path(__file__).with_name("paraview_view.py"),
+                    folder / "open_in_paraview.py")
+    write_csv(folder / "modes.csv", modes_table(result, est))
+    (folder / "modes.json").write_text(json_text(modes_record(result, est)))
+    meshio.write(folder / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)]),
+                 file_format="gmsh", binary=False)
+    write_solid(result.shape.brep, result.scene.shaft,
+                [folder / "shaft.step", folder / "shaft.brep"])
+    return [folder / n for n in names + ["modes.pvd", "modes_all.vtu", "open_in_paraview.py",
+                                          "modes.csv", "modes.json", "mesh.msh", "shaft.step",
+                                          "shaft.brep"]]
 
 
 # --------------------------------------------------------------------------

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .store import atomic_path
+from .store import atomic_path, staged_directory
 
 if TYPE_CHECKING:
     from .pipeline import ModalResult
@@ -186,8 +186,18 @@ def render_mode_gifs(result: ModalResult, out: str | Path, frames: int = GIF_FRA
     return written
 
 
+MANIFEST = "render.manifest.json"
+
+
 def render_all(result: ModalResult, out: str | Path) -> list[Path]:
-    """geometry.png, modes.png and mode_NN.gif per mode, in `out`."""
-    out = Path(out)
-    return [render_geometry(result, out / "geometry.png"),
-            render_modes(result, out / "modes.png"), *render_mode_gifs(result, out)]
+    """geometry.png, modes.png and mode_NN.gif per mode, published together in `out`
+    under render.manifest.json."""
+    with staged_directory(out, MANIFEST) as stage:
+        written = render_into(result, stage)
+    return [Path(out) / p.name for p in written]
+
+
+def render_into(result: ModalResult, folder: Path) -> list[Path]:
+    """The pictures of render_all, written straight into `folder`."""
+    return [render_geometry(result, folder / "geometry.png"),
+            render_modes(result, folder / "modes.png"), *render_mode_gifs(result, folder)]

@@ -136,19 +136,59 @@ def write_csv(path: str | Path, rows: list[dict]) -> Path:
     return Path(path)
 
 
-@contextmanager
-def staged_directory(out: str | Path) -> Iterator[Path]:
-    """Write a set of files into a hidden staging folder; move them into `out` at the end.
+STAGING = ".staging-"
 
-    On any failure the staging folder is removed and `out` gets none of the files.
+
+@contextmanager
+def staged_directory(out: str | Path, manifest: str) -> Iterator[Path]:
+    """Write a set of files into a hidden staging folder, then publish them in `out`
+    with the manifest `out/manifest` (their names and SHA-256) written last.
+
+    The files of a run are trusted when its manifest lists them (manifest_complete).
+    Publishing first removes the old manifest, so a run killed while it moves files
+    leaves no manifest that could vouch for a mixed set; on a failure `out` gets none
+    of the files, and the staging folders of killed runs are removed by the next.
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=".staging-", dir=out))
+    _remove_stale_stages(out)
+    stage = Path(tempfile.mkdtemp(prefix=f"{STAGING}{os.getpid()}-", dir=out))
     try:
         yield stage
-        for f in sorted(stage.iterdir()):
+        files = sorted(stage.iterdir())
+        sums = {f.name: checksum(f.read_bytes()) for f in files}
+        write_json(stage / manifest, {"files": sums})
+        (out / manifest).unlink(missing_ok=True)
+        for f in files + [stage / manifest]:  # the manifest last
             os.chmod(f, 0o644)
             os.replace(f, out / f.name)
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+def manifest_complete(out: str | Path, manifest: str) -> bool:
+    """Whether `out/manifest` exists and every file it lists is there, unaltered."""
+    try:
+        listed = json.loads((Path(out) / manifest).read_text())["files"]
+        return all(checksum((Path(out) / name).read_bytes()) == s for name, s in listed.items())
+    except (OSError, ValueError, KeyError, TypeError):
+        return False
+
+
+def _remove_stale_stages(out: Path) -> None:
+    """Staging folders whose process is gone (killed runs)."""
+    for stage in out.glob(f"{STAGING}*"):
+        pid = stage.name[len(STAGING):].split("-")[0]
+        if pid.isdigit() and _alive(int(pid)):
+            continue
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
