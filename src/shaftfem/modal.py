@@ -163,7 +163,17 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
     sigma = -SHIFT_FACTOR * scale
     t0 = time.perf_counter()
     A = (K - sigma * M).tocsr()
-    solve, used = factorize(A, factorizer)
+    try:
+        solve, used = factorize(A, factorizer)
+    except SolverError:
+        raise
+    except MemoryError:
+        raise SolverError(f"not enough memory to factorise K - sigma M ({A.shape[0]} DOFs); "
+                          "use a coarser mesh or a smaller DOF budget (--max-dofs)") from None
+    except Exception as exc:  # SuperLU, PARDISO and CHOLMOD each raise their own kind
+        raise SolverError(f"factorising K - sigma M ({A.shape[0]} DOFs) failed: "
+                          f"{type(exc).__name__}: {exc}; a degenerate element or a "
+                          "material of absurd stiffness can cause it") from None
     t1 = time.perf_counter()
     k = n_modes + RIGID_BODY_MODES
     while True:
@@ -194,6 +204,8 @@ def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: fl
                        ncv=min(n_dofs, max(2 * k + 1, 40)), v0=v0)
     except sp.linalg.ArpackNoConvergence as exc:
         raise SolverError(f"the eigen solver did not converge: {exc}") from None
+    except sp.linalg.ArpackError as exc:
+        raise SolverError(f"the eigen solver (ARPACK) failed: {exc}") from None
     # One step of subspace iteration with the same factors, then Rayleigh-Ritz:
     # it takes ARPACK's vectors (residuals ~1e-6) down to ~1e-9 and splits
     # near-repeated pairs cleanly.

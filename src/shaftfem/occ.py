@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import GeometryError, MeshError
+from .errors import GeometryError, MeshError, ShaftfemError
 from .profile import TOOL_OVERSHOOT, profile_outline
 from .scene import Grooves, MeshSettings, Shaft, cell_type
 
@@ -92,6 +92,18 @@ def session(model: str, verbose: bool = False):
             gmsh.model.remove()
             gmsh.model.setCurrent(previous)
             s.restore()
+
+
+@contextmanager
+def translated(kind: type[ShaftfemError], what: str):
+    """gmsh and OpenCASCADE raise bare Exceptions carrying their log line, and meshio
+    may call sys.exit: either becomes one `kind` error saying which step failed."""
+    try:
+        yield
+    except ShaftfemError:
+        raise
+    except (Exception, SystemExit) as exc:
+        raise kind(f"{what}: {type(exc).__name__}: {exc}") from None
 
 
 @contextmanager
@@ -247,7 +259,8 @@ def _check_connected(gmsh) -> None:
 def build_solid(shaft: Shaft, grooves: Grooves | None, brep: Path) -> tuple[float, int]:
     """Build the shaft, check it is one body, write it to `brep`; return its volume
     (m^3) and how many CAD volumes it has."""
-    with session("shaft") as s:
+    with session("shaft") as s, translated(GeometryError, "OpenCASCADE could not build the "
+                                           "shaft's solid (check the groove dimensions)"):
         gmsh = s.gmsh
         _build(gmsh, shaft, grooves)
         gmsh.model.occ.synchronize()
@@ -261,7 +274,8 @@ def build_solid(shaft: Shaft, grooves: Grooves | None, brep: Path) -> tuple[floa
 def write_solid(brep: Path | None, shaft: Shaft, paths: list[Path]) -> None:
     """The solid as STEP or BREP files (by suffix; for CAD and the workshop): from its
     BREP, or, for a shaft without grooves, a plain cylinder built on the spot."""
-    with session("export") as s, _stdout_to_devnull():
+    with session("export") as s, _stdout_to_devnull(), \
+            translated(GeometryError, "the solid could not be written as STEP/BREP"):
         gmsh = s.gmsh
         if brep is None:
             gmsh.model.occ.addCylinder(0, 0, 0, 0, 0, shaft.length, shaft.radius)
@@ -389,7 +403,7 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
     settings' groove and edge sizes."""
     import meshio
 
-    with session("mesh") as s:
+    with session("mesh") as s, translated(MeshError, "gmsh could not mesh the solid"):
         gmsh = s.gmsh
         if brep is None:
             _quarter_cylinder(gmsh, shaft)
@@ -412,8 +426,6 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
             gmsh.model.mesh.generate(3)
             if settings.order == 2:
                 gmsh.model.mesh.setOrder(2)
-        except Exception as exc:  # gmsh raises a bare Exception with its log line
-            raise MeshError(f"gmsh could not mesh the solid: {exc}") from None
         finally:
             if view is not None:
                 gmsh.view.remove(view)
