@@ -44,22 +44,31 @@ def test_two_workers_give_the_same_results_as_one_by_one(sweep_file, tmp_path):
             assert abs(a / b - 1) < 1e-10
 
 
-def test_a_killed_sweep_resumes_without_recomputing(sweep_file, tmp_path):
+@pytest.mark.parametrize("kill_after_rows", [0, 2])
+def test_a_killed_sweep_resumes_without_recomputing(sweep_file, tmp_path, kill_after_rows):
+    """SIGKILL as soon as the sweep holds its folder (no row yet) and after two rows: the
+    resumed sweep has every variant once, one header, and keeps the rows made before."""
     results = tmp_path / "out" / "results.csv"
     cmd = [sys.executable, "-m", "shaftfem", "sweep", str(sweep_file), "--out",
            str(results.parent), "--workers", "1", "-q"]
     p = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL,
                          stderr=subprocess.DEVNULL)
     deadline = time.time() + 120
-    while time.time() < deadline and len(read_results(results)) < 2:
-        time.sleep(0.2)
+    started = results.parent / ".sweep-tmp"
+    while time.time() < deadline and not (
+            started.exists() if kill_after_rows == 0
+            else len(read_results(results)) >= kill_after_rows):
+        time.sleep(0.05)
     os.killpg(p.pid, signal.SIGKILL)  # the sweep and its Dask workers, mid-run
     p.wait()
     before = read_results(results)
-    assert 2 <= len(before) < 6, len(before)
-    text_before = results.read_text()
+    assert kill_after_rows <= len(before) < 6, len(before)
+    text_before = results.read_text() if results.exists() else ""
     rows = run_sweep(load_sweep(sweep_file), results, workers=1)
     assert len(rows) == 6 and len({r["id"] for r in rows}) == 6
+    lines = results.read_text().splitlines()
+    assert len(lines) == 7 and sum(line.startswith("id,") for line in lines) == 1
+    assert not started.exists()  # the workers' temp folder is gone
     # the rows computed before the kill are kept as they were, not recomputed
     complete = text_before[: text_before.rfind("\n") + 1]
     assert results.read_text().startswith(complete)
