@@ -101,3 +101,18 @@ def test_import_and_size_load_no_mesher_or_fem():
     )
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
+
+
+def test_the_scene_shaft_and_grooves_are_checked_against_the_sizing(tmp_path, capsys):
+    """Across tables: a [shaft] thinner than the duty's D, and a [grooves] pitch that the
+    feed step and gears (equation 1) do not give, are broken limits (exit 1), said."""
+    from shaftfem.scene import GEOMETRY_DIR
+
+    paper = (GEOMETRY_DIR / "paper2018.toml").read_text()
+    f = tmp_path / "thin.toml"
+    f.write_text(paper.replace("diameter_mm = 32.0", "diameter_mm = 20.0"))
+    assert main(["size", str(f)]) == 1
+    assert "[shaft] diameter_mm = 20 is below the D = 24 mm" in capsys.readouterr().out
+    f.write_text(paper.replace("driven_teeth = 40", "driven_teeth = 30"))
+    assert main(["size", str(f)]) == 1
+    assert "[grooves] pitch_mm = 80 differs from P" in capsys.readouterr().out

@@ -214,11 +214,11 @@ def _cmd_study(args) -> int:
 
 
 def _cmd_paper(args) -> int:
-    from .sizing import size_screw
+    from .sizing import size_from_scene
     from .tables import paper_text
 
     result = _run(args)
-    sizing = size_screw(result.scene.sizing) if result.scene.sizing else None
+    sizing = size_from_scene(result.scene) if result.scene.sizing else None
     print(paper_text(result, sizing))
     return 0
 

@@ -57,14 +57,14 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     from .report import write_report
     from .store import staged_directory
     from .resonance import check_result
-    from .sizing import size_screw
+    from .sizing import size_from_scene
 
     say = progress or (lambda _m: None)
     out = Path(out)
     sizing = None
     if scene.sizing is not None:
         say("sizing (equations 1-9)")
-        sizing = size_screw(scene.sizing)
+        sizing = size_from_scene(scene)
     result, est, adapted = run_bounded(scene, estimate=estimate, use_cache=use_cache,
                                        progress=say, factorizer=factorizer)
     verdict = check_result(result, margin)

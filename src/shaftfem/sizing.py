@@ -145,6 +145,17 @@ def size_screw(s: dict) -> SizingResult:
 
 
 def size_from_scene(scene: Scene) -> SizingResult:
+    """The sizing, and whether the scene's shaft and grooves agree with it."""
     if scene.sizing is None:
         raise SceneError(f"{scene.source}: no [sizing] table: `shaftfem size` needs one")
-    return size_screw(scene.sizing)
+    r = size_screw(scene.sizing)
+    diameter, need = scene.shaft.diameter * 1e3, r["D"]
+    if diameter < need - 1e-9:
+        r.violations.append(f"[shaft] diameter_mm = {diameter:g} is below the D = {need:g} mm "
+                            "the duty needs (equations 1-9)")
+    if scene.grooves is not None:
+        pitch, gears = scene.grooves.pitch * 1e3, r["P"]
+        if abs(pitch / gears - 1) > 1e-6:
+            r.violations.append(f"[grooves] pitch_mm = {pitch:g} differs from P = b Z_driven / "
+                                f"Z_drive = {gears:g} mm of the feed step and gears (eq. 1)")
+    return r
