@@ -45,6 +45,16 @@ CALS = [
     (CAL_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 0"), "mesh_size_mm"),
     (CAL_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 16.0\ngrid = 1"), "grid"),
     (CAL_OK.replace('"shaft.length_mm" = {', '"length" = {'), "length"),
+    # a size longer than the base shaft (once a model at +1000 % with exit 0), and one
+    # beyond the DOF budget: refused at load, naming the key
+    (CAL_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 5000.0"), "mesh_size_mm = 5000"),
+    (CAL_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 0.5"), "above the budget"),
+]
+SWEEPS += [
+    (SWEEP_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 5000.0")
+     + '[axes]\n"shaft.length_mm" = [500.0]\n', "mesh_size_mm = 5000"),
+    (SWEEP_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 0.5")
+     + '[axes]\n"shaft.length_mm" = [500.0]\n', "above the budget"),
 ]
 
 

@@ -30,10 +30,10 @@ from typing import Callable
 
 import numpy as np
 
-from .errors import SceneError
+from .errors import SceneError, ShaftfemError
 from .scene import SceneText, load_scene, read_scene_text, scene_beside
 from .schema import DEFAULT_MODE_COUNT, known_keys, number, parameter, read_toml
-from .sweep import Sweep, run_sweep, run_variant
+from .sweep import Sweep, mesh_size, run_sweep, run_variant
 
 
 @dataclass(frozen=True)
@@ -108,10 +108,8 @@ def load_calibration(path: str | Path) -> Calibration:
     grid = d.get("grid", 3)
     if isinstance(grid, bool) or not isinstance(grid, int) or not 2 <= grid <= 20:
         raise SceneError(f"{src}: grid = {grid!r}: must be an integer in [2, 20]")
-    size = d.get("mesh_size_mm")
-    if size is not None:
-        size = number(src, "mesh_size_mm", size, 0, 20_000)
     base = read_scene_text(scene_beside(d["base"], path))  # its content travels to workers
+    size = mesh_size(src, d.get("mesh_size_mm"), base)
     n_modes = max(len(targets), load_scene(base).modes.count)
     return Calibration(base=base, mesh_size_mm=size, unknowns=unknowns, targets=targets,
                        sigma=targets * np.asarray(u) / 100, grid=grid, n_modes=n_modes)
@@ -131,8 +129,9 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     n_t = len(cal.targets)
 
     def residual_of(row: dict) -> np.ndarray:
-        if row["status"] != "ok":
-            return np.full(n_t, 1e3)
+        if row["status"] != "ok":  # a failed run never becomes a model frequency
+            at = ", ".join(f"{n} = {row[n]:g}" for n in names)
+            raise ShaftfemError(f"calibration run at {at} failed: {row['error']}")
         f = np.array([float(row[f"f{i + 1}_hz"]) for i in range(n_t)])
         return (f - cal.targets) / cal.sigma
 
@@ -144,8 +143,12 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     rows = run_sweep(Sweep(base, cal.mesh_size_mm, variants, names, cal.n_modes),
                      Path(workdir) / "grid.csv", workers=workers, scheduler=scheduler,
                      progress=say)
-    chi2 = [float(np.sum(residual_of(r) ** 2)) for r in rows]
-    best = rows[int(np.argmin(chi2))]
+    ok = [r for r in rows if r["status"] == "ok"]
+    if not ok:
+        raise ShaftfemError(f"every one of the {len(rows)} grid runs failed; the first: "
+                            f"{rows[0]['error']}")
+    chi2 = [float(np.sum(residual_of(r) ** 2)) for r in ok]
+    best = ok[int(np.argmin(chi2))]
     x0 = np.array([float(best[n]) for n in names])
     say(f"calibrate: best grid point {dict(zip(names, map(float, x0)))}, chi^2 = {min(chi2):.3g}")
 

@@ -93,12 +93,27 @@ def load_sweep(path: str | Path) -> Sweep:
         variants = [{parameter(src, k): number(src, f"points[{i}].{k}", v, -1e300, 1e300)
                      for k, v in p.items()} for i, p in enumerate(points)]
         names = sorted({k for v in variants for k in v})
-    size = data.get("mesh_size_mm")
-    if size is not None:
-        size = number(src, "mesh_size_mm", size, 0, 20_000)
     base = read_scene_text(scene_beside(data["base"], path))
+    size = mesh_size(src, data.get("mesh_size_mm"), base)
     return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names,
                  n_modes=load_scene(base).modes.count)
+
+
+def mesh_size(src: str, size: object, base: SceneText) -> float | None:
+    """A sweep or calibration file's mesh_size_mm, checked against its base scene (at most
+    the shaft length, within the DOF budget) before any variant runs."""
+    if size is None:
+        return None
+    size = number(src, "mesh_size_mm", size, 0, 20_000)
+    from .mesh import check_budget
+    from .pipeline import with_mesh
+
+    try:
+        scene = with_mesh(load_scene(base), size)
+        check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
+    except SceneError as exc:
+        raise SceneError(f"{src}: mesh_size_mm = {size:g} for the base scene: {exc}") from None
+    return size
 
 
 def variant_id(overrides: dict) -> str:
