@@ -35,7 +35,9 @@ def _ccx(result, folder):
     return full[6:16]
 
 
-CASES = [("plain_cylinder", 12.0), ("plain_cylinder", 8.0), ("paper2018", 12.0)]
+# the grooved shaft's case takes about 70 s: slow (pytest -m slow)
+CASES = [("plain_cylinder", 12.0), ("plain_cylinder", 8.0),
+         pytest.param("paper2018", 12.0, marks=pytest.mark.slow)]
 
 
 @pytest.mark.parametrize("scene,size", CASES)

@@ -152,7 +152,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
                     int(z["prev_dofs"]))
             rounds = tuple(Round(int(d), float(b), float(s)) for d, b, s in
                            zip(z["round_dofs"], z["round_bound"], z["round_seconds"]))
-            result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads)
+            result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads, say)
             return Adapted(result=result, estimate=_bound(result, rec, prev), target=target,
                            max_dofs=max_dofs, rounds=rounds, reached=bool(z["reached"]),
                            why=str(z["why"]), from_cache=True)
@@ -164,7 +164,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
     while True:
         t = time.perf_counter()
         say(f"adaptive round {len(rounds) + 1}: {mesh.n_elements} elements; solving")
-        result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads)
+        result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads, say)
         if prev is None:
             # the modes of the first mesh fix which modes are followed from round to round
             from .pipeline import with_modes
@@ -221,27 +221,14 @@ def _planning_bound(recovery: np.ndarray) -> np.ndarray:
     return SAFETY * recovery
 
 
-def _solve(scene: Scene, shape, mesh: ShaftMesh, t0: float, t_cad: float, factorizer: str,
-           threads: int | None):
-    """Assemble and solve one mesh; its ModalResult and recovery estimate."""
-    from .assembly import assemble
+def _solve(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_cad: float,
+           factorizer: str, threads: int | None, say: Callable[[str], None]):
+    """One mesh solved (pipeline.solve_mesh) and its recovery estimate."""
     from .estimate import recovery_estimate
-    from .modal import modal_analysis
-    from .pipeline import ModalResult, Timings, scene_warnings
+    from .pipeline import solve_mesh
 
-    t = time.perf_counter()
-    system = assemble(mesh, scene.material, threads=threads)
-    t_assembly = time.perf_counter() - t
-    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
-                           scene.modes.count, factorizer=factorizer,
-                           max_frequency=scene.modes.max_frequency)
-    rec = recovery_estimate(mesh, scene.material, modes)
-    timings = Timings(cad=t_cad, mesh=mesh.seconds, assembly=t_assembly,
-                      factorisation=modes.factorisation_seconds,
-                      eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
-    result = ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
-                         timings=timings, warnings=scene_warnings(scene, modes))
-    return result, rec
+    result = solve_mesh(scene, shape, mesh, t0, t_cad, mesh.seconds, say, factorizer, threads)
+    return result, recovery_estimate(mesh, scene.material, result.modes)
 
 
 def _bound(result: ModalResult, rec, prev: tuple) -> ErrorEstimate:

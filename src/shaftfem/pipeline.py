@@ -86,10 +86,8 @@ def run_modes(scene: Scene, use_cache: bool = True,
     """Build, mesh, assemble and solve `scene`; return every intermediate result.
 
     `threads`: assembly threads (default one per core; sweep workers use 1)."""
-    from .assembly import assemble
     from .geometry import build_shape
     from .mesh import check_budget, mesh_shape
-    from .modal import modal_analysis
 
     say = progress or (lambda _msg: None)
     t0 = time.perf_counter()
@@ -105,12 +103,20 @@ def run_modes(scene: Scene, use_cache: bool = True,
     t_mesh = time.perf_counter() - t
     say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
         "assembling K and M")
+    return solve_mesh(scene, shape, mesh, t0, t_cad, t_mesh, say, factorizer, threads)
+
+
+def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_cad: float,
+               t_mesh: float, say: Callable[[str], None], factorizer: str = "auto",
+               threads: int | None = None) -> ModalResult:
+    """Assemble and solve one mesh of the scene's solid (the run began at t0)."""
+    from .assembly import assemble
+    from .modal import modal_analysis
 
     t = time.perf_counter()
     system = assemble(mesh, scene.material, threads=threads)
     t_assembly = time.perf_counter() - t
     say(f"{system.n_dofs} DOFs; factorising and solving")
-
     modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
                            scene.modes.count, factorizer=factorizer,
                            max_frequency=scene.modes.max_frequency)
