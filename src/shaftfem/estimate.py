@@ -72,10 +72,10 @@ class Recovery:
 class ErrorEstimate:
     """Per mode: a bound on the relative frequency error and how it was made.
 
-    relative_error is the bound (fraction of the frequency); recovery the
-    finer mesh's recovery estimate; two_mesh the two-mesh estimate (nan where the
-    meshes disagree); geometry the allowance for the mesh's curved faces; reliable False where only the recovery estimate was left
-    (`notes` says why).
+    relative_error is the bound (fraction of the frequency); recovery the finer
+    mesh's recovery estimate; two_mesh the two-mesh estimate (nan where the meshes
+    disagree); geometry the allowance for the mesh's curved faces; reliable False
+    where only the recovery estimate was left (`notes` says why).
     """
 
     relative_error: np.ndarray
@@ -135,7 +135,7 @@ def recovery_estimate(mesh: ShaftMesh, material: Material, modes: Modes,
         u = [X[c::3, cols] for c in range(3)]
         g = [[grads[d] @ u[c] for d in range(3)] for c in range(3)]   # du_c / dx_d
         div = g[0][0] + g[1][1] + g[2][2]
-        sigma = [2 * mu * 0.5 * (g[a][b] + g[b][a]) + (lam * div if a == b else 0.0)
+        sigma = [mu * (g[a][b] + g[b][a]) + (lam * div if a == b else 0.0)  # C : eps(u)
                  for a, b in pairs]
         rhs = np.hstack([value.T @ (w[:, None] * s) for s in sigma])
         smooth = value @ np.asarray(solve(rhs)).reshape(rhs.shape)
