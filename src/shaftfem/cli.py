@@ -186,6 +186,8 @@ def _cmd_design(args) -> int:
                    factorizer=args.solver, progress=_Progress(args.quiet))
     if d.sizing is not None:
         print(sizing_text(d.sizing) + "\n")
+    if d.adapted is not None:
+        print(d.adapted.summary() + "\n")
     print(modes_text(d.result, d.estimate) + "\n")
     print(verdict_text(d.verdict) if d.verdict is not None
           else verdict_line(None).replace("**", ""))
