@@ -49,6 +49,9 @@ def test_a_budget_too_small_says_so_and_fails_only_when_strict(capsys):
     assert "NOT reached" in err and "above the budget of 30000 DOFs" in err
     assert main(args + ["--strict-accuracy"]) == 1
     assert "NOT reached" in capsys.readouterr().err
+    # every modal command honours it (the adapted mesh is cached by now)
+    args[0] = "check"
+    assert main(args) == 0 and main(args + ["--strict-accuracy"]) == 1
 
 
 def test_a_warm_run_solves_the_cached_mesh_and_prints_every_bound(adapted, capsys):

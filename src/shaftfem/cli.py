@@ -108,10 +108,6 @@ def _bounded(args, estimate: bool = False):
     return result, est, adapted
 
 
-def _run(args):
-    return _bounded(args)[0]
-
-
 def _accuracy_status(args, adapted) -> int:
     """1 when a strict accuracy was asked for and not reached."""
     return 1 if adapted is not None and not adapted.reached and args.strict_accuracy else 0
@@ -143,37 +139,37 @@ def _cmd_check(args) -> int:
     from .resonance import check_result
     from .tables import verdict_text
 
-    result = _run(args)
+    result, _, adapted = _bounded(args)
     verdict = check_result(result, _margin(args))
     if verdict is None:
         raise SceneError(f"{result.scene.source}: no [[excitation]] sources to check against")
     print(verdict_text(verdict))
     if args.json:
         _write_json(args.json, {"scene": result.scene.name, **verdict.as_dict()})
-    return 0 if verdict.ok else 1
+    return 1 if not verdict.ok else _accuracy_status(args, adapted)
 
 
 def _cmd_export(args) -> int:
     from .export import export_modes, write_calculix
 
-    result = _run(args)
+    result, est, adapted = _bounded(args)  # an adapted mesh's bounds go into the tables
     if args.format == "calculix":
         deck = write_calculix(result, Path(args.out) / "shaft.inp")
         print(f"wrote {deck} (run: cd {deck.parent} && ccx -i shaft; frequencies in "
               "shaft.dat, full precision in shaft.eig)")
-        return 0
-    files = export_modes(result, args.out)
+        return _accuracy_status(args, adapted)
+    files = export_modes(result, args.out, est)
     print(f"wrote {len(files)} files to {args.out}: " + ", ".join(f.name for f in files))
-    return 0
+    return _accuracy_status(args, adapted)
 
 
 def _cmd_render(args) -> int:
     from .render import render_all
 
-    result = _run(args)
+    result, _, adapted = _bounded(args)
     files = render_all(result, args.out)
     print(f"wrote {len(files)} pictures to {args.out}: " + ", ".join(f.name for f in files))
-    return 0
+    return _accuracy_status(args, adapted)
 
 
 def _cmd_design(args) -> int:
@@ -219,10 +215,10 @@ def _cmd_paper(args) -> int:
     from .sizing import size_from_scene
     from .tables import paper_text
 
-    result = _run(args)
+    result, _, adapted = _bounded(args)
     sizing = size_from_scene(result.scene) if result.scene.sizing else None
     print(paper_text(result, sizing))
-    return 0
+    return _accuracy_status(args, adapted)
 
 
 def _cmd_sweep(args) -> int:
