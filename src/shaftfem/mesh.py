@@ -69,7 +69,7 @@ class ShaftMesh:
 
 # Tetrahedra gmsh makes per h^3 of volume (a regular tetrahedron fills h^3 / 8.5; gmsh's
 # are less regular), and DOFs per element of a P2 / P1 mesh; fitted on the shipped scenes
-# (within 30 %, enough to refuse a size that is off by orders of magnitude).
+# (within 40 %, enough to refuse a size that is off by orders of magnitude).
 ELEMENTS_PER_H3 = 6.0
 DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5}
 BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (README, "Speed and memory")

@@ -377,7 +377,8 @@ def _quarter_cylinder(gmsh, shaft: Shaft) -> None:
     turn = [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
     gmsh.model.mesh.setPeriodic(2, [planes["x0"]], [planes["y0"]], turn)
 
-def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[float, int]:
+def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]
+                      ) -> tuple[float, int]:
     """Element sizes from a former mesh: `sizes` = (points (N, 3), tets (E, 4), size at
     each point, m), a list-based view read through a PostView field. Returns the smallest
     size and the view (to be removed after meshing)."""
