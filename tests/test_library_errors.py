@@ -19,12 +19,12 @@ def _pencil(n=60):
 
 
 def test_a_failed_factorisation_is_a_solver_error(monkeypatch):
-    from shaftfem import modal
+    from shaftfem import factor, modal
 
     def broken(A, backend="auto"):
         raise RuntimeError("Factor is exactly singular")
 
-    monkeypatch.setattr(modal, "factorize", broken)
+    monkeypatch.setattr(factor, "factorize", broken)
     with pytest.raises(SolverError, match="factorising K - sigma M .* RuntimeError: Factor"):
         modal.solve_modes(*_pencil(), n_modes=3)
 

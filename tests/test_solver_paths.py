@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from shaftfem.modal import available_factorizers, modal_analysis
+from shaftfem.factor import available_factorizers
+from shaftfem.modal import modal_analysis
 
 
 def test_all_solver_paths_agree_to_1e8(paper):

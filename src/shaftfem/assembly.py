@@ -6,16 +6,17 @@
 Displacement DOFs are interleaved: global DOF 3 * n + c is component c (x, y, z)
 of scalar node n of scikit-fem's P1/P2 basis (scikit-fem's vector ordering).
 
-K is scikit-fem's vector-valued form. A trial before the project found it several
-times slower than assembling 30x30 element blocks from the scalar basis; with
-scikit-fem 12 it is faster (1.6 s against 2.0 s for the paper's shaft at 8 mm,
-`benchmarks/assembly_routes.py`), so the library's form is used. M is the scalar
-mass matrix times the 3x3 identity.
+Both come from scikit-fem's scalar basis (values, gradients and quadrature
+weights on the curved elements): with D[a, i, b, j] = int d_i phi_a d_j phi_b dx,
+the 3x3 block of K coupling nodes a and b is
 
-Both are assembled over chunks of elements in threads, one per core, and the
-chunks' matrices summed: NumPy releases the GIL in scikit-fem's element kernels,
-so on 2 cores K of the paper's shaft takes 0.8-0.9 s instead of 1.5-2.4 s (the
-same matrix to 3e-16).
+    K_ab[i, j] = lambda D[a, i, b, j] + mu D[a, j, b, i] + mu delta_ij sum_k D[a, k, b, k],
+
+one batched matrix product per chunk of elements, summed into the blocks of a
+3x3-block sparse matrix. It is the same K as scikit-fem's vector-valued
+`BilinearForm` (`stiffness_form`, to round-off: a test checks it), several times
+faster because it touches each scalar gradient once instead of 30 vector ones
+(benchmarks/assembly_routes.py). M is the scalar mass times the 3x3 identity.
 """
 
 from __future__ import annotations
@@ -35,6 +36,9 @@ from .scene import Material
 # as CalculiX's C3D10 does); 4 integrates the P2 mass exactly.
 STIFFNESS_INTORDER = {1: 1, 2: 2}
 MASS_INTORDER = {1: 2, 2: 4}
+# Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
+# element) stay in cache-sized arrays, and the chunks spread over the threads.
+CHUNK = 1024
 
 
 @dataclass(frozen=True)
@@ -70,17 +74,105 @@ def _element(order: int):
     return ElementTetP2() if order == 2 else ElementTetP1()
 
 
-def _chunks(skmesh, n: int, first: int = 64) -> list[np.ndarray]:
-    """A small first chunk, then the rest of the elements in n chunks."""
-    ix = np.arange(skmesh.nelements)
-    return [ix[:first]] + [c for c in np.array_split(ix[first:], n) if len(c)]
+# --------------------------------------------------------------------------
+# Element kernels: pure functions of the basis at the quadrature points
 
 
-def _sum(parts) -> sp.csr_matrix:
-    total = parts[0]
-    for p in parts[1:]:
-        total = total + p
-    return total.tocsr()
+def elasticity_blocks(grad: np.ndarray, dx: np.ndarray, lam: float, mu: float) -> np.ndarray:
+    """Element stiffness blocks (E, n, n, 3, 3), N/m, of lam div u div v + 2 mu eps(u):eps(v).
+
+    grad (E, Q, n, 3): gradients of the n scalar basis functions at Q points;
+    dx (E, Q): quadrature weights times |J|."""
+    E, Q, n, _ = grad.shape
+    G = grad.reshape(E, Q, 3 * n)
+    D = np.matmul((G * dx[:, :, None]).transpose(0, 2, 1), G).reshape(E, n, 3, n, 3)
+    K = lam * D.transpose(0, 1, 3, 2, 4) + mu * D.transpose(0, 1, 3, 4, 2)
+    div_free = mu * np.einsum("eakbk->eab", D)
+    for c in range(3):
+        K[:, :, :, c, c] += div_free
+    return K
+
+
+def mass_blocks(value: np.ndarray, dx: np.ndarray) -> np.ndarray:
+    """Scalar element mass matrices (E, n, n), m^3: int phi_a phi_b dx."""
+    return np.matmul((value * dx[:, :, None]).transpose(0, 2, 1), value)
+
+
+# --------------------------------------------------------------------------
+# Sparse structure: one 3x3 block per pair of nodes that share an element
+
+
+@dataclass(frozen=True)
+class Pattern:
+    """Where each element's (a, b) node pair lands among the matrix's stored blocks."""
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    slot: np.ndarray  # (E * n * n,) index of the block of element e's pair (a, b)
+    n_nodes: int
+
+    @classmethod
+    def of(cls, element_dofs: np.ndarray, n_nodes: int) -> "Pattern":
+        """element_dofs (n, E): the scalar node of each element's local function."""
+        n = element_dofs.shape[0]
+        e = element_dofs.T.astype(np.int64)
+        key = (np.repeat(e, n, axis=1) * n_nodes + np.tile(e, (1, n))).ravel()
+        pairs, slot = np.unique(key, return_inverse=True)
+        indptr = np.searchsorted(pairs // n_nodes, np.arange(n_nodes + 1))
+        return cls(indptr=indptr.astype(np.int32), indices=(pairs % n_nodes).astype(np.int32),
+                   slot=slot.ravel(), n_nodes=n_nodes)
+
+    @property
+    def n_blocks(self) -> int:
+        return len(self.indices)
+
+    def sum_blocks(self, values: np.ndarray, elements: slice) -> np.ndarray:
+        """Sum (E, n, n, k) element values of `elements` into (n_blocks, k) stored ones."""
+        E, n = values.shape[0], values.shape[1]
+        v = values.reshape(E * n * n, -1)
+        s = self.slot[elements.start * n * n: elements.stop * n * n]
+        # a 0/1 matrix with one entry per column: its product scatters and adds in C
+        scatter = sp.csc_matrix((np.ones(len(s)), s, np.arange(len(s) + 1)),
+                                shape=(self.n_blocks, len(s)))
+        return scatter @ v
+
+    def matrix(self, blocks: np.ndarray, size: int) -> sp.csr_matrix:
+        """The CSR matrix of (n_blocks, size * size) summed blocks."""
+        shape = (size * self.n_nodes,) * 2
+        if size == 1:
+            return sp.csr_matrix((blocks[:, 0], self.indices, self.indptr), shape=shape)
+        return sp.bsr_matrix((blocks.reshape(-1, size, size), self.indices, self.indptr),
+                             shape=shape).tocsr()
+
+
+def _values(basis) -> np.ndarray:
+    """Values (E, Q, n) of a scalar scikit-fem basis' n functions at its Q points."""
+    return np.stack([np.asarray(basis.basis[a][0]) for a in range(basis.Nbfun)], axis=-1)
+
+
+def _gradients(basis) -> np.ndarray:
+    """Gradients (E, Q, n, 3) of a scalar scikit-fem basis' n functions, 1/m."""
+    return np.stack([basis.basis[a][0].grad for a in range(basis.Nbfun)],
+                    axis=-1).transpose(1, 2, 3, 0)
+
+
+def _sum_over_chunks(kernel, n_elements: int, pattern: Pattern, threads: int) -> np.ndarray:
+    """Sum of kernel(chunk) over chunks of elements, in `threads` threads (NumPy's
+    products release the GIL)."""
+    chunks = [slice(i, min(i + CHUNK, n_elements)) for i in range(0, n_elements, CHUNK)]
+
+    def work(part):
+        total = None
+        for c in part:
+            s = pattern.sum_blocks(kernel(c), c)
+            total = s if total is None else total + s
+        return total
+
+    parts = [chunks[i::threads] for i in range(threads) if chunks[i::threads]]
+    if len(parts) == 1:
+        return work(parts[0])
+    with ThreadPoolExecutor(len(parts)) as pool:
+        return sum(pool.map(work, parts))
 
 
 def assemble(mesh, material: Material, mass_intorder: int | None = None,
@@ -92,25 +184,23 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
     t0 = time.perf_counter()
     skmesh, order = mesh.to_skfem(), mesh.order
     lam, mu = material.lame
-    intorder = mass_intorder or MASS_INTORDER[order]
-    n = assembly_threads(threads)
-    k_chunks, m_chunks = _chunks(skmesh, 2 * n), _chunks(skmesh, n)
-    # scikit-fem fills a mesh's cached data (the affine map, the Jacobians) lazily
-    # and not thread-safely: a P1 matrix assembled cold in two threads came out
-    # wrong. The first, small chunk is assembled here first, which builds them.
-    k_parts = [stiffness(skmesh, order, lam, mu, k_chunks[0])]
-    m_parts = [scalar_mass(skmesh, order, intorder, m_chunks[0])]
-    with ThreadPoolExecutor(n) as pool:
-        k_jobs = [pool.submit(stiffness, skmesh, order, lam, mu, c) for c in k_chunks[1:]]
-        m_jobs = [pool.submit(scalar_mass, skmesh, order, intorder, c) for c in m_chunks[1:]]
-        K = _sum(k_parts + [f.result() for f in k_jobs])
-        Ms = (material.density * _sum(m_parts + [f.result() for f in m_jobs])).tocsr()
+    n_threads = assembly_threads(threads)
+    k_basis = Basis(skmesh, _element(order), intorder=STIFFNESS_INTORDER[order])
+    m_basis = Basis(skmesh, _element(order), intorder=mass_intorder or MASS_INTORDER[order])
+    pattern = Pattern.of(k_basis.element_dofs, k_basis.N)
+    grad, value = _gradients(k_basis), _values(m_basis)
+    n_el = grad.shape[0]
+    K = pattern.matrix(_sum_over_chunks(
+        lambda c: elasticity_blocks(grad[c], k_basis.dx[c], lam, mu).reshape(
+            c.stop - c.start, grad.shape[2], grad.shape[2], 9),
+        n_el, pattern, n_threads), 3)
+    Ms = material.density * pattern.matrix(_sum_over_chunks(
+        lambda c: mass_blocks(value[c], m_basis.dx[c])[..., None], n_el, pattern, n_threads), 1)
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
-    basis = Basis(skmesh, _element(order), intorder=1)
-    nodes = np.ascontiguousarray(basis.doflocs.T)
+    nodes = np.ascontiguousarray(k_basis.doflocs.T)
     _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
-                  point_dofs=point_dofs(mesh.cells, basis.element_dofs, nodes, mesh.points),
+                  point_dofs=point_dofs(mesh.cells, k_basis.element_dofs, nodes, mesh.points),
                   order=order, seconds=time.perf_counter() - t0)
 
 
@@ -136,6 +226,10 @@ def _check_translations(K: sp.csr_matrix, nodes: np.ndarray) -> None:
             raise AssemblyError(
                 f"the assembled stiffness resists a rigid translation along {'xyz'[c]} "
                 f"(|K t| / |K| = {ratio:.2g}): K is wrong")
+
+
+# --------------------------------------------------------------------------
+# scikit-fem's own forms: the reference the block route is checked against
 
 
 def stiffness(skmesh, order: int, lam: float, mu: float,

@@ -17,7 +17,7 @@ from pathlib import Path
 from .errors import EXIT_BAD_INPUT, EXIT_COMPUTATION, SceneError, ShaftfemError
 from .schema import DEFAULT_MAX_DOFS, MAX_DOFS_LIMIT, MAX_MODE_COUNT
 
-# modal.FACTORIZERS plus "auto"; spelled out here because the CLI must not import
+# factor.FACTORIZERS plus "auto"; spelled out here because the CLI must not import
 # SciPy before a command needs it (`shaftfem size` loads no solver).
 SOLVERS = ("auto", "pardiso", "cholmod", "superlu")
 

@@ -118,7 +118,7 @@ def _operators(skmesh, order: int):
 def recovery_estimate(mesh: ShaftMesh, material: Material, modes: Modes,
                       chunk: int = 4) -> Recovery:
     """Zienkiewicz-Zhu estimate of each mode's relative frequency error, per element."""
-    from .modal import factorize
+    from .factor import factorize
 
     lam, mu = material.lame
     value, grads, dx = _operators(mesh.to_skfem(), mesh.order)

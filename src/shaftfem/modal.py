@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
@@ -22,6 +21,7 @@ from scipy.sparse.linalg import eigsh
 from scipy.sparse.linalg import norm as spnorm
 
 from .errors import SolverError
+from .factor import Pencil, ShiftedFactor
 from .schema import DEFAULT_MODE_COUNT, MAX_MODE_COUNT
 
 RIGID_BODY_MODES = 6
@@ -33,9 +33,19 @@ RIGID_FACTOR = 1e-10
 # Relative residual ||K x - w^2 M x|| / ||K x|| above which an elastic mode gets a
 # Davidson correction step (solve_modes).
 RESIDUAL_TARGET = 3e-9
-# ARPACK's start vector: fixed, so that a run is repeatable to the last bit (a random
+# ARPACK's start vector is fixed, so that a run is repeatable to the last bit (a random
 # start moved the paper shaft's frequencies by up to 6e-12 between runs).
 START_SEED = 2018
+# Ritz pairs computed beyond the wanted ones, to find a gap above them where the
+# inertia count is taken; two eigenvalues closer than INERTIA_GAP (relative) are
+# counted together. A skipped mode is retried INERTIA_RETRIES times with a larger
+# Krylov space.
+EXTRA_RITZ = 2
+INERTIA_GAP = 1e-6
+INERTIA_RETRIES = 1
+# A Ritz pair with a larger relative residual than this is taken for a failed solve
+# (the pairs the solver returns reach ~1e-9).
+ACCEPT_RESIDUAL = 1e-6
 
 
 # With a frequency limit instead of a count, the Krylov space grows (twice the
@@ -67,6 +77,10 @@ class Modes:
     factorizer: str
     factorisation_seconds: float
     eigensolve_seconds: float
+    # The inertia of K - s M counted `inertia_count` eigenvalues (rigid ones included)
+    # below inertia_shift_hz, as many as the solver found: none was skipped.
+    inertia_count: int = 0
+    inertia_shift_hz: float = 0.0
 
     @property
     def n_rigid(self) -> int:
@@ -87,6 +101,8 @@ class EigenSolution:
     factorizer: str
     factorisation_seconds: float
     eigensolve_seconds: float
+    inertia_count: int    # eigenvalues below inertia_shift, by the inertia of K - s M
+    inertia_shift: float  # rad^2/s^2
 
 
 def _n_bodies(K: sp.csr_matrix) -> int:
@@ -95,113 +111,164 @@ def _n_bodies(K: sp.csr_matrix) -> int:
     return n
 
 
-FACTORIZERS = ("pardiso", "cholmod", "superlu")
-# 'auto' takes SuperLU below this many DOFs: there its solves give residuals of
-# 1e-10..1e-12 and the factorisation is a small part of the time, while PARDISO's
-# residuals reached 1e-7 on the plain cylinder (28k DOFs). Above it factorisation
-# dominates and PARDISO is 7x faster (benchmarks/).
-AUTO_SUPERLU_BELOW = 60_000
-
-
-def available_factorizers() -> list[str]:
-    """The factorisation back-ends importable here, fastest first (SuperLU always)."""
-    import importlib.util
-
-    out = [name for name, mod in (("pardiso", "pypardiso"), ("cholmod", "cholespy"))
-           if importlib.util.find_spec(mod) is not None]
-    return out + ["superlu"]
-
-
-def factorize(A: sp.spmatrix, backend: str = "auto"):
-    """A solve function x = A^-1 b for the SPD matrix A = K - sigma M.
-
-    'pardiso' (Intel MKL PARDISO via pypardiso, SPD mode), 'cholmod' (CHOLMOD via
-    cholespy), 'superlu' (SciPy, COLAMD ordering: the pure-SciPy path), or 'auto'
-    (SuperLU for small systems, else the fastest installed). All give the same
-    frequencies (a test checks 1e-8).
-    """
-    if backend == "auto":
-        backend = "superlu" if A.shape[0] < AUTO_SUPERLU_BELOW else available_factorizers()[0]
-    if backend == "pardiso":
-        import pypardiso
-
-        solver = pypardiso.PyPardisoSolver(mtype=2)  # real symmetric positive definite
-        upper = sp.triu(A, format="csr")
-        upper.sort_indices()
-        solver.factorize(upper)
-
-        def solve(b):
-            return solver.solve(upper, np.asarray(b, dtype=float))
-        return solve, backend
-    if backend == "cholmod":
-        from cholespy import CholeskySolverD, MatrixType
-
-        C = sp.csc_matrix(A)
-        C.sort_indices()
-        chol = CholeskySolverD(C.shape[0], C.indptr.astype(np.int32),
-                               C.indices.astype(np.int32), C.data, MatrixType.CSC)
-
-        def solve(b):
-            b = np.ascontiguousarray(b, dtype=float)
-            x = np.zeros_like(b)
-            chol.solve(b, x)
-            return x
-        return solve, backend
-    if backend == "superlu":
-        from scipy.sparse.linalg import splu
-
-        return splu(sp.csc_matrix(A)).solve, backend
-    raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORIZERS)}")
-
-
 def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
                 tol: float = 0.0, factorizer: str = "auto",
-                max_frequency: float | None = None) -> EigenSolution:
+                max_frequency: float | None = None, ncv: int | None = None,
+                rigid: np.ndarray | None = None) -> EigenSolution:
     """The lowest n_modes + 6 eigenpairs; with `max_frequency` (Hz), more until one
-    lies above it (the factorisation is reused)."""
+    lies above it (the factorisation is reused).
+
+    Shift-invert Lanczos about sigma < 0 finds them; then the inertia of K - s M,
+    with s in the gap above the highest one found, counts the eigenvalues below s.
+    A mode the Krylov space skipped makes that count larger: the solve is then
+    repeated from another start with a Krylov space twice as large, and refused if
+    the count still differs.
+    `rigid` (n_dofs, r): the body's rigid motions (K R = 0), kept out of the Krylov
+    space and returned as the r lowest pairs, so that it holds only elastic modes.
+    `ncv`: the Krylov space's size (default max(2k + 1, 20), k the pairs sought)."""
     scale = float(np.median(K.diagonal() / M.diagonal()))
     sigma = -SHIFT_FACTOR * scale
     t0 = time.perf_counter()
-    A = (K - sigma * M).tocsr()
+    pencil = Pencil(K, M)
+    factor = _factorise(pencil, sigma, factorizer)
+    t1 = time.perf_counter()
+    fixed = _rigid_pairs(K, M, rigid) if rigid is not None else None
+    r = 0 if fixed is None else fixed[0].size
+    k = n_modes + (RIGID_BODY_MODES if fixed is None else 0)
+    for attempt in range(INERTIA_RETRIES + 1):
+        while True:
+            lam, X, ncv_used = _lanczos(K, M, k + EXTRA_RITZ, sigma, scale, factor, tol, ncv,
+                                        None if fixed is None else fixed[1], attempt)
+            if fixed is not None:
+                lam, X = np.concatenate([fixed[0], lam]), np.hstack([fixed[1], X])
+            if max_frequency is None or lam[r + k - 1] > (2 * math.pi * max_frequency) ** 2:
+                break
+            if k >= MAX_MODES + RIGID_BODY_MODES:
+                raise SolverError(f"more than {MAX_MODES} modes lie below {max_frequency:g} Hz; "
+                                  "lower the frequency limit")
+            k = min(2 * k, MAX_MODES + RIGID_BODY_MODES)
+        # The proof that these are the lowest eigenvalues: each Ritz pair is an
+        # eigenpair to its residual, and the inertia counts as many below s_top.
+        found, s_top = _gap_above(lam, r + k)
+        worst = _worst_residual(K, M, X[:, :found], lam[:found], RIGID_FACTOR * scale)
+        counted = _counted(factor, s_top) if worst <= ACCEPT_RESIDUAL else -1
+        if counted == found:
+            break
+        ncv = min(K.shape[0] - r - 1, 2 * ncv_used)
+        factor.shift_to(sigma)
+    else:
+        if counted < 0:
+            raise SolverError(f"the eigen solver returned a pair that is no eigenpair (relative "
+                              f"residual {worst:.2g}), even with a Krylov space of {ncv_used} "
+                              "vectors")
+        raise SolverError(
+            f"the eigen solver found {found} eigenvalues below "
+            f"{math.sqrt(s_top) / 2 / math.pi:.6g} Hz where the inertia of K - s M counts "
+            f"{counted}: a mode was skipped, even with a Krylov space of {ncv_used} vectors")
+    return EigenSolution(eigenvalues=lam[:r + k], vectors=X[:, :r + k], scale=scale,
+                         factorizer=factor.backend, factorisation_seconds=t1 - t0,
+                         eigensolve_seconds=time.perf_counter() - t1,
+                         inertia_count=counted, inertia_shift=s_top)
+
+
+def rigid_body_modes(nodes: np.ndarray) -> np.ndarray:
+    """The six rigid motions of a body whose DOF 3 n + c moves node n along axis c:
+    three translations and three rotations about its centroid, (3 n_nodes, 6)."""
+    x = nodes - nodes.mean(axis=0)
+    R = np.zeros((nodes.shape[0], 3, 6))
+    for c in range(3):
+        R[:, c, c] = 1.0
+        e = np.zeros(3)
+        e[c] = 1.0
+        R[:, :, 3 + c] = np.cross(e, x)
+    return R.reshape(-1, 6)
+
+
+def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Rayleigh-Ritz pairs of (K, M) on the rigid motions R, which K must not resist."""
+    lam, X = _rayleigh_ritz(K, M, R, R.shape[1])
+    KX = K @ X
+    strain = np.linalg.norm(KX, axis=0) / (spnorm(K, 1) * np.linalg.norm(X, axis=0))
+    if np.any(strain > 1e-9):
+        raise SolverError(f"K resists a rigid motion (|K r| / |K| |r| = {strain.max():.2g}): "
+                          "the stiffness is wrong or the body is not free")
+    return lam, X
+
+
+def _factorise(pencil: Pencil, sigma: float, factorizer: str) -> ShiftedFactor:
+    """K - sigma M factorised, the back-ends' failures translated."""
     try:
-        solve, used = factorize(A, factorizer)
+        return ShiftedFactor(pencil, sigma, factorizer)
     except SolverError:
         raise
     except MemoryError:
-        raise SolverError(f"not enough memory to factorise K - sigma M ({A.shape[0]} DOFs); "
+        raise SolverError(f"not enough memory to factorise K - sigma M ({pencil.n} DOFs); "
                           "use a coarser mesh or a smaller DOF budget (--max-dofs)") from None
     except Exception as exc:  # SuperLU, PARDISO and CHOLMOD each raise their own kind
-        raise SolverError(f"factorising K - sigma M ({A.shape[0]} DOFs) failed: "
+        raise SolverError(f"factorising K - sigma M ({pencil.n} DOFs) failed: "
                           f"{type(exc).__name__}: {exc}; a degenerate element or a "
                           "material of absurd stiffness can cause it") from None
-    t1 = time.perf_counter()
-    k = n_modes + RIGID_BODY_MODES
-    while True:
-        lam, X = _lanczos(K, M, k, sigma, scale, solve, tol)
-        if max_frequency is None or lam[-1] > (2 * math.pi * max_frequency) ** 2:
-            break
-        if k >= MAX_MODES + RIGID_BODY_MODES:
-            raise SolverError(f"more than {MAX_MODES} modes lie below {max_frequency:g} Hz; "
-                              "lower the frequency limit")
-        k = min(2 * k, MAX_MODES + RIGID_BODY_MODES)
-    return EigenSolution(eigenvalues=lam, vectors=X, scale=scale, factorizer=used,
-                         factorisation_seconds=t1 - t0,
-                         eigensolve_seconds=time.perf_counter() - t1)
+
+
+def _counted(factor: ShiftedFactor, s: float) -> int:
+    try:
+        return factor.count_below(s)
+    except SolverError:
+        raise
+    except Exception as exc:
+        raise SolverError(f"counting the eigenvalues below a shift failed: "
+                          f"{type(exc).__name__}: {exc}") from None
+
+
+def _worst_residual(K: sp.spmatrix, M: sp.spmatrix, X: np.ndarray, lam: np.ndarray,
+                    rigid_limit: float) -> float:
+    """The largest relative residual of the pairs, or inf if one has w^2 < 0: K is
+    positive semi-definite, so such a pair is no eigenpair."""
+    if lam.min() < -rigid_limit:
+        return math.inf
+    elastic = lam > rigid_limit
+    _, r, kx, _ = _residuals(K, M, X[:, elastic], lam[elastic])
+    return float(np.max(r / kx, initial=0.0))
+
+
+def _gap_above(lam: np.ndarray, k: int) -> tuple[int, float]:
+    """(j, s): the first j >= k with a clear gap between lam[j - 1] and lam[j], and s
+    in that gap; the inertia count below s must then be j."""
+    for j in range(k, len(lam)):
+        if lam[j] > lam[j - 1] * (1 + INERTIA_GAP):
+            return j, math.sqrt(lam[j - 1] * lam[j])
+    raise SolverError(f"the {len(lam) - k + 1} highest eigenvalues found are equal to within "
+                      f"{INERTIA_GAP:g}: no gap to count them in; ask for more modes")
 
 
 def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: float,
-             solve: Callable[[np.ndarray], np.ndarray], tol: float
-             ) -> tuple[np.ndarray, np.ndarray]:
-    """k eigenpairs nearest sigma by shift-invert Lanczos through `solve` = (K - sigma M)^-1,
-    refined by one subspace step and, where needed, one Davidson step."""
+             factor: ShiftedFactor, tol: float, ncv: int | None, R: np.ndarray | None = None,
+             attempt: int = 0) -> tuple[np.ndarray, np.ndarray, int]:
+    """k eigenpairs nearest sigma by shift-invert Lanczos through the factor of
+    K - sigma M, refined by one subspace step and, where needed, one Davidson step;
+    and the Krylov space's size. With R (M-orthonormal), in R's M-complement."""
     n_dofs = K.shape[0]
     if n_dofs <= k + 2:
         raise SolverError(f"the mesh has only {n_dofs} DOFs; {k} modes need more")
+    if R is None:
+        solve, project = factor.solve, (lambda x: x)
+    else:
+        MR = np.asarray(M @ R)
+
+        def project(x):
+            """x without its rigid part: x - R R^T M x."""
+            return x - R @ (MR.T @ x)
+
+        def solve(b):
+            # b's rigid part removed first, the result's again: the rigid modes' huge
+            # shift-inverted eigenvalue would otherwise grow any round-off along them.
+            return project(factor.solve(b - MR @ (R.T @ b)))
+    ncv = min(n_dofs - 1, ncv or max(2 * k + 1, 20))
     op = sp.linalg.LinearOperator(K.shape, matvec=solve, matmat=solve, dtype=float)
     try:
-        v0 = np.random.default_rng(START_SEED).standard_normal(n_dofs)
         lam, X = eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol,
-                       ncv=min(n_dofs, max(2 * k + 1, 40)), v0=v0)
+                       ncv=ncv, v0=project(start_vector(n_dofs, attempt)))
     except sp.linalg.ArpackNoConvergence as exc:
         raise SolverError(f"the eigen solver did not converge: {exc}") from None
     except sp.linalg.ArpackError as exc:
@@ -217,10 +284,10 @@ def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: fl
     # residuals through the same factors, added to the basis - is taken for every
     # elastic mode above RESIDUAL_TARGET: over 16 repeated runs the largest residual
     # left was 6.7e-9 (0.3 s at 86k DOFs, only when needed).
-    R, r, kx, _ = _residuals(K, M, X, lam)
+    R_, r, kx, _ = _residuals(K, M, X, lam)
     poor = (lam > RIGID_FACTOR * scale) & (r > RESIDUAL_TARGET * kx)
     if poor.any():
-        Z = solve(R[:, poor])
+        Z = solve(R_[:, poor])
         for _ in range(2):  # M-orthogonal to X and M-normalised: a well-conditioned basis
             Z -= X @ (X.T @ (M @ Z))
             Z /= np.sqrt(np.einsum("ij,ij->j", Z, M @ Z))
@@ -228,7 +295,13 @@ def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: fl
             lam, X = _rayleigh_ritz(K, M, np.hstack([X, Z]), k)
         except np.linalg.LinAlgError:
             pass  # corrections that are (nearly) dependent: keep the step before
-    return lam, X
+    return lam, X, ncv
+
+
+def start_vector(n: int, attempt: int = 0) -> np.ndarray:
+    """ARPACK's start vector: fixed, so that a run is repeatable to the last bit; a
+    retry after a skipped mode starts elsewhere."""
+    return np.random.default_rng(START_SEED + attempt).standard_normal(n)
 
 
 def _residuals(K: sp.spmatrix, M: sp.spmatrix, X: np.ndarray, lam: np.ndarray):
@@ -256,7 +329,8 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
             f"the mesh has {n_bodies} disconnected parts; a free body must be one piece "
             f"(it would have {RIGID_BODY_MODES * n_bodies} rigid-body modes)"
         )
-    sol = solve_modes(K, M, n_modes, factorizer=factorizer, max_frequency=max_frequency)
+    sol = solve_modes(K, M, n_modes, factorizer=factorizer, max_frequency=max_frequency,
+                      rigid=rigid_body_modes(nodes))
     lam, X, scale = sol.eigenvalues, sol.vectors, sol.scale
     rigid_limit = RIGID_FACTOR * scale
     if lam[0] < -rigid_limit:
@@ -295,7 +369,8 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                  rigid_frequencies=rigid, orthonormality_error=ortho,
                  shift=-SHIFT_FACTOR * scale, n_dofs=K.shape[0], factorizer=sol.factorizer,
                  factorisation_seconds=sol.factorisation_seconds,
-                 eigensolve_seconds=sol.eigensolve_seconds)
+                 eigensolve_seconds=sol.eigensolve_seconds, inertia_count=sol.inertia_count,
+                 inertia_shift_hz=math.sqrt(sol.inertia_shift) / (2 * math.pi))
 
 
 def energy_split(X: np.ndarray, nodes: np.ndarray, mass_scalar: sp.csr_matrix) -> np.ndarray:
