@@ -24,7 +24,7 @@ def one(size_mm: float, factorizer: str) -> dict:
 
 def main() -> None:
     sizes = [float(x) for x in (sys.argv[1] if len(sys.argv) > 1 else "10,8,6,5,4,3").split(",")]
-    from shaftfem.modal import available_factorizers
+    from shaftfem.factor import available_factorizers
 
     print(f"machine: {machine()}\n")
     print("| factoriser | size (mm) | DOFs | assembly (s) | factorisation (s) | eigensolve (s) "

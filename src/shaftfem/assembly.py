@@ -38,7 +38,7 @@ STIFFNESS_INTORDER = {1: 1, 2: 2}
 MASS_INTORDER = {1: 2, 2: 4}
 # Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
 # element) stay in cache-sized arrays, and the chunks spread over the threads.
-CHUNK = 1024
+CHUNK = 4096
 
 
 @dataclass(frozen=True)
@@ -93,9 +93,13 @@ def elasticity_blocks(grad: np.ndarray, dx: np.ndarray, lam: float, mu: float) -
     return K
 
 
-def mass_blocks(value: np.ndarray, dx: np.ndarray) -> np.ndarray:
-    """Scalar element mass matrices (E, n, n), m^3: int phi_a phi_b dx."""
-    return np.matmul((value * dx[:, :, None]).transpose(0, 2, 1), value)
+def mass_blocks(phi: np.ndarray, dx: np.ndarray) -> np.ndarray:
+    """Scalar element mass matrices (E, n, n), m^3: int phi_a phi_b dx.
+
+    phi (Q, n): the reference functions at the Q points (isoparametric elements:
+    the same on every element); dx (E, Q): quadrature weights times |J|."""
+    n = phi.shape[1]
+    return (dx @ (phi[:, :, None] * phi[:, None, :]).reshape(len(phi), n * n)).reshape(-1, n, n)
 
 
 # --------------------------------------------------------------------------
@@ -145,9 +149,14 @@ class Pattern:
                              shape=shape).tocsr()
 
 
-def _values(basis) -> np.ndarray:
-    """Values (E, Q, n) of a scalar scikit-fem basis' n functions at its Q points."""
-    return np.stack([np.asarray(basis.basis[a][0]) for a in range(basis.Nbfun)], axis=-1)
+def _reference_values(basis, intorder: int) -> tuple[np.ndarray, np.ndarray]:
+    """The basis' reference functions (Q, n) at the points of a rule of `intorder` on
+    the reference tetrahedron, and the rule's weights times |J| on each element (E, Q)."""
+    from skfem.quadrature import get_quadrature
+
+    X, W = get_quadrature(basis.elem.refdom, intorder)
+    phi = np.stack([basis.elem.lbasis(X, a)[0] for a in range(basis.Nbfun)], axis=-1)
+    return phi, np.abs(basis.mapping.detDF(X)) * W
 
 
 def _gradients(basis) -> np.ndarray:
@@ -186,16 +195,16 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
     lam, mu = material.lame
     n_threads = assembly_threads(threads)
     k_basis = Basis(skmesh, _element(order), intorder=STIFFNESS_INTORDER[order])
-    m_basis = Basis(skmesh, _element(order), intorder=mass_intorder or MASS_INTORDER[order])
     pattern = Pattern.of(k_basis.element_dofs, k_basis.N)
-    grad, value = _gradients(k_basis), _values(m_basis)
+    grad = _gradients(k_basis)
+    phi, m_dx = _reference_values(k_basis, mass_intorder or MASS_INTORDER[order])
     n_el = grad.shape[0]
     K = pattern.matrix(_sum_over_chunks(
         lambda c: elasticity_blocks(grad[c], k_basis.dx[c], lam, mu).reshape(
             c.stop - c.start, grad.shape[2], grad.shape[2], 9),
         n_el, pattern, n_threads), 3)
     Ms = material.density * pattern.matrix(_sum_over_chunks(
-        lambda c: mass_blocks(value[c], m_basis.dx[c])[..., None], n_el, pattern, n_threads), 1)
+        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, n_threads), 1)
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
     nodes = np.ascontiguousarray(k_basis.doflocs.T)
     _check_translations(K, nodes)

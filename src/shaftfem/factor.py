@@ -83,9 +83,17 @@ class Pencil:
 
     def __init__(self, K: sp.spmatrix, M: sp.spmatrix):
         Ku, Mu = upper_triangle(K), upper_triangle(M)
-        pattern = Ku if _contains(Ku, Mu) else upper_triangle(abs(Ku) + abs(Mu))
-        self.indptr, self.indices = pattern.indptr, pattern.indices
-        self.k_data, self.m_data = _on(pattern, Ku), _on(pattern, Mu)
+        keys, m_keys = _keys(Ku), _keys(Mu)
+        at = np.minimum(np.searchsorted(keys, m_keys), len(keys) - 1)
+        if not np.array_equal(keys[at], m_keys):  # M has entries where K has none
+            union = upper_triangle(abs(Ku) + abs(Mu))
+            keys = _keys(union)
+            Ku = sp.csr_matrix((_placed(keys, _keys(Ku), Ku.data), union.indices, union.indptr),
+                               shape=union.shape)
+            at = np.searchsorted(keys, m_keys)
+        self.indptr, self.indices = Ku.indptr, Ku.indices
+        self.k_data = Ku.data.astype(np.float64)
+        self.m_data = _placed(keys, None, Mu.data, at)
         self.K, self.M = K, M
         self.n = K.shape[0]
 
@@ -104,23 +112,11 @@ def _keys(A: sp.csr_matrix) -> np.ndarray:
     return rows * A.shape[1] + A.indices
 
 
-def _contains(A: sp.csr_matrix, B: sp.csr_matrix) -> bool:
-    """Whether A's sparsity holds every stored entry of B."""
-    if B.nnz > A.nnz:
-        return False
-    keys, pos = _keys(A), None
-    kb = _keys(B)
-    pos = np.minimum(np.searchsorted(keys, kb), len(keys) - 1)
-    return bool(np.all(keys[pos] == kb))
-
-
-def _on(pattern: sp.csr_matrix, B: sp.csr_matrix) -> np.ndarray:
-    """B's values placed on `pattern`, which holds B's sparsity (zeros elsewhere)."""
-    if B.nnz == pattern.nnz and np.array_equal(B.indices, pattern.indices) \
-            and np.array_equal(B.indptr, pattern.indptr):
-        return B.data.astype(np.float64)
-    out = np.zeros(pattern.nnz)
-    out[np.searchsorted(_keys(pattern), _keys(B))] = B.data
+def _placed(keys: np.ndarray, b_keys: np.ndarray | None, values: np.ndarray,
+            at: np.ndarray | None = None) -> np.ndarray:
+    """Values stored at b_keys (sorted), placed among the sorted `keys` that hold them."""
+    out = np.zeros(len(keys))
+    out[np.searchsorted(keys, b_keys) if at is None else at] = values
     return out
 
 

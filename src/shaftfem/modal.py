@@ -43,6 +43,10 @@ START_SEED = 2018
 EXTRA_RITZ = 2
 INERTIA_GAP = 1e-6
 INERTIA_RETRIES = 1
+# ARPACK's tolerance: its Ritz values need not be final, the subspace and Davidson
+# steps after it bring the residuals to ~1e-9 (tolerance 0 took 7 more solves on
+# the paper's shaft for the same final residuals; 1e-4 left 6e-8).
+ARPACK_TOL = 1e-6
 # A Ritz pair with a larger relative residual than this is taken for a failed solve
 # (the pairs the solver returns reach ~1e-9).
 ACCEPT_RESIDUAL = 1e-6
@@ -95,14 +99,21 @@ class Modes:
 class EigenSolution:
     """The lowest eigenpairs of (K, M): w^2 (rad^2/s^2) and M-normalised vectors."""
 
-    eigenvalues: np.ndarray
-    vectors: np.ndarray
+    pairs: Ritz
     scale: float          # median of diag K / diag M, rad^2/s^2
     factorizer: str
     factorisation_seconds: float
     eigensolve_seconds: float
     inertia_count: int    # eigenvalues below inertia_shift, by the inertia of K - s M
     inertia_shift: float  # rad^2/s^2
+
+    @property
+    def eigenvalues(self) -> np.ndarray:
+        return self.pairs.lam
+
+    @property
+    def vectors(self) -> np.ndarray:
+        return self.pairs.X
 
 
 def _n_bodies(K: sp.csr_matrix) -> int:
@@ -112,7 +123,7 @@ def _n_bodies(K: sp.csr_matrix) -> int:
 
 
 def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
-                tol: float = 0.0, factorizer: str = "auto",
+                tol: float = ARPACK_TOL, factorizer: str = "auto",
                 max_frequency: float | None = None, ncv: int | None = None,
                 rigid: np.ndarray | None = None) -> EigenSolution:
     """The lowest n_modes + 6 eigenpairs; with `max_frequency` (Hz), more until one
@@ -133,14 +144,15 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
     factor = _factorise(pencil, sigma, factorizer)
     t1 = time.perf_counter()
     fixed = _rigid_pairs(K, M, rigid) if rigid is not None else None
-    r = 0 if fixed is None else fixed[0].size
+    r = 0 if fixed is None else fixed.lam.size
     k = n_modes + (RIGID_BODY_MODES if fixed is None else 0)
     for attempt in range(INERTIA_RETRIES + 1):
         while True:
-            lam, X, ncv_used = _lanczos(K, M, k + EXTRA_RITZ, sigma, scale, factor, tol, ncv,
-                                        None if fixed is None else fixed[1], attempt)
+            pairs, ncv_used = _lanczos(K, M, k + EXTRA_RITZ, sigma, scale, factor, tol, ncv,
+                                       None if fixed is None else fixed.X, attempt)
             if fixed is not None:
-                lam, X = np.concatenate([fixed[0], lam]), np.hstack([fixed[1], X])
+                pairs = fixed.join(pairs)
+            lam = pairs.lam
             if max_frequency is None or lam[r + k - 1] > (2 * math.pi * max_frequency) ** 2:
                 break
             if k >= MAX_MODES + RIGID_BODY_MODES:
@@ -150,7 +162,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
         # The proof that these are the lowest eigenvalues: each Ritz pair is an
         # eigenpair to its residual, and the inertia counts as many below s_top.
         found, s_top = _gap_above(lam, r + k)
-        worst = _worst_residual(K, M, X[:, :found], lam[:found], RIGID_FACTOR * scale)
+        worst = pairs.first(found).worst_residual(RIGID_FACTOR * scale)
         counted = _counted(factor, s_top) if worst <= ACCEPT_RESIDUAL else -1
         if counted == found:
             break
@@ -165,7 +177,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
             f"the eigen solver found {found} eigenvalues below "
             f"{math.sqrt(s_top) / 2 / math.pi:.6g} Hz where the inertia of K - s M counts "
             f"{counted}: a mode was skipped, even with a Krylov space of {ncv_used} vectors")
-    return EigenSolution(eigenvalues=lam[:r + k], vectors=X[:, :r + k], scale=scale,
+    return EigenSolution(pairs=pairs.first(r + k), scale=scale,
                          factorizer=factor.backend, factorisation_seconds=t1 - t0,
                          eigensolve_seconds=time.perf_counter() - t1,
                          inertia_count=counted, inertia_shift=s_top)
@@ -184,16 +196,14 @@ def rigid_body_modes(nodes: np.ndarray) -> np.ndarray:
     return R.reshape(-1, 6)
 
 
-def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray
-                 ) -> tuple[np.ndarray, np.ndarray]:
+def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray) -> Ritz:
     """Rayleigh-Ritz pairs of (K, M) on the rigid motions R, which K must not resist."""
-    lam, X = _rayleigh_ritz(K, M, R, R.shape[1])
-    KX = K @ X
-    strain = np.linalg.norm(KX, axis=0) / (spnorm(K, 1) * np.linalg.norm(X, axis=0))
+    pairs = rayleigh_ritz(K, M, R, R.shape[1])
+    strain = np.linalg.norm(pairs.KX, axis=0) / (spnorm(K, 1) * np.linalg.norm(pairs.X, axis=0))
     if np.any(strain > 1e-9):
         raise SolverError(f"K resists a rigid motion (|K r| / |K| |r| = {strain.max():.2g}): "
                           "the stiffness is wrong or the body is not free")
-    return lam, X
+    return pairs
 
 
 def _factorise(pencil: Pencil, sigma: float, factorizer: str) -> ShiftedFactor:
@@ -221,17 +231,6 @@ def _counted(factor: ShiftedFactor, s: float) -> int:
                           f"{type(exc).__name__}: {exc}") from None
 
 
-def _worst_residual(K: sp.spmatrix, M: sp.spmatrix, X: np.ndarray, lam: np.ndarray,
-                    rigid_limit: float) -> float:
-    """The largest relative residual of the pairs, or inf if one has w^2 < 0: K is
-    positive semi-definite, so such a pair is no eigenpair."""
-    if lam.min() < -rigid_limit:
-        return math.inf
-    elastic = lam > rigid_limit
-    _, r, kx, _ = _residuals(K, M, X[:, elastic], lam[elastic])
-    return float(np.max(r / kx, initial=0.0))
-
-
 def _gap_above(lam: np.ndarray, k: int) -> tuple[int, float]:
     """(j, s): the first j >= k with a clear gap between lam[j - 1] and lam[j], and s
     in that gap; the inertia count below s must then be j."""
@@ -244,7 +243,7 @@ def _gap_above(lam: np.ndarray, k: int) -> tuple[int, float]:
 
 def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: float,
              factor: ShiftedFactor, tol: float, ncv: int | None, R: np.ndarray | None = None,
-             attempt: int = 0) -> tuple[np.ndarray, np.ndarray, int]:
+             attempt: int = 0) -> tuple[Ritz, int]:
     """k eigenpairs nearest sigma by shift-invert Lanczos through the factor of
     K - sigma M, refined by one subspace step and, where needed, one Davidson step;
     and the Krylov space's size. With R (M-orthonormal), in R's M-complement."""
@@ -276,26 +275,28 @@ def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: fl
     # One step of subspace iteration with the same factors, then Rayleigh-Ritz:
     # it takes ARPACK's vectors (residuals ~1e-6) down to ~1e-9 and splits
     # near-repeated pairs cleanly.
-    Y = solve(np.asarray(M @ X))
-    lam, X = _rayleigh_ritz(K, M, Y, k)
+    pairs = rayleigh_ritz(K, M, solve(np.asarray(M @ X)), k)
     # The highest wanted mode improves least in that step when the next mode is
     # close above it (its residual came out anywhere from 2e-9 to 1.5e-8 on the
     # paper's shaft, depending on ARPACK's start). One Davidson step - the
     # residuals through the same factors, added to the basis - is taken for every
     # elastic mode above RESIDUAL_TARGET: over 16 repeated runs the largest residual
     # left was 6.7e-9 (0.3 s at 86k DOFs, only when needed).
-    R_, r, kx, _ = _residuals(K, M, X, lam)
-    poor = (lam > RIGID_FACTOR * scale) & (r > RESIDUAL_TARGET * kx)
+    res = pairs.residual_vectors
+    poor = (pairs.lam > RIGID_FACTOR * scale) & (
+        np.linalg.norm(res, axis=0) > RESIDUAL_TARGET * np.linalg.norm(pairs.KX, axis=0))
     if poor.any():
-        Z = solve(R_[:, poor])
+        X = pairs.X
+        Z = solve(res[:, poor])
         for _ in range(2):  # M-orthogonal to X and M-normalised: a well-conditioned basis
-            Z -= X @ (X.T @ (M @ Z))
+            Z -= X @ (pairs.MX.T @ Z)
             Z /= np.sqrt(np.einsum("ij,ij->j", Z, M @ Z))
         try:
-            lam, X = _rayleigh_ritz(K, M, np.hstack([X, Z]), k)
+            pairs = rayleigh_ritz(K, M, np.hstack([X, Z]), k,
+                                  known=(pairs.KX, pairs.MX))
         except np.linalg.LinAlgError:
             pass  # corrections that are (nearly) dependent: keep the step before
-    return lam, X, ncv
+    return pairs, ncv
 
 
 def start_vector(n: int, attempt: int = 0) -> np.ndarray:
@@ -304,18 +305,59 @@ def start_vector(n: int, attempt: int = 0) -> np.ndarray:
     return np.random.default_rng(START_SEED + attempt).standard_normal(n)
 
 
-def _residuals(K: sp.spmatrix, M: sp.spmatrix, X: np.ndarray, lam: np.ndarray):
-    """R = K X - M X diag(lam), its column norms, those of K X, and M X."""
-    KX, MX = K @ X, M @ X
-    R = KX - MX * lam
-    return R, np.linalg.norm(R, axis=0), np.linalg.norm(KX, axis=0), MX
+@dataclass(frozen=True)
+class Ritz:
+    """Approximate eigenpairs (w^2 in rad^2/s^2, vectors) of (K, M), with K X and M X
+    kept, so that residuals and further Rayleigh-Ritz steps need no new products."""
+
+    lam: np.ndarray
+    X: np.ndarray
+    KX: np.ndarray
+    MX: np.ndarray
+
+    @property
+    def residual_vectors(self) -> np.ndarray:
+        """K x - w^2 M x for each pair."""
+        return self.KX - self.MX * self.lam
+
+    def relative_residuals(self) -> np.ndarray:
+        """||K x - w^2 M x|| / ||K x|| per pair."""
+        return (np.linalg.norm(self.residual_vectors, axis=0)
+                / np.linalg.norm(self.KX, axis=0))
+
+    def worst_residual(self, rigid_limit: float) -> float:
+        """The largest relative residual of the elastic pairs, or inf if one has
+        w^2 < 0: K is positive semi-definite, so such a pair is no eigenpair."""
+        if self.lam.min() < -rigid_limit:
+            return math.inf
+        return float(np.max(self.relative_residuals()[self.lam > rigid_limit], initial=0.0))
+
+    def first(self, n: int) -> "Ritz":
+        return Ritz(self.lam[:n], self.X[:, :n], self.KX[:, :n], self.MX[:, :n])
+
+    def select(self, keep: np.ndarray) -> "Ritz":
+        return Ritz(self.lam[keep], self.X[:, keep], self.KX[:, keep], self.MX[:, keep])
+
+    def join(self, other: "Ritz") -> "Ritz":
+        return Ritz(np.concatenate([self.lam, other.lam]), np.hstack([self.X, other.X]),
+                    np.hstack([self.KX, other.KX]), np.hstack([self.MX, other.MX]))
+
+    def scaled(self, c: np.ndarray) -> "Ritz":
+        """The same pairs with vector j scaled by c[j]."""
+        return Ritz(self.lam, self.X * c, self.KX * c, self.MX * c)
 
 
-def _rayleigh_ritz(K: sp.spmatrix, M: sp.spmatrix, V: np.ndarray, k: int
-                  ) -> tuple[np.ndarray, np.ndarray]:
-    """The k lowest Ritz pairs of (K, M) in the span of V's columns."""
-    lam, Q = eigh(V.T @ (K @ V), V.T @ (M @ V))
-    return lam[:k], V @ Q[:, :k]
+def rayleigh_ritz(K: sp.spmatrix, M: sp.spmatrix, V: np.ndarray, k: int,
+                  known: tuple[np.ndarray, np.ndarray] | None = None) -> Ritz:
+    """The k lowest Ritz pairs of (K, M) in the span of V's columns. `known`: K and M
+    times V's first columns, when they are at hand."""
+    m = 0 if known is None else known[0].shape[1]
+    KV, MV = K @ V[:, m:], M @ V[:, m:]
+    if known is not None:
+        KV, MV = np.hstack([known[0], KV]), np.hstack([known[1], MV])
+    lam, Q = eigh(V.T @ KV, V.T @ MV)
+    Q = Q[:, :k]
+    return Ritz(lam[:k], V @ Q, KV @ Q, MV @ Q)
 
 
 def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
@@ -331,7 +373,7 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
         )
     sol = solve_modes(K, M, n_modes, factorizer=factorizer, max_frequency=max_frequency,
                       rigid=rigid_body_modes(nodes))
-    lam, X, scale = sol.eigenvalues, sol.vectors, sol.scale
+    lam, scale = sol.eigenvalues, sol.scale
     rigid_limit = RIGID_FACTOR * scale
     if lam[0] < -rigid_limit:
         raise SolverError(
@@ -350,11 +392,12 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
         )
     if max_frequency is not None:
         n_modes = max(1, int(np.sum(lam[~is_rigid] < (2 * math.pi * max_frequency) ** 2)))
-    lam_e, X_e = lam[~is_rigid][:n_modes], X[:, ~is_rigid][:, :n_modes]
-    # M-normalise explicitly (ARPACK's vectors are, up to round-off)
-    X_e = X_e / np.sqrt(np.einsum("ij,ij->j", X_e, M @ X_e))
-    _, R, kx, MX = _residuals(K, M, X_e, lam_e)
-    residuals = R / kx
+    elastic = sol.pairs.select(~is_rigid).first(n_modes)
+    # M-normalise explicitly (the Ritz vectors are, up to round-off)
+    elastic = elastic.scaled(1 / np.sqrt(np.einsum("ij,ij->j", elastic.X, elastic.MX)))
+    lam_e, X_e, MX = elastic.lam, elastic.X, elastic.MX
+    R = np.linalg.norm(elastic.residual_vectors, axis=0)
+    residuals = elastic.relative_residuals()
     # Normwise backward error ||r|| / ((||K|| + w^2 ||M||) ||x||): the relative residual
     # above has a round-off floor of about eps * w_max^2 / w^2, which slender shafts
     # (low modes, fine meshes) reach; the backward error has none.
