@@ -184,18 +184,48 @@ def _sum_over_chunks(kernel, n_elements: int, pattern: Pattern, threads: int) ->
         return sum(pool.map(work, parts))
 
 
-def assemble(mesh, material: Material, mass_intorder: int | None = None,
-             threads: int | None = None) -> System:
-    """K and M of a mesh.ShaftMesh with P1/P2 elements (its order), on `threads`
-    threads (default: one per core)."""
+@dataclass(frozen=True)
+class Discretisation:
+    """A mesh's scalar basis and the sparsity of its K and M, before any value: what
+    the solver's analysis (ordering) needs, so that it can start while K and M are
+    assembled."""
+
+    skmesh: object
+    basis: object      # scikit-fem's scalar basis at the stiffness quadrature
+    pattern: Pattern
+    order: int
+
+    @property
+    def n_dofs(self) -> int:
+        return 3 * self.pattern.n_nodes
+
+    def upper_structure(self) -> sp.csr_matrix:
+        """The upper triangle of K's sparsity (values: ones), as `assemble` stores K."""
+        from .factor import upper_triangle
+
+        return upper_triangle(self.pattern.matrix(np.ones((self.pattern.n_blocks, 9)), 3))
+
+
+def discretise(mesh) -> Discretisation:
+    """The scalar P1/P2 basis on a mesh.ShaftMesh and the block sparsity of K and M."""
     from skfem import Basis
 
+    skmesh = mesh.to_skfem()
+    basis = Basis(skmesh, _element(mesh.order), intorder=STIFFNESS_INTORDER[mesh.order])
+    return Discretisation(skmesh=skmesh, basis=basis,
+                          pattern=Pattern.of(basis.element_dofs, basis.N), order=mesh.order)
+
+
+def assemble(mesh, material: Material, mass_intorder: int | None = None,
+             threads: int | None = None, discretisation: Discretisation | None = None
+             ) -> System:
+    """K and M of a mesh.ShaftMesh with P1/P2 elements (its order), on `threads`
+    threads (default: one per core); `discretisation`: the mesh's, if made already."""
     t0 = time.perf_counter()
-    skmesh, order = mesh.to_skfem(), mesh.order
+    d = discretisation or discretise(mesh)
+    order, k_basis, pattern = d.order, d.basis, d.pattern
     lam, mu = material.lame
     n_threads = assembly_threads(threads)
-    k_basis = Basis(skmesh, _element(order), intorder=STIFFNESS_INTORDER[order])
-    pattern = Pattern.of(k_basis.element_dofs, k_basis.N)
     grad = _gradients(k_basis)
     phi, m_dx = _reference_values(k_basis, mass_intorder or MASS_INTORDER[order])
     n_el = grad.shape[0]

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import ctypes
 import functools
+from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Callable
 
 import numpy as np
@@ -27,11 +28,11 @@ FACTORIZERS = ("pardiso", "cholmod", "superlu")
 # factorisation dominates and PARDISO is 7x faster (benchmarks/).
 AUTO_SUPERLU_BELOW = 60_000
 
-# PARDISO's settings (iparm, 1-based as in MKL's manual): our own values, METIS
+# PARDISO's settings (iparm, 1-based as in MKL's manual): our own values, parallel METIS
 # nested dissection, pivots perturbed below 1e-8 (counted, see `perturbed`), no
 # iterative refinement (the residuals are 1e-11 without it, and modal refines the
 # eigenpairs itself), 1-based indices.
-_IPARM = {1: 1, 2: 2, 8: 0, 10: 8, 35: 0}
+_IPARM = {1: 1, 2: 3, 8: 0, 10: 8, 35: 0}
 _SYMMETRIC_INDEFINITE = -2
 
 
@@ -126,7 +127,9 @@ class Pardiso:
     `refactor(B)` factorises another matrix of the same sparsity (a new shift of
     the same pencil) reusing the analysis; `inertia` counts the signs of D."""
 
-    def __init__(self, upper: sp.csr_matrix):
+    def __init__(self, upper: sp.csr_matrix, factorise: bool = True):
+        """Analyse `upper`'s sparsity (ordering, symbolic factorisation) and, unless
+        `factorise` is False, factorise it; the analysis looks at no values."""
         if np.any(np.diff(upper.indptr) == 0):
             raise SolverError("the matrix has an empty row: a DOF no element touches")
         self._call = _mkl_pardiso()
@@ -137,9 +140,10 @@ class Pardiso:
             self._iparm[k - 1] = v
         self._ia = (upper.indptr + 1).astype(np.int32)
         self._ja = (upper.indices + 1).astype(np.int32)
-        self._nnz = upper.nnz
+        self._indptr, self._indices = upper.indptr, upper.indices
         self._run(11, upper.data)
-        self._run(22, upper.data)
+        if factorise:
+            self._run(22, upper.data)
 
     def _run(self, phase: int, data: np.ndarray, b: np.ndarray | None = None) -> np.ndarray:
         if b is None:
@@ -176,9 +180,14 @@ class Pardiso:
         """Pivots PARDISO perturbed in the current factorisation (0 for a clean one)."""
         return int(self._iparm[13])
 
+    def matches(self, upper: sp.csr_matrix) -> bool:
+        """Whether `upper` has the analysed sparsity."""
+        return (upper.nnz == len(self._indices) and np.array_equal(upper.indptr, self._indptr)
+                and np.array_equal(upper.indices, self._indices))
+
     def refactor(self, upper: sp.csr_matrix) -> None:
         """Factorise another matrix of the analysed sparsity (its upper triangle)."""
-        if upper.nnz != self._nnz:
+        if not self.matches(upper):
             raise SolverError("refactor: the matrix's sparsity differs from the analysed one")
         self._run(22, upper.data)
 
@@ -231,13 +240,32 @@ def _resolve(backend: str, n: int) -> str:
     return backend
 
 
+def uses_pardiso(backend: str, n: int) -> bool:
+    """Whether `backend` ('auto' included) means PARDISO for n unknowns."""
+    return _resolve(backend, n) == "pardiso"
+
+
+def analyse_in_background(upper: sp.csr_matrix) -> Future:
+    """PARDISO's analysis of a sparsity (the upper triangle's structure), started in a
+    thread: it needs no values, so it runs while they are assembled (ctypes releases
+    the GIL for the call). The future's result is a `Pardiso` awaiting `refactor`."""
+    pool = ThreadPoolExecutor(1, thread_name_prefix="pardiso-analysis")
+    future = pool.submit(Pardiso, upper, False)
+    pool.shutdown(wait=False)
+    return future
+
+
 class ShiftedFactor:
     """A factorisation of K - s M for a pencil, that can move to another shift and
     count the pencil's eigenvalues below a shift."""
 
-    def __init__(self, pencil: Pencil, shift: float, backend: str = "auto"):
+    def __init__(self, pencil: Pencil, shift: float, backend: str = "auto",
+                 analysis: Future | None = None):
+        """`analysis`: PARDISO's analysis of the pencil's sparsity, when it was started
+        beforehand (analyse_in_background); used if it matches."""
         self.pencil = pencil
         self.backend = _resolve(backend, pencil.n)
+        self._analysis = analysis
         self._pardiso: Pardiso | None = None
         self._solve: Callable[[np.ndarray], np.ndarray] | None = None
         self.shift = None
@@ -248,10 +276,15 @@ class ShiftedFactor:
         if s == self.shift:
             return
         if self.backend == "pardiso":
+            upper = self.pencil.upper(s)
+            if self._pardiso is None and self._analysis is not None:
+                analysed = self._analysis.result()
+                if analysed.matches(upper):
+                    self._pardiso = analysed
             if self._pardiso is None:
-                self._pardiso = Pardiso(self.pencil.upper(s))
+                self._pardiso = Pardiso(upper)
             else:
-                self._pardiso.refactor(self.pencil.upper(s))
+                self._pardiso.refactor(upper)
             self._solve = self._pardiso.solve
         else:
             self._solve, _ = factorize(self.pencil.full(s), self.backend)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import time
+from concurrent.futures import Future
 from dataclasses import dataclass
 
 import numpy as np
@@ -125,7 +126,8 @@ def _n_bodies(K: sp.csr_matrix) -> int:
 def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
                 tol: float = ARPACK_TOL, factorizer: str = "auto",
                 max_frequency: float | None = None, ncv: int | None = None,
-                rigid: np.ndarray | None = None) -> EigenSolution:
+                rigid: np.ndarray | None = None,
+                analysis: Future | None = None) -> EigenSolution:
     """The lowest n_modes + 6 eigenpairs; with `max_frequency` (Hz), more until one
     lies above it (the factorisation is reused).
 
@@ -136,12 +138,13 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
     the count still differs.
     `rigid` (n_dofs, r): the body's rigid motions (K R = 0), kept out of the Krylov
     space and returned as the r lowest pairs, so that it holds only elastic modes.
-    `ncv`: the Krylov space's size (default max(2k + 1, 20), k the pairs sought)."""
+    `ncv`: the Krylov space's size (default max(2k + 1, 20), k the pairs sought).
+    `analysis`: PARDISO's analysis of the sparsity, started beforehand (factor.py)."""
     scale = float(np.median(K.diagonal() / M.diagonal()))
     sigma = -SHIFT_FACTOR * scale
     t0 = time.perf_counter()
     pencil = Pencil(K, M)
-    factor = _factorise(pencil, sigma, factorizer)
+    factor = _factorise(pencil, sigma, factorizer, analysis)
     t1 = time.perf_counter()
     fixed = _rigid_pairs(K, M, rigid) if rigid is not None else None
     r = 0 if fixed is None else fixed.lam.size
@@ -206,10 +209,11 @@ def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray) -> Ritz:
     return pairs
 
 
-def _factorise(pencil: Pencil, sigma: float, factorizer: str) -> ShiftedFactor:
+def _factorise(pencil: Pencil, sigma: float, factorizer: str,
+               analysis: Future | None = None) -> ShiftedFactor:
     """K - sigma M factorised, the back-ends' failures translated."""
     try:
-        return ShiftedFactor(pencil, sigma, factorizer)
+        return ShiftedFactor(pencil, sigma, factorizer, analysis)
     except SolverError:
         raise
     except MemoryError:
@@ -362,7 +366,8 @@ def rayleigh_ritz(K: sp.spmatrix, M: sp.spmatrix, V: np.ndarray, k: int,
 
 def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                    mass_scalar: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
-                   factorizer: str = "auto", max_frequency: float | None = None) -> Modes:
+                   factorizer: str = "auto", max_frequency: float | None = None,
+                   analysis: Future | None = None) -> Modes:
     """Solve, separate the six rigid-body modes, check and classify the elastic ones:
     the lowest `n_modes`, or with `max_frequency` (Hz) every one below it (at least one)."""
     n_bodies = _n_bodies(K)
@@ -372,7 +377,7 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
             f"(it would have {RIGID_BODY_MODES * n_bodies} rigid-body modes)"
         )
     sol = solve_modes(K, M, n_modes, factorizer=factorizer, max_frequency=max_frequency,
-                      rigid=rigid_body_modes(nodes))
+                      rigid=rigid_body_modes(nodes), analysis=analysis)
     lam, scale = sol.eigenvalues, sol.scale
     rigid_limit = RIGID_FACTOR * scale
     if lam[0] < -rigid_limit:

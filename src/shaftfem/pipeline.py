@@ -110,16 +110,21 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_ca
                t_mesh: float, say: Callable[[str], None], factorizer: str = "auto",
                threads: int | None = None) -> ModalResult:
     """Assemble and solve one mesh of the scene's solid (the run began at t0)."""
-    from .assembly import assemble
+    from .assembly import assemble, discretise
+    from .factor import analyse_in_background, uses_pardiso
     from .modal import modal_analysis
 
     t = time.perf_counter()
-    system = assemble(mesh, scene.material, threads=threads)
+    d = discretise(mesh)
+    # The solver's ordering needs only the sparsity: it runs while K and M are filled.
+    analysis = (analyse_in_background(d.upper_structure())
+                if uses_pardiso(factorizer, d.n_dofs) else None)
+    system = assemble(mesh, scene.material, threads=threads, discretisation=d)
     t_assembly = time.perf_counter() - t
     say(f"{system.n_dofs} DOFs; factorising and solving")
     modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
                            scene.modes.count, factorizer=factorizer,
-                           max_frequency=scene.modes.max_frequency)
+                           max_frequency=scene.modes.max_frequency, analysis=analysis)
     timings = Timings(cad=t_cad, mesh=t_mesh, assembly=t_assembly,
                       factorisation=modes.factorisation_seconds,
                       eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
