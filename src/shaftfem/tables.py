@@ -64,7 +64,9 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
         f"scene {scene.name}: P{scene.mesh.order}, {m.n_dofs} DOFs, "
         f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm "
         f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factorizer}",
-        f"rigid-body modes: {m.n_rigid} (all below {max(m.rigid_frequencies):.1e} Hz)",
+        f"rigid-body modes: {m.n_rigid} (all below {max(m.rigid_frequencies):.1e} Hz); "
+        f"Sturm check: {m.inertia_count} eigenvalues below {m.inertia_shift_hz:.1f} Hz, "
+        "as many as found",
         "",
     ]
     head = f"{'mode':>4}  {'frequency':>12}  {'kind':<8}  {'residual':>9}"
