@@ -1,76 +1,68 @@
-"""Stiffness assembly: scikit-fem's vector form (what shaftfem uses) against 30x30
-element blocks built from scikit-fem's scalar basis (a trial found the latter
-several times faster with an older scikit-fem).
+"""Stiffness assembly: scikit-fem's vector-valued form against shaftfem's route
+(30x30 element blocks from scikit-fem's scalar basis, one batched product per
+chunk of elements, summed into 3x3 blocks), on the same P2 mesh in the same run.
 
-Both assemble the same K of 3D isotropic elasticity on the same P2 mesh; the
-script checks they agree and prints the time of each, and the ratio, measured
-in the same run.
+    .venv/bin/python benchmarks/assembly_routes.py [ELEMENT_SIZE_MM] [REPEAT]
 
-    .venv/bin/python benchmarks/assembly_routes.py [ELEMENT_SIZE_MM]
+Prints the median time of each route over REPEAT runs (default 3), their ratio,
+and how far apart the two matrices are.
 """
 
+import statistics
 import sys
 import time
+from pathlib import Path
 
-import numpy as np
-from skfem import Basis, BilinearForm, ElementTetP2, ElementVector
-from skfem.helpers import ddot, sym_grad, trace
-
-import scipy.sparse as sp
-
-from shaftfem.assembly import STIFFNESS_INTORDER
-from shaftfem.pipeline import with_mesh
-from shaftfem.scene import load_scene
+sys.path.insert(0, str(Path(__file__).parent))
+from _common import machine  # noqa: E402
 
 
-def block_stiffness(basis, lam: float, mu: float) -> sp.csr_matrix:
-    """K[(i,a), (j,b)] = lam D_ab[i,j] + mu D_ba[i,j] + mu delta_ab sum_c D_cc[i,j],
-    D_ab[i, j] = int d_a phi_i d_b phi_j, from the scalar basis, in element blocks."""
-    nloc, nel, n = len(basis.basis), basis.nelems, basis.N
-    grads = np.stack([basis.basis[i][0].grad for i in range(nloc)])  # (i, a, e, q)
-    D = np.einsum("iaeq,jbeq,eq->eabij", grads, grads, basis.dx, optimize=True)
-    tr = np.einsum("eccij->eij", D)
-    Ke = (lam * D.transpose(0, 3, 1, 4, 2) + mu * D.transpose(0, 3, 2, 4, 1)
-          + mu * tr[:, :, None, :, None] * np.eye(3)[None, None, :, None, :])
-    g = (3 * basis.element_dofs.T[:, :, None] + np.arange(3)).reshape(nel, 3 * nloc)
-    rows = np.repeat(g, 3 * nloc, axis=1).ravel()
-    cols = np.tile(g, (1, 3 * nloc)).ravel()
-    return sp.coo_matrix((Ke.ravel(), (rows, cols)), shape=(3 * n, 3 * n)).tocsr()
+def main(size_mm: float, repeat: int) -> None:
+    import numpy as np
 
-
-def main(size_mm: float) -> None:
+    from shaftfem.assembly import STIFFNESS_INTORDER, discretise, elasticity_blocks, stiffness
+    from shaftfem.assembly import _gradients, _sum_over_chunks
     from shaftfem.geometry import build_shape
     from shaftfem.mesh import mesh_shape
+    from shaftfem.pipeline import with_mesh
+    from shaftfem.runtime import assembly_threads
+    from shaftfem.scene import load_scene
 
     scene = with_mesh(load_scene("paper2018"), size_mm)
     shape = build_shape(scene.shaft, scene.grooves)
-    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh).to_skfem()
+    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh)
     lam, mu = scene.material.lame
 
-    t0 = time.perf_counter()
-    scalar = Basis(mesh, ElementTetP2(), intorder=STIFFNESS_INTORDER[2])
-    K_fast = block_stiffness(scalar, lam, mu)
-    t_fast = time.perf_counter() - t0
+    def blocks():
+        d = discretise(mesh)
+        grad = _gradients(d.basis)
+        n = grad.shape[2]
+        return d.pattern.matrix(_sum_over_chunks(
+            lambda c: elasticity_blocks(grad[c], d.basis.dx[c], lam, mu).reshape(
+                c.stop - c.start, n, n, 9), grad.shape[0], d.pattern, assembly_threads()), 3)
 
-    @BilinearForm
-    def elasticity(u, v, _):
-        eps_u, eps_v = sym_grad(u), sym_grad(v)
-        return lam * trace(eps_u) * trace(eps_v) + 2 * mu * ddot(eps_u, eps_v)
+    def vector_form():
+        return stiffness(mesh.to_skfem(), 2, lam, mu)
 
-    t0 = time.perf_counter()
-    vector = Basis(mesh, ElementVector(ElementTetP2()), intorder=STIFFNESS_INTORDER[2])
-    K_vec = elasticity.assemble(vector).tocsr()
-    t_vec = time.perf_counter() - t0
-
-    # scikit-fem's vector DOFs are numbered node-major too (3 n + c); compare on a vector
+    times = {}
+    for name, fn in (("blocks", blocks), ("vector", vector_form)):
+        runs = []
+        for _ in range(repeat):
+            t = time.perf_counter()
+            K = fn()
+            runs.append(time.perf_counter() - t)
+        times[name] = (statistics.median(runs), K)
+    (t_fast, K_fast), (t_vec, K_vec) = times["blocks"], times["vector"]
     x = np.random.default_rng(0).standard_normal(K_fast.shape[0])
     diff = np.linalg.norm(K_fast @ x - K_vec @ x) / np.linalg.norm(K_vec @ x)
-    print(f"P2 mesh at {size_mm:g} mm: {mesh.nelements} elements, {K_fast.shape[0]} DOFs")
-    print(f"  scikit-fem vector form (shaftfem) : {t_vec:7.2f} s")
-    print(f"  scalar-basis 30x30 blocks         : {t_fast:7.2f} s   (vector form / blocks = "
+    print(f"machine: {machine()}; P2 mesh at {size_mm:g} mm: {mesh.n_elements} elements, "
+          f"{K_fast.shape[0]} DOFs, rule of order {STIFFNESS_INTORDER[2]}, medians of {repeat}")
+    print(f"  scikit-fem vector form      : {t_vec:7.2f} s (one thread)")
+    print(f"  scalar-basis 30x30 blocks   : {t_fast:7.2f} s (shaftfem; vector form / blocks = "
           f"{t_vec / t_fast:.2f})")
     print(f"  same matrix: |K_fast x - K_vec x| / |K_vec x| = {diff:.1e}")
 
 
 if __name__ == "__main__":
-    main(float(sys.argv[1]) if len(sys.argv) > 1 else 8.0)
+    main(float(sys.argv[1]) if len(sys.argv) > 1 else 8.0,
+         int(sys.argv[2]) if len(sys.argv) > 2 else 3)

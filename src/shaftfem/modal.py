@@ -34,8 +34,8 @@ RIGID_FACTOR = 1e-10
 # Relative residual ||K x - w^2 M x|| / ||K x|| above which an elastic mode gets a
 # Davidson correction step (solve_modes).
 RESIDUAL_TARGET = 3e-9
-# ARPACK's start vector is fixed, so that a run is repeatable to the last bit (a random
-# start moved the paper shaft's frequencies by up to 6e-12 between runs).
+# ARPACK's start vector is fixed, so that runs differ only by the round-off of MKL's
+# threads (a random start moved the paper shaft's frequencies by up to 6e-12).
 START_SEED = 2018
 # Ritz pairs computed beyond the wanted ones, to find a gap above them where the
 # inertia count is taken; two eigenvalues closer than INERTIA_GAP (relative) are
@@ -149,6 +149,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
     fixed = _rigid_pairs(K, M, rigid) if rigid is not None else None
     r = 0 if fixed is None else fixed.lam.size
     k = n_modes + (RIGID_BODY_MODES if fixed is None else 0)
+    k_max = MAX_MODES + (RIGID_BODY_MODES if fixed is None else 0)
     for attempt in range(INERTIA_RETRIES + 1):
         while True:
             pairs, ncv_used = _lanczos(K, M, k + EXTRA_RITZ, sigma, scale, factor, tol, ncv,
@@ -158,10 +159,10 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
             lam = pairs.lam
             if max_frequency is None or lam[r + k - 1] > (2 * math.pi * max_frequency) ** 2:
                 break
-            if k >= MAX_MODES + RIGID_BODY_MODES:
+            if k >= k_max:
                 raise SolverError(f"more than {MAX_MODES} modes lie below {max_frequency:g} Hz; "
                                   "lower the frequency limit")
-            k = min(2 * k, MAX_MODES + RIGID_BODY_MODES)
+            k = min(2 * k, k_max)
         # The proof that these are the lowest eigenvalues: each Ritz pair is an
         # eigenpair to its residual, and the inertia counts as many below s_top.
         found, s_top = _gap_above(lam, r + k)
@@ -240,7 +241,8 @@ def _gap_above(lam: np.ndarray, k: int) -> tuple[int, float]:
     in that gap; the inertia count below s must then be j."""
     for j in range(k, len(lam)):
         if lam[j] > lam[j - 1] * (1 + INERTIA_GAP):
-            return j, math.sqrt(lam[j - 1] * lam[j])
+            low = lam[j - 1]
+            return j, math.sqrt(low * lam[j]) if low > 0 else 0.5 * (low + lam[j])
     raise SolverError(f"the {len(lam) - k + 1} highest eigenvalues found are equal to within "
                       f"{INERTIA_GAP:g}: no gap to count them in; ask for more modes")
 
