@@ -14,7 +14,7 @@ the 3x3 block of K coupling nodes a and b is
 
 one batched matrix product per chunk of elements, summed into the blocks of a
 3x3-block sparse matrix. It is the same K as scikit-fem's vector-valued
-`BilinearForm` (`stiffness_form`, to round-off: a test checks it), several times
+`BilinearForm` (`stiffness` below, to round-off: a test checks it), several times
 faster because it touches each scalar gradient once instead of 30 vector ones
 (benchmarks/assembly_routes.py). M is the scalar mass times the 3x3 identity.
 """
@@ -167,7 +167,9 @@ def _gradients(basis) -> np.ndarray:
 
 def _sum_over_chunks(kernel, n_elements: int, pattern: Pattern, threads: int) -> np.ndarray:
     """Sum of kernel(chunk) over chunks of elements, in `threads` threads (NumPy's
-    products release the GIL)."""
+    products release the GIL). The kernels only read arrays made before: scikit-fem
+    fills a mesh's mapping lazily and not thread-safely (a cold P1 stiffness once came
+    out 18 % wrong), so no scikit-fem call runs in the threads."""
     chunks = [slice(i, min(i + CHUNK, n_elements)) for i in range(0, n_elements, CHUNK)]
 
     def work(part):
@@ -190,7 +192,6 @@ class Discretisation:
     the solver's analysis (ordering) needs, so that it can start while K and M are
     assembled."""
 
-    skmesh: object
     basis: object      # scikit-fem's scalar basis at the stiffness quadrature
     pattern: Pattern
     order: int
@@ -210,9 +211,8 @@ def discretise(mesh) -> Discretisation:
     """The scalar P1/P2 basis on a mesh.ShaftMesh and the block sparsity of K and M."""
     from skfem import Basis
 
-    skmesh = mesh.to_skfem()
-    basis = Basis(skmesh, _element(mesh.order), intorder=STIFFNESS_INTORDER[mesh.order])
-    return Discretisation(skmesh=skmesh, basis=basis,
+    basis = Basis(mesh.to_skfem(), _element(mesh.order), intorder=STIFFNESS_INTORDER[mesh.order])
+    return Discretisation(basis=basis,
                           pattern=Pattern.of(basis.element_dofs, basis.N), order=mesh.order)
 
 
