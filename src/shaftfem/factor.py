@@ -89,12 +89,12 @@ class Pencil:
         if not np.array_equal(keys[at], m_keys):  # M has entries where K has none
             union = upper_triangle(abs(Ku) + abs(Mu))
             keys = _keys(union)
-            Ku = sp.csr_matrix((_placed(keys, _keys(Ku), Ku.data), union.indices, union.indptr),
-                               shape=union.shape)
+            Ku = sp.csr_matrix((_placed(len(keys), np.searchsorted(keys, _keys(Ku)), Ku.data),
+                                union.indices, union.indptr), shape=union.shape)
             at = np.searchsorted(keys, m_keys)
         self.indptr, self.indices = Ku.indptr, Ku.indices
         self.k_data = Ku.data.astype(np.float64)
-        self.m_data = _placed(keys, None, Mu.data, at)
+        self.m_data = _placed(len(keys), at, Mu.data)
         self.K, self.M = K, M
         self.n = K.shape[0]
 
@@ -113,11 +113,10 @@ def _keys(A: sp.csr_matrix) -> np.ndarray:
     return rows * A.shape[1] + A.indices
 
 
-def _placed(keys: np.ndarray, b_keys: np.ndarray | None, values: np.ndarray,
-            at: np.ndarray | None = None) -> np.ndarray:
-    """Values stored at b_keys (sorted), placed among the sorted `keys` that hold them."""
-    out = np.zeros(len(keys))
-    out[np.searchsorted(keys, b_keys) if at is None else at] = values
+def _placed(size: int, at: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """`values` at positions `at` of an array of `size` zeros."""
+    out = np.zeros(size)
+    out[at] = values
     return out
 
 

@@ -339,7 +339,7 @@ class Ritz:
         return float(np.max(self.relative_residuals()[self.lam > rigid_limit], initial=0.0))
 
     def first(self, n: int) -> "Ritz":
-        return Ritz(self.lam[:n], self.X[:, :n], self.KX[:, :n], self.MX[:, :n])
+        return self.select(slice(n))
 
     def select(self, keep: np.ndarray) -> "Ritz":
         return Ritz(self.lam[keep], self.X[:, keep], self.KX[:, keep], self.MX[:, keep])
