@@ -68,3 +68,62 @@ def timoshenko_free_free_hz(n_modes: int, length: float, radius: float, E: float
             if len(roots) == n_modes:
                 break
     return [w / (2 * math.pi) for w in roots]
+
+
+def timoshenko_ss_hz(n: int, span: float, radius: float, E: float, nu: float,
+                     rho: float) -> float:
+    """Bending mode n of a simply supported Timoshenko beam (closed form, Cowper's
+    shear factor): the lower root of
+    rho^2 I / (k G) w^4 - (rho A + rho I k_n^2 (1 + E / (k G))) w^2 + E I k_n^4 = 0."""
+    G = E / (2 * (1 + nu))
+    A, I = math.pi * radius**2, math.pi * radius**4 / 4
+    kappa = 6 * (1 + nu) / (7 + 6 * nu)
+    k = n * math.pi / span
+    a = rho**2 * I / (kappa * G)
+    b = -(rho * A + rho * I * k**2 * (1 + E / (kappa * G)))
+    c = E * I * k**4
+    return math.sqrt((-b - math.sqrt(b * b - 4 * a * c)) / (2 * a)) / (2 * math.pi)
+
+
+def timoshenko_beam_hz(n_modes: int, length: float, radius: float, E: float, nu: float,
+                       rho: float, pins: tuple[float, ...], disk: tuple | None = None,
+                       n_el: int = 1600) -> list[float]:
+    """Bending frequencies of a 1D Timoshenko beam FE in one plane: linear elements
+    with one-point shear (no locking), consistent mass with rotary inertia, pinned
+    (w = 0) at the axial positions `pins`. `disk` = (z0, z1, mass, diametral inertia):
+    a rigid part whose hub makes z0..z1 rigid (EI, kGA x 1e3), its mass and inertia at
+    the hub's middle. Positions must fall on element ends (L / n_el)."""
+    G = E / (2 * (1 + nu))
+    A, I = math.pi * radius**2, math.pi * radius**4 / 4
+    kappa = 6 * (1 + nu) / (7 + 6 * nu)
+    h = length / n_el
+    z = np.linspace(0.0, length, n_el + 1)
+    n = 2 * (n_el + 1)                      # (w, psi) per node
+    K = np.zeros((n, n))
+    M = np.zeros((n, n))
+    for e in range(n_el):
+        stiff = 1.0
+        if disk is not None and disk[0] - 1e-12 <= z[e] and z[e + 1] <= disk[1] + 1e-12:
+            stiff = 1e3
+        dofs = [2 * e, 2 * e + 1, 2 * e + 2, 2 * e + 3]
+        Kb = stiff * E * I / h * np.array([[0, 0, 0, 0], [0, 1, 0, -1], [0, 0, 0, 0],
+                                           [0, -1, 0, 1]])
+        B = np.array([-1 / h, -0.5, 1 / h, -0.5])
+        Ks = stiff * kappa * G * A * h * np.outer(B, B)
+        lin = h / 6 * np.array([[2, 1], [1, 2]])
+        Me = np.zeros((4, 4))
+        Me[np.ix_([0, 2], [0, 2])] = rho * A * lin
+        Me[np.ix_([1, 3], [1, 3])] = rho * I * lin
+        K[np.ix_(dofs, dofs)] += Kb + Ks
+        M[np.ix_(dofs, dofs)] += Me
+    if disk is not None:
+        mid = int(round((disk[0] + disk[1]) / 2 / h))
+        M[2 * mid, 2 * mid] += disk[2]
+        M[2 * mid + 1, 2 * mid + 1] += disk[3]
+    held = [2 * int(round(p / h)) for p in pins]
+    keep = np.setdiff1d(np.arange(n), held)
+    from scipy.linalg import eigh
+
+    lam = eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True,
+               subset_by_index=[0, n_modes - 1])
+    return list(np.sqrt(lam) / (2 * math.pi))

@@ -17,7 +17,7 @@ the scene's mesh key, the target and the budget: a warm re-run solves one mesh.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable
 
@@ -102,12 +102,14 @@ def adapt_key(scene: Scene, shape: ShaftShape, target: float, max_dofs: int) -> 
     from .mesh import mesh_key
 
     payload = {"version": ADAPT_VERSION, "mesh": mesh_key(shape, scene.shaft, scene.grooves,
-                                                           scene.mesh),
+                                                           scene.mesh, scene.seat_cuts()),
                "target": target, "max_dofs": max_dofs, "modes": scene.modes.count,
                "max_frequency": scene.modes.max_frequency,
                "material": [scene.material.youngs_modulus, scene.material.poisson_ratio,
                             scene.material.density],
-               "constants": [AIM, POWER, REFINE_MAX, SMALLEST, MAX_ROUNDS]}
+               "constants": [AIM, POWER, REFINE_MAX, SMALLEST, MAX_ROUNDS],
+               **({"installed": [asdict(p) for p in scene.held + scene.attachments]}
+                  if scene.installed else {})}
     return content_key(payload)
 
 
@@ -158,7 +160,8 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
                            why=str(z["why"]), from_cache=True)
         discard(f"adapted mesh {key}", why, path)
 
-    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache)
+    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache,
+                      cuts=scene.seat_cuts())
     prev, rounds, est = None, [], None
     reached, why = False, ""
     while True:
@@ -205,7 +208,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
         say(f"adaptive round {len(rounds) + 1}: remeshing (about {min(predicted, max_dofs)} "
             "DOFs)")
         mesh = remesh(shape, scene.shaft, scene.grooves, scene.mesh,
-                      (mesh.points, mesh.cells[:, :4], sizes))
+                      (mesh.points, mesh.cells[:, :4], sizes), scene.seat_cuts())
     if est is None:
         raise AssertionError("an adaptive run ends with a bounded round")
     _save(path, result.mesh, prev, rounds, reached, why)

@@ -121,7 +121,7 @@ def check_budget(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
 
 
 def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-             settings: MeshSettings) -> str:
+             settings: MeshSettings, cuts: tuple[float, ...] = ()) -> str:
     """A hash of everything the mesh depends on."""
     from .occ import EDGE_GRADING, gmsh_version
 
@@ -129,23 +129,25 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         "version": MESH_VERSION, "gmsh": gmsh_version(),
         "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
-        "settings": asdict(settings),
+        "settings": asdict(settings), **({"cuts": list(cuts)} if cuts else {}),
     }
     return content_key(payload, files=() if shape.brep is None else (shape.brep,))
 
 
 def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-               settings: MeshSettings, use_cache: bool = True) -> ShaftMesh:
-    """Mesh the solid (or fetch the same mesh from the cache)."""
+               settings: MeshSettings, use_cache: bool = True,
+               cuts: tuple[float, ...] = ()) -> ShaftMesh:
+    """Mesh the solid (or fetch the same mesh from the cache); `cuts`: z (m) where the
+    mesh must have faces (the edges of seat bands)."""
     t0 = time.perf_counter()
-    key = mesh_key(shape, shaft, grooves, settings)
+    key = mesh_key(shape, shaft, grooves, settings, cuts)
     path = cache_dir() / "meshes" / f"{key}.npz"
     if use_cache and path.exists():
         fields, why = load_arrays(path, MESH_ARRAYS)
         if fields is not None:
             return mesh_from_arrays(fields, time.perf_counter() - t0)
         discard(f"mesh {key}", why, path)
-    mesh = _generate(shape, shaft, grooves, settings)
+    mesh = _generate(shape, shaft, grooves, settings, cuts=cuts)
     save_arrays(path, mesh_arrays(mesh))
     return mesh
 
@@ -169,18 +171,19 @@ def mesh_from_arrays(fields: dict, seconds: float) -> ShaftMesh:
 
 
 def remesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
-           sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> ShaftMesh:
+           sizes: tuple[np.ndarray, np.ndarray, np.ndarray],
+           cuts: tuple[float, ...] = ()) -> ShaftMesh:
     """A new mesh of the solid following an element-size field (points (N, 3), tets
     (E, 4), size at each point, m), not cached (shaftfem.adapt caches its last mesh)."""
-    return _generate(shape, shaft, grooves, settings, sizes)
+    return _generate(shape, shaft, grooves, settings, sizes, cuts)
 
 
 def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-              settings: MeshSettings, sizes=None) -> ShaftMesh:
+              settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = ()) -> ShaftMesh:
     from .occ import mesh_solid
 
     t0 = time.perf_counter()
-    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes)
+    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)

@@ -17,13 +17,13 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg import eigh
-from scipy.sparse.csgraph import connected_components
 from scipy.sparse.linalg import eigsh
 from scipy.sparse.linalg import norm as spnorm
 
 from .errors import SolverError
 from .factor import Pencil, ShiftedFactor
 from .schema import DEFAULT_MODE_COUNT, MAX_MODE_COUNT
+from .supports import Installed, n_bodies, rigid_body_modes
 
 RIGID_BODY_MODES = 6
 # sigma = -SHIFT_FACTOR * median(diag K / diag M): scale-free, so frequencies scale
@@ -117,12 +117,6 @@ class EigenSolution:
         return self.pairs.X
 
 
-def _n_bodies(K: sp.csr_matrix) -> int:
-    graph = K[::3, ::3] if K.shape[0] % 3 == 0 else K
-    n, _ = connected_components(graph, directed=False)
-    return n
-
-
 def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
                 tol: float = ARPACK_TOL, factorizer: str = "auto",
                 max_frequency: float | None = None, ncv: int | None = None,
@@ -146,10 +140,10 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
     pencil = Pencil(K, M)
     factor = _factorise(pencil, sigma, factorizer, analysis)
     t1 = time.perf_counter()
-    fixed = _rigid_pairs(K, M, rigid) if rigid is not None else None
+    fixed = _rigid_pairs(K, M, rigid) if rigid is not None and rigid.shape[1] else None
     r = 0 if fixed is None else fixed.lam.size
-    k = n_modes + (RIGID_BODY_MODES if fixed is None else 0)
-    k_max = MAX_MODES + (RIGID_BODY_MODES if fixed is None else 0)
+    k = n_modes + (RIGID_BODY_MODES if rigid is None else 0)
+    k_max = MAX_MODES + (RIGID_BODY_MODES if rigid is None else 0)
     for attempt in range(INERTIA_RETRIES + 1):
         while True:
             pairs, ncv_used = _lanczos(K, M, k + EXTRA_RITZ, sigma, scale, factor, tol, ncv,
@@ -185,19 +179,6 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
                          factorizer=factor.backend, factorisation_seconds=t1 - t0,
                          eigensolve_seconds=time.perf_counter() - t1,
                          inertia_count=counted, inertia_shift=s_top)
-
-
-def rigid_body_modes(nodes: np.ndarray) -> np.ndarray:
-    """The six rigid motions of a body whose DOF 3 n + c moves node n along axis c:
-    three translations and three rotations about its centroid, (3 n_nodes, 6)."""
-    x = nodes - nodes.mean(axis=0)
-    R = np.zeros((nodes.shape[0], 3, 6))
-    for c in range(3):
-        R[:, c, c] = 1.0
-        e = np.zeros(3)
-        e[c] = 1.0
-        R[:, :, 3 + c] = np.cross(e, x)
-    return R.reshape(-1, 6)
 
 
 def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray) -> Ritz:
@@ -369,17 +350,28 @@ def rayleigh_ritz(K: sp.spmatrix, M: sp.spmatrix, V: np.ndarray, k: int,
 def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                    mass_scalar: sp.csr_matrix, n_modes: int = DEFAULT_MODE_COUNT,
                    factorizer: str = "auto", max_frequency: float | None = None,
-                   analysis: Future | None = None) -> Modes:
-    """Solve, separate the six rigid-body modes, check and classify the elastic ones:
-    the lowest `n_modes`, or with `max_frequency` (Hz) every one below it (at least one)."""
-    n_bodies = _n_bodies(K)
-    if n_bodies != 1:
-        raise SolverError(
-            f"the mesh has {n_bodies} disconnected parts; a free body must be one piece "
-            f"(it would have {RIGID_BODY_MODES * n_bodies} rigid-body modes)"
-        )
+                   analysis: Future | None = None, installed: Installed | None = None
+                   ) -> Modes:
+    """Solve, separate the rigid-body modes, check and classify the elastic ones: the
+    lowest `n_modes`, or with `max_frequency` (Hz) every one below it (at least one).
+
+    Free (`installed` None): (K, M) of one free body, six rigid motions. Installed:
+    the reduced pencil of `installed` is solved, with the rigid motions its seats leave
+    free, and the shapes come back as displacements of every node."""
+    if installed is None:
+        bodies = n_bodies(K)
+        if bodies != 1:
+            raise SolverError(
+                f"the mesh has {bodies} disconnected parts; a free body must be one piece "
+                f"(it would have {RIGID_BODY_MODES * bodies} rigid-body modes)")
+        rigid, what = rigid_body_modes(nodes), "one free body has"
+    else:
+        K, M, rigid = installed.K, installed.M, installed.rigid
+        what = (f"its seats leave the shaft {installed.n_rigid} "
+                f"({', '.join(installed.free) or 'none'}):")
+    expected = rigid.shape[1]
     sol = solve_modes(K, M, n_modes, factorizer=factorizer, max_frequency=max_frequency,
-                      rigid=rigid_body_modes(nodes), analysis=analysis)
+                      rigid=rigid, analysis=analysis)
     lam, scale = sol.eigenvalues, sol.scale
     rigid_limit = RIGID_FACTOR * scale
     if lam[0] < -rigid_limit:
@@ -390,12 +382,13 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     is_rigid = lam < rigid_limit
     n_rigid = int(is_rigid.sum())
     f_limit = math.sqrt(rigid_limit) / (2 * math.pi)
-    if n_rigid != RIGID_BODY_MODES:
-        why = ("a mechanism or a nearly disconnected part" if n_rigid > RIGID_BODY_MODES
+    if n_rigid != expected:
+        why = ("a mechanism, a nearly disconnected part or a support far too soft"
+               if n_rigid > expected
                else "the shift-invert solve missed some (bad shift or a failed factorisation)")
         raise SolverError(
-            f"found {n_rigid} modes below {f_limit:.3g} Hz where one free body has "
-            f"{RIGID_BODY_MODES} rigid-body modes: {why}"
+            f"found {n_rigid} modes below {f_limit:.3g} Hz where {what} {expected} "
+            f"rigid-body modes: {why}"
         )
     if max_frequency is not None:
         n_modes = max(1, int(np.sum(lam[~is_rigid] < (2 * math.pi * max_frequency) ** 2)))
@@ -411,10 +404,11 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     nx = np.linalg.norm(X_e, axis=0)
     backward = R / ((spnorm(K, 1) + lam_e * spnorm(M, 1)) * nx)
     ortho = float(np.max(np.abs(X_e.T @ MX - np.eye(X_e.shape[1]))))
-    energy = energy_split(X_e, nodes, mass_scalar)
+    shapes = X_e if installed is None else installed.expand(X_e)
+    energy = energy_split(shapes, nodes, mass_scalar)
     freqs = np.sqrt(lam_e) / (2 * math.pi)
     rigid = np.sqrt(np.abs(lam[is_rigid])) / (2 * math.pi)
-    return Modes(frequencies=freqs, shapes=X_e, residuals=residuals, backward_errors=backward,
+    return Modes(frequencies=freqs, shapes=shapes, residuals=residuals, backward_errors=backward,
                  kinds=[classify(e) for e in energy], energy=energy,
                  rigid_frequencies=rigid, orthonormality_error=ortho,
                  shift=-SHIFT_FACTOR * scale, n_dofs=K.shape[0], factorizer=sol.factorizer,

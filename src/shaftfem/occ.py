@@ -362,20 +362,40 @@ def _size_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> None:
         f.setAsBackgroundMesh(m)
 
 
-def _quarter_cylinder(gmsh, shaft: Shaft) -> None:
+def _cut_at(gmsh, cuts: tuple[float, ...], radius: float) -> None:
+    """Split the solid by the planes z = cuts, so that the mesh has faces there and a
+    seat band (shaftfem.supports) is exactly a set of boundary faces."""
+    if not cuts:
+        return
+    occ = gmsh.model.occ
+    disks = [(2, occ.addDisk(0, 0, z, 2 * radius, 2 * radius)) for z in cuts]
+    occ.fragment(occ.getEntities(3), disks)
+    occ.synchronize()
+    # the disks' parts outside the shaft bound no volume
+    stray = [(2, t) for _, t in gmsh.model.getEntities(2)
+             if len(gmsh.model.getAdjacencies(2, t)[0]) == 0]
+    occ.remove(stray, recursive=True)
+    occ.synchronize()
+
+
+def _quarter_cylinder(gmsh, shaft: Shaft, cuts: tuple[float, ...] = ()) -> None:
     occ = gmsh.model.occ
     occ.addCylinder(0, 0, 0, 0, 0, shaft.length, shaft.radius, angle=math.pi / 2)
     occ.synchronize()
-    planes = {}
+    _cut_at(gmsh, cuts, shaft.radius)
+    planes: dict[str, dict[float, int]] = {"x0": {}, "y0": {}}
     for _, f in gmsh.model.getEntities(2):
         c = gmsh.model.occ.getCenterOfMass(2, f)
         if abs(c[1]) < 1e-12 and c[0] > 0:
-            planes["y0"] = f
+            planes["y0"][round(c[2], 9)] = f
         elif abs(c[0]) < 1e-12 and c[1] > 0:
-            planes["x0"] = f
+            planes["x0"][round(c[2], 9)] = f
+    if sorted(planes["x0"]) != sorted(planes["y0"]):
+        raise MeshError("the quarter cylinder's two cut planes do not match")
     # exact quarter turn about z: (x, y) -> (-y, x)
     turn = [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
-    gmsh.model.mesh.setPeriodic(2, [planes["x0"]], [planes["y0"]], turn)
+    for z, f in planes["x0"].items():
+        gmsh.model.mesh.setPeriodic(2, [f], [planes["y0"][z]], turn)
 
 def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]
                       ) -> tuple[float, int]:
@@ -396,21 +416,22 @@ def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]
 
 def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
                settings: MeshSettings,
-               sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-               ) -> tuple[np.ndarray, np.ndarray]:
+               sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+               cuts: tuple[float, ...] = ()) -> tuple[np.ndarray, np.ndarray]:
     """Tetrahedra of the solid in `brep` (None: a plain shaft's 90-degree sector):
     points (N, 3) in m and cells (E, 4 or 10) in meshio's node order. `sizes`: an
     element-size field (points, tets, size at each point, m) in place of the
-    settings' groove and edge sizes."""
+    settings' groove and edge sizes; `cuts`: z (m) of planes the mesh must follow."""
     import meshio
 
     with session("mesh") as s, translated(MeshError, "gmsh could not mesh the solid"):
         gmsh = s.gmsh
         if brep is None:
-            _quarter_cylinder(gmsh, shaft)
+            _quarter_cylinder(gmsh, shaft, cuts)
         else:
             gmsh.model.occ.importShapes(str(brep))
             gmsh.model.occ.synchronize()
+            _cut_at(gmsh, cuts, shaft.radius)
         smallest, view = min(settings.edge_size, settings.size), None
         if sizes is not None:
             smallest, view = _background_sizes(gmsh, sizes)

@@ -21,6 +21,7 @@ if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only wh
     from .geometry import ShaftShape
     from .mesh import ShaftMesh
     from .modal import Modes
+    from .supports import Installed
 
 
 @dataclass(frozen=True)
@@ -47,6 +48,7 @@ class ModalResult:
     modes: Modes
     timings: Timings
     warnings: tuple[str, ...] = ()
+    installed: Installed | None = None  # the seats and parts (None: free-free)
 
     def shapes_at_points(self) -> np.ndarray:
         """Mode shapes at the mesh's points: (n_modes, n_points, 3), m / sqrt(kg)."""
@@ -99,7 +101,8 @@ def run_modes(scene: Scene, use_cache: bool = True,
     say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
 
     t = time.perf_counter()
-    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache)
+    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache,
+                      cuts=scene.seat_cuts())
     t_mesh = time.perf_counter() - t
     say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
         "assembling K and M")
@@ -116,20 +119,29 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_ca
 
     t = time.perf_counter()
     d = discretise(mesh)
-    # The solver's ordering needs only the sparsity: it runs while K and M are filled.
+    # The solver's ordering needs only the sparsity: it runs while K and M are filled
+    # (a free shaft's: seats change the sparsity).
     analysis = (analyse_in_background(d.upper_structure())
-                if uses_pardiso(factorizer, d.n_dofs) else None)
+                if not scene.installed and uses_pardiso(factorizer, d.n_dofs) else None)
     system = assemble(mesh, scene.material, threads=threads, discretisation=d)
+    installed = None
+    if scene.installed:
+        from .supports import install
+
+        installed = install(scene, system.K, system.M, system.nodes, d.basis.mesh, d.order)
     t_assembly = time.perf_counter() - t
-    say(f"{system.n_dofs} DOFs; factorising and solving")
+    n_dofs = system.n_dofs if installed is None else installed.K.shape[0]
+    say(f"{n_dofs} DOFs; factorising and solving")
     modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
                            scene.modes.count, factorizer=factorizer,
-                           max_frequency=scene.modes.max_frequency, analysis=analysis)
+                           max_frequency=scene.modes.max_frequency, analysis=analysis,
+                           installed=installed)
     timings = Timings(cad=t_cad, mesh=t_mesh, assembly=t_assembly,
                       factorisation=modes.factorisation_seconds,
                       eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
-                       timings=timings, warnings=scene_warnings(scene, modes))
+                       timings=timings, warnings=scene_warnings(scene, modes),
+                       installed=installed)
 
 
 def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:

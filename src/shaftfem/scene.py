@@ -8,13 +8,12 @@ in SI units (m, Pa, kg/m^3, W, rad/s), which is all the solver ever sees.
 from __future__ import annotations
 
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from .errors import SceneError
-from .schema import (DEFAULT_MARGIN_PERCENT, DEFAULT_MAX_DOFS, DEFAULT_MODE_COUNT, SCHEMA,
-                     read_toml,
-                     validate_table, where)
+from .schema import (DEFAULT_DAMPING_PERCENT, DEFAULT_MARGIN_PERCENT, DEFAULT_MAX_DOFS,
+                     DEFAULT_MODE_COUNT, SCHEMA, read_toml, validate_table, where)
 
 # The scenes shipped with shaftfem: the repository's geometry/ folder, which an
 # installed package carries as shaftfem/scenes (pyproject.toml maps one onto the other).
@@ -115,6 +114,45 @@ class ModeRequest:
 
 
 @dataclass(frozen=True)
+class Support:
+    """A bearing seat: the band of shaft surface from z = position -+ width / 2 (m).
+
+    `kind` "rigid" holds the band's mean radial and axial displacement, "rigid-radial"
+    its mean radial displacement, "clamped" every point of it; "springs" resists them
+    with `radial`, `axial` (N/m) and `tilting` (N m/rad) (shaftfem.supports)."""
+
+    name: str
+    position: float
+    width: float
+    kind: str
+    radial: float = 0.0
+    axial: float = 0.0
+    tilting: float = 0.0
+
+    @property
+    def seat(self) -> tuple[float, float]:
+        return self.position - self.width / 2, self.position + self.width / 2
+
+
+@dataclass(frozen=True)
+class Attachment:
+    """A rigid part (gear, pulley) fixed on the band z = position -+ width / 2 (m): its
+    mass (kg) and its moments of inertia about the axis and a diameter (kg m^2), with
+    its centre of mass on the axis at `position`."""
+
+    name: str
+    position: float
+    width: float
+    mass: float
+    polar_inertia: float
+    diametral_inertia: float
+
+    @property
+    def seat(self) -> tuple[float, float]:
+        return self.position - self.width / 2, self.position + self.width / 2
+
+
+@dataclass(frozen=True)
 class Scene:
     name: str
     source: str
@@ -131,6 +169,33 @@ class Scene:
     # adaptive meshing: the bound wanted on every frequency (fraction; None: fixed mesh)
     target_error: float | None = None
     max_dofs: int = DEFAULT_MAX_DOFS
+    # the installed shaft: bearing seats and parts fixed on it (none: free-free)
+    supports: tuple[Support, ...] = ()
+    attachments: tuple[Attachment, ...] = ()
+    damping_ratio: float = DEFAULT_DAMPING_PERCENT / 100  # modal, fraction of critical
+    response_point: float | None = None  # z of the point whose response is shown, m
+    # the supports left off (free-free), their seats kept in the mesh
+    hanging_free: bool = False
+
+    @property
+    def held(self) -> tuple[Support, ...]:
+        """The supports that hold the shaft (none when it hangs free)."""
+        return () if self.hanging_free else self.supports
+
+    @property
+    def installed(self) -> bool:
+        """Whether anything holds the shaft or sits on it (else: free-free, bare)."""
+        return bool(self.held or self.attachments)
+
+    def seat_cuts(self) -> tuple[float, ...]:
+        """The axial positions (m) where a seat band begins or ends: the mesh follows them."""
+        zs = {z for part in self.supports + self.attachments for z in part.seat}
+        return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))
+
+    def free(self) -> "Scene":
+        """The same shaft hanging free, on the same mesh: its supports left off (the
+        attached parts stay on)."""
+        return replace(self, hanging_free=True)
 
 
 def resolve_scene_path(scene: str | Path | None) -> Path:
@@ -218,13 +283,8 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
         density=mat_t["density_kg_m3"],
     )
 
-    exc = data.get("excitation", [])
-    if isinstance(exc, dict):
-        exc = [exc]
-    if not isinstance(exc, list):
-        raise SceneError(f"{source}: excitation must be an array of tables ([[excitation]])")
     excitations = []
-    for i, e in enumerate(exc):
+    for i, e in enumerate(_array(source, data, "excitation")):
         e = validate_table(source, f"excitation[{i}]", e, SCHEMA["excitation"])
         excitations.append(Excitation(name=e["name"], frequency=e["speed_rpm"] / 60.0,
                                       orders=tuple(e["orders"])))
@@ -255,6 +315,15 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
         )
     mesh = MeshSettings(size=size * MM, groove_size=groove_size * MM, edge_size=edge_size * MM,
                         order=mesh_t["order"])
+    supports = tuple(_support(source, i, t) for i, t in enumerate(_array(source, data, "support")))
+    attachments = tuple(_attachment(source, i, t)
+                        for i, t in enumerate(_array(source, data, "attachment")))
+    _check_seats(source, shaft, grooves, supports, attachments)
+    resp_t = validate_table(source, "response", data.get("response", {}), SCHEMA["response"])
+    point = resp_t["point_mm"]
+    if point is not None and point > shaft_t["length_mm"]:
+        raise SceneError(f"{where(source, 'response', 'point_mm')} = {point:g}: must lie on the "
+                         f"shaft, 0 to {shaft_t['length_mm']:g} mm")
     name = top["name"] or Path(source).stem
     return Scene(name=name, source=source, shaft=shaft, material=material, grooves=grooves,
                  mesh=mesh, excitations=tuple(excitations), sizing=sizing,
@@ -263,7 +332,82 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
                                    max_frequency=modes_t["max_frequency_hz"]),
                  target_error=(None if mesh_t["target_error_percent"] is None
                                else mesh_t["target_error_percent"] / 100),
-                 max_dofs=mesh_t["max_dofs"])
+                 max_dofs=mesh_t["max_dofs"], supports=supports, attachments=attachments,
+                 damping_ratio=resp_t["damping_ratio_percent"] / 100,
+                 response_point=None if point is None else point * MM)
+
+
+def _array(source: str, data: dict, table: str) -> list:
+    """An array of tables ([[table]]); a single [table] is taken as one entry."""
+    items = data.get(table, [])
+    if isinstance(items, dict):
+        items = [items]
+    if not isinstance(items, list):
+        raise SceneError(f"{source}: {table} must be an array of tables ([[{table}]])")
+    return items
+
+
+def _support(source: str, i: int, t: dict) -> Support:
+    table = f"support[{i}]"
+    t = validate_table(source, table, t, SCHEMA["support"])
+    springs = ("radial_stiffness_n_per_mm", "axial_stiffness_n_per_mm",
+               "tilting_stiffness_nmm_per_rad")
+    if t["kind"] == "springs":
+        if t["radial_stiffness_n_per_mm"] is None:
+            raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: missing "
+                             "(kind = \"springs\" needs the bearing's radial stiffness, N/mm)")
+    else:
+        for key in springs:
+            if t[key] is not None:
+                raise SceneError(f"{where(source, table, key)} = {t[key]:g}: only with kind = "
+                                 f"\"springs\" (this support is {t['kind']!r})")
+    radial = (t["radial_stiffness_n_per_mm"] or 0.0) * 1e3
+    width = t["width_mm"] * MM
+    return Support(name=t["name"] or f"support {i + 1}", position=t["position_mm"] * MM,
+                   width=width, kind=t["kind"], radial=radial,
+                   axial=(t["axial_stiffness_n_per_mm"] or 0.0) * 1e3,
+                   tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3)
+
+
+def _attachment(source: str, i: int, t: dict) -> Attachment:
+    t = validate_table(source, f"attachment[{i}]", t, SCHEMA["attachment"])
+    polar, diametral = t["polar_inertia_kg_m2"], t["diametral_inertia_kg_m2"]
+    if diametral < polar / 2 * (1 - 1e-12):
+        raise SceneError(
+            f"{where(source, f'attachment[{i}]', 'diametral_inertia_kg_m2')} = {diametral:g}: "
+            f"a rigid part's moment about a diameter is at least half its polar moment "
+            f"({polar / 2:g} kg m^2; a thin disk has exactly half)")
+    return Attachment(name=t["name"] or f"attachment {i + 1}", position=t["position_mm"] * MM,
+                      width=t["width_mm"] * MM, mass=t["mass_kg"],
+                      polar_inertia=t["polar_inertia_kg_m2"],
+                      diametral_inertia=t["diametral_inertia_kg_m2"])
+
+
+def _check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
+                 supports: tuple[Support, ...], attachments: tuple[Attachment, ...]) -> None:
+    """Every seat on the shaft, clear of the grooves, and no two seats overlapping."""
+    seats = ([(f"support[{i}]", s) for i, s in enumerate(supports)]
+             + [(f"attachment[{i}]", a) for i, a in enumerate(attachments)])
+    L = shaft.length
+    for table, part in seats:
+        lo, hi = part.seat
+        at = where(source, table, "position_mm")
+        if lo < -1e-12 or hi > L + 1e-12:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm "
+                f"(width_mm = {part.width / MM:g}) must lie on the shaft, 0 to {L / MM:g} mm")
+        if grooves is not None and lo < grooves.start + grooves.length and hi > grooves.start:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm lies "
+                f"over the grooved zone ({grooves.start / MM:g} to "
+                f"{(grooves.start + grooves.length) / MM:g} mm); seats must be on plain shaft")
+    ordered = sorted(seats, key=lambda s: s[1].seat[0])
+    for (ta, a), (tb, b) in zip(ordered, ordered[1:]):
+        if b.seat[0] < a.seat[1] - 1e-12:
+            raise SceneError(
+                f"{where(source, tb, 'position_mm')} = {b.position / MM:g}: its seat "
+                f"({b.seat[0] / MM:g} to {b.seat[1] / MM:g} mm) overlaps the seat of {ta} "
+                f"({a.seat[0] / MM:g} to {a.seat[1] / MM:g} mm)")
 
 
 def _check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:

@@ -23,6 +23,9 @@ MAX_MODE_COUNT = 200
 # An adaptive mesh stops before it needs more DOFs than this (about 6 GB at the peak).
 DEFAULT_MAX_DOFS = 400_000
 MAX_DOFS_LIMIT = 20_000_000
+SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs")
+# Modal damping of a steel shaft in rolling bearings: 1-3 % of critical is usual.
+DEFAULT_DAMPING_PERCENT = 2.0
 
 
 @dataclass(frozen=True)
@@ -95,6 +98,51 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "orders": Key(("list", int), "harmonic orders that excite, e.g. [1, 2]",
                       lambda v: len(v) >= 1 and all(k >= 1 for k in v), "integers >= 1",
                       default=[1], required=False),
+    },
+    "support": {  # an array of tables: [[support]], a bearing seat (shaftfem.supports)
+        "name": Key(str, "name of the support, e.g. drive-end bearing", required=False),
+        "position_mm": Key(float, "centre of the bearing seat from the shaft's left end, mm",
+                           *upto(20_000, "up to 20 m", closed_low=True)),
+        "width_mm": Key(float, "width of the bearing seat along the axis, mm",
+                        *upto(20_000, "up to 20 m")),
+        "kind": Key(str, "how the seat is held: \"rigid\" (its mean radial and axial "
+                    "displacement), \"rigid-radial\" (radial only: a floating bearing), "
+                    "\"clamped\" (every point of it, in every direction), \"springs\" (the "
+                    "stiffnesses below); rigid and springs let the shaft tilt and turn",
+                    lambda v: v in SUPPORT_KINDS, ", ".join(f'"{k}"' for k in SUPPORT_KINDS)),
+        "radial_stiffness_n_per_mm": Key(
+            float, "radial stiffness of the bearing, N/mm (kind = \"springs\")",
+            *upto(1e12, "up to 10^12 N/mm", closed_low=True), required=False),
+        "axial_stiffness_n_per_mm": Key(
+            float, "axial stiffness, N/mm (kind = \"springs\"; default 0: free axially)",
+            *upto(1e12, "up to 10^12 N/mm", closed_low=True), required=False),
+        "tilting_stiffness_nmm_per_rad": Key(
+            float, "tilting stiffness, N mm/rad (kind = \"springs\"; default 0: the shaft "
+            "tilts freely in the bearing, as in a ball bearing)",
+            *upto(1e18, "up to 10^18 N mm/rad", closed_low=True), required=False),
+    },
+    "attachment": {  # an array of tables: [[attachment]], a part fixed on a seat
+        "name": Key(str, "name of the part, e.g. drive gear", required=False),
+        "position_mm": Key(float, "centre of the part's seat from the shaft's left end, mm",
+                           *upto(20_000, "up to 20 m", closed_low=True)),
+        "width_mm": Key(float, "width of the seat (hub length) along the axis, mm",
+                        *upto(20_000, "up to 20 m")),
+        "mass_kg": Key(float, "mass of the part, kg", *upto(1e6, "up to 1000 t", closed_low=True)),
+        "polar_inertia_kg_m2": Key(
+            float, "moment of inertia about the shaft axis, kg m^2",
+            *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
+        "diametral_inertia_kg_m2": Key(
+            float, "moment of inertia about a diameter through its centre, kg m^2",
+            *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
+    },
+    "response": {  # base excitation at the supports (shaftfem.response)
+        "damping_ratio_percent": Key(
+            float, f"modal damping ratio zeta, % (default {DEFAULT_DAMPING_PERCENT:g}: "
+            "a steel shaft in rolling bearings, 1-3 %)", *upto(50, "up to 50 %"),
+            default=DEFAULT_DAMPING_PERCENT, required=False),
+        "point_mm": Key(float, "axial position of the point whose response is plotted, mm "
+                        "(default: mid-span)", *upto(20_000, "up to 20 m", closed_low=True),
+                        required=False),
     },
     "sizing": {  # the paper's screw sizing, equations (1)-(9); see shaftfem.sizing
         "power_kw": Key(float, "power through the shaft, kW", *upto(1e6, "up to 1 GW")),
