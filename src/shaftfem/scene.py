@@ -372,6 +372,9 @@ def _support(source: str, i: int, t: dict) -> Support:
 def _attachment(source: str, i: int, t: dict) -> Attachment:
     t = validate_table(source, f"attachment[{i}]", t, SCHEMA["attachment"])
     polar, diametral = t["polar_inertia_kg_m2"], t["diametral_inertia_kg_m2"]
+    if t["mass_kg"] == 0 and polar + diametral > 0:
+        raise SceneError(f"{where(source, f'attachment[{i}]', 'mass_kg')} = 0: a part with "
+                         "moments of inertia has a mass")
     if diametral < polar / 2 * (1 - 1e-12):
         raise SceneError(
             f"{where(source, f'attachment[{i}]', 'diametral_inertia_kg_m2')} = {diametral:g}: "
