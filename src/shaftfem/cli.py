@@ -92,6 +92,8 @@ def _scene(args):
     from .scene import load_scene
 
     scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
+    if getattr(args, "free", False):
+        scene = scene.free()
     scene = with_accuracy(scene, args.accuracy, args.max_dofs, fixed=args.mesh_size is not None)
     return with_modes(scene, args.modes, args.max_frequency)
 
@@ -130,6 +132,11 @@ def _cmd_modes(args) -> int:
 
     result, est, adapted = _bounded(args, estimate=not args.no_estimate)
     print(modes_text(result, est))
+    if result.scene.held:
+        from .response import modal_basis, participation
+        from .tables import participation_text
+
+        print("\n" + participation_text(result, participation(modal_basis(result))))
     if args.json:
         _write_json(args.json, modes_record(result, est))
     return _accuracy_status(args, adapted)
@@ -281,7 +288,8 @@ class _Parser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(
         prog="shaftfem",
-        description="Finite-element modal analysis of machine shafts (free-free).",
+        description="Finite-element modal analysis of machine shafts: free-free, or installed "
+        "in the bearings of the scene's [[support]] tables.",
     )
     sub = p.add_subparsers(dest="command", required=True)
 
@@ -320,12 +328,16 @@ def build_parser() -> argparse.ArgumentParser:
                        f"{DEFAULT_MAX_DOFS})")
         c.add_argument("--strict-accuracy", action="store_true",
                        help="exit 1 when the accuracy asked for is not reached in the budget")
+        c.add_argument("--free", action="store_true",
+                       help="free-free: leave the scene's [[support]] bearings off (the shaft "
+                       "hanging free, as in a hammer test; attached parts stay on)")
         c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid and the mesh")
         c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
         c.set_defaults(func=func)
         return c
 
-    modal_command("modes", "free-free natural frequencies and their error estimates",
+    modal_command("modes", "natural frequencies with their error bounds (in the scene's "
+                  "supports if it has any, else free-free)",
                   _cmd_modes, estimate=True)
     modal_command("check", "resonance check against the scene's excitations (exit 1 if "
                   "a margin is violated)", _cmd_check, margin=True)

@@ -68,15 +68,41 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     result, est, adapted = run_bounded(scene, estimate=estimate, use_cache=use_cache,
                                        progress=say, factorizer=factorizer)
     verdict = check_result(result, margin)
+    free, part, response = None, None, None
+    if scene.held:
+        import time
+
+        from .pipeline import solve_mesh
+        from .response import modal_basis, participation, response_sweep
+
+        say("the same shaft hanging free, on the same mesh, for comparison")
+        free = solve_mesh(scene.free(), result.shape, result.mesh, time.perf_counter(), 0.0,
+                          0.0, say, factorizer)
+        basis = modal_basis(result)
+        part = participation(basis)
+        response = response_sweep(result, "x", basis=basis)
     # every file of the run is published at once, under design.manifest.json
     with staged_directory(out, MANIFEST) as stage:
         say("exporting mode shapes, mesh and solid")
         files = write_mode_files(result, stage, est)
         say("rendering pictures")
         pictures = render_into(result, stage)
-        write_report(stage / "report.md", result, verdict, sizing, pictures, files, est)
+        if response is not None:
+            pictures.append(_response_picture(result, response, stage / "response.png"))
+        write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
+                     free=free, participation=part)
     files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
     report = out / "report.md"
     say(f"report written: {report}")
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
                         files=files, pictures=pictures, report=report, adapted=adapted)
+
+
+def _response_picture(result: ModalResult, response, path: Path) -> Path:
+    """response.png: the transmissibility with every excitation harmonic marked."""
+    from .plots import response_figure, save_png
+
+    harmonics = [(f"{e.name} x{k}", k * e.frequency) for e in result.scene.excitations
+                 for k in e.orders]
+    return save_png(response_figure(response, harmonics, f"{result.scene.name}: lateral base "
+                                    "motion at the supports"), path)

@@ -35,6 +35,7 @@ def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
             "edge_element_size_mm": scene.mesh.edge_size * 1e3,
             "min_jacobian_ratio": result.mesh.min_jacobian_ratio,
         },
+        "installation": installation_record(result),
         "rigid_body_modes": m.n_rigid,
         "rigid_body_frequencies_hz": m.rigid_frequencies,
         "modes": modes_table(result, est),
@@ -69,7 +70,37 @@ def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[d
             "recovery_estimate_percent": None if est is None else float(100 * est.recovery[i]),
             "error_bound_confirmed": None if est is None else bool(est.reliable[i]),
         })
+    if result.scene.held:
+        from .response import DIRECTIONS, modal_basis, participation
+
+        p = participation(modal_basis(result))
+        units = {"x": "kg", "y": "kg", "z": "kg", "rz": "kg_m2"}
+        for i, row in enumerate(rows):
+            for k, d in enumerate(DIRECTIONS):
+                row[f"effective_mass_{d}_{units[d]}"] = float(p.effective[i, k])
+                row[f"cumulative_fraction_{d}"] = float(p.cumulative[i, k])
     return rows
+
+
+def installation_record(result: ModalResult) -> dict | None:
+    """The supports and parts in the file's units (None for a bare free shaft)."""
+    scene = result.scene
+    if not scene.supports and not scene.attachments:
+        return None
+    return {
+        "hanging_free": scene.hanging_free,
+        "supports": [{"name": s.name, "seat_mm": [z * 1e3 for z in s.seat], "kind": s.kind,
+                      "radial_stiffness_n_per_mm": s.radial / 1e3,
+                      "axial_stiffness_n_per_mm": s.axial / 1e3,
+                      "tilting_stiffness_nmm_per_rad": s.tilting * 1e3} for s in scene.held],
+        "attachments": [{"name": a.name, "seat_mm": [z * 1e3 for z in a.seat],
+                         "mass_kg": a.mass, "polar_inertia_kg_m2": a.polar_inertia,
+                         "diametral_inertia_kg_m2": a.diametral_inertia}
+                        for a in scene.attachments],
+        "free_rigid_motions": list(result.installed.free) if result.installed else
+        ["all six"],
+        "damping_ratio": scene.damping_ratio,
+    }
 
 
 KINDS = ("bending", "torsion", "axial", "mixed")

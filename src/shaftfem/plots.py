@@ -84,3 +84,27 @@ def sweep_plots(rows: list[dict], parameters: list[str], n_modes: int,
     if ok[0].get("min_margin") not in (None, ""):
         written.append(save_png(margin_figure(ok, parameters), out / "resonance_margin.png"))
     return written
+
+
+def response_figure(fr, harmonics: list[tuple[str, float]], title: str = ""):
+    """Transmissibility against frequency (log scale) for base motion at the supports,
+    with each excitation harmonic (label, Hz) marked."""
+    fig, ax = _figure((7.5, 4.5))
+    ax.semilogy(fr.frequencies, fr.transmissibility, "-", lw=1.2,
+                label=f"{fr.direction} at z = {fr.point[2] * 1e3:.0f} mm, "
+                f"zeta = {100 * fr.damping:g} %")
+    top = fr.frequencies[-1]
+    for label, f in harmonics:
+        if f <= top:
+            ax.axvline(f, color="tab:red", ls="--", lw=0.8)
+            ax.annotate(label, (f, 1.0), rotation=90, fontsize=7, color="tab:red",
+                        textcoords="offset points", xytext=(3, 4))
+    ax.axhline(1.0, color="0.5", lw=0.6)
+    ax.set_xlim(0, top)
+    ax.set_xlabel("excitation frequency, Hz")
+    ax.set_ylabel("transmissibility |u / u_base|")
+    if title:
+        ax.set_title(title, fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="upper right")
+    return fig

@@ -13,11 +13,14 @@ if TYPE_CHECKING:
     from .resonance import ResonanceVerdict
     from .sizing import SizingResult
     from .estimate import ErrorEstimate
+    from .response import Participation
 
 
 def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
-                    files: Sequence[Path] = (), estimate: ErrorEstimate | None = None) -> str:
+                    files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
+                    free: ModalResult | None = None,
+                    participation: Participation | None = None) -> str:
     """report.md's text; picture and file names are relative to the report's folder."""
     scene, m = result.scene, result.modes
     mat, g = scene.material, scene.grooves
@@ -38,10 +41,20 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
               ""]
     if sizing is not None:
         lines += ["## Sizing (paper equations 1-9)", ""] + tables.sizing_markdown(sizing) + [""]
-    lines += ["## Natural frequencies (free-free)", ""] + tables.modes_markdown(result, estimate)
+    if scene.supports or scene.attachments:
+        lines += ["## Installation", ""] + [f"- {l}" for l in tables.installation_lines(result)]
+        lines.append("")
+    title = "installed" if scene.held else "free-free"
+    lines += [f"## Natural frequencies ({title})", ""] + tables.modes_markdown(result, estimate)
     lines += ["", f"Rigid-body modes: {m.n_rigid}."]
     if estimate is not None:
         lines += tables.estimate_notes(estimate)
+    if free is not None:
+        lines += ["", "### Installed beside free-free (same mesh)", ""]
+        lines += tables.side_by_side_markdown(result, free)
+    if participation is not None:
+        lines += ["", "### Effective modal mass for base motion at the supports", ""]
+        lines += tables.participation_markdown(result, participation)
     lines += ["", "## Resonance check", ""]
     lines += (tables.verdict_markdown(verdict) if verdict is not None
               else ["No [[excitation]] sources in the scene: nothing to check against."])
@@ -57,5 +70,8 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
 
 def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdict | None,
                  sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
-                 files: Sequence[Path] = (), estimate: ErrorEstimate | None = None) -> Path:
-    return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate))
+                 files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
+                 free: ModalResult | None = None,
+                 participation: Participation | None = None) -> Path:
+    return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,
+                                            free, participation))

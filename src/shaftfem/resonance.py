@@ -15,7 +15,7 @@ shaft without damping data is treated as lightly damped, so set
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -40,6 +40,9 @@ class Approach:
     excitation: float    # k f_exc, Hz
     margin: float        # |f - k f_exc| / (k f_exc)
     required: float
+    # installed shaft: transmissibility at the response point for lateral base motion at
+    # k f_exc (shaftfem.response); None for a free shaft
+    amplification: float | None = None
 
     @property
     def ok(self) -> bool:
@@ -75,7 +78,7 @@ class ResonanceVerdict:
             "approaches": [
                 {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,
                  "order": a.order, "excitation_hz": a.excitation, "margin": a.margin,
-                 "ok": a.ok}
+                 "ok": a.ok, "amplification": a.amplification}
                 for a in self.approaches
             ],
         }
@@ -83,16 +86,19 @@ class ResonanceVerdict:
 
 def check_resonance(frequencies: np.ndarray, kinds: list[str],
                     excitations: tuple[Excitation, ...] | list[Excitation],
-                    required: float = DEFAULT_MARGIN) -> ResonanceVerdict:
-    """Separation margin of every mode from every harmonic of every source."""
+                    required: float = DEFAULT_MARGIN,
+                    amplification: Callable[[float], float] | None = None) -> ResonanceVerdict:
+    """Separation margin of every mode from every harmonic of every source;
+    `amplification(f)`: the response's amplification at frequency f (Hz), if known."""
     out = []
     for exc in excitations:
         for k in exc.orders:
             fk = k * exc.frequency
+            amp = None if amplification is None else amplification(fk)
             for i, (f, kind) in enumerate(zip(frequencies, kinds)):
                 out.append(Approach(mode=i + 1, frequency=float(f), kind=kind, source=exc.name,
                                     order=k, excitation=fk, margin=float(abs(f - fk) / fk),
-                                    required=required))
+                                    required=required, amplification=amp))
     out.sort(key=lambda a: a.margin)
     return ResonanceVerdict(approaches=out, required=required)
 
@@ -104,4 +110,16 @@ def check_result(result: ModalResult, required: float | None = None) -> Resonanc
     if not scene.excitations:
         return None
     return check_resonance(result.modes.frequencies, result.modes.kinds, scene.excitations,
-                           scene.required_margin if required is None else required)
+                           scene.required_margin if required is None else required,
+                           _lateral_amplification(result))
+
+
+def _lateral_amplification(result: ModalResult) -> Callable[[float], float] | None:
+    """f (Hz) -> transmissibility for lateral base motion, for a shaft in supports."""
+    if result.installed is None or not result.scene.held:
+        return None
+    from .response import base_response, modal_basis
+
+    basis = modal_basis(result)
+    return lambda f: float(base_response(result, np.array([f]), "x",
+                                         basis=basis).transmissibility[0])

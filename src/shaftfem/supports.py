@@ -44,9 +44,6 @@ from scipy.sparse.linalg import spsolve
 from .errors import SolverError
 from .scene import Attachment, Scene, Support
 
-# Rigid motions, in the order of `rigid_body_modes`.
-MOTIONS = ("translation along x", "translation along y", "translation along z",
-           "rotation about x", "rotation about y", "rotation about the axis (z)")
 # A node lies on a seat band within this distance (m): the mesh follows the seats.
 ON_SURFACE = 1e-7
 # Eigenvalues of the seats' restraint of the rigid motions below this fraction of the
@@ -219,13 +216,36 @@ def free_motions(R: np.ndarray, clamped: np.ndarray, restraints: list[Restraint]
     return V[:, lam <= FREE_MOTION * max(lam.max(), 1.0)]
 
 
-def motion_names(combos: np.ndarray) -> tuple[str, ...]:
-    """Names of the free rigid motions when each is one of the six, else a count."""
-    if combos.shape[1] in (0, 6):
-        return () if combos.shape[1] == 0 else MOTIONS
-    P = combos @ combos.T       # projector onto the free combinations
-    named = tuple(m for k, m in enumerate(MOTIONS) if P[k, k] > 1 - 1e-6)
-    return named if len(named) == combos.shape[1] else (f"{combos.shape[1]} rigid motions",)
+def motion_names(free: np.ndarray, nodes: np.ndarray) -> tuple[str, ...]:
+    """Names of the free rigid motions `free` (3 n, r): translations, the turn about
+    the axis, tilting about x or y (about some point of the axis); a count when these
+    do not describe them."""
+    r = free.shape[1]
+    if r in (0, 6):
+        return () if r == 0 else ("all six rigid motions",)
+    x = nodes - np.array([0.0, 0.0, nodes[:, 2].mean()])
+    unit = {name: np.zeros((nodes.shape[0], 3)) for name in ("tx", "ty", "tz", "rx", "ry", "rz")}
+    for c, name in enumerate(("tx", "ty", "tz")):
+        unit[name][:, c] = 1.0
+    for c, name in enumerate(("rx", "ry", "rz")):
+        e = np.zeros(3)
+        e[c] = 1.0
+        unit[name] = np.cross(e, x)
+    Q = np.linalg.qr(free)[0]
+
+    def shared(*names: str) -> int:
+        """Dimension of span(free) and span(names) in common."""
+        B = np.linalg.qr(np.column_stack([unit[n].ravel() for n in names]))[0]
+        # the seats hold the mean of a mesh that is not exactly symmetric: near enough
+        return int(np.sum(np.linalg.svd(Q.T @ B, compute_uv=False) > 1 - 1e-6))
+
+    named = [label for label, n in (("translation along x", "tx"), ("translation along y", "ty"),
+                                    ("translation along z", "tz"),
+                                    ("rotation about the axis (z)", "rz")) if shared(n)]
+    for label, rot, move in (("tilting about x", "rx", "ty"), ("tilting about y", "ry", "tx")):
+        if shared(rot, move) > shared(move):
+            named.append(label)
+    return tuple(named) if len(named) == r else (f"{r} rigid motions",)
 
 
 @dataclass(frozen=True)
@@ -298,6 +318,6 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
         if miss > 1e-9:
             raise SolverError(f"the seats' free rigid motions do not survive the "
                               f"elimination (misfit {miss:.2g})")
-    return Installed(K=K_r, M=M_r, T=T, rigid=rigid, free=motion_names(combos),
+    return Installed(K=K_r, M=M_r, T=T, rigid=rigid, free=motion_names(target, nodes),
                      restraints=tuple(restraints), clamped=clamped,
                      tied=tuple(i for i, _ in tied), seconds=time.perf_counter() - t0)

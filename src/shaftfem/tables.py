@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from .calibrate import Calibration, CalibrationResult
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
+    from .response import Participation
     from .sizing import SizingResult
     from .estimate import ErrorEstimate
     from .study import Extrapolation, StudyResult
@@ -56,17 +57,48 @@ def bound_text(est: ErrorEstimate, i: int) -> str:
     return f"+- {100 * e:.2g} %{'' if est.reliable[i] else '*'}"
 
 
+def installation_lines(result: ModalResult) -> list[str]:
+    """How the shaft is held and what sits on it, one line each."""
+    scene = result.scene
+    if not scene.supports and not scene.attachments:
+        return ["free-free: the shaft hangs free (no [[support]] in the scene)"]
+    out = []
+    if scene.hanging_free:
+        out.append("free-free: the scene's supports are left off (--free); same mesh")
+    for s in scene.held:
+        what = {"rigid": "rigid, radially and axially", "rigid-radial": "rigid, radially",
+                "clamped": "clamped"}.get(s.kind)
+        if what is None:
+            parts = [f"k_r {s.radial / 1e3:.4g} N/mm"]
+            if s.axial:
+                parts.append(f"k_a {s.axial / 1e3:.4g} N/mm")
+            if s.tilting:
+                parts.append(f"k_t {s.tilting * 1e3:.4g} N mm/rad")
+            what = "springs " + ", ".join(parts)
+        out.append(f"support {s.name}: seat {s.seat[0] * 1e3:g}-{s.seat[1] * 1e3:g} mm, {what}")
+    for a in scene.attachments:
+        out.append(f"part {a.name}: seat {a.seat[0] * 1e3:g}-{a.seat[1] * 1e3:g} mm, "
+                   f"{a.mass:g} kg, I_p {a.polar_inertia:.3g} kg m^2, "
+                   f"I_d {a.diametral_inertia:.3g} kg m^2")
+    if result.installed is not None:
+        free = ", ".join(result.installed.free) or "none"
+        out.append(f"rigid motions the supports leave free: {free}")
+    return out
+
+
 def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     """The modes table as a designer reads it."""
     m, scene = result.modes, result.scene
     exc = scene.excitations[0] if scene.excitations else None
+    rigid = (f"rigid-body modes: {m.n_rigid} (all below {max(m.rigid_frequencies):.1e} Hz)"
+             if m.n_rigid else "rigid-body modes: none")
     lines = [
         f"scene {scene.name}: P{scene.mesh.order}, {m.n_dofs} DOFs, "
         f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm "
         f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factorizer}",
-        f"rigid-body modes: {m.n_rigid} (all below {max(m.rigid_frequencies):.1e} Hz); "
-        f"Sturm check: {m.inertia_count} eigenvalues below {m.inertia_shift_hz:.1f} Hz, "
-        "as many as found",
+        *installation_lines(result),
+        f"{rigid}; Sturm check: {m.inertia_count} eigenvalues below "
+        f"{m.inertia_shift_hz:.1f} Hz, as many as found",
         "",
     ]
     head = f"{'mode':>4}  {'frequency':>12}  {'kind':<8}  {'residual':>9}"
@@ -89,14 +121,59 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     return "\n".join(lines)
 
 
+PARTICIPATION_UNITS = {"x": "kg", "y": "kg", "z": "kg", "rz": "kg m^2"}
+
+
+def participation_rows(result: ModalResult, p: Participation) -> tuple[list[str], list[list[str]]]:
+    """Effective mass and cumulative fraction per mode and base-motion direction."""
+    from .response import DIRECTIONS
+
+    head = ["mode", "frequency"] + [f"m_eff {d} ({PARTICIPATION_UNITS[d]})" for d in DIRECTIONS] + [
+        f"sum {d}" for d in DIRECTIONS]
+    rows = []
+    if any(v > 0 for v in p.rigid):
+        rows.append(["rigid", "0 Hz"] + [f"{v:.4g}" for v in p.rigid]
+                    + [f"{100 * v:.1f} %" for v in p.rigid / p.total])
+    for i, f in enumerate(result.modes.frequencies):
+        rows.append([str(i + 1), f"{f:.2f} Hz"] + [f"{v:.4g}" for v in p.effective[i]]
+                    + [f"{100 * v:.1f} %" for v in p.cumulative[i]])
+    rows.append(["total", ""] + [f"{v:.4g}" for v in p.total] + ["100 %"] * len(DIRECTIONS))
+    return head, rows
+
+
+def participation_text(result: ModalResult, p: Participation) -> str:
+    """ANSYS-style: effective modal mass per direction of base motion at the supports."""
+    head, rows = participation_rows(result, p)
+    widths = [max(len(r[k]) for r in [head] + rows) for k in range(len(head))]
+    lines = ["effective modal mass for base motion at the supports (x, y lateral, z axial, "
+             "rz turn about the axis)"]
+    lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in [head] + rows]
+    return "\n".join(lines)
+
+
+def participation_markdown(result: ModalResult, p: Participation) -> list[str]:
+    return markdown(*participation_rows(result, p))
+
+
+def _amplified(v: ResonanceVerdict) -> bool:
+    return any(a.amplification is not None for a in v.approaches)
+
+
 def verdict_text(v: ResonanceVerdict) -> str:
+    amp = _amplified(v)
     lines = [f"{'source':<10} {'order':>5} {'excitation':>13}  {'closest mode':>12} "
-             f"{'frequency':>12}  {'kind':<8} {'margin':>9}  {'required':>8}"]
+             f"{'frequency':>12}  {'kind':<8} {'margin':>9}  {'required':>8}"
+             + (f"  {'amplification':>13}" if amp else "")]
     for a in v.closest_per_harmonic():
         lines.append(
             f"{a.source:<10} {a.order:>5} {a.excitation:>10.2f} Hz  {a.mode:>12} "
             f"{a.frequency:>9.2f} Hz  {a.kind:<8} {100 * a.margin:>8.1f} %  "
-            f"{100 * a.required:>6.1f} %  {'ok' if a.ok else 'TOO CLOSE'}")
+            f"{100 * a.required:>6.1f} %"
+            + (f"  {a.amplification:>12.3f}x" if amp else "")
+            + f"  {'ok' if a.ok else 'TOO CLOSE'}")
+    if amp:
+        lines += ["", "amplification: transmissibility |u / u_base| at the response point "
+                  "for lateral base motion at the supports, at the harmonic's frequency"]
     lines += ["", verdict_line(v).replace("**", "")]
     return "\n".join(lines)
 
@@ -119,11 +196,13 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
 
 
 def verdict_markdown(v: ResonanceVerdict) -> list[str]:
+    amp = _amplified(v)
     return markdown(
         ["source", "order", "excitation (Hz)", "closest mode", "frequency (Hz)", "margin",
-         "required", ""],
+         "required"] + (["amplification"] if amp else []) + [""],
         [[a.source, str(a.order), f"{a.excitation:.2f}", str(a.mode), f"{a.frequency:.2f}",
-          f"{100 * a.margin:.1f} %", f"{100 * a.required:g} %", "ok" if a.ok else "TOO CLOSE"]
+          f"{100 * a.margin:.1f} %", f"{100 * a.required:g} %"]
+         + ([f"{a.amplification:.3f}x"] if amp else []) + ["ok" if a.ok else "TOO CLOSE"]
          for a in v.closest_per_harmonic()])
 
 
@@ -155,6 +234,17 @@ def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> lis
             err = bound_text(est, i)
         rows.append([str(i + 1), f"{f:.2f}", kind, f"{r:.1e}", err])
     return markdown(["mode", "frequency (Hz)", "kind", "residual", "error bound"], rows)
+
+
+def side_by_side_markdown(installed: ModalResult, free: ModalResult) -> list[str]:
+    """The installed modes beside the free-free ones, mode by mode."""
+    a, b = installed.modes, free.modes
+    rows = []
+    for i in range(max(a.count, b.count)):
+        left = [f"{a.frequencies[i]:.2f}", a.kinds[i]] if i < a.count else ["", ""]
+        right = [f"{b.frequencies[i]:.2f}", b.kinds[i]] if i < b.count else ["", ""]
+        rows.append([str(i + 1)] + left + right)
+    return markdown(["mode", "installed (Hz)", "kind", "free-free (Hz)", "kind"], rows)
 
 
 def calibration_text(res: CalibrationResult, cal: Calibration) -> str:
