@@ -311,3 +311,21 @@ def test_the_commands_use_the_supports_and_free_leaves_them_off(tmp_path, capsys
     assert free["rigid_body_modes"] == 6 and free["dofs"] == held["dofs"]
     # in bearings the first bending mode sits well below the free-free one
     assert held["modes"][0]["frequency_hz"] < 0.8 * free["modes"][0]["frequency_hz"]
+
+
+def test_api684_margin_follows_the_amplification_factor():
+    """API 684: no margin below AF 2.5; 17 (1 - 1/(AF - 1.5)) % above; 2 % damping is
+    AF 25, a margin of 16.3 %."""
+    from shaftfem.resonance import api684_margin
+
+    assert api684_margin(2.4) == 0.0
+    assert abs(api684_margin(1 / (2 * 0.02)) - 0.17 * (1 - 1 / 23.5)) < 1e-15
+    assert abs(api684_margin(1 / (2 * 0.02)) - 0.16277) < 1e-5
+    assert api684_margin(1e9) < 0.17
+
+
+def test_the_api684_criterion_sets_the_required_margin(tmp_path, capsys):
+    f = tmp_path / "installed.toml"
+    f.write_text(INSTALLED_TOML + '\n[resonance]\ncriterion = "api684"\n')
+    assert main(["check", str(f), "-q"]) == 0
+    assert "16.3 %" in capsys.readouterr().out

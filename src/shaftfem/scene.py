@@ -174,6 +174,7 @@ class Scene:
     attachments: tuple[Attachment, ...] = ()
     damping_ratio: float = DEFAULT_DAMPING_PERCENT / 100  # modal, fraction of critical
     response_point: float | None = None  # z of the point whose response is shown, m
+    criterion: str = "flat"  # resonance margin: "flat" or "api684" (shaftfem.resonance)
     # the supports left off (free-free), their seats kept in the mesh
     hanging_free: bool = False
 
@@ -334,7 +335,8 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
                                else mesh_t["target_error_percent"] / 100),
                  max_dofs=mesh_t["max_dofs"], supports=supports, attachments=attachments,
                  damping_ratio=resp_t["damping_ratio_percent"] / 100,
-                 response_point=None if point is None else point * MM)
+                 response_point=None if point is None else point * MM,
+                 criterion=res_t["criterion"])
 
 
 def _array(source: str, data: dict, table: str) -> list:

@@ -181,6 +181,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
             f"excitation harmonic, % (default {DEFAULT_MARGIN_PERCENT:g})",
             lambda v: 0 < v < 100, "in (0, 100)", default=DEFAULT_MARGIN_PERCENT,
             required=False),
+        "criterion": Key(
+            str, "\"flat\": every mode needs required_margin_percent; \"api684\": the "
+            "margin follows each mode's amplification factor AF = 1 / (2 zeta) (API 684: "
+            "17 (1 - 1 / (AF - 1.5)) %, none below AF = 2.5), zeta from [response]",
+            lambda v: v in ("flat", "api684"), '"flat" or "api684"', default="flat",
+            required=False),
     },
     "modes": {
         "count": Key(int, f"elastic modes to compute (default {DEFAULT_MODE_COUNT})",
