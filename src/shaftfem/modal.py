@@ -1,10 +1,12 @@
-"""Free-free natural frequencies and mode shapes: (K - w^2 M) x = 0.
+"""Natural frequencies and mode shapes: (K - w^2 M) x = 0.
 
 K of a free body is singular (six rigid-body modes at 0 Hz), so the pencil is
 solved with shift-invert Lanczos (SciPy `eigsh`) about a small negative shift
 sigma, where K - sigma M is positive definite, factorised by MKL PARDISO,
 CHOLMOD or SuperLU. The six rigid-body modes must come out near 0 Hz; anything
-else is reported as an error with its cause.
+else is reported as an error with its cause. An installed shaft (shaftfem.supports)
+is solved the same way on its reduced pencil, with the rigid motions its supports
+leave free in place of the six.
 """
 
 from __future__ import annotations
