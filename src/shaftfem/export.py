@@ -75,8 +75,10 @@ def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[d
 
         p = participation(modal_basis(result))
         units = {"x": "kg", "y": "kg", "z": "kg", "rz": "kg_m2"}
+        factor_units = {"x": "kg^0.5", "y": "kg^0.5", "z": "kg^0.5", "rz": "kg^0.5_m"}
         for i, row in enumerate(rows):
             for k, d in enumerate(DIRECTIONS):
+                row[f"participation_factor_{d}_{factor_units[d]}"] = float(p.factors[i, k])
                 row[f"effective_mass_{d}_{units[d]}"] = float(p.effective[i, k])
                 row[f"cumulative_fraction_{d}"] = float(p.cumulative[i, k])
     return rows
