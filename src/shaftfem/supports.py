@@ -8,7 +8,7 @@ A bearing acts on the band's mean motion, as a distributing coupling does:
     theta_y = sum_i w_i d_i u_x,i / J,  J = sum_i w_i d_i^2,
 
 w_i the band's area lumped to its nodes (the diagonal of the P2 surface mass, scaled
-to sum to 1) and d_i = z_i - z_seat. So the section under the seat keeps its own
+to sum to 1) and d_i = z_i - sum_j w_j z_j. So the section under the seat keeps its own
 deformation and the shaft tilts in the bearing, as in a ball bearing, unless a
 tilting stiffness is given.
 
@@ -121,7 +121,7 @@ def seat_restraints(support: Support, nodes: np.ndarray, weights: np.ndarray
     (zero-stiffness ones left out); `weights` from `surface_weights`."""
     on = np.flatnonzero(weights > 1e-12 * weights.max())  # nodes off the band get ~1e-33
     w = weights[on]
-    d = nodes[on, 2] - support.position
+    d = nodes[on, 2] - w @ nodes[on, 2]   # from the band's centre: a translation has no tilt
     J = float(np.sum(w * d**2))
     rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
     radial, axial = rigid.get(support.kind, (support.radial, support.axial))
