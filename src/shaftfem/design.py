@@ -13,6 +13,7 @@ skips the sizing.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable
@@ -70,8 +71,6 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     verdict = check_result(result, margin)
     free, part, response = None, None, None
     if scene.held:
-        import time
-
         from .pipeline import solve_mesh
         from .response import modal_basis, participation, response_sweep
 

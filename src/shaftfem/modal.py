@@ -366,11 +366,12 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
             raise SolverError(
                 f"the mesh has {bodies} disconnected parts; a free body must be one piece "
                 f"(it would have {RIGID_BODY_MODES * bodies} rigid-body modes)")
-        rigid, what = rigid_body_modes(nodes), "one free body has"
+        rigid = rigid_body_modes(nodes)
+        what = f"one free body has {RIGID_BODY_MODES} rigid-body modes"
     else:
         K, M, rigid = installed.K, installed.M, installed.rigid
-        what = (f"its seats leave the shaft {installed.n_rigid} "
-                f"({', '.join(installed.free) or 'none'}):")
+        what = (f"the supports leave {installed.n_rigid} rigid-body modes "
+                f"({', '.join(installed.free) or 'none'})")
     expected = rigid.shape[1]
     sol = solve_modes(K, M, n_modes, factorizer=factorizer, max_frequency=max_frequency,
                       rigid=rigid, analysis=analysis)
@@ -389,8 +390,7 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                if n_rigid > expected
                else "the shift-invert solve missed some (bad shift or a failed factorisation)")
         raise SolverError(
-            f"found {n_rigid} modes below {f_limit:.3g} Hz where {what} {expected} "
-            f"rigid-body modes: {why}"
+            f"found {n_rigid} modes below {f_limit:.3g} Hz where {what}: {why}"
         )
     if max_frequency is not None:
         n_modes = max(1, int(np.sum(lam[~is_rigid] < (2 * math.pi * max_frequency) ** 2)))
