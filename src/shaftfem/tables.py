@@ -281,8 +281,13 @@ def paper_text(result: ModalResult, sizing: SizingResult | None) -> str:
     """The paper's Table 2 (and stated sizing) beside ours."""
     from . import paper2018
 
-    lines = [f"{'mode':>4} {'paper':>10} {'shaftfem':>10} {'diff':>8}  {'kind':<8} "
-             f"{'f/f1 paper':>10} {'f/f1 ours':>10}"]
+    lines = []
+    if result.scene.installed:
+        lines += [f"note: the paper's Table 2 is the bare shaft hanging free; this run is "
+                  f"{'held by its supports' if result.scene.held else 'free with its parts on'}"
+                  " (shaftfem paper geometry/paper2018.toml compares like with like)", ""]
+    lines += [f"{'mode':>4} {'paper':>10} {'shaftfem':>10} {'diff':>8}  {'kind':<8} "
+              f"{'f/f1 paper':>10} {'f/f1 ours':>10}"]
     for r in paper2018.compare_modes(result.modes.frequencies, result.modes.kinds):
         lines.append(f"{r.mode:>4} {r.paper_hz:>7.2f} Hz {r.ours_hz:>7.2f} Hz "
                      f"{r.difference_percent:>+7.1f} %  {r.kind:<8} "
