@@ -94,6 +94,7 @@ def render_geometry(result: ModalResult, path: str | Path) -> Path:
     p = pv.Plotter(off_screen=True, window_size=GEOMETRY_SIZE)
     p.set_background("white")
     p.add_mesh(surf, color="#b0b8c0", smooth_shading=True, specular=0.4)
+    _draw_seats(pv, p, result.scene)
     p.add_text(f"{result.scene.name}: {result.scene.shaft.length * 1e3:g} x "
                f"{result.scene.shaft.diameter * 1e3:g} mm", font_size=12, color="black")
     length = result.scene.shaft.length * 1e3
@@ -105,6 +106,21 @@ def render_geometry(result: ModalResult, path: str | Path) -> Path:
         p.screenshot(str(tmp))
     p.close()
     return Path(path)
+
+
+def _draw_seats(pv, p, scene) -> None:
+    """Bearings (orange rings) and attached parts (blue disks, of the radius a solid
+    disk of their mass and polar inertia would have), see-through, on their seats."""
+    R = scene.shaft.radius * 1e3
+    for s in scene.held:
+        p.add_mesh(pv.Cylinder(center=(0, 0, s.position * 1e3), direction=(0, 0, 1),
+                               radius=1.6 * R, height=s.width * 1e3, resolution=60),
+                   color="#d08030", opacity=0.45)
+    for a in scene.attachments:
+        r = 1e3 * (2 * a.polar_inertia / a.mass) ** 0.5 if a.mass > 0 else 0.0
+        p.add_mesh(pv.Cylinder(center=(0, 0, a.position * 1e3), direction=(0, 0, 1),
+                               radius=max(r, 1.3 * R), height=a.width * 1e3, resolution=60),
+                   color="#4a78c0", opacity=0.45)
 
 
 def _draw_mode(p, rest, surf, plane, length: float, aspect: float, title: str):
