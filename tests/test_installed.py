@@ -330,3 +330,29 @@ def test_the_api684_criterion_sets_the_required_margin(tmp_path, capsys):
     f.write_text(INSTALLED_TOML + '\n[resonance]\ncriterion = "api684"\n')
     assert main(["check", str(f), "-q"]) == 0
     assert "16.3 %" in capsys.readouterr().out
+
+
+def test_a_sweep_or_calibration_names_a_bearing_by_its_index(tmp_path):
+    """'support[1].position_mm' moves the second bearing; an index the base scene does
+    not have is refused with the file and the count."""
+    from shaftfem.calibrate import load_calibration
+    from shaftfem.scene import load_scene
+    from shaftfem.sweep import load_sweep
+
+    scene = load_scene("paper2018_installed", overrides={
+        "support[1].position_mm": 500.0, "support[0].radial_stiffness_n_per_mm": 1e5})
+    assert scene.supports[1].position == pytest.approx(0.5)
+    assert scene.supports[0].radial == pytest.approx(1e8)
+    sweep = tmp_path / "bearings.toml"
+    sweep.write_text('base = "paper2018_installed"\n[axes]\n'
+                     '"support[1].position_mm" = [480.0, 500.0, 525.0]\n')
+    s = load_sweep(sweep)
+    assert [v["support[1].position_mm"] for v in s.variants] == [480.0, 500.0, 525.0]
+    sweep.write_text('base = "paper2018_installed"\n[axes]\n"support[2].position_mm" = [1.0]\n')
+    with pytest.raises(SceneError, match=r"support\[2\].position_mm: the base scene .* 2 "):
+        load_sweep(sweep)
+    cal = tmp_path / "stiffness.toml"
+    cal.write_text('base = "paper2018_installed"\n[unknowns]\n'
+                   '"support[0].radial_stiffness_n_per_mm" = {min = 1e4, max = 1e6}\n'
+                   '[targets]\nfrequencies_hz = [224.0]\n')
+    assert "support[0].radial_stiffness_n_per_mm" in load_calibration(cal).unknowns

@@ -31,7 +31,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import SceneError, ShaftfemError
-from .scene import SceneText, load_scene, read_scene_text, scene_beside
+from .scene import SceneText, check_entries, load_scene, read_scene_text, scene_beside
 from .schema import DEFAULT_MODE_COUNT, known_keys, number, parameter, read_toml
 from .sweep import Sweep, mesh_size, run_sweep, run_variant
 
@@ -109,6 +109,7 @@ def load_calibration(path: str | Path) -> Calibration:
     if isinstance(grid, bool) or not isinstance(grid, int) or not 2 <= grid <= 20:
         raise SceneError(f"{src}: grid = {grid!r}: must be an integer in [2, 20]")
     base = read_scene_text(scene_beside(d["base"], path))  # its content travels to workers
+    check_entries(src, base, list(unknowns))
     size = mesh_size(src, d.get("mesh_size_mm"), base)
     n_modes = max(len(targets), load_scene(base).modes.count)
     return Calibration(base=base, mesh_size_mm=size, unknowns=unknowns, targets=targets,

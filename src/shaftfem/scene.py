@@ -13,7 +13,8 @@ from pathlib import Path
 
 from .errors import SceneError
 from .schema import (DEFAULT_DAMPING_PERCENT, DEFAULT_MARGIN_PERCENT, DEFAULT_MAX_DOFS,
-                     DEFAULT_MODE_COUNT, SCHEMA, read_toml, validate_table, where)
+                     DEFAULT_MODE_COUNT, SCHEMA, read_toml, split_parameter, validate_table,
+                     where)
 
 # The scenes shipped with shaftfem: the repository's geometry/ folder, which an
 # installed package carries as shaftfem/scenes (pyproject.toml maps one onto the other).
@@ -243,16 +244,40 @@ def read_scene_text(scene: str | Path | SceneText | None = None) -> SceneText:
 def load_scene(scene: str | Path | SceneText | None = None,
                overrides: dict | None = None) -> Scene:
     """Read and check a scene (a file, a shipped scene's name, or a SceneText);
-    `overrides` maps 'table.key' to a value in file units."""
+    `overrides` maps 'table.key' (or 'table[i].key' for entry i of a repeated table) to
+    a value in file units."""
     if isinstance(scene, SceneText):
         data, source = tomllib.loads(scene.text), scene.source
     else:
         path = resolve_scene_path(scene)
         data, source = read_toml(path, "scene"), path.name
     for dotted, value in (overrides or {}).items():
-        table, key = dotted.split(".")
-        data.setdefault(table, {})[key] = value
+        table, index, key = split_parameter(dotted) or (None, None, None)
+        if table is None:
+            raise SceneError(f"{source}: {dotted!r}: not a scene key (table.key or "
+                             "table[i].key)")
+        if index is None:
+            data.setdefault(table, {})[key] = value
+            continue
+        entries = _array(source, data, table)
+        if index >= len(entries):
+            raise SceneError(f"{source}: {dotted}: the scene has {len(entries)} [[{table}]] "
+                             f"table(s), numbered from 0")
+        data[table] = entries
+        entries[index][key] = value
     return scene_from_dict(data, source=source)
+
+
+def check_entries(source: str, base: SceneText, names: list[str]) -> None:
+    """Each 'table[i].key' parameter of a sweep or calibration file names an entry the
+    base scene has."""
+    data = tomllib.loads(base.text)
+    for name in names:
+        table, index, _ = split_parameter(name) or (None, None, None)
+        if index is not None and index >= len(_array(base.source, data, table)):
+            raise SceneError(f"{source}: {name}: the base scene {base.source} has "
+                             f"{len(_array(base.source, data, table))} [[{table}]] table(s), "
+                             "numbered from 0")
 
 
 def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:

@@ -8,6 +8,7 @@ value and what is allowed.
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -308,11 +309,28 @@ def number(source: str, key: str, value: object, low: float, high: float) -> flo
     return float(value)
 
 
+# Tables a scene may repeat ([[support]]): a parameter names one entry by its index.
+ARRAY_TABLES = ("excitation", "support", "attachment")
+
+
+def split_parameter(name: str) -> tuple[str, int | None, str] | None:
+    """'table.key' -> (table, None, key); 'table[i].key' -> (table, i, key); else None."""
+    m = re.fullmatch(r"([a-z_]+)(?:\[(\d+)\])?\.([a-z0-9_]+)", name)
+    if m is None:
+        return None
+    table, index, key = m.groups()
+    if (index is None) == (table in ARRAY_TABLES):
+        return None
+    return table, None if index is None else int(index), key
+
+
 def parameter(source: str, name: object) -> str:
-    """A numeric scene key written 'table.key' (e.g. 'grooves.depth_mm')."""
-    table, _, key = str(name).partition(".")
-    spec = SCHEMA.get(table, {}).get(key) if table else None
-    if not isinstance(name, str) or spec is None or spec.kind not in (float, int):
+    """A numeric scene key written 'table.key' (e.g. 'grooves.depth_mm'), or
+    'table[i].key' for entry i of a repeated table (e.g. 'support[1].position_mm')."""
+    parts = split_parameter(name) if isinstance(name, str) else None
+    spec = SCHEMA.get(parts[0], {}).get(parts[2]) if parts else None
+    if spec is None or spec.kind not in (float, int):
         raise SceneError(f"{source}: {name!r}: not a numeric scene key; a parameter is "
-                         "'table.key', e.g. 'grooves.depth_mm' or 'shaft.length_mm'")
+                         "'table.key', e.g. 'grooves.depth_mm' or 'shaft.length_mm', or "
+                         "'table[i].key' for a repeated table, e.g. 'support[1].position_mm'")
     return name

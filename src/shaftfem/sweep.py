@@ -33,7 +33,7 @@ from typing import Callable
 
 from .errors import ClusterError, SceneError
 from .runtime import worker_env
-from .scene import SceneText, load_scene, read_scene_text, scene_beside
+from .scene import SceneText, check_entries, load_scene, read_scene_text, scene_beside
 from .schema import known_keys, number, parameter, read_toml
 from .store import content_key
 
@@ -94,6 +94,7 @@ def load_sweep(path: str | Path) -> Sweep:
                      for k, v in p.items()} for i, p in enumerate(points)]
         names = sorted({k for v in variants for k in v})
     base = read_scene_text(scene_beside(data["base"], path))
+    check_entries(src, base, names)
     size = mesh_size(src, data.get("mesh_size_mm"), base)
     return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names,
                  n_modes=load_scene(base).modes.count)
