@@ -79,8 +79,9 @@ def sweep_plots(rows: list[dict], parameters: list[str], n_modes: int,
     out = Path(out)
     if not ok:
         return []
-    written = [save_png(frequencies_figure(ok, p, n_modes),
-                        out / f"frequencies_vs_{p.replace('.', '_')}.png") for p in parameters]
+    # 'support[1].position_mm' -> frequencies_vs_support1_position_mm.png
+    written = [save_png(frequencies_figure(ok, p, n_modes), out / "frequencies_vs_{}.png".format(
+        p.replace(".", "_").replace("[", "").replace("]", ""))) for p in parameters]
     if ok[0].get("min_margin") not in (None, ""):
         written.append(save_png(margin_figure(ok, parameters), out / "resonance_margin.png"))
     return written
