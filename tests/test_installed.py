@@ -4,7 +4,7 @@ disk (tests/references.py), and the free-free solve on the same mesh."""
 
 import numpy as np
 import pytest
-from references import timoshenko_beam_hz, timoshenko_ss_hz
+from references import timoshenko_beam_hz, timoshenko_free_free_hz, timoshenko_ss_hz
 
 from shaftfem.cli import main
 from shaftfem.errors import SceneError
@@ -356,3 +356,15 @@ def test_a_sweep_or_calibration_names_a_bearing_by_its_index(tmp_path):
                    '"support[0].radial_stiffness_n_per_mm" = {min = 1e4, max = 1e6}\n'
                    '[targets]\nfrequencies_hz = [224.0]\n')
     assert "support[0].radial_stiffness_n_per_mm" in load_calibration(cal).unknowns
+
+
+def test_a_clamped_seat_leaves_no_rigid_motion():
+    from shaftfem.pipeline import run_modes
+
+    r = run_modes(_scene([dict(position_mm=5.0, width_mm=10.0, kind="clamped")], size_mm=12.0))
+    assert r.modes.n_rigid == 0 and r.installed.free == ()
+    # a cantilever's first bending mode lies far below the free-free one (3.52 against
+    # 22.37 on the Euler-Bernoulli scale)
+    R, E, nu, rho = _beam(r)
+    free_free = timoshenko_free_free_hz(1, L_MM * 1e-3, R, E, nu, rho)[0]
+    assert r.modes.frequencies[0] < 0.25 * free_free
