@@ -132,6 +132,8 @@ BAD = [
     (dict(p=20, w=10, kind="hinged", extra=""), None, "support[0].kind"),
     (dict(p=20, w=10, kind="rigid", extra=""), "position_mm = 26\nwidth_mm = 8\nmass_kg = 1",
      "attachment[0].position_mm"),                                      # seats overlap
+    (dict(p=20, w=10, kind="rigid", extra=""), "position_mm = 29\nwidth_mm = 8\nmass_kg = 1",
+     "attachment[0].position_mm"),                                      # seats touch
     (None, "position_mm = 20\nwidth_mm = 8\nmass_kg = 1\npolar_inertia_kg_m2 = 0.01\n"
      "diametral_inertia_kg_m2 = 0.001", "attachment[0].diametral_inertia_kg_m2"),
 ]

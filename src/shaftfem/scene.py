@@ -24,6 +24,7 @@ DEFAULT_SCENE = "paper2018"
 
 MM = 1e-3
 MPA = 1e6
+SEAT_GAP = 1e-6  # m: the least gap between two seats (each owns the nodes of its band)
 
 
 # --------------------------------------------------------------------------
@@ -433,11 +434,12 @@ def _check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
                 f"{(grooves.start + grooves.length) / MM:g} mm); seats must be on plain shaft")
     ordered = sorted(seats, key=lambda s: s[1].seat[0])
     for (ta, a), (tb, b) in zip(ordered, ordered[1:]):
-        if b.seat[0] < a.seat[1] - 1e-12:
+        # seats that touch would share the nodes of their common edge
+        if b.seat[0] < a.seat[1] + SEAT_GAP:
             raise SceneError(
                 f"{where(source, tb, 'position_mm')} = {b.position / MM:g}: its seat "
-                f"({b.seat[0] / MM:g} to {b.seat[1] / MM:g} mm) overlaps the seat of {ta} "
-                f"({a.seat[0] / MM:g} to {a.seat[1] / MM:g} mm)")
+                f"({b.seat[0] / MM:g} to {b.seat[1] / MM:g} mm) overlaps or touches the seat "
+                f"of {ta} ({a.seat[0] / MM:g} to {a.seat[1] / MM:g} mm)")
 
 
 def _check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:
