@@ -30,7 +30,7 @@ import numpy as np
 from scipy.sparse.linalg import splu
 
 from .errors import SceneError
-from .supports import part_mass
+from .supports import part_mass, rigid_body_modes
 
 if TYPE_CHECKING:
     from .pipeline import ModalResult
@@ -44,16 +44,11 @@ DIRECTION_NAMES = {"x": "x (lateral)", "y": "y (lateral)", "z": "z (axial)",
 def influence(nodes: np.ndarray, n_parts: int, direction: str) -> tuple[np.ndarray, np.ndarray]:
     """r for the nodes (3 n,) and for each part's (U, Theta) at its centre on the axis
     (n_parts, 6): a unit translation along x, y, z, or a unit turn about z (rad)."""
-    r = np.zeros((nodes.shape[0], 3))
+    column = {"x": 0, "y": 1, "z": 2, "rz": 5}[direction]
+    r = rigid_body_modes(nodes, np.zeros(3))[:, column]
     parts = np.zeros((n_parts, 6))
-    if direction == "rz":
-        r[:, 0], r[:, 1] = -nodes[:, 1], nodes[:, 0]
-        parts[:, 5] = 1.0
-    else:
-        c = "xyz".index(direction)
-        r[:, c] = 1.0
-        parts[:, c] = 1.0
-    return r.ravel(), parts
+    parts[:, column] = 1.0           # each part's centre lies on the axis
+    return r, parts
 
 
 @dataclass(frozen=True)

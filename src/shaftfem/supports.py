@@ -51,10 +51,11 @@ ON_SURFACE = 1e-7
 FREE_MOTION = 1e-10
 
 
-def rigid_body_modes(nodes: np.ndarray) -> np.ndarray:
+def rigid_body_modes(nodes: np.ndarray, centre: np.ndarray | None = None) -> np.ndarray:
     """The six rigid motions of a body whose DOF 3 n + c moves node n along axis c:
-    three translations and three rotations about its centroid, (3 n_nodes, 6)."""
-    x = nodes - nodes.mean(axis=0)
+    three translations and three rotations about `centre` (default its centroid),
+    (3 n_nodes, 6)."""
+    x = nodes - (nodes.mean(axis=0) if centre is None else centre)
     R = np.zeros((nodes.shape[0], 3, 6))
     for c in range(3):
         R[:, c, c] = 1.0
@@ -223,19 +224,13 @@ def motion_names(free: np.ndarray, nodes: np.ndarray) -> tuple[str, ...]:
     r = free.shape[1]
     if r in (0, 6):
         return () if r == 0 else ("all six rigid motions",)
-    x = nodes - np.array([0.0, 0.0, nodes[:, 2].mean()])
-    unit = {name: np.zeros((nodes.shape[0], 3)) for name in ("tx", "ty", "tz", "rx", "ry", "rz")}
-    for c, name in enumerate(("tx", "ty", "tz")):
-        unit[name][:, c] = 1.0
-    for c, name in enumerate(("rx", "ry", "rz")):
-        e = np.zeros(3)
-        e[c] = 1.0
-        unit[name] = np.cross(e, x)
+    motions = rigid_body_modes(nodes, np.array([0.0, 0.0, nodes[:, 2].mean()]))
+    unit = dict(zip(("tx", "ty", "tz", "rx", "ry", "rz"), motions.T))
     Q = np.linalg.qr(free)[0]
 
     def shared(*names: str) -> int:
         """Dimension of span(free) and span(names) in common."""
-        B = np.linalg.qr(np.column_stack([unit[n].ravel() for n in names]))[0]
+        B = np.linalg.qr(np.column_stack([unit[n] for n in names]))[0]
         # the seats hold the mean of a mesh that is not exactly symmetric: near enough
         return int(np.sum(np.linalg.svd(Q.T @ B, compute_uv=False) > 1 - 1e-6))
 
