@@ -1,7 +1,7 @@
 """Damaged cache entries are detected before use, said in one line, and rebuilt.
 
 A short grooved shaft (one half-pitch cell) keeps each rebuild to seconds. Every
-kind of entry (the solid's BREP, its metadata, the mesh) is truncated, emptied,
+kind of entry (the solid's BREP, its metadata, the mesh, the eigensolver's shift) is truncated, emptied,
 garbled and altered in value; the next run must warn and give the clean run's
 frequencies.
 """
@@ -46,7 +46,8 @@ def _alter(p):
     elif p.suffix == ".npz":
         with np.load(p) as z:
             fields = {k: z[k] for k in z.files}
-        fields["points"] = fields["points"] * 1.01
+        name = "points" if "points" in fields else "shift"
+        fields[name] = fields[name] * 1.01
         with open(p, "wb") as fh:
             np.savez(fh, **fields)
     else:  # BREP text: one coordinate digit changed
@@ -64,11 +65,12 @@ def clean(tmp_path_factory):
 
 
 @pytest.mark.parametrize("damage", [_truncate, _empty, _garble, _alter])
-@pytest.mark.parametrize("entry", ["brep", "meta", "mesh"])
+@pytest.mark.parametrize("entry", ["brep", "meta", "mesh", "shift"])
 def test_a_damaged_entry_is_rebuilt(clean, entry, damage):
     from shaftfem.store import cache_dir
 
-    pattern = {"brep": "shapes/*.brep", "meta": "shapes/*.json", "mesh": "meshes/*.npz"}[entry]
+    pattern = {"brep": "shapes/*.brep", "meta": "shapes/*.json", "mesh": "meshes/*.npz",
+               "shift": "shifts/*.npz"}[entry]
     (path,) = cache_dir().glob(pattern)  # the clean run's, or the last case's rebuild
     damage(path)
     with pytest.warns(CacheWarning, match="damaged"):

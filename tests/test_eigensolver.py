@@ -118,3 +118,75 @@ def test_other_start_vectors_give_the_same_modes_with_small_residuals(paper, mon
         assert m.residuals.max() < 1e-8
         assert np.max(np.abs(m.frequencies / paper.modes.frequencies - 1)) < 1e-10
         assert m.inertia_count >= 6 + len(m.frequencies)
+
+
+@pytest.fixture(scope="module")
+def plain(cylinder):
+    """The cylinder's pencil solved by PARDISO the ordinary way (two factorisations)."""
+    if "pardiso" not in available_factorizers():
+        pytest.skip("PARDISO is not installed")
+    s = cylinder.system
+    rigid = modal.rigid_body_modes(s.nodes)
+    return s, rigid, modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso")
+
+
+def _factorisations(monkeypatch):
+    """A list that grows by one at every factorisation of K - s M."""
+    shifts = []
+    real = ShiftedFactor.shift_to
+
+    def counted(self, s):
+        if s != self.shift:
+            shifts.append(s)
+        real(self, s)
+    monkeypatch.setattr(ShiftedFactor, "shift_to", counted)
+    return shifts
+
+
+def test_a_shift_hint_needs_one_factorisation_and_finds_the_same_modes(plain, monkeypatch):
+    """Factorised once at the last solve's counting shift, the same ten modes come out
+    (to 1e-9, and to 1e-8 of SuperLU's), each with a residual below 1e-8, the inertia
+    there counting all sixteen."""
+    s, rigid, sol = plain
+    shifts = _factorisations(monkeypatch)
+    hinted = modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso",
+                               shift_hint=sol.inertia_shift)
+    assert shifts == [sol.inertia_shift]
+    assert hinted.inertia_count == 16 and hinted.inertia_shift == sol.inertia_shift
+    assert np.max(np.abs(hinted.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
+    assert hinted.pairs.relative_residuals()[6:].max() < 1e-8
+    lu = modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="superlu")
+    f, f_lu = np.sqrt(hinted.eigenvalues[6:]), np.sqrt(lu.eigenvalues[6:])
+    assert np.max(np.abs(f / f_lu - 1)) < 1e-8
+
+
+@pytest.mark.parametrize("where", ["too low", "too high", "below every mode"])
+def test_a_hint_that_does_not_serve_falls_back(plain, monkeypatch, where):
+    """A hint with fewer than the wanted modes below it, or many more, costs one more
+    factorisation and changes nothing in the result."""
+    s, rigid, sol = plain
+    lam = sol.eigenvalues
+    hint = {"too low": np.sqrt(lam[10] * lam[11]), "too high": 4.0 * lam[-1],
+            "below every mode": 0.5 * lam[6]}[where]
+    shifts = _factorisations(monkeypatch)
+    again = modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso",
+                              shift_hint=hint)
+    assert len(shifts) == 3 and shifts[0] == hint
+    assert again.inertia_shift == pytest.approx(sol.inertia_shift, rel=1e-9)
+    assert again.inertia_count == 16
+    assert np.max(np.abs(again.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
+
+
+def test_a_krylov_space_blind_to_a_mode_is_caught_below_a_hint_too(cylinder, plain,
+                                                                   monkeypatch):
+    """The mode the factor cannot see is missing below the hint: the count there says
+    so, the ordinary search after it is as blind, and the solve is refused."""
+    s, rigid, sol = plain
+    true = cylinder.modes
+    wrap = _blind_to(true.shapes[:, true.kinds.index("torsion")], s.M)
+    real_solve = ShiftedFactor.solve
+    monkeypatch.setattr(ShiftedFactor, "solve", lambda self, b: wrap(
+        lambda c: real_solve(self, c))(b))
+    with pytest.raises(SolverError, match="a mode was skipped"):
+        modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso",
+                          shift_hint=sol.inertia_shift)

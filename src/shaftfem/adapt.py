@@ -154,7 +154,8 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
                     int(z["prev_dofs"]))
             rounds = tuple(Round(int(d), float(b), float(s)) for d, b, s in
                            zip(z["round_dofs"], z["round_bound"], z["round_seconds"]))
-            result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads, say)
+            result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads, say,
+                                 use_cache)
             return Adapted(result=result, estimate=_bound(result, rec, prev), target=target,
                            max_dofs=max_dofs, rounds=rounds, reached=bool(z["reached"]),
                            why=str(z["why"]), from_cache=True)
@@ -167,7 +168,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
     while True:
         t = time.perf_counter()
         say(f"adaptive round {len(rounds) + 1}: {mesh.n_elements} elements; solving")
-        result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads, say)
+        result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads, say, use_cache)
         if prev is None:
             # the modes of the first mesh fix which modes are followed from round to round
             from .pipeline import with_modes
@@ -225,12 +226,14 @@ def _planning_bound(recovery: np.ndarray) -> np.ndarray:
 
 
 def _solve(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_cad: float,
-           factorizer: str, threads: int | None, say: Callable[[str], None]):
+           factorizer: str, threads: int | None, say: Callable[[str], None],
+           use_cache: bool = True):
     """One mesh solved (pipeline.solve_mesh) and its recovery estimate."""
     from .estimate import recovery_estimate
     from .pipeline import solve_mesh
 
-    result = solve_mesh(scene, shape, mesh, t0, t_cad, mesh.seconds, say, factorizer, threads)
+    result = solve_mesh(scene, shape, mesh, t0, t_cad, mesh.seconds, say, factorizer, threads,
+                        use_cache=use_cache)
     return result, recovery_estimate(mesh, scene.material, result.modes)
 
 

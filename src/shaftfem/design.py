@@ -76,7 +76,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
 
         say("the same shaft hanging free, on the same mesh, for comparison")
         free = solve_mesh(scene.free(), result.shape, result.mesh, time.perf_counter(), 0.0,
-                          0.0, say, factorizer)
+                          0.0, say, factorizer, use_cache=use_cache)
         basis = modal_basis(result)
         part = participation(basis)
         response = response_sweep(result, "x", basis=basis)

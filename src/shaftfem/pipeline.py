@@ -106,13 +106,17 @@ def run_modes(scene: Scene, use_cache: bool = True,
     t_mesh = time.perf_counter() - t
     say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
         "assembling K and M")
-    return solve_mesh(scene, shape, mesh, t0, t_cad, t_mesh, say, factorizer, threads)
+    return solve_mesh(scene, shape, mesh, t0, t_cad, t_mesh, say, factorizer, threads,
+                      use_cache=use_cache)
 
 
 def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_cad: float,
                t_mesh: float, say: Callable[[str], None], factorizer: str = "auto",
-               threads: int | None = None) -> ModalResult:
-    """Assemble and solve one mesh of the scene's solid (the run began at t0)."""
+               threads: int | None = None, use_cache: bool = True) -> ModalResult:
+    """Assemble and solve one mesh of the scene's solid (the run began at t0).
+
+    `use_cache`: start from the shift where the last solve of this scene (any mesh)
+    proved its modes complete, and keep this solve's (see modal.solve_modes)."""
     from .assembly import assemble, discretise
     from .factor import analyse_in_background, uses_pardiso
     from .modal import modal_analysis
@@ -132,16 +136,61 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_ca
     t_assembly = time.perf_counter() - t
     n_dofs = system.n_dofs if installed is None else installed.K.shape[0]
     say(f"{n_dofs} DOFs; factorising and solving")
+    hint = shift_hint(scene) if use_cache else None
     modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
                            scene.modes.count, factorizer=factorizer,
                            max_frequency=scene.modes.max_frequency, analysis=analysis,
-                           installed=installed)
+                           installed=installed, shift_hint=hint)
+    if use_cache and modes.inertia_shift != hint:
+        keep_shift(scene, modes.inertia_shift)
     timings = Timings(cad=t_cad, mesh=t_mesh, assembly=t_assembly,
                       factorisation=modes.factorisation_seconds,
                       eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
                        timings=timings, warnings=scene_warnings(scene, modes),
                        installed=installed)
+
+
+def _shift_path(scene: Scene):
+    """Where the proven shift of the scene's pencil is kept: keyed by everything that
+    makes K and M except the mesh, so that a finer or adapted mesh of the same shaft
+    starts from it too."""
+    from dataclasses import asdict
+
+    from .store import cache_dir, content_key
+
+    key = content_key({"version": 1, "shaft": asdict(scene.shaft),
+                       "grooves": asdict(scene.grooves) if scene.grooves else None,
+                       "material": asdict(scene.material), "order": scene.mesh.order,
+                       "supports": [asdict(s) for s in scene.supports],
+                       "attachments": [asdict(a) for a in scene.attachments],
+                       "modes": asdict(scene.modes)})
+    return cache_dir() / "shifts" / f"{key}.npz"
+
+
+def shift_hint(scene: Scene) -> float | None:
+    """The shift (rad^2/s^2) above the wanted modes that the last solve of this scene
+    counted at, if one was kept: where the next solve factorises first."""
+    from .store import discard, load_arrays
+
+    path = _shift_path(scene)
+    if not path.exists():
+        return None
+    fields, why = load_arrays(path, ("shift",))
+    if fields is None or not float(fields["shift"]) > 0:
+        discard("shift hint", why or "not a positive shift", path)
+        return None
+    return float(fields["shift"])
+
+
+def keep_shift(scene: Scene, shift: float) -> None:
+    """Keep a solve's proven shift for the next solve of the scene."""
+    import numpy as np
+
+    from .store import save_arrays
+
+    if shift > 0:
+        save_arrays(_shift_path(scene), {"shift": np.float64(shift)})
 
 
 def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
