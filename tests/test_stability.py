@@ -53,6 +53,25 @@ def test_frequencies_scale_exactly_with_sqrt_E(cylinder, factor):
     assert np.max(np.abs(ratio / np.sqrt(factor) - 1)) < 1e-10
 
 
+@pytest.mark.parametrize("factor", [1e6, 1e-6])
+def test_the_one_factorisation_at_a_hint_scales_too(cylinder, factor):
+    """The solve from a shift hint (PARDISO, one factorisation, Lanczos below the
+    hint) under the same extreme stiffnesses: healthy modes, the same sqrt(E) law."""
+    from shaftfem.factor import available_factorizers
+
+    if "pardiso" not in available_factorizers():
+        pytest.skip("PARDISO is not installed")
+    m = cylinder.scene.material
+    s = assemble(cylinder.mesh, replace(m, youngs_modulus=m.youngs_modulus * factor))
+    hint = cylinder.modes.inertia_shift * factor
+    modes = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar, factorizer="pardiso",
+                           shift_hint=hint)
+    _healthy(modes)
+    assert modes.inertia_shift == hint  # solved at the hint, not by the fallback
+    ratio = modes.frequencies / cylinder.modes.frequencies
+    assert np.max(np.abs(ratio / np.sqrt(factor) - 1)) < 1e-10
+
+
 def test_density_scaling(cylinder):
     m = cylinder.scene.material
     modes = _solve(cylinder.mesh, replace(m, density=m.density * 1e3))
