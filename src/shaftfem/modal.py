@@ -162,7 +162,6 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
     r = 0 if fixed is None else fixed.lam.size
     k = n_modes + (RIGID_BODY_MODES if rigid is None else 0)
     k_max = MAX_MODES + (RIGID_BODY_MODES if rigid is None else 0)
-    sliced = None
     if shift_hint is not None and max_frequency is None and uses_pardiso(factorizer, pencil.n):
         factor = _factorise(pencil, shift_hint, factorizer, analysis)
         t1 = time.perf_counter()
