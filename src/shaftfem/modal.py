@@ -96,10 +96,14 @@ class Modes:
     factorisation_seconds: float
     eigensolve_seconds: float
     # The inertia of K - s M counted `inertia_count` eigenvalues (rigid ones included)
-    # below inertia_shift_hz, as many as the solver found: none was skipped.
+    # below s = inertia_shift (rad^2/s^2), as many as the solver found: none was skipped.
     inertia_count: int = 0
-    inertia_shift_hz: float = 0.0
-    inertia_shift: float = 0.0  # the same shift in rad^2/s^2, exact (a hint for re-solves)
+    inertia_shift: float = 0.0
+
+    @property
+    def inertia_shift_hz(self) -> float:
+        """The counting shift as a frequency, Hz."""
+        return math.sqrt(self.inertia_shift) / (2 * math.pi)
 
     @property
     def n_rigid(self) -> int:
@@ -480,7 +484,6 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                  shift=-SHIFT_FACTOR * scale, n_dofs=K.shape[0], factorizer=sol.factorizer,
                  factorisation_seconds=sol.factorisation_seconds,
                  eigensolve_seconds=sol.eigensolve_seconds, inertia_count=sol.inertia_count,
-                 inertia_shift_hz=math.sqrt(sol.inertia_shift) / (2 * math.pi),
                  inertia_shift=sol.inertia_shift)
 
 
