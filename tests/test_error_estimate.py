@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from references import axial_love_hz, torsion_hz
 
-from shaftfem.estimate import SAFETY, combine, estimate_errors, matched, recovery_estimate
+from shaftfem.estimate import SAFETY, combine, estimate_errors, matched
 
 
 def test_two_meshes_recover_the_error_when_the_recovery_falls_short_alike():
@@ -72,22 +72,28 @@ def _exact(scene, kinds):
     return ref, tol
 
 
-def test_recovery_estimate_on_the_cylinder_torsion_modes():
-    """Torsion of a circular shaft is exact in 3D (c_t / 2L): the recovery estimate of
-    the first three torsion modes is within 1-3 times the true error."""
+def test_the_bound_on_ten_torsion_modes_of_the_cylinder():
+    """Torsion of a circular shaft is exact in 3D (c_t / 2L): on the first ten torsion
+    modes every bound holds, and on at least eight it is 1-3 times the true error
+    (the lowest ones, 0.003 % off, sit below the mesh's volume allowance). The
+    recovery estimate alone is 1-3 times the truth on the first three."""
     from shaftfem.pipeline import run_modes, with_modes
     from shaftfem.scene import load_scene
 
-    r = run_modes(with_modes(load_scene("plain_cylinder"), max_frequency=9000.0))
+    r = run_modes(with_modes(load_scene("plain_cylinder"), max_frequency=31000.0))
     ref, _ = _exact(r.scene, r.modes.kinds)
-    rec = recovery_estimate(r.mesh, r.scene.material, r.modes).relative
+    est = estimate_errors(r)
     torsion = [i for i, k in enumerate(r.modes.kinds) if k == "torsion"]
-    assert len(torsion) == 3
+    assert len(torsion) == 10
     true = r.modes.frequencies[torsion] / ref[torsion] - 1
-    effectivity = rec[torsion] / true
-    print("\n  torsion effectivity:", np.round(effectivity, 2))
+    effectivity = est.relative_error[torsion] / true
+    recovery = est.recovery[torsion[:3]] / true[:3]
+    print("\n  torsion bound effectivity:", np.round(effectivity, 2),
+          "\n  recovery alone, first three:", np.round(recovery, 2))
     assert np.all(true > 0)
-    assert np.all((effectivity >= 1) & (effectivity <= 3)), effectivity
+    assert np.all(effectivity >= 1), effectivity
+    assert np.sum(effectivity <= 3) >= 8, effectivity
+    assert np.all((recovery >= 1) & (recovery <= 3)), recovery
 
 
 def test_bound_holds_on_the_cylinder(cylinder):
