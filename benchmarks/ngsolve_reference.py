@@ -69,7 +69,6 @@ def main() -> None:
     for face in shape.faces:
         if math.hypot(face.center.x, face.center.y) < RADIUS - 1e-5:
             face.maxh = groove
-    # curved high-order elements carry the fillets: no curvature-driven refinement
     if hp_levels:
         # sharp grooves: every edge inside the outer surface may be re-entrant; a
         # geometric refinement towards them (factor HP_FACTOR per level) restores
@@ -77,11 +76,12 @@ def main() -> None:
         for edge in shape.edges:
             if math.hypot(edge.center.x, edge.center.y) < RADIUS - 1e-5:
                 edge.hpref = 1
+    # curved high-order elements carry the fillets: no curvature-driven refinement
     mesh = Mesh(OCCGeometry(shape).GenerateMesh(maxh=size, curvaturesafety=0.7,
                                                 segmentsperedge=0.3, grading=0.5))
     if hp_levels:
         mesh.RefineHP(hp_levels, factor=HP_FACTOR)
-    print(f"netgen: {mesh.ne} tetrahedra in {time.perf_counter() - t0:.1f} s", flush=True)
+    print(f"netgen: {mesh.ne} elements in {time.perf_counter() - t0:.1f} s", flush=True)
     print("| order | DOFs | s | " + " | ".join(f"f{i + 1} (Hz)" for i in range(N_ELASTIC)) + " |")
     print("|---|---|---|" + "---|" * N_ELASTIC)
     for p in orders:
