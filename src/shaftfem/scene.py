@@ -260,10 +260,7 @@ def load_scene(scene: str | Path | SceneText | None = None,
         if index is None:
             data.setdefault(table, {})[key] = value
             continue
-        entries = _array(source, data, table)
-        if index >= len(entries):
-            raise SceneError(f"{source}: {dotted}: the scene has {len(entries)} [[{table}]] "
-                             f"table(s), numbered from 0")
+        entries = _entries_with(source, dotted, data, table, index, "the scene", source)
         data[table] = entries
         entries[index][key] = value
     return scene_from_dict(data, source=source)
@@ -275,10 +272,20 @@ def check_entries(source: str, base: SceneText, names: list[str]) -> None:
     data = tomllib.loads(base.text)
     for name in names:
         table, index, _ = split_parameter(name) or (None, None, None)
-        if index is not None and index >= len(_array(base.source, data, table)):
-            raise SceneError(f"{source}: {name}: the base scene {base.source} has "
-                             f"{len(_array(base.source, data, table))} [[{table}]] table(s), "
-                             "numbered from 0")
+        if index is not None:
+            _entries_with(source, name, data, table, index, f"the base scene {base.source}",
+                          base.source)
+
+
+def _entries_with(source: str, name: str, data: dict, table: str, index: int, scene: str,
+                  scene_source: str) -> list:
+    """The [[table]] entries of a parsed scene, which must include entry `index` (named by
+    parameter `name` of file `source`)."""
+    entries = _array(scene_source, data, table)
+    if index >= len(entries):
+        raise SceneError(f"{source}: {name}: {scene} has {len(entries)} [[{table}]] "
+                         "table(s), numbered from 0")
+    return entries
 
 
 def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
