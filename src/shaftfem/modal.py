@@ -193,24 +193,18 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
                 raise SolverError(f"more than {MAX_MODES} modes lie below {max_frequency:g} Hz; "
                                   "lower the frequency limit")
             k = min(2 * k, k_max)
-        # The proof that these are the lowest eigenvalues: each Ritz pair is an
-        # eigenpair to its residual, and the inertia counts as many below s_top.
-        found, s_top = _gap_above(lam, r + k)
-        worst = pairs.first(found).worst_residual(RIGID_FACTOR * scale)
-        counted = _counted(factor, s_top) if worst <= ACCEPT_RESIDUAL else -1
-        if counted == found:
+        # The proof that these are the lowest eigenvalues: the pairs up to a gap are
+        # eigenpairs to their residuals, and the inertia counts as many below it.
+        good, found, s_top = _verified_gap(pairs, r + k, RIGID_FACTOR * scale)
+        counted = _counted(factor, s_top) if found else 0
+        if counted == found >= r + k:
+            pairs = good
             break
         ncv = min(K.shape[0] - r - 1, 2 * ncv_used)
         factor.shift_to(sigma)
     else:
-        if counted < 0:
-            raise SolverError(f"the eigen solver returned a pair that is no eigenpair (relative "
-                              f"residual {worst:.2g}), even with a Krylov space of {ncv_used} "
-                              "vectors")
-        raise SolverError(
-            f"the eigen solver found {found} eigenvalues below "
-            f"{math.sqrt(s_top) / 2 / math.pi:.6g} Hz where the inertia of K - s M counts "
-            f"{counted}: a mode was skipped, even with a Krylov space of {ncv_used} vectors")
+        raise SolverError(_unproven(pairs, found, counted, s_top, r, ncv_used,
+                                    RIGID_FACTOR * scale))
     return EigenSolution(pairs=pairs.first(r + k), scale=scale,
                          factorizer=factor.backend, factorisation_seconds=t1 - t0,
                          eigensolve_seconds=time.perf_counter() - t1,
@@ -292,6 +286,43 @@ def _gap_above(lam: np.ndarray, k: int) -> tuple[int, float]:
             return j, math.sqrt(low * lam[j]) if low > 0 else 0.5 * (low + lam[j])
     raise SolverError(f"the {len(lam) - k + 1} highest eigenvalues found are equal to within "
                       f"{INERTIA_GAP:g}: no gap to count them in; ask for more modes")
+
+
+def _verified_gap(pairs: Ritz, k: int, rigid_limit: float) -> tuple[Ritz, int, float]:
+    """The pairs that are eigenpairs to their residuals (poor ones dropped), and (j, s):
+    a clear gap above the first j of them at s, j >= k where at least k + 1 are,
+    else the highest gap there is (j = 0: none). The inertia count below s must then
+    be j; a larger count means the solver skipped modes below s."""
+    good = pairs.select(pairs.verified(rigid_limit, ACCEPT_RESIDUAL))
+    lam = good.lam
+    if len(lam) > k:
+        j, s = _gap_above(lam, k)
+        return good, j, s
+    for j in range(len(lam) - 1, 0, -1):
+        if lam[j] > lam[j - 1] * (1 + INERTIA_GAP):
+            low = lam[j - 1]
+            return good, j, math.sqrt(low * lam[j]) if low > 0 else 0.5 * (low + lam[j])
+    return good, 0, 0.0
+
+
+def _unproven(pairs: Ritz, found: int, counted: int, s: float, r: int, ncv: int,
+              rigid_limit: float) -> str:
+    """Why the solve is refused: modes below s that the solver skipped, or too few
+    pairs that are eigenpairs (the lowest poor one named: w^2 < 0 or a large residual)."""
+    space = f"even with a Krylov space of {ncv} vectors"
+    below = (f"the eigen solver found {found} eigenvalues below "
+             f"{math.sqrt(max(s, 0.0)) / 2 / math.pi:.6g} Hz where the inertia of K - s M "
+             f"counts {counted}")
+    if counted > found:
+        return f"{below}: a mode was skipped ({counted - found} missing), {space}"
+    if counted < found:
+        return f"{below}: some pairs found are no distinct eigenpairs, {space}"
+    j = int(np.argmin(pairs.verified(rigid_limit, ACCEPT_RESIDUAL)))
+    lam, res = pairs.lam[j], pairs.relative_residuals()[j]
+    what = (f"w^2 = {lam:.3g} rad^2/s^2 < 0" if lam < 0
+            else f"{math.sqrt(lam) / 2 / math.pi:.6g} Hz, relative residual {res:.2g}")
+    return (f"the eigen solver returned a pair that is no eigenpair: number {j + 1 - r} "
+            f"above the rigid ones ({what}), {space}")
 
 
 def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: float,
@@ -380,6 +411,12 @@ class Ritz:
         """||K x - w^2 M x|| / ||K x|| per pair."""
         return (np.linalg.norm(self.residual_vectors, axis=0)
                 / np.linalg.norm(self.KX, axis=0))
+
+    def verified(self, rigid_limit: float, accept: float) -> np.ndarray:
+        """Per pair: an eigenpair to its residual (<= accept), or a rigid motion
+        (|w^2| <= rigid_limit, where the relative residual means nothing)."""
+        rigid = np.abs(self.lam) <= rigid_limit
+        return rigid | ((self.lam > rigid_limit) & (self.relative_residuals() <= accept))
 
     def worst_residual(self, rigid_limit: float) -> float:
         """The largest relative residual of the elastic pairs, or inf if one has
