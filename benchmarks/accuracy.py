@@ -16,9 +16,9 @@ from dataclasses import replace
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _common import in_fresh_process, machine, peak_mb  # noqa: E402
-
 import numpy as np  # noqa: E402
+
+from _common import in_fresh_process, machine, peak_mb  # noqa: E402
 
 
 def one(groove_mm: float, root_radius_mm: float | None) -> dict:

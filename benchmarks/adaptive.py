@@ -15,9 +15,9 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _common import in_fresh_process, machine, peak_mb  # noqa: E402
-
 import numpy as np  # noqa: E402
+
+from _common import in_fresh_process, machine, peak_mb  # noqa: E402
 
 REFERENCE_HZ = np.array([432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
                          3814.81, 3883.84, 4448.27])

@@ -20,8 +20,14 @@ from _common import machine  # noqa: E402
 def main(size_mm: float, repeat: int) -> None:
     import numpy as np
 
-    from shaftfem.assembly import STIFFNESS_INTORDER, discretise, elasticity_blocks, stiffness
-    from shaftfem.assembly import _gradients, _sum_over_chunks
+    from shaftfem.assembly import (
+        STIFFNESS_INTORDER,
+        _gradients,
+        _sum_over_chunks,
+        discretise,
+        elasticity_blocks,
+        stiffness,
+    )
     from shaftfem.geometry import build_shape
     from shaftfem.mesh import mesh_shape
     from shaftfem.pipeline import with_mesh

@@ -11,10 +11,10 @@ from _common import in_fresh_process, machine, peak_mb  # noqa: E402
 
 
 def one(size_mm: float, factorizer: str) -> dict:
+    from dataclasses import replace
+
     from shaftfem.pipeline import run_modes, with_mesh
     from shaftfem.scene import load_scene
-
-    from dataclasses import replace
 
     scene = replace(load_scene("plain_cylinder"), max_dofs=20_000_000)  # research runs
     r = run_modes(with_mesh(scene, size_mm), factorizer=factorizer)

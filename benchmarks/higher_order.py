@@ -29,9 +29,9 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _common import in_fresh_process, machine, peak_mb  # noqa: E402
-
 import numpy as np  # noqa: E402
+
+from _common import in_fresh_process, machine, peak_mb  # noqa: E402
 
 # NGSolve order 3, 1.06M DOFs (README, "An independent reference for the paper's shaft")
 REFERENCE_HZ = np.array([432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
@@ -108,8 +108,14 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
     import scipy.sparse as sp
     from skfem import Basis
 
-    from shaftfem.assembly import (Pattern, _gradients, _reference_values, _sum_over_chunks,
-                                   elasticity_blocks, mass_blocks)
+    from shaftfem.assembly import (
+        Pattern,
+        _gradients,
+        _reference_values,
+        _sum_over_chunks,
+        elasticity_blocks,
+        mass_blocks,
+    )
     from shaftfem.estimate import recovery_estimate
     from shaftfem.mesh import skfem_mesh
     from shaftfem.modal import solve_modes

@@ -15,8 +15,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from shaftfem.pipeline import run_modes, with_mesh
 from shaftfem.paper2018 import TABLE2_HZ
+from shaftfem.pipeline import run_modes, with_mesh
 from shaftfem.scene import load_scene
 
 PAPER = np.array(TABLE2_HZ)

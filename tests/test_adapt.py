@@ -3,13 +3,12 @@ is cached, and a budget too small for the accuracy is said plainly."""
 
 import numpy as np
 import pytest
-from references import torsion_hz
 
+from references import torsion_hz
 from shaftfem.adapt import run_adaptive
 from shaftfem.cli import main
 from shaftfem.pipeline import with_mesh
 from shaftfem.scene import load_scene
-
 
 TARGET = 1e-4
 

@@ -1,6 +1,7 @@
 """The plain cylinder against closed-form and independent beam references."""
 
 import numpy as np
+
 from references import axial_love_hz, timoshenko_free_free_hz, torsion_hz
 
 # Expected order of the first ten modes of a 32 x 550 mm steel bar, from the

@@ -5,8 +5,8 @@ import math
 
 import numpy as np
 import pytest
-from references import axial_love_hz, torsion_hz
 
+from references import axial_love_hz, torsion_hz
 from shaftfem.estimate import SAFETY, combine, estimate_errors, matched
 
 
@@ -120,9 +120,9 @@ def test_bound_holds_on_the_cylinder(cylinder):
 def test_bound_holds_on_the_grooved_shaft(paper):
     """A finer mesh (4 mm, ~350k DOFs) proves a part of each true error, f8 - f4, that
     the bound must exceed; and the bound is not looser than 3 x twice that part."""
-    from shaftfem.pipeline import run_modes, with_mesh
-
     from dataclasses import replace
+
+    from shaftfem.pipeline import run_modes, with_mesh
 
     est = estimate_errors(paper)
     fine = run_modes(with_mesh(replace(paper.scene, max_dofs=2_000_000), 4.0))

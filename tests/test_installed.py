@@ -4,8 +4,8 @@ disk (tests/references.py), and the free-free solve on the same mesh."""
 
 import numpy as np
 import pytest
-from references import timoshenko_beam_hz, timoshenko_free_free_hz, timoshenko_ss_hz
 
+from references import timoshenko_beam_hz, timoshenko_free_free_hz, timoshenko_ss_hz
 from shaftfem.cli import main
 from shaftfem.errors import SceneError
 from shaftfem.scene import scene_from_dict

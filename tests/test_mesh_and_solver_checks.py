@@ -39,9 +39,7 @@ def test_inverted_element_is_refused(cylinder):
 
 
 def test_mesh_volume_matches_the_cylinder(cylinder):
-    from skfem import Basis, ElementTetP2, Functional
-
-    from skfem import ElementTetP1, MeshTet
+    from skfem import Basis, ElementTetP1, ElementTetP2, Functional, MeshTet
 
     one = Functional(lambda w: 1.0 + 0 * w.x[0])
     sk = cylinder.mesh.to_skfem()

@@ -6,9 +6,9 @@ import xml.etree.ElementTree as ET
 import meshio
 import numpy as np
 import pytest
-from references import timoshenko_free_free_hz
 from scipy.spatial import cKDTree
 
+from references import timoshenko_free_free_hz
 from shaftfem.cli import main
 from shaftfem.export import export_modes
 from shaftfem.scene import GEOMETRY_DIR
@@ -94,7 +94,7 @@ def test_pvd_lists_every_mode(exported):
 def test_tables_solid_and_mesh_are_written(cylinder, exported):
     import csv
 
-    rows = list(csv.DictReader(open(exported / "modes.csv")))
+    rows = list(csv.DictReader((exported / "modes.csv").read_text().splitlines()))
     assert len(rows) == 10
     f = float(rows[0]["frequency_hz"])
     assert float(rows[0]["period_s"]) == pytest.approx(1 / f)
@@ -127,8 +127,16 @@ def test_pictures_have_a_panel_per_mode_a_colour_bar_and_moving_gifs(cylinder, t
     from PIL import Image
 
     from shaftfem.pipeline import run_modes, with_modes
-    from shaftfem.render import (BAR_HEIGHT, GEOMETRY_SIZE, GIF_FRAMES, GIF_SIZE, PANEL_SIZE,
-                                 render_geometry, render_mode_gifs, render_modes)
+    from shaftfem.render import (
+        BAR_HEIGHT,
+        GEOMETRY_SIZE,
+        GIF_FRAMES,
+        GIF_SIZE,
+        PANEL_SIZE,
+        render_geometry,
+        render_mode_gifs,
+        render_modes,
+    )
 
     def drawn(img):  # fraction of pixels that are not the white background
         return 1 - np.all(img == 255, axis=2).mean()

@@ -8,8 +8,7 @@ import pytest
 
 from shaftfem.cli import main
 from shaftfem.scene import load_scene
-from shaftfem.sizing import (axial_load_n, keyway_increase_percent, min_mean_diameter_mm,
-                             size_screw)
+from shaftfem.sizing import axial_load_n, keyway_increase_percent, min_mean_diameter_mm, size_screw
 
 INPUTS = dict(load_scene("paper2018").sizing)
 

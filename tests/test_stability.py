@@ -9,8 +9,8 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from references import timoshenko_free_free_hz, torsion_hz
 
+from references import timoshenko_free_free_hz, torsion_hz
 from shaftfem.assembly import assemble
 from shaftfem.modal import modal_analysis
 from shaftfem.pipeline import run_modes

@@ -1,8 +1,8 @@
 """The work-precision study on the plain cylinder."""
 
 import numpy as np
-from references import torsion_hz
 
+from references import torsion_hz
 from shaftfem.scene import load_scene
 from shaftfem.study import run_study, study_reference, study_table
 

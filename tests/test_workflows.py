@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from references import torsion_hz
 
+from references import torsion_hz
 from shaftfem.cli import main
 from shaftfem.scene import GEOMETRY_DIR
 
@@ -31,7 +31,7 @@ def test_design_without_excitations_reports_not_checked(tmp_path, capsys):
     assert "NOT CHECKED" in capsys.readouterr().out
     report = (out / "report.md").read_text()
     assert "NOT CHECKED" in report and "nothing to check against" in report
-    assert len(list(csv.DictReader(open(out / "modes.csv")))) == 3
+    assert len(list(csv.DictReader((out / "modes.csv").read_text().splitlines()))) == 3
     assert sorted(p.name for p in out.glob("*.gif")) == ["mode_01.gif", "mode_02.gif",
                                                           "mode_03.gif"]
     # `check` still refuses: there is nothing to check

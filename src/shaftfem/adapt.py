@@ -17,9 +17,10 @@ the scene's mesh key, the target and the budget: a warm re-run solves one mesh.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -150,20 +151,22 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
         if z is not None:
             say("adapted mesh from cache; solving")
             mesh = mesh_from_arrays(z, 0.0)
-            prev = (z["prev_f"], z["prev_eta"], [str(k) for k in z["prev_kinds"]],
+            kept = (z["prev_f"], z["prev_eta"], [str(k) for k in z["prev_kinds"]],
                     int(z["prev_dofs"]))
-            rounds = tuple(Round(int(d), float(b), float(s)) for d, b, s in
-                           zip(z["round_dofs"], z["round_bound"], z["round_seconds"]))
+            history = [Round(int(d), float(b), float(s)) for d, b, s in
+                       zip(z["round_dofs"], z["round_bound"], z["round_seconds"])]
             result, rec = _solve(scene, shape, mesh, t0, t_cad, factorizer, threads, say,
                                  use_cache)
-            return Adapted(result=result, estimate=_bound(result, rec, prev), target=target,
-                           max_dofs=max_dofs, rounds=rounds, reached=bool(z["reached"]),
+            return Adapted(result=result, estimate=_bound(result, rec, kept), target=target,
+                           max_dofs=max_dofs, rounds=tuple(history), reached=bool(z["reached"]),
                            why=str(z["why"]), from_cache=True)
         discard(f"adapted mesh {key}", why, path)
 
     mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache,
                       cuts=scene.seat_cuts())
-    prev, rounds, est = None, [], None
+    prev: tuple | None = None
+    rounds: list[Round] = []
+    est = None
     reached, why = False, ""
     while True:
         t = time.perf_counter()
@@ -212,6 +215,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
                       (mesh.points, mesh.cells[:, :4], sizes), scene.seat_cuts())
     if est is None:
         raise AssertionError("an adaptive run ends with a bounded round")
+    assert prev is not None  # set by every round
     _save(path, result.mesh, prev, rounds, reached, why)
     return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
                    rounds=tuple(rounds), reached=reached, why=why, from_cache=False)

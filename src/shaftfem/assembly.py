@@ -24,6 +24,7 @@ from __future__ import annotations
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -116,7 +117,7 @@ class Pattern:
     n_nodes: int
 
     @classmethod
-    def of(cls, element_dofs: np.ndarray, n_nodes: int) -> "Pattern":
+    def of(cls, element_dofs: np.ndarray, n_nodes: int) -> Pattern:
         """element_dofs (n, E): the scalar node of each element's local function."""
         n = element_dofs.shape[0]
         e = element_dofs.T.astype(np.int64)
@@ -192,7 +193,7 @@ class Discretisation:
     the solver's analysis (ordering) needs, so that it can start while K and M are
     assembled."""
 
-    basis: object      # scikit-fem's scalar basis at the stiffness quadrature
+    basis: Any         # scikit-fem's scalar basis at the stiffness quadrature
     pattern: Pattern
     order: int
 

@@ -24,9 +24,9 @@ smaller than a few percent of a parameter's range would see mesh noise.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 

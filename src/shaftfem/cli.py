@@ -10,8 +10,8 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import warnings
 import time
+import warnings
 from pathlib import Path
 
 from .errors import EXIT_BAD_INPUT, EXIT_COMPUTATION, SceneError, ShaftfemError

@@ -14,20 +14,21 @@ skips the sizing.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 from .scene import Scene
 
 MANIFEST = "design.manifest.json"   # lists every file of the last complete design run
 
 if TYPE_CHECKING:
+    from .adapt import Adapted
+    from .estimate import ErrorEstimate
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
     from .sizing import SizingResult
-    from .adapt import Adapted
-    from .estimate import ErrorEstimate
 
 
 @dataclass(frozen=True)
@@ -52,13 +53,13 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
                progress: Callable[[str], None] | None = None) -> DesignResult:
     """Everything a designer signs off, written to `out`. `margin`: required separation
     (fraction), default the scene's."""
-    from .export import write_mode_files
     from .adapt import run_bounded
+    from .export import write_mode_files
     from .render import render_into
     from .report import write_report
-    from .store import staged_directory
     from .resonance import check_result
     from .sizing import size_from_scene
+    from .store import staged_directory
 
     say = progress or (lambda _m: None)
     out = Path(out)

@@ -17,8 +17,8 @@ import numpy as np
 from .store import json_text, staged_directory, write_csv, write_text
 
 if TYPE_CHECKING:
-    from .pipeline import ModalResult
     from .estimate import ErrorEstimate
+    from .pipeline import ModalResult
 
 
 def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
@@ -236,6 +236,7 @@ def _installation_cards(result: ModalResult) -> str:
     own that the *EQUATION makes the mean, through a SPRING1; a part is a *RIGID BODY
     of its band with six point masses carrying its mass and inertias."""
     inst, system, mesh = result.installed, result.system, result.mesh
+    assert inst is not None  # called for installed shafts only
     node_of = np.empty(system.nodes.shape[0], dtype=np.int64)
     node_of[system.point_dofs] = np.arange(1, mesh.points.shape[0] + 1)  # Abaqus ids
     next_node, next_el = mesh.points.shape[0] + 1, mesh.cells.shape[0] + 1

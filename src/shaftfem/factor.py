@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import ctypes
 import functools
+from collections.abc import Callable
 from concurrent.futures import Future, ThreadPoolExecutor
-from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
@@ -267,7 +267,7 @@ class ShiftedFactor:
         self._analysis = analysis
         self._pardiso: Pardiso | None = None
         self._solve: Callable[[np.ndarray], np.ndarray] | None = None
-        self.shift = None
+        self.shift: float | None = None
         self.shift_to(shift)
 
     def shift_to(self, s: float) -> None:
@@ -291,6 +291,7 @@ class ShiftedFactor:
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         """(K - shift M)^-1 b."""
+        assert self._solve is not None  # shift_to ran in __init__
         return self._solve(b)
 
     def count_below(self, s: float) -> int:
@@ -301,6 +302,7 @@ class ShiftedFactor:
         K - s M until `shift_to`); the other back-ends use SuperLU with diagonal pivots."""
         if self.backend == "pardiso":
             self.shift_to(s)
+            assert self._pardiso is not None  # shift_to made it
             positive, negative = self._pardiso.inertia
             if positive + negative != self.pencil.n or self._pardiso.perturbed:
                 raise SolverError(f"the inertia of K - s M at {_hz(s):.6g} Hz is not clean "

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict, dataclass
+from typing import Any
 
 import numpy as np
 
@@ -155,7 +156,7 @@ def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
 MESH_ARRAYS = ("points", "cells", "order", "ratio", "straightened")
 
 
-def mesh_arrays(mesh: ShaftMesh) -> dict[str, np.ndarray]:
+def mesh_arrays(mesh: ShaftMesh) -> dict[str, Any]:
     """A mesh as the named arrays of a cache entry."""
     return dict(points=mesh.points, cells=mesh.cells, order=np.int64(mesh.order),
                 ratio=np.float64(mesh.min_jacobian_ratio),

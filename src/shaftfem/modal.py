@@ -425,17 +425,17 @@ class Ritz:
             return math.inf
         return float(np.max(self.relative_residuals()[self.lam > rigid_limit], initial=0.0))
 
-    def first(self, n: int) -> "Ritz":
+    def first(self, n: int) -> Ritz:
         return self.select(slice(n))
 
-    def select(self, keep: np.ndarray) -> "Ritz":
+    def select(self, keep: np.ndarray | slice) -> Ritz:
         return Ritz(self.lam[keep], self.X[:, keep], self.KX[:, keep], self.MX[:, keep])
 
-    def join(self, other: "Ritz") -> "Ritz":
+    def join(self, other: Ritz) -> Ritz:
         return Ritz(np.concatenate([self.lam, other.lam]), np.hstack([self.X, other.X]),
                     np.hstack([self.KX, other.KX]), np.hstack([self.MX, other.MX]))
 
-    def scaled(self, c: np.ndarray) -> "Ritz":
+    def scaled(self, c: np.ndarray) -> Ritz:
         """The same pairs with vector j scaled by c[j]."""
         return Ritz(self.lam, self.X * c, self.KX * c, self.MX * c)
 

@@ -57,7 +57,8 @@ class Session:
     """One gmsh job: its own model; options it changes are put back for a caller's session."""
 
     def __init__(self, gmsh, owner: bool):
-        self.gmsh, self.owner, self._saved = gmsh, owner, {}
+        self.gmsh, self.owner = gmsh, owner
+        self._saved: dict[str, float] = {}
 
     def option(self, name: str, value: float) -> None:
         if name not in self._saved:
@@ -236,7 +237,7 @@ def _check_connected(gmsh) -> None:
     vols = [t for _, t in gmsh.model.getEntities(3)]
     if len(vols) < 2:
         return
-    faces = {}
+    faces: dict[int, list[int]] = {}
     for v in vols:
         _, bnd = gmsh.model.getAdjacencies(3, v)
         for f in bnd:

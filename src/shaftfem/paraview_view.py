@@ -15,9 +15,19 @@ all modes is drawn as 6 % of the shaft's length.
 import sys
 from pathlib import Path
 
-from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene,
-                             GetColorTransferFunction, GetScalarBar, PVDReader, Render,
-                             ResetCamera, SaveScreenshot, Show, WarpByVector)
+from paraview.simple import (
+    ColorBy,
+    GetActiveViewOrCreate,
+    GetAnimationScene,
+    GetColorTransferFunction,
+    GetScalarBar,
+    PVDReader,
+    Render,
+    ResetCamera,
+    SaveScreenshot,
+    Show,
+    WarpByVector,
+)
 
 DRAWN_FRACTION = 0.06
 

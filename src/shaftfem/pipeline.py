@@ -7,15 +7,15 @@ and keeps what each produced and how long it took.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Callable, Iterator
+from typing import TYPE_CHECKING
 
 from .errors import SceneError
 from .scene import Scene
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
     import numpy as np
-
 
     from .assembly import System
     from .geometry import ShaftShape

@@ -45,7 +45,7 @@ def groove_volume(g: Grooves, radius: float, nz: int = 4001, nr: int = 801) -> f
     r = np.linspace(radius - g.depth, radius, nr)
     phi = 2 * math.pi * axial_width(g, radius, r) / g.pitch
     if len(g.hands) == 1:
-        return g.length * np.trapezoid(phi * r, r)
+        return float(g.length * np.trapezoid(phi * r, r))
     z = np.linspace(0.0, g.length, nz)
     # right-hand centre at pi/2 + 2 pi z/P, left-hand at -(pi/2 + 2 pi z/P)
     diff = np.mod(math.pi + 4 * math.pi * z / g.pitch, 2 * math.pi)

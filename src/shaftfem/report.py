@@ -2,18 +2,19 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING
 
 from . import tables
 from .store import write_text
 
 if TYPE_CHECKING:
+    from .estimate import ErrorEstimate
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
-    from .sizing import SizingResult
-    from .estimate import ErrorEstimate
     from .response import Participation
+    from .sizing import SizingResult
 
 
 def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,

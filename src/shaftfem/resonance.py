@@ -14,13 +14,14 @@ scene's modal damping, AF = 1 / (2 zeta) (2 %: AF 25, margin 16.3 %).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .schema import DEFAULT_MARGIN_PERCENT
 from .scene import Excitation
+from .schema import DEFAULT_MARGIN_PERCENT
 
 if TYPE_CHECKING:
     from .pipeline import ModalResult

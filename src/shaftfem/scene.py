@@ -12,9 +12,17 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from .errors import SceneError
-from .schema import (DEFAULT_DAMPING_PERCENT, DEFAULT_MARGIN_PERCENT, DEFAULT_MAX_DOFS,
-                     DEFAULT_MODE_COUNT, SCHEMA, read_toml, split_parameter, validate_table,
-                     where)
+from .schema import (
+    DEFAULT_DAMPING_PERCENT,
+    DEFAULT_MARGIN_PERCENT,
+    DEFAULT_MAX_DOFS,
+    DEFAULT_MODE_COUNT,
+    SCHEMA,
+    read_toml,
+    split_parameter,
+    validate_table,
+    where,
+)
 
 # The scenes shipped with shaftfem: the repository's geometry/ folder, which an
 # installed package carries as shaftfem/scenes (pyproject.toml maps one onto the other).
@@ -195,7 +203,7 @@ class Scene:
         zs = {z for part in self.supports + self.attachments for z in part.seat}
         return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))
 
-    def free(self) -> "Scene":
+    def free(self) -> Scene:
         """The same shaft hanging free, on the same mesh: its supports left off (the
         attached parts stay on)."""
         return replace(self, hanging_free=True)
@@ -272,7 +280,7 @@ def check_entries(source: str, base: SceneText, names: list[str]) -> None:
     data = tomllib.loads(base.text)
     for name in names:
         table, index, _ = split_parameter(name) or (None, None, None)
-        if index is not None:
+        if table is not None and index is not None:
             _entries_with(source, name, data, table, index, f"the base scene {base.source}",
                           base.source)
 

@@ -10,9 +10,10 @@ from __future__ import annotations
 import math
 import re
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from .errors import SceneError
 
@@ -39,7 +40,8 @@ class Key:
     required: bool = True
 
 
-def upto(high: float, why: str, low: float = 0.0, closed_low: bool = False):
+def upto(high: float, why: str, low: float = 0.0,
+         closed_low: bool = False) -> tuple[Callable[[Any], bool], str]:
     """A check and its words: low < v <= high (low <= v with closed_low), and why the cap.
 
     The caps are far beyond any machine shaft; they keep absurd values (1e300) away
@@ -333,4 +335,4 @@ def parameter(source: str, name: object) -> str:
         raise SceneError(f"{source}: {name!r}: not a numeric scene key; a parameter is "
                          "'table.key', e.g. 'grooves.depth_mm' or 'shaft.length_mm', or "
                          "'table[i].key' for a repeated table, e.g. 'support[1].position_mm'")
-    return name
+    return str(name)

@@ -17,9 +17,10 @@ import os
 import shutil
 import tempfile
 import warnings
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterator
+from typing import Any
 
 import numpy as np
 
@@ -43,7 +44,7 @@ def discard(what: str, why: str, *paths: Path) -> None:
         Path(p).unlink(missing_ok=True)
 
 
-def save_arrays(path: Path, fields: dict[str, np.ndarray]) -> None:
+def save_arrays(path: Path, fields: dict[str, Any]) -> None:
     """A cache entry of named arrays (.npz), with a checksum of them, written atomically."""
     with atomic_path(path) as tmp:
         np.savez(tmp, **fields, sha256=np.str_(_arrays_checksum(fields)))

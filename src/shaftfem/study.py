@@ -2,7 +2,8 @@
 
 A single run's error bound is shaftfem.estimate's. The study's reference is a
 Richardson extrapolation of its three finest meshes: frequencies from meshes
-of sizes h, r h, r^2 h (same scene, all sizes scaled alike) converge as f(h) ~ f* + C h^p. Three of them give, per mode,
+of sizes h, r h, r^2 h (same scene, all sizes scaled alike) converge as
+f(h) ~ f* + C h^p. Three of them give, per mode,
 
     observed order   p = ln((f3 - f2) / (f2 - f1)) / ln r
     error of f1      e = |f1 - f2| / (r^p - 1)          (Richardson)

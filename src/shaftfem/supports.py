@@ -276,14 +276,16 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     if n_bodies(K) != 1:
         raise SolverError("the mesh has disconnected parts; a shaft must be one piece")
     radius = scene.shaft.radius
-    restraints, clamped, tied = [], [], []
+    restraints: list[Restraint] = []
+    held_bands: list[np.ndarray] = []
+    tied: list[tuple[np.ndarray, np.ndarray]] = []
     for s in scene.held:
         idx = band_nodes(nodes, radius, s.seat)
         if idx.size == 0:
             raise SolverError(f"{s.name}: no mesh node on its seat band ({s.seat[0] * 1e3:g} "
                               f"to {s.seat[1] * 1e3:g} mm)")
         if s.kind == "clamped":
-            clamped.append((3 * idx[:, None] + np.arange(3)).ravel())
+            held_bands.append((3 * idx[:, None] + np.arange(3)).ravel())
         else:
             restraints += seat_restraints(s, nodes, surface_weights(skmesh, order, radius,
                                                                     s.seat))
@@ -292,7 +294,7 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
         if idx.size == 0:
             raise SolverError(f"{a.name}: no mesh node on its seat band")
         tied.append((idx, np.array([0.0, 0.0, a.position])))
-    clamped = np.concatenate(clamped) if clamped else np.zeros(0, np.int64)
+    clamped = np.concatenate(held_bands) if held_bands else np.zeros(0, np.int64)
     K_s = restraint_stiffness(restraints, K.shape[0])
     T = elimination(nodes, clamped, [r for r in restraints if r.held], tied)
     Tt = T.T.tocsr()

@@ -24,12 +24,12 @@ from __future__ import annotations
 import csv
 import itertools
 import math
-from contextlib import contextmanager
 import os
 import time
+from collections.abc import Callable
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 from .errors import ClusterError, SceneError
 from .runtime import worker_env
@@ -235,7 +235,7 @@ def _owned(folder: Path):
     import shutil
 
     folder.mkdir(parents=True, exist_ok=True)
-    fh = open(folder / ".sweep.lock", "a+")
+    fh = open(folder / ".sweep.lock", "a+")  # noqa: SIM115 (held until the sweep ends)
     try:
         fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except BlockingIOError:

@@ -11,11 +11,11 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from .calibrate import Calibration, CalibrationResult
+    from .estimate import ErrorEstimate
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
     from .response import Participation
     from .sizing import SizingResult
-    from .estimate import ErrorEstimate
     from .study import Extrapolation, StudyResult
 
 

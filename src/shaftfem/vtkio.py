@@ -9,7 +9,7 @@ meshio already use (VTK's). pyvista wraps the same grid for pictures.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -21,8 +21,12 @@ def grid(mesh: ShaftMesh, scale: float = 1.0):
     """A vtkUnstructuredGrid of the mesh, coordinates times `scale` (1: m, 1e3: mm)."""
     from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
     from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import (VTK_QUADRATIC_TETRA, VTK_TETRA, vtkCellArray,
-                                               vtkUnstructuredGrid)
+    from vtkmodules.vtkCommonDataModel import (
+        VTK_QUADRATIC_TETRA,
+        VTK_TETRA,
+        vtkCellArray,
+        vtkUnstructuredGrid,
+    )
 
     points = vtkPoints()
     points.SetData(numpy_to_vtk(np.ascontiguousarray(mesh.points * scale), deep=True))
@@ -45,7 +49,7 @@ def _array(name: str, values):
 
 
 def write_vtu(path: str | Path, mesh: ShaftMesh, point_data: dict[str, np.ndarray],
-              field_data: dict[str, object]) -> Path:
+              field_data: dict[str, Any]) -> Path:
     """mesh with point arrays (n_points,) or (n_points, 3) and numeric field arrays,
     as a binary VTU file."""
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
