@@ -1,10 +1,26 @@
 # The two commands of the README:
-#   make run    set up (.venv) and run `shaftfem design` on the default scene
-#   make test   set up and run the test suite (what .ci/run calls)
-.PHONY: run test setup
-setup:
-	bash scripts/setup.sh
-run: setup
+#   make run    set up .venv from the lock (what the run needs) and run `shaftfem design`
+#   make test   set up .venv from the lock (plus test tools and the cross-check programs)
+#               and run the tests (.ci/run calls this)
+# And for developers:
+#   make lint         ruff and mypy, as CI runs them
+#   make lock         upgrade the lock to the newest versions the ranges admit, then test
+#   make test-latest  the tests against the newest versions, in .venv-latest, lock untouched
+.PHONY: run test lint lock test-latest
+run:
+	bash scripts/setup.sh run
 	.venv/bin/shaftfem design
-test: setup
+test:
+	bash scripts/setup.sh test
 	.venv/bin/python -m pytest -q
+lint:
+	bash scripts/setup.sh test
+	.venv/bin/ruff check src tests benchmarks scripts
+	.venv/bin/mypy
+lock:
+	bash scripts/setup.sh test
+	bash scripts/lock.sh --upgrade
+	$(MAKE) test
+test-latest:
+	bash scripts/setup.sh test
+	bash scripts/test_latest.sh
