@@ -31,8 +31,14 @@ RIGID_BODY_MODES = 6
 # sigma = -SHIFT_FACTOR * median(diag K / diag M): scale-free, so frequencies scale
 # exactly with sqrt(E / rho) and do not depend on the unit system.
 SHIFT_FACTOR = 1e-8
-# A mode counts as rigid below this fraction of the same scale (f ~ 1e-5 f_scale).
+# Rigid pairs (the free motions given to the solver) have |w^2| below this fraction of
+# the same scale, their round-off; below it an eigenvalue counts as zero in the checks.
 RIGID_FACTOR = 1e-10
+# The rigid motions are given (a free body's six, or those its seats leave free), and
+# every other mode is elastic, however low (soft bearings, heavy parts). An elastic
+# w^2 below this fraction of the scale (f ~ 1e-7 f_scale, 0.01 Hz on a steel shaft's
+# 8 mm mesh) is a motion K does not resist beyond those: a mechanism.
+MECHANISM_FACTOR = 1e-14
 # Relative residual ||K x - w^2 M x|| / ||K x|| above which an elastic mode gets a
 # Davidson correction step (solve_modes).
 RESIDUAL_TARGET = 3e-9
@@ -166,6 +172,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
     r = 0 if fixed is None else fixed.lam.size
     k = n_modes + (RIGID_BODY_MODES if rigid is None else 0)
     k_max = MAX_MODES + (RIGID_BODY_MODES if rigid is None else 0)
+    zero = _zero_limit(scale, fixed)
     if shift_hint is not None and max_frequency is None and uses_pardiso(factorizer, pencil.n):
         factor = _factorise(pencil, shift_hint, factorizer, analysis)
         t1 = time.perf_counter()
@@ -195,7 +202,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
             k = min(2 * k, k_max)
         # The proof that these are the lowest eigenvalues: the pairs up to a gap are
         # eigenpairs to their residuals, and the inertia counts as many below it.
-        good, found, s_top = _verified_gap(pairs, r + k, RIGID_FACTOR * scale)
+        good, found, s_top = _verified_gap(pairs, r + k, zero, r)
         counted = _counted(factor, s_top) if found else 0
         if counted == found >= r + k:
             pairs = good
@@ -203,8 +210,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, n_modes: int = DEFAULT_MODE_
         ncv = min(K.shape[0] - r - 1, 2 * ncv_used)
         factor.shift_to(sigma)
     else:
-        raise SolverError(_unproven(pairs, found, counted, s_top, r, ncv_used,
-                                    RIGID_FACTOR * scale))
+        raise SolverError(_unproven(pairs, found, counted, s_top, r, ncv_used, zero))
     return EigenSolution(pairs=pairs.first(r + k), scale=scale,
                          factorizer=factor.backend, factorisation_seconds=t1 - t0,
                          eigensolve_seconds=time.perf_counter() - t1,
@@ -234,11 +240,17 @@ def _slice_below(K: sp.csr_matrix, M: sp.csr_matrix, factor: ShiftedFactor, s: f
             return None
         if fixed is not None:
             pairs = fixed.join(pairs)
-        worst = pairs.worst_residual(RIGID_FACTOR * scale)
-        if worst <= ACCEPT_RESIDUAL and int(np.sum(pairs.lam < s)) == counted:
+        if (pairs.verified(_zero_limit(scale, fixed), ACCEPT_RESIDUAL, r).all()
+                and int(np.sum(pairs.lam < s)) == counted):
             return pairs, counted
         ncv = min(K.shape[0] - r - 1, 2 * ncv_used)
     return None
+
+
+def _zero_limit(scale: float, fixed: Ritz | None) -> float:
+    """|w^2| below which an eigenvalue is zero: the solver's own rigid pairs, or with
+    the rigid motions given (`fixed`), a mechanism's, which modal_analysis refuses."""
+    return (RIGID_FACTOR if fixed is None else MECHANISM_FACTOR) * scale
 
 
 def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray) -> Ritz:
@@ -288,12 +300,12 @@ def _gap_above(lam: np.ndarray, k: int) -> tuple[int, float]:
                       f"{INERTIA_GAP:g}: no gap to count them in; ask for more modes")
 
 
-def _verified_gap(pairs: Ritz, k: int, rigid_limit: float) -> tuple[Ritz, int, float]:
+def _verified_gap(pairs: Ritz, k: int, zero: float, r: int) -> tuple[Ritz, int, float]:
     """The pairs that are eigenpairs to their residuals (poor ones dropped), and (j, s):
     a clear gap above the first j of them at s, j >= k where at least k + 1 are,
     else the highest gap there is (j = 0: none). The inertia count below s must then
     be j; a larger count means the solver skipped modes below s."""
-    good = pairs.select(pairs.verified(rigid_limit, ACCEPT_RESIDUAL))
+    good = pairs.select(pairs.verified(zero, ACCEPT_RESIDUAL, r))
     lam = good.lam
     if len(lam) > k:
         j, s = _gap_above(lam, k)
@@ -306,7 +318,7 @@ def _verified_gap(pairs: Ritz, k: int, rigid_limit: float) -> tuple[Ritz, int, f
 
 
 def _unproven(pairs: Ritz, found: int, counted: int, s: float, r: int, ncv: int,
-              rigid_limit: float) -> str:
+              zero: float) -> str:
     """Why the solve is refused: modes below s that the solver skipped, or too few
     pairs that are eigenpairs (the lowest poor one named: w^2 < 0 or a large residual)."""
     space = f"even with a Krylov space of {ncv} vectors"
@@ -317,7 +329,7 @@ def _unproven(pairs: Ritz, found: int, counted: int, s: float, r: int, ncv: int,
         return f"{below}: a mode was skipped ({counted - found} missing), {space}"
     if counted < found:
         return f"{below}: some pairs found are no distinct eigenpairs, {space}"
-    j = int(np.argmin(pairs.verified(rigid_limit, ACCEPT_RESIDUAL)))
+    j = int(np.argmin(pairs.verified(zero, ACCEPT_RESIDUAL, r)))
     lam, res = pairs.lam[j], pairs.relative_residuals()[j]
     what = (f"w^2 = {lam:.3g} rad^2/s^2 < 0" if lam < 0
             else f"{math.sqrt(lam) / 2 / math.pi:.6g} Hz, relative residual {res:.2g}")
@@ -370,7 +382,8 @@ def _lanczos(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float, scale: fl
     # elastic mode above RESIDUAL_TARGET: over 16 repeated runs the largest residual
     # left was 6.7e-9 (0.3 s at 86k DOFs, only when needed).
     res = pairs.residual_vectors
-    poor = (pairs.lam > RIGID_FACTOR * scale) & (
+    # (without R, the rigid pairs are among them: their residuals mean nothing)
+    poor = ((pairs.lam > RIGID_FACTOR * scale) if R is None else np.ones(k, bool)) & (
         np.linalg.norm(res, axis=0) > RESIDUAL_TARGET * np.linalg.norm(pairs.KX, axis=0))
     if poor.any():
         X = pairs.X
@@ -412,18 +425,14 @@ class Ritz:
         return (np.linalg.norm(self.residual_vectors, axis=0)
                 / np.linalg.norm(self.KX, axis=0))
 
-    def verified(self, rigid_limit: float, accept: float) -> np.ndarray:
-        """Per pair: an eigenpair to its residual (<= accept), or a rigid motion
-        (|w^2| <= rigid_limit, where the relative residual means nothing)."""
-        rigid = np.abs(self.lam) <= rigid_limit
-        return rigid | ((self.lam > rigid_limit) & (self.relative_residuals() <= accept))
-
-    def worst_residual(self, rigid_limit: float) -> float:
-        """The largest relative residual of the elastic pairs, or inf if one has
-        w^2 < 0: K is positive semi-definite, so such a pair is no eigenpair."""
-        if self.lam.min() < -rigid_limit:
-            return math.inf
-        return float(np.max(self.relative_residuals()[self.lam > rigid_limit], initial=0.0))
+    def verified(self, zero: float, accept: float, given: int = 0) -> np.ndarray:
+        """Per pair: one of the `given` rigid motions (the first pairs), a zero
+        eigenvalue (|w^2| <= zero, where the relative residual means nothing), or an
+        eigenpair to its residual (<= accept). K is positive semi-definite, so a pair
+        with w^2 < -zero is none."""
+        given_ = np.arange(self.lam.size) < given
+        null = np.abs(self.lam) <= zero
+        return given_ | null | ((self.lam > zero) & (self.relative_residuals() <= accept))
 
     def first(self, n: int) -> Ritz:
         return self.select(slice(n))
@@ -487,16 +496,14 @@ def modal_analysis(K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
             f"a negative eigenvalue w^2 = {lam[0]:.3g} rad^2/s^2: K is not positive "
             "semi-definite (an inverted element or a bad material)"
         )
-    is_rigid = lam < rigid_limit
-    n_rigid = int(is_rigid.sum())
-    f_limit = math.sqrt(rigid_limit) / (2 * math.pi)
-    if n_rigid != expected:
-        why = ("a mechanism, a nearly disconnected part or a support far too soft"
-               if n_rigid > expected
-               else "the shift-invert solve missed some (bad shift or a failed factorisation)")
+    is_rigid = np.arange(lam.size) < expected   # the given motions come first
+    zero = ~is_rigid & (lam < MECHANISM_FACTOR * scale)
+    if zero.any():
         raise SolverError(
-            f"found {n_rigid} modes below {f_limit:.3g} Hz where {what}: {why}"
-        )
+            f"found {int(zero.sum())} zero-frequency modes (below "
+            f"{math.sqrt(MECHANISM_FACTOR * scale) / (2 * math.pi):.2g} Hz) beside the "
+            f"{expected} rigid-body modes, where {what}: a mechanism, a nearly "
+            "disconnected part or a support far too soft")
     if max_frequency is not None:
         n_modes = max(1, int(np.sum(lam[~is_rigid] < (2 * math.pi * max_frequency) ** 2)))
     elastic = sol.pairs.select(~is_rigid).first(n_modes)

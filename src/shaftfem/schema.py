@@ -122,7 +122,9 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "tilting_stiffness_nmm_per_rad": Key(
             float, "tilting stiffness, N mm/rad (kind = \"springs\"; default 0: the shaft "
             "tilts freely in the bearing, as in a ball bearing)",
-            *upto(1e18, "up to 10^18 N mm/rad", closed_low=True), required=False),
+            *upto(1e15, "up to 10^15 N mm/rad: the frequencies stop changing near 10^12; "
+                  "far beyond, the solve loses the digits it needs", closed_low=True),
+            required=False),
     },
     "attachment": {  # an array of tables: [[attachment]], a part fixed on a seat
         "name": Key(str, "name of the part, e.g. drive gear", required=False),

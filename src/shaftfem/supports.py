@@ -4,11 +4,15 @@ A seat is the band of shaft surface r = R, z0 <= z <= z1 (the mesh has faces at 
 and z1, so the band is a set of boundary faces and every node on it is known).
 A bearing acts on the band's mean motion, as a distributing coupling does:
 
-    q_x = sum_i w_i u_x,i,  q_y, q_z alike;  tilts theta_x = -sum_i w_i d_i u_y,i / J,
-    theta_y = sum_i w_i d_i u_x,i / J,  J = sum_i w_i d_i^2,
+    q_x = sum_i c_i u_x,i,  q_y, q_z alike;  tilts theta_x, theta_y from u_y, u_x,
 
-w_i the band's area lumped to its nodes (the diagonal of the P2 surface mass, scaled
-to sum to 1) and d_i = z_i - sum_j w_j z_j. So the section under the seat keeps its own
+each c the weighted least-squares fit of that component's three rigid motions
+(translation, tilt, turn about the axis) to the band's displacements, with weights
+w_i, the band's area lumped to its nodes (the diagonal of the P2 surface mass,
+scaled to sum to 1). On a symmetric band c = w for the means and +-w d / sum w d^2
+for the tilts (d_i = z_i - sum_j w_j z_j); on any band each mean reads exactly its
+own rigid motion and no other, so no spring resists a motion it should leave free.
+So the section under the seat keeps its own
 deformation and the shaft tilts in the bearing, as in a ball bearing, unless a
 tilting stiffness is given.
 
@@ -121,16 +125,31 @@ def seat_restraints(support: Support, nodes: np.ndarray, weights: np.ndarray
     """The band's mean translations and tilts with the bearing's stiffness on each
     (zero-stiffness ones left out); `weights` from `surface_weights`."""
     on = np.flatnonzero(weights > 1e-12 * weights.max())  # nodes off the band get ~1e-33
+    x, y, z = nodes[on].T
     w = weights[on]
-    d = nodes[on, 2] - w @ nodes[on, 2]   # from the band's centre: a translation has no tilt
-    J = float(np.sum(w * d**2))
+    d = z - w @ z                          # from the band's centre
     rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
     radial, axial = rigid.get(support.kind, (support.radial, support.axial))
     tilting = support.tilting if support.kind == "springs" else 0.0
-    means = [("x", 0, w, radial), ("y", 1, w, radial), ("z", 2, w, axial),
-             ("tilt about x", 1, -w * d / J, tilting), ("tilt about y", 0, w * d / J, tilting)]
-    return [Restraint(f"{support.name}: {what}", 3 * on + c, coeffs, k)
-            for what, c, coeffs, k in means if k > 0]
+    # What each rigid motion moves along x, y, z at the band's nodes: (translation,
+    # tilt, turn about the axis). A mean reads its own motion and none of the other two.
+    seen = {0: (np.ones_like(d), d, -y), 1: (np.ones_like(d), -d, x), 2: (np.ones_like(d), y, -x)}
+    means = [("x", 0, 0, radial), ("y", 1, 0, radial), ("z", 2, 0, axial),
+             ("tilt about x", 1, 1, tilting), ("tilt about y", 0, 1, tilting)]
+    return [Restraint(f"{support.name}: {what}", 3 * on + c, weighted_mean(w, seen[c], own), k)
+            for what, c, own, k in means if k > 0]
+
+
+def weighted_mean(w: np.ndarray, motions: tuple[np.ndarray, ...], own: int) -> np.ndarray:
+    """Coefficients c of the band's mean of one rigid motion, q = c . u: the weighted
+    least-squares fit of `motions` (their values at the band's nodes) to u, row `own`.
+    So c . motions[j] = 1 for j = own and 0 for the others, exactly, on any mesh: a
+    bearing's radial spring does not resist the turn about the axis, nor its tilting
+    spring the turn, however unsymmetric the band's nodes (as a distributing coupling,
+    RBE3). On a symmetric band these are the plain weighted means w and w d / J."""
+    B = np.column_stack(motions)           # (m, 3)
+    G = B.T @ (w[:, None] * B)             # Gram matrix of the motions under w
+    return w * (B @ np.linalg.solve(G, np.eye(len(motions))[own]))
 
 
 def restraint_stiffness(restraints: list[Restraint], n_dofs: int) -> sp.csr_matrix:
