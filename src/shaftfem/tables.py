@@ -185,12 +185,12 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
                 "to check the modes against the excitation harmonics")
     if v.ok:
         a = v.approaches[0]
-        return (f"**VERDICT: PASS** - no natural frequency within {100 * v.required:g} % "
+        return (f"**VERDICT: PASS** - no natural frequency within {100 * v.required:.3g} % "
                 f"of any excitation harmonic (closest: mode {a.mode}, {a.frequency:.1f} Hz, vs "
                 f"{a.source} x{a.order} at {a.excitation:.1f} Hz: {100 * a.margin:.0f} % apart)")
     a = v.violations[0]
     return (f"**VERDICT: FAIL** - {len(v.violations)} mode/harmonic pair(s) closer than "
-            f"{100 * v.required:g} %; closest: mode {a.mode} ({a.frequency:.1f} Hz, {a.kind}) "
+            f"{100 * v.required:.3g} %; closest: mode {a.mode} ({a.frequency:.1f} Hz, {a.kind}) "
             f"is only {100 * a.margin:.1f} % from {a.source} x{a.order} at "
             f"{a.excitation:.1f} Hz")
 
@@ -201,7 +201,7 @@ def verdict_markdown(v: ResonanceVerdict) -> list[str]:
         ["source", "order", "excitation (Hz)", "closest mode", "frequency (Hz)", "margin",
          "required"] + (["amplification"] if amp else []) + [""],
         [[a.source, str(a.order), f"{a.excitation:.2f}", str(a.mode), f"{a.frequency:.2f}",
-          f"{100 * a.margin:.1f} %", f"{100 * a.required:g} %"]
+          f"{100 * a.margin:.1f} %", f"{100 * a.required:.3g} %"]
          + ([f"{a.amplification:.3f}x"] if amp else []) + ["ok" if a.ok else "TOO CLOSE"]
          for a in v.closest_per_harmonic()])
 
