@@ -49,6 +49,21 @@ CALS = [
     # beyond the DOF budget: refused at load, naming the key
     (CAL_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 5000.0"), "mesh_size_mm = 5000"),
     (CAL_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 0.5"), "above the budget"),
+    # an integer key cannot be fitted; a grid beyond the cap; a grid point that is no
+    # valid scene (the diameter reaches 0): refused at load
+    (CAL_OK.replace('"shaft.length_mm" = {min = 500.0, max = 600.0}',
+                    '"modes.count" = {min = 4, max = 8}'), "an integer key cannot be an unknown"),
+    (CAL_OK.replace('"shaft.length_mm" = {min = 500.0, max = 600.0}',
+                    '"shaft.length_mm" = {min = 500.0, max = 600.0}\n'
+                    '"shaft.diameter_mm" = {min = 30.0, max = 34.0}\n'
+                    '"material.density_kg_m3" = {min = 7000.0, max = 8000.0}\n'
+                    '"material.youngs_modulus_mpa" = {min = 2e5, max = 2.2e5}\n'
+                    '"material.poisson_ratio" = {min = 0.25, max = 0.3}')
+     .replace("mesh_size_mm = 16.0", "mesh_size_mm = 16.0\ngrid = 20"),
+     "make 3,200,000 variants; at most 10,000"),
+    (CAL_OK.replace('"shaft.length_mm" = {min = 500.0, max = 600.0}',
+                    '"shaft.diameter_mm" = {min = -2.0, max = 34.0}'),
+     "variant 1 (shaft.diameter_mm = -2)"),
 ]
 SWEEPS += [
     (SWEEP_OK.replace("mesh_size_mm = 16.0", "mesh_size_mm = 5000.0")
@@ -88,9 +103,9 @@ def test_a_second_sweep_into_the_same_folder_is_refused(tmp_path, capsys):
 
 def test_a_sweep_with_nothing_usable_exits_3(tmp_path, capsys):
     f = tmp_path / "sweep.toml"
-    # every variant impossible: grooves as deep as the radius
+    # every variant valid as a scene but beyond its own DOF budget, found in the run
     f.write_text('base = "paper2018"\nmesh_size_mm = 16.0\n'
-                 'points = [{"grooves.depth_mm" = 16.0}, {"grooves.depth_mm" = 17.0}]\n')
+                 'points = [{"mesh.max_dofs" = 1000}, {"mesh.max_dofs" = 2000}]\n')
     out = tmp_path / "out"
     assert main(["sweep", str(f), "--out", str(out), "--workers", "1", "-q"]) == 3
     assert "0 ok, 2 failed" in capsys.readouterr().out

@@ -75,16 +75,106 @@ def test_a_killed_sweep_resumes_without_recomputing(sweep_file, tmp_path, kill_a
     assert [r["id"] for r in rows[: len(before)]] == [r["id"] for r in before]
 
 
-def test_an_impossible_variant_is_recorded_and_the_rest_finish(tmp_path):
+def test_a_variant_that_fails_in_the_run_is_recorded_and_the_rest_finish(tmp_path):
+    """A DOF budget of 1000 (an integer key swept as a number) passes the scene checks
+    but not the run's budget check: that variant is recorded with its error."""
     f = tmp_path / "sweep.toml"
-    # 16.0 mm deep grooves in a 32 mm shaft: deeper than the radius allows (a short shaft
-    # with one grooved cell keeps the good variant's CAD build to seconds)
+    # a short shaft with one grooved cell keeps the good variant's CAD build to seconds
     short = '"shaft.length_mm" = 120.0, "grooves.grooved_length_mm" = 40.0'
     f.write_text('base = "paper2018"\nmesh_size_mm = 16.0\n'
-                 f'points = [{{"grooves.depth_mm" = 2.0, {short}}}, '
-                 f'{{"grooves.depth_mm" = 16.0, {short}}}]\n')
+                 f'points = [{{"mesh.max_dofs" = 400000, {short}}}, '
+                 f'{{"mesh.max_dofs" = 1000, {short}}}]\n')
     rows = run_sweep(load_sweep(f), tmp_path / "results.csv", workers=2)
-    status = {float(r["grooves.depth_mm"]): r for r in rows}
-    assert status[2.0]["status"] == "ok"
-    assert status[16.0]["status"] == "failed"
-    assert "grooves.depth_mm" in status[16.0]["error"]
+    status = {float(r["mesh.max_dofs"]): r for r in rows}
+    assert status[400000.0]["status"] == "ok"
+    assert status[1000.0]["status"] == "failed"
+    assert "budget" in status[1000.0]["error"]
+
+
+@pytest.mark.parametrize("axis", ['"grooves.depth_mm" = [2.0, 16.0]',      # deeper than r
+                                  '"grooves.depth_mm" = [3.0, -1.0]',
+                                  '"shaft.length_mm" = [500.0, 100.0]'])   # grooves too long
+def test_a_bad_axis_value_is_refused_at_load_naming_the_variant(tmp_path, capsys, axis):
+    from shaftfem.cli import main
+    from shaftfem.errors import SceneError
+
+    f = tmp_path / "bad.toml"
+    f.write_text(f'base = "paper2018"\n[axes]\n{axis}\n')
+    with pytest.raises(SceneError, match=r"bad.toml: variant 2 \(.*\): paper2018.toml: "):
+        load_sweep(f)
+    out = tmp_path / "out"
+    assert main(["sweep", str(f), "--out", str(out), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "variant 2" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()                          # refused before anything is written
+
+
+def test_an_installed_sweep_with_a_seat_past_the_end_is_refused_at_load(tmp_path):
+    from shaftfem.errors import SceneError
+
+    f = tmp_path / "seat.toml"
+    f.write_text('base = "paper2018_installed"\n[axes]\n"support[1].position_mm" = [525.0, 600.0]\n')
+    with pytest.raises(SceneError, match=r"variant 2 \(support\[1\].position_mm = 600\)"):
+        load_sweep(f)
+
+
+@pytest.mark.parametrize("axes,count", [
+    ('"shaft.length_mm" = {start = 500, stop = 600, num = 1000}\n'
+     '"shaft.diameter_mm" = {start = 30, stop = 34, num = 1000}\n'
+     '"grooves.depth_mm" = {start = 2, stop = 4, num = 1000}', "1,000,000,000"),
+    ('"shaft.length_mm" = {start = 500, stop = 600, num = 101}\n'
+     '"shaft.diameter_mm" = {start = 30, stop = 34, num = 100}', "10,100"),
+])
+def test_a_grid_beyond_the_cap_is_refused_with_its_count(tmp_path, axes, count):
+    from shaftfem.errors import SceneError
+
+    f = tmp_path / "big.toml"
+    f.write_text(f'base = "plain_cylinder"\n[axes]\n{axes}\n')
+    with pytest.raises(SceneError, match=f"make {count} variants; at most 10,000"):
+        load_sweep(f)
+
+
+def test_integer_keys_sweep_as_numbers(tmp_path):
+    """modes.count and mesh.order given as 4.0 (sweep axes carry floats) are integers."""
+    f = tmp_path / "ints.toml"
+    f.write_text('base = "plain_cylinder"\nmesh_size_mm = 16.0\n[axes]\n'
+                 '"modes.count" = [4, 6]\n"mesh.order" = [1, 2]\n')
+    sweep = load_sweep(f)
+    assert len(sweep.variants) == 4
+    row = run_variant(sweep.base, {"modes.count": 4.0, "mesh.order": 1.0}, 16.0, n_modes=4)
+    assert row["status"] == "ok", row["error"]
+    assert "f4_hz" in row and "f5_hz" not in row
+
+
+def test_a_folder_of_another_sweep_is_refused_and_the_same_sweep_resumes(sweep_file, tmp_path,
+                                                                          capsys):
+    """Rows are keyed by the base scene, mesh size, parameters and mode count: a sweep
+    into a folder holding another's rows is refused (exit 2), not served stale rows; the
+    same sweep with a value added to an axis runs only the new variants."""
+    from shaftfem.cli import main
+    from shaftfem.errors import SceneError
+
+    out = tmp_path / "out"
+    one = tmp_path / "one.toml"
+    one.write_text(SWEEP.replace("[500.0, 550.0, 600.0]", "[500.0]").replace("[30.0, 32.0]",
+                                                                           "[32.0]"))
+    rows = run_sweep(load_sweep(one), out / "results.csv", workers=1)
+    assert len(rows) == 1 and rows[0]["status"] == "ok"
+    others = {"mesh": SWEEP.replace("mesh_size_mm = 16.0", "mesh_size_mm = 14.0"),
+              "base": SWEEP.replace('base = "plain_cylinder"', 'base = "paper2018"'),
+              "axis": 'base = "plain_cylinder"\nmesh_size_mm = 16.0\n[axes]\n'
+                      '"shaft.diameter_mm" = [32.0]\n'}
+    for what, text in others.items():
+        f = tmp_path / f"{what}.toml"
+        f.write_text(text.replace("[500.0, 550.0, 600.0]", "[500.0]").replace(
+            "[30.0, 32.0]", "[32.0]") if what != "axis" else text)
+        with pytest.raises(SceneError, match="holds the rows of another sweep"):
+            run_sweep(load_sweep(f), out / "results.csv", workers=1)
+        assert main(["sweep", str(f), "--out", str(out), "-q"]) == 2, what
+        assert "holds the rows of another sweep" in capsys.readouterr().err
+    assert len(read_results(out / "results.csv")) == 1      # untouched
+    more = tmp_path / "more.toml"
+    more.write_text(SWEEP.replace("[500.0, 550.0, 600.0]", "[500.0, 550.0]").replace(
+        "[30.0, 32.0]", "[32.0]"))
+    rows = run_sweep(load_sweep(more), out / "results.csv", workers=1)
+    assert len(rows) == 2 and rows[0] == read_results(out / "results.csv")[0]

@@ -32,8 +32,16 @@ import numpy as np
 
 from .errors import SceneError, ShaftfemError
 from .scene import SceneText, check_entries, load_scene, read_scene_text, scene_beside
-from .schema import DEFAULT_MODE_COUNT, known_keys, number, parameter, read_toml
-from .sweep import Sweep, mesh_size, run_sweep, run_variant
+from .schema import (
+    DEFAULT_MODE_COUNT,
+    SCHEMA,
+    known_keys,
+    number,
+    parameter,
+    read_toml,
+    split_parameter,
+)
+from .sweep import Sweep, check_count, check_variants, mesh_size, run_sweep, run_variant
 
 
 @dataclass(frozen=True)
@@ -83,6 +91,10 @@ def load_calibration(path: str | Path) -> Calibration:
     unknowns = {}
     for name, b in d["unknowns"].items():
         where = f"unknowns.{parameter(src, name)}"
+        table, _, key = split_parameter(name) or ("", None, "")
+        if SCHEMA[table][key].kind is int:
+            raise SceneError(f"{src}: {where}: an integer key cannot be an unknown (the fit "
+                             "moves its value continuously); sweep it instead")
         known_keys(src, b, {"min", "max"}, where)
         lo = number(src, f"{where}.min", b.get("min"), -1e300, 1e300)
         hi = number(src, f"{where}.max", b.get("max"), -1e300, 1e300)
@@ -108,12 +120,23 @@ def load_calibration(path: str | Path) -> Calibration:
     grid = d.get("grid", 3)
     if isinstance(grid, bool) or not isinstance(grid, int) or not 2 <= grid <= 20:
         raise SceneError(f"{src}: grid = {grid!r}: must be an integer in [2, 20]")
+    check_count(src, grid ** len(unknowns), f"grid = {grid} over {len(unknowns)} unknowns")
     base = read_scene_text(scene_beside(d["base"], path))  # its content travels to workers
     check_entries(src, base, list(unknowns))
     size = mesh_size(src, d.get("mesh_size_mm"), base)
     n_modes = max(len(targets), load_scene(base).modes.count)
-    return Calibration(base=base, mesh_size_mm=size, unknowns=unknowns, targets=targets,
-                       sigma=targets * np.asarray(u) / 100, grid=grid, n_modes=n_modes)
+    cal = Calibration(base=base, mesh_size_mm=size, unknowns=unknowns, targets=targets,
+                      sigma=targets * np.asarray(u) / 100, grid=grid, n_modes=n_modes)
+    check_variants(src, base, grid_points(cal))
+    return cal
+
+
+def grid_points(cal: Calibration) -> list[dict]:
+    """The coarse grid's variants: `grid` values from min to max on every unknown."""
+    names = list(cal.unknowns)
+    axes = [np.linspace(cal.unknowns[n][0], cal.unknowns[n][1], cal.grid) for n in names]
+    return [dict(zip(names, map(float, p)))
+            for p in np.array(np.meshgrid(*axes)).reshape(len(names), -1).T]
 
 
 def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
@@ -137,9 +160,7 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
         return (f - cal.targets) / cal.sigma
 
     # 1. coarse grid on the sweep engine (resumable like any sweep)
-    axes = [np.linspace(a, b, cal.grid) for a, b in zip(lo, hi)]
-    variants = [dict(zip(names, map(float, p))) for p in np.array(np.meshgrid(*axes)).reshape(
-        len(names), -1).T]
+    variants = grid_points(cal)
     base = read_scene_text(cal.base)  # read once here; its content goes to the workers
     rows = run_sweep(Sweep(base, cal.mesh_size_mm, variants, names, cal.n_modes),
                      Path(workdir) / "grid.csv", workers=workers, scheduler=scheduler,

@@ -233,7 +233,7 @@ def _cmd_sweep(args) -> int:
     from .sweep import load_sweep, run_sweep
 
     sweep = load_sweep(args.sweep)
-    out = Path(args.out)
+    out = Path(args.out or Path("out") / Path(args.sweep).stem)
     rows = run_sweep(sweep, out / "results.csv", workers=args.workers,
                      scheduler=args.scheduler, estimate=args.estimate,
                      progress=_Progress(args.quiet))
@@ -254,7 +254,7 @@ def _cmd_calibrate(args) -> int:
     from .tables import calibration_text
 
     cal = load_calibration(args.calibration)
-    out = Path(args.out)
+    out = Path(args.out or Path("out") / Path(args.calibration).stem)
     res = calibrate(cal, out, workers=args.workers, progress=_Progress(args.quiet),
                     scheduler=args.scheduler)
     print(calibration_text(res, cal))
@@ -357,7 +357,7 @@ def build_parser() -> argparse.ArgumentParser:
     def dask_command(name: str, help: str, file_help: str, func):
         c = sub.add_parser(name, help=help)
         c.add_argument(name if name == "sweep" else "calibration", help=file_help)
-        c.add_argument("--out", default=f"out/{name}", help=f"output folder (default out/{name})")
+        c.add_argument("--out", help=f"output folder (default out/ and the {name} file's name)")
         c.add_argument("--workers", type=_workers, default=2,
                        help="local worker processes (default 2)")
         c.add_argument("--scheduler", metavar="ADDRESS",

@@ -265,6 +265,9 @@ def load_scene(scene: str | Path | SceneText | None = None,
         if table is None:
             raise SceneError(f"{source}: {dotted!r}: not a scene key (table.key or "
                              "table[i].key)")
+        spec = SCHEMA.get(table, {}).get(key or "")
+        if spec is not None and spec.kind is int and isinstance(value, float) and value.is_integer():
+            value = int(value)  # sweep axes and calibration grids carry numbers as floats
         if index is None:
             data.setdefault(table, {})[key] = value
             continue

@@ -17,6 +17,13 @@ on a cluster (`--scheduler`), only the same shaftfem version, which is checked
 when the sweep connects. Every finished variant is appended to the results CSV at
 once, so an interrupted sweep resumes where it stopped; a variant that fails
 (bad geometry, a failed boolean) is recorded with its error and the rest go on.
+
+Resuming is keyed by everything that defines a variant's result: beside the results
+file a key file holds the base scene's content, the mesh size, the mode count, the
+swept parameters, whether errors are bounded, and shaftfem's version. A folder whose
+key differs holds another sweep's rows and is refused; the same sweep with values
+added to its axes resumes and runs only the new ones. Every variant's scene is
+checked when the file is loaded, and grids beyond MAX_VARIANTS are refused there.
 """
 
 from __future__ import annotations
@@ -35,7 +42,12 @@ from .errors import ClusterError, SceneError
 from .runtime import worker_env
 from .scene import SceneText, check_entries, load_scene, read_scene_text, scene_beside
 from .schema import known_keys, number, parameter, read_toml
-from .store import content_key
+from .store import atomic_path, content_key
+
+# The largest sweep or calibration grid accepted: at 5-40 s a variant, 10,000 variants
+# keep two workers busy for one to five days; a larger grid is a typo more often than
+# a plan (three axes of 1000 values, or 20^5 calibration points).
+MAX_VARIANTS = 10_000
 
 
 @dataclass(frozen=True)
@@ -45,6 +57,33 @@ class Sweep:
     variants: list[dict]        # each: {"table.key": value in file units}
     parameters: list[str]
     n_modes: int                # the lowest n_modes of every variant are recorded
+
+    def key(self, estimate: bool) -> dict:
+        """What defines every variant's result besides its own values."""
+        from . import __version__
+
+        return {"base": self.base.source, "base_content": content_key({"text": self.base.text}),
+                "mesh_size_mm": self.mesh_size_mm, "n_modes": self.n_modes,
+                "parameters": list(self.parameters), "estimate": estimate,
+                "shaftfem": __version__}
+
+
+def check_count(source: str, n: int, what: str) -> None:
+    """Refuse a sweep or grid of more than MAX_VARIANTS variants, before it is built."""
+    if n > MAX_VARIANTS:
+        raise SceneError(f"{source}: {what} make {n:,} variants; at most {MAX_VARIANTS:,} "
+                         "are run (split the sweep, or use fewer values)")
+
+
+def check_variants(source: str, base: SceneText, variants: list[dict]) -> None:
+    """Every variant's scene is valid (a seat past the shaft end, a negative depth): the
+    first bad one is named with its values, before any variant runs."""
+    for i, v in enumerate(variants):
+        try:
+            load_scene(base, overrides=v)
+        except SceneError as exc:
+            values = ", ".join(f"{k} = {x:g}" for k, x in v.items())
+            raise SceneError(f"{source}: variant {i + 1} ({values}): {exc}") from exc
 
 
 def _axis_values(source: str, name: str, spec) -> list[float]:
@@ -83,6 +122,7 @@ def load_sweep(path: str | Path) -> Sweep:
                              "parameter, e.g. \"shaft.length_mm\" = [500, 550]")
         names = [parameter(src, n) for n in axes]
         values = [_axis_values(src, n, axes[n]) for n in names]
+        check_count(src, math.prod(len(v) for v in values), "the axes")
         variants = [dict(zip(names, combo)) for combo in itertools.product(*values)]
     else:
         points = data["points"]
@@ -90,11 +130,13 @@ def load_sweep(path: str | Path) -> Sweep:
                                                                  for p in points):
             raise SceneError(f"{src}: points = {points!r}: must be a list of at least one "
                              "table of parameters")
+        check_count(src, len(points), "the points")
         variants = [{parameter(src, k): number(src, f"points[{i}].{k}", v, -1e300, 1e300)
                      for k, v in p.items()} for i, p in enumerate(points)]
         names = sorted({k for v in variants for k in v})
     base = read_scene_text(scene_beside(data["base"], path))
     check_entries(src, base, names)
+    check_variants(src, base, variants)
     size = mesh_size(src, data.get("mesh_size_mm"), base)
     return Sweep(base=base, mesh_size_mm=size, variants=variants, parameters=names,
                  n_modes=load_scene(base).modes.count)
@@ -254,10 +296,39 @@ def _owned(folder: Path):
 def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
               scheduler: str | None = None, estimate: bool = False,
               progress: Callable[[str], None] | None = None) -> list[dict]:
-    """Run every variant not yet in `results` on Dask; append each row as it finishes."""
+    """Run every variant not yet in `results` on Dask; append each row as it finishes.
+    `results` must be new, or hold rows of this same sweep (its key file says so)."""
     results = Path(results)
     with _owned(results.parent) as tmp:
+        _claim(results, sweep.key(estimate))
         return _run_sweep(sweep, results, workers, scheduler, estimate, progress, tmp)
+
+
+def key_path(results: Path) -> Path:
+    """The key file beside a results table: what defines its rows."""
+    return results.with_name(results.stem + ".key.json")
+
+
+def _claim(results: Path, key: dict) -> None:
+    """Make `results` this sweep's: refuse rows made under another key (another base
+    scene, mesh size, mode count, parameter set, estimate or version), else write the key."""
+    import json
+
+    path = key_path(results)
+    has_rows = results.exists() and results.stat().st_size > 0
+    try:
+        held = json.loads(path.read_text()) if path.exists() else None
+    except (OSError, ValueError):
+        held = {}
+    if has_rows and held != key:
+        differ = ([k for k in key if held.get(k) != key[k]] if isinstance(held, dict) and held
+                  else ["no key file: rows of unknown origin"])
+        raise SceneError(f"{results} holds the rows of another sweep ({', '.join(differ)} "
+                         f"differ); give another --out, or delete {results.parent} to start "
+                         "afresh")
+    if held != key:
+        with atomic_path(path) as tmp:
+            tmp.write_text(json.dumps(key, indent=1) + "\n")
 
 
 def _run_sweep(sweep: Sweep, results: Path, workers: int, scheduler: str | None,
