@@ -32,7 +32,12 @@ DEFAULT_SCENE = "paper2018"
 
 MM = 1e-3
 MPA = 1e6
-SEAT_GAP = 1e-6  # m: the least gap between two seats (each owns the nodes of its band)
+# A seat's band must be meshable and mean something: at least SEAT_MIN wide (no bearing
+# or hub is narrower) and 1/16 of the element size (the band's faces need elements of
+# about its width), and at least SEAT_MIN from another seat, a shaft end or the grooved
+# zone, or exactly at it (nearer, the cut leaves a sliver the mesher cannot fill).
+SEAT_MIN = 1e-3  # m
+SEAT_PER_ELEMENT = 1 / 16
 
 
 # --------------------------------------------------------------------------
@@ -363,7 +368,7 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     supports = tuple(_support(source, i, t) for i, t in enumerate(_array(source, data, "support")))
     attachments = tuple(_attachment(source, i, t)
                         for i, t in enumerate(_array(source, data, "attachment")))
-    _check_seats(source, shaft, grooves, supports, attachments)
+    _check_seats(source, shaft, grooves, supports, attachments, mesh)
     resp_t = validate_table(source, "response", data.get("response", {}), SCHEMA["response"])
     point = resp_t["point_mm"]
     if point is not None and point > shaft_t["length_mm"]:
@@ -433,14 +438,30 @@ def _attachment(source: str, i: int, t: dict) -> Attachment:
 
 
 def _check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
-                 supports: tuple[Support, ...], attachments: tuple[Attachment, ...]) -> None:
-    """Every seat on the shaft, clear of the grooves, and no two seats overlapping."""
+                 supports: tuple[Support, ...], attachments: tuple[Attachment, ...],
+                 mesh: MeshSettings) -> None:
+    """Every seat wide enough to mesh, on the shaft, clear of the grooves, and no two
+    seats overlapping; none nearer than SEAT_MIN to an edge it does not sit on."""
     seats = ([(f"support[{i}]", s) for i, s in enumerate(supports)]
              + [(f"attachment[{i}]", a) for i, a in enumerate(attachments)])
     L = shaft.length
+    narrowest = max(SEAT_MIN, SEAT_PER_ELEMENT * mesh.size)
+    edges = [0.0, L] + ([] if grooves is None else [grooves.start, grooves.start + grooves.length])
     for table, part in seats:
         lo, hi = part.seat
         at = where(source, table, "position_mm")
+        if part.width < narrowest - 1e-12:
+            raise SceneError(
+                f"{where(source, table, 'width_mm')} = {part.width / MM:g}: a seat must be at "
+                f"least {narrowest / MM:g} mm wide (1 mm, and 1/16 of the element size "
+                f"{mesh.size / MM:g} mm): narrower, it is no bearing or hub seat and its band "
+                "cannot be meshed")
+        near = [e for e in edges for z in (lo, hi) if 1e-12 < abs(z - e) < SEAT_MIN]
+        if near:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm ends "
+                f"within {SEAT_MIN / MM:g} mm of {near[0] / MM:g} mm (a shaft end or the "
+                "grooved zone): put it exactly there or at least 1 mm away")
         if lo < -1e-12 or hi > L + 1e-12:
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm "
@@ -453,11 +474,12 @@ def _check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
     ordered = sorted(seats, key=lambda s: s[1].seat[0])
     for (ta, a), (tb, b) in zip(ordered, ordered[1:]):
         # seats that touch would share the nodes of their common edge
-        if b.seat[0] < a.seat[1] + SEAT_GAP:
+        if b.seat[0] < a.seat[1] + SEAT_MIN - 1e-12:
             raise SceneError(
                 f"{where(source, tb, 'position_mm')} = {b.position / MM:g}: its seat "
-                f"({b.seat[0] / MM:g} to {b.seat[1] / MM:g} mm) overlaps or touches the seat "
-                f"of {ta} ({a.seat[0] / MM:g} to {a.seat[1] / MM:g} mm)")
+                f"({b.seat[0] / MM:g} to {b.seat[1] / MM:g} mm) overlaps, touches or comes "
+                f"within {SEAT_MIN / MM:g} mm of the seat of {ta} ({a.seat[0] / MM:g} to "
+                f"{a.seat[1] / MM:g} mm)")
 
 
 def _check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:
