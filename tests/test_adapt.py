@@ -21,7 +21,14 @@ def coarse_cylinder():
 @pytest.fixture(scope="module")
 def adapted(coarse_cylinder):
     """Adapted from scratch (and so cached for the command line below)."""
-    return run_adaptive(coarse_cylinder, TARGET, 150_000, use_cache=False)
+    import shutil
+
+    from shaftfem.store import cache_dir
+
+    shutil.rmtree(cache_dir() / "adapted", ignore_errors=True)
+    a = run_adaptive(coarse_cylinder, TARGET, 150_000)
+    assert not a.from_cache
+    return a
 
 
 def test_adaptivity_reaches_the_accuracy_with_a_falling_bound(coarse_cylinder, adapted):

@@ -216,7 +216,8 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int, use_cache: bool = T
     if est is None:
         raise AssertionError("an adaptive run ends with a bounded round")
     assert prev is not None  # set by every round
-    _save(path, result.mesh, prev, rounds, reached, why)
+    if use_cache:
+        _save(path, result.mesh, prev, rounds, reached, why)
     return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
                    rounds=tuple(rounds), reached=reached, why=why, from_cache=False)
 
@@ -270,7 +271,8 @@ def run_bounded(scene: Scene, estimate: bool = True, use_cache: bool = True,
     if estimate:
         from .estimate import estimate_errors
 
-        est = estimate_errors(result, progress=progress, factorizer=factorizer, threads=threads)
+        est = estimate_errors(result, progress=progress, factorizer=factorizer, threads=threads,
+                              use_cache=use_cache)
     return result, est, None
 
 

@@ -68,21 +68,25 @@ def _sizes(text: str) -> list[float]:
 
 
 def _check_outputs(args) -> None:
-    """Refuse output paths that cannot work before any heavy work, not after it."""
+    """Refuse output paths, and a cache, that cannot work before any heavy work, not
+    after it: by writing there (os.access says yes to root on a read-only folder)."""
+    from .store import check_cache, probe_writable
+
     for name, folder in (("json", False), ("out", True)):
         path = getattr(args, name, None)
         if path is None:
             continue
+        if not str(path).strip():
+            raise SceneError(f"--{name} '': give a {'folder' if folder else 'file name'}")
         p = Path(path)
         if folder and p.exists() and not p.is_dir():
             raise SceneError(f"--out {path}: is a file, not a folder")
         if not folder and p.is_dir():
             raise SceneError(f"--json {path}: is a folder; give a file name")
-        parent = p if folder else p.parent
-        while not parent.exists() and parent != parent.parent:
-            parent = parent.parent
-        if not os.access(parent, os.W_OK):
-            raise SceneError(f"--{name} {path}: {parent} is not writable")
+        probe_writable(p if folder else p.parent, f"--{name} {path}")
+    if (hasattr(args, "no_cache") and not args.no_cache) or args.func in (_cmd_sweep,
+                                                                         _cmd_calibrate):
+        check_cache()
 
 
 def _scene(args):
@@ -331,7 +335,9 @@ def build_parser() -> argparse.ArgumentParser:
         c.add_argument("--free", action="store_true",
                        help="free-free: leave the scene's [[support]] bearings off (the shaft "
                        "hanging free, as in a hammer test; attached parts stay on)")
-        c.add_argument("--no-cache", action="store_true", help="rebuild the CAD solid and the mesh")
+        c.add_argument("--no-cache", action="store_true",
+                       help="neither read nor write the cache: build the CAD solid and every "
+                       "mesh afresh and keep none of them")
         c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
         c.set_defaults(func=func)
         return c

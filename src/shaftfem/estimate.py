@@ -218,9 +218,11 @@ def matched(ref_kinds: list[str], kinds: list[str], values: np.ndarray) -> np.nd
 
 def estimate_errors(result: ModalResult, ratio: float = COARSER,
                     progress: Callable[[str], None] | None = None,
-                    factorizer: str = "auto", threads: int | None = None) -> ErrorEstimate:
+                    factorizer: str = "auto", threads: int | None = None,
+                    use_cache: bool = True) -> ErrorEstimate:
     """The bound of a fixed mesh's frequencies: its recovery estimate, confirmed by the
-    same scene solved on a mesh `ratio` times coarser."""
+    same scene solved on a mesh `ratio` times coarser (cached like any solve, unless
+    `use_cache` is off)."""
     from .pipeline import run_modes, with_mesh, with_modes
 
     say = progress or (lambda _m: None)
@@ -230,7 +232,7 @@ def estimate_errors(result: ModalResult, ratio: float = COARSER,
     fine = recovery_estimate(result.mesh, scene.material, m)
     # the same modes, counted (a frequency limit could select others on a coarse mesh)
     coarse_scene = with_modes(with_mesh(scene, size_mm), count=m.count)
-    coarse = run_modes(coarse_scene, factorizer=factorizer, threads=threads)
+    coarse = run_modes(coarse_scene, factorizer=factorizer, threads=threads, use_cache=use_cache)
     ceta = recovery_estimate(coarse.mesh, scene.material, coarse.modes).relative
     return combine(m.frequencies, fine.relative,
                    matched(m.kinds, coarse.modes.kinds, coarse.modes.frequencies),

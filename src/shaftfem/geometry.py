@@ -17,7 +17,15 @@ from pathlib import Path
 from .errors import GeometryError
 from .profile import groove_volume
 from .scene import Grooves, Shaft
-from .store import atomic_path, cache_dir, checksum, content_key, discard, write_json
+from .store import (
+    atomic_path,
+    cache_dir,
+    checksum,
+    content_key,
+    discard,
+    scratch_dir,
+    write_json,
+)
 
 # Bump when the construction or the cache entry changes, so old cached shapes are not
 # reused (4: entries carry checksums).
@@ -54,13 +62,15 @@ def shape_key(shaft: Shaft, grooves: Grooves | None) -> str:
 
 
 def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -> ShaftShape:
-    """Build (or fetch from the cache) the shaft's solid and check its volume."""
+    """Build (or fetch from the cache) the shaft's solid and check its volume; without
+    `use_cache` the cache is neither read nor written (the BREP lives in a scratch
+    folder for this process)."""
     if grooves is None:
         return ShaftShape(brep=None, volume=math.pi * shaft.radius**2 * shaft.length,
                           groove_volume_analytic=0.0, groove_volume_cad=0.0, n_volumes=1,
                           build_seconds=0.0, from_cache=False)
     key = shape_key(shaft, grooves)
-    folder = cache_dir() / "shapes"
+    folder = (cache_dir() if use_cache else scratch_dir()) / "shapes"
     brep, meta_file = folder / f"{key}.brep", folder / f"{key}.json"
     if use_cache and (brep.exists() or meta_file.exists()):
         meta, why = _verified(brep, meta_file)

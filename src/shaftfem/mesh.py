@@ -138,8 +138,9 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
 def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
                settings: MeshSettings, use_cache: bool = True,
                cuts: tuple[float, ...] = ()) -> ShaftMesh:
-    """Mesh the solid (or fetch the same mesh from the cache); `cuts`: z (m) where the
-    mesh must have faces (the edges of seat bands)."""
+    """Mesh the solid (or fetch the same mesh from the cache; without `use_cache` the
+    cache is neither read nor written); `cuts`: z (m) where the mesh must have faces
+    (the edges of seat bands)."""
     t0 = time.perf_counter()
     key = mesh_key(shape, shaft, grooves, settings, cuts)
     path = cache_dir() / "meshes" / f"{key}.npz"
@@ -149,7 +150,8 @@ def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
             return mesh_from_arrays(fields, time.perf_counter() - t0)
         discard(f"mesh {key}", why, path)
     mesh = _generate(shape, shaft, grooves, settings, cuts=cuts)
-    save_arrays(path, mesh_arrays(mesh))
+    if use_cache:
+        save_arrays(path, mesh_arrays(mesh))
     return mesh
 
 

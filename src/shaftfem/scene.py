@@ -250,7 +250,7 @@ def read_scene_text(scene: str | Path | SceneText | None = None) -> SceneText:
         return scene
     path = resolve_scene_path(scene)
     read_toml(path, "scene")  # a missing or malformed file is named here
-    out = SceneText(text=path.read_text(), source=path.name)
+    out = SceneText(text=path.read_text(encoding="utf-8-sig"), source=path.name)
     load_scene(out)  # and a bad value too, before anything is sent anywhere
     return out
 

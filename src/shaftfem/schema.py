@@ -53,7 +53,10 @@ def upto(high: float, why: str, low: float = 0.0,
 
 SCHEMA: dict[str, dict[str, Key]] = {
     "": {
-        "name": Key(str, "short name of the scene", required=False),
+        "name": Key(str, "short name of the scene; it names the default output folder "
+                    "out/NAME", lambda v: re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._-]*", v) is not None,
+                    "letters, digits, '.', '_' and '-', starting with a letter or digit (a "
+                    "folder name, not a path)", required=False),
         "description": Key(str, "free text", required=False),
     },
     "shaft": {
@@ -275,10 +278,11 @@ def validate_table(source: str, table: str, data: Any, schema: dict[str, Key]) -
 
 
 def read_toml(path: str | Path, what: str = "file") -> dict:
-    """A TOML file as a dict; a missing or malformed file is a SceneError naming it."""
+    """A TOML file as a dict; a missing or malformed file is a SceneError naming it.
+    A UTF-8 byte-order mark (Windows editors write one) is accepted."""
     path = Path(path)
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
+        return tomllib.loads(path.read_text(encoding="utf-8-sig"))
     except FileNotFoundError:
         raise SceneError(f"{what} {str(path)!r}: no such file") from None
     except (IsADirectoryError, PermissionError) as exc:

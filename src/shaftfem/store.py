@@ -11,6 +11,7 @@ altered) is never used: it is discarded, said in one line, and rebuilt.
 from __future__ import annotations
 
 import csv
+import functools
 import hashlib
 import json
 import os
@@ -23,6 +24,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from .errors import SceneError
 
 
 class CacheWarning(UserWarning):
@@ -74,6 +77,56 @@ def cache_dir() -> Path:
     """The cache root: $SHAFTFEM_CACHE, else ~/.cache/shaftfem."""
     root = os.environ.get("SHAFTFEM_CACHE") or Path.home() / ".cache" / "shaftfem"
     return Path(root)
+
+
+@functools.cache
+def scratch_dir() -> Path:
+    """A folder of this process's own, removed when it exits: where a run that keeps
+    nothing (--no-cache) puts the files it needs while it runs (the solid's BREP)."""
+    import atexit
+
+    path = Path(tempfile.mkdtemp(prefix="shaftfem-"))
+    atexit.register(shutil.rmtree, path, True)
+    return path
+
+
+def probe_writable(folder: Path, what: str) -> None:
+    """Refuse (SceneError) a folder that cannot be made or written, by trying to, and
+    leave no folder behind that the try made."""
+    made = []
+    p = Path(folder)
+    while not p.exists() and p != p.parent:
+        made.append(p)
+        p = p.parent
+    try:
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=".probe-", dir=folder)
+        os.close(fd)
+        os.unlink(tmp)
+    except OSError as exc:
+        raise SceneError(f"{what}: cannot write there ({exc.strerror or exc}: "
+                         f"{exc.filename or folder})") from exc
+    finally:
+        for m in made:  # the deepest first
+            try:
+                m.rmdir()
+            except OSError:
+                pass
+
+
+def check_cache() -> None:
+    """The cache root must be a folder shaftfem can write (SceneError naming it)."""
+    root = cache_dir()
+    where = (f"the cache SHAFTFEM_CACHE={root}" if os.environ.get("SHAFTFEM_CACHE")
+             else f"the cache {root}")
+    if root.exists() and not root.is_dir():
+        raise SceneError(f"{where}: is a file, not a folder; point SHAFTFEM_CACHE at a "
+                         "writable folder, or run with --no-cache")
+    try:
+        probe_writable(root, where)
+    except SceneError as exc:
+        raise SceneError(f"{exc}; point SHAFTFEM_CACHE at a writable folder, or run with "
+                         "--no-cache") from exc
 
 
 def content_key(payload: dict, files: tuple[Path, ...] = (), length: int = 20) -> str:
@@ -147,24 +200,47 @@ def staged_directory(out: str | Path, manifest: str) -> Iterator[Path]:
 
     The files of a run are trusted when its manifest lists them (manifest_complete).
     Publishing first removes the old manifest, so a run killed while it moves files
-    leaves no manifest that could vouch for a mixed set; on a failure `out` gets none
-    of the files, and the staging folders of killed runs are removed by the next.
+    leaves no manifest that could vouch for a mixed set, and then the files the old
+    manifest listed that this run did not write (mode_11 of an earlier 12-mode run);
+    on a failure or an interrupt `out` gets none of the files, a folder made for the
+    run is removed again, and the staging folders of killed runs go with the next run.
     """
     out = Path(out)
+    made = not out.exists()
     out.mkdir(parents=True, exist_ok=True)
     _remove_stale_stages(out)
     stage = Path(tempfile.mkdtemp(prefix=f"{STAGING}{os.getpid()}-", dir=out))
+    published = False
     try:
         yield stage
         files = sorted(stage.iterdir())
         sums = {f.name: checksum(f.read_bytes()) for f in files}
         write_json(stage / manifest, {"files": sums})
+        old = _listed(out / manifest)
         (out / manifest).unlink(missing_ok=True)
+        for name in old - set(sums) - {manifest}:
+            (out / name).unlink(missing_ok=True)
         for f in files + [stage / manifest]:  # the manifest last
             os.chmod(f, 0o644)
             os.replace(f, out / f.name)
+        published = True
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+        if made and not published:
+            try:
+                out.rmdir()  # only if empty
+            except OSError:
+                pass
+
+
+def _listed(path: Path) -> set[str]:
+    """The file names a manifest lists (none if it is missing or unreadable); plain
+    names only, so a damaged manifest cannot point outside its folder."""
+    try:
+        names = json.loads(path.read_text())["files"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return set()
+    return {n for n in names if isinstance(n, str) and n == Path(n).name and n not in ("", ".", "..")}
 
 
 def manifest_complete(out: str | Path, manifest: str) -> bool:

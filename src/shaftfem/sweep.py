@@ -272,10 +272,13 @@ def _drop_partial_line(path: Path) -> None:
 def _owned(folder: Path):
     """Hold the sweep's lock on `folder` (a second sweep into it is refused) and give its
     workers a temp folder there that is removed at the end. The lock is an flock: the
-    system releases it when the process dies, so a killed sweep leaves no stale lock."""
+    system releases it when the process dies, so a killed sweep leaves no stale lock;
+    a sweep that ends (or fails, say on a scheduler that never answers) removes the lock
+    file too, and the folder if it made it and nothing was written there."""
     import fcntl
     import shutil
 
+    made = not folder.exists()
     folder.mkdir(parents=True, exist_ok=True)
     fh = open(folder / ".sweep.lock", "a+")  # noqa: SIM115 (held until the sweep ends)
     try:
@@ -290,7 +293,13 @@ def _owned(folder: Path):
         yield tmp
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+        (folder / ".sweep.lock").unlink(missing_ok=True)
         fh.close()
+        if made:
+            try:
+                folder.rmdir()  # only if empty
+            except OSError:
+                pass
 
 
 def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
@@ -301,7 +310,11 @@ def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
     results = Path(results)
     with _owned(results.parent) as tmp:
         _claim(results, sweep.key(estimate))
-        return _run_sweep(sweep, results, workers, scheduler, estimate, progress, tmp)
+        try:
+            return _run_sweep(sweep, results, workers, scheduler, estimate, progress, tmp)
+        finally:
+            if not results.exists():  # no row was written: the key claims nothing
+                key_path(results).unlink(missing_ok=True)
 
 
 def key_path(results: Path) -> Path:
