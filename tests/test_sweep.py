@@ -44,6 +44,22 @@ def test_two_workers_give_the_same_results_as_one_by_one(sweep_file, tmp_path):
             assert abs(a / b - 1) < 1e-10
 
 
+def _released(lock, within=5.0):
+    """Wait until no process holds the sweep's lock (the killed command's process group
+    ends within 0.1 s of its parent: shaftfem.supervise)."""
+    import fcntl
+
+    deadline = time.time() + within
+    while lock.exists() and time.time() < deadline:
+        with open(lock, "a") as fh:
+            try:
+                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                return
+            except BlockingIOError:
+                time.sleep(0.05)
+    assert not lock.exists() or time.time() < deadline, "the killed sweep still holds its lock"
+
+
 @pytest.mark.parametrize("kill_after_rows", [0, 2])
 def test_a_killed_sweep_resumes_without_recomputing(sweep_file, tmp_path, kill_after_rows):
     """SIGKILL as soon as the sweep holds its folder (no row yet) and after two rows: the
@@ -59,8 +75,9 @@ def test_a_killed_sweep_resumes_without_recomputing(sweep_file, tmp_path, kill_a
             started.exists() if kill_after_rows == 0
             else len(read_results(results)) >= kill_after_rows):
         time.sleep(0.05)
-    os.killpg(p.pid, signal.SIGKILL)  # the sweep and its Dask workers, mid-run
+    os.killpg(p.pid, signal.SIGKILL)  # the command; its sweep and Dask workers follow it
     p.wait()
+    _released(results.parent / ".sweep.lock")
     before = read_results(results)
     assert kill_after_rows <= len(before) < 6, len(before)
     text_before = results.read_text() if results.exists() else ""

@@ -429,6 +429,37 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_COMPUTATION
 
 
+def entry() -> None:
+    """The `shaftfem` command: main() in a child process that Ctrl-C always stops
+    (shaftfem.supervise)."""
+    from .supervise import supervised
+
+    argv = sys.argv[1:]
+    sys.exit(supervised(lambda: main(argv), _output_folders(argv)))
+
+
+def _output_folders(argv: list[str]) -> list[Path]:
+    """The folders a command line may write into, for the clean-up after a stop."""
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit:
+        return []
+    out = getattr(args, "out", None)
+    if out:
+        return [Path(out)]
+    if args.func is _cmd_design:
+        try:
+            from .scene import load_scene
+
+            return [Path("out") / load_scene(args.scene).name]
+        except Exception:  # the child says what is wrong with the scene
+            return []
+    if args.func in (_cmd_sweep, _cmd_calibrate):
+        return [Path("out") / Path(args.sweep if args.func is _cmd_sweep
+                                   else args.calibration).stem]
+    return []
+
+
 def _show_warning(message, category, *_args, **_kwargs) -> None:
     print(f"shaftfem: warning: {_one_line(message)}", file=sys.stderr)
 

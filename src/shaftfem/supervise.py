@@ -1,0 +1,133 @@
+"""Ctrl-C that always stops: the command runs in a child process, and this one stops it.
+
+gmsh's booleans and VTK's renders run in C++ for seconds at a time, and Python only
+sees a Ctrl-C between bytecodes; VTK even swallows it. So the `shaftfem` command forks:
+the child runs the command (its own process group, with any Dask workers it starts),
+and the parent only waits. On Ctrl-C (SIGINT) or SIGTERM the parent kills the child's
+group at once, removes what the child had staged but not published (the staging
+folders of its output folder, a sweep's lock and temp folder, an output folder the
+run made), prints one line and exits 130 (143 for SIGTERM). Published files are
+manifest-vouched (shaftfem.store), and cache entries are written atomically and
+checksummed, so the next run is correct. Elsewhere than on POSIX, or with
+SHAFTFEM_NO_SUPERVISOR set, the command runs in this process.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report it
+
+
+class _Stop(Exception):
+    def __init__(self, signum: int):
+        self.signum = signum
+
+
+def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
+    """run() in a child process; its exit code, or 128 + the signal that stopped it.
+    `outputs`: the folders the command may write into (cleaned after a stop)."""
+    if os.name != "posix" or os.environ.get("SHAFTFEM_NO_SUPERVISOR"):
+        return run()
+    made = [p for p in _missing(outputs)]
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:  # the child: its own group, so that the parent alone takes Ctrl-C
+        os.setpgid(0, 0)
+        _follow(os.getppid())
+        code = 1
+        try:
+            code = run()
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            import atexit
+
+            atexit._run_exitfuncs()
+            os._exit(code)
+    try:
+        os.setpgid(pid, pid)  # both sides set it: whichever runs first
+    except OSError:
+        pass
+
+    def stop(signum, _frame):
+        raise _Stop(signum)
+
+    old = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        _, status = os.waitpid(pid, 0)
+        return os.waitstatus_to_exitcode(status)
+    except _Stop as s:
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(sig, signal.SIG_IGN)  # a second Ctrl-C must not cut the clean-up
+        _kill_group(pid)
+        _clean(outputs, made, pid)
+        what = "interrupted" if s.signum == signal.SIGINT else "terminated"
+        print(f"shaftfem: {what}; nothing was published", file=sys.stderr, flush=True)
+        return 128 + s.signum
+    finally:
+        for sig, handler in old.items():
+            signal.signal(sig, handler)
+
+
+def _follow(parent: int) -> None:
+    """If the parent dies (SIGKILL, which it cannot catch), end this group too, the
+    Dask workers included, as a kill of the whole command would."""
+    import threading
+    import time
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.1)
+        os.killpg(0, signal.SIGKILL)
+
+    threading.Thread(target=watch, daemon=True, name="shaftfem-follow-parent").start()
+
+
+def _kill_group(pid: int) -> None:
+    """The child and everything it started (Dask workers), at once."""
+    try:
+        os.killpg(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    try:
+        os.waitpid(pid, 0)
+    except ChildProcessError:
+        pass
+
+
+def _missing(outputs: list[Path]) -> list[Path]:
+    """The output folders, and their ancestors, that do not exist yet (deepest first)."""
+    out = []
+    for folder in outputs:
+        p = Path(folder)
+        while not p.exists() and p != p.parent:
+            out.append(p)
+            p = p.parent
+    return out
+
+
+def _clean(outputs: list[Path], made: list[Path], pid: int) -> None:
+    """Remove what a killed run had staged but not published, and the folders it made
+    that hold nothing else."""
+    from .store import STAGING
+
+    for folder in outputs:
+        folder = Path(folder)
+        if not folder.is_dir():
+            continue
+        for stage in folder.glob(f"{STAGING}{pid}-*"):
+            shutil.rmtree(stage, ignore_errors=True)
+        shutil.rmtree(folder / ".sweep-tmp", ignore_errors=True)
+        (folder / ".sweep.lock").unlink(missing_ok=True)
+    for p in made:  # deepest first
+        try:
+            p.rmdir()
+        except OSError:
+            pass

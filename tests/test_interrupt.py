@@ -1,0 +1,106 @@
+"""Ctrl-C stops `shaftfem design` within a second at any step, publishes nothing, and
+the next run is correct. Ctrl-C is sent as a terminal sends it: SIGINT to the
+command's process group."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from shaftfem.scene import GEOMETRY_DIR
+
+# (progress line that starts the step, seconds into it): CAD, meshing, the solve, the
+# bound's coarser mesh, export, rendering
+QUICK_POINTS = [("building the shaft's solid", 1.0), ("DOFs; factorising", 0.1),
+                ("rendering pictures", 1.0)]
+ALL_POINTS = [("building the shaft's solid", 0.2), ("building the shaft's solid", 2.0),
+              ("CAD done", 0.05), ("DOFs; factorising", 0.05), ("DOFs; factorising", 0.4),
+              ("error estimate", 0.1), ("error estimate", 0.6),
+              ("exporting mode shapes", 0.05), ("rendering pictures", 0.3),
+              ("rendering pictures", 3.0)]
+
+
+@pytest.fixture(scope="module")
+def short_scene(tmp_path_factory):
+    """The paper's shaft, 200 mm long with one pitch of grooves: its CAD takes seconds."""
+    text = (GEOMETRY_DIR / "paper2018.toml").read_text()
+    text = text.replace("length_mm = 545.0", "length_mm = 200.0").replace(
+        "grooved_length_mm = 360.0", "grooved_length_mm = 80.0").replace(
+        'name = "paper2018"', 'name = "short"')
+    f = tmp_path_factory.mktemp("scene") / "short.toml"
+    f.write_text(text)
+    return f
+
+
+def _design(scene: Path, out: Path, cache: Path) -> subprocess.Popen:
+    env = dict(os.environ, SHAFTFEM_CACHE=str(cache))
+    env.pop("SHAFTFEM_NO_SUPERVISOR", None)
+    return subprocess.Popen([sys.executable, "-m", "shaftfem", "design", str(scene),
+                             "--mesh-size", "16", "--out", str(out)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True, env=env)
+
+
+def _interrupt_at(scene, out, cache, marker, delay):
+    """Run design, send Ctrl-C `delay` s after `marker` shows: (exit code, seconds from
+    Ctrl-C to exit, stderr)."""
+    p = _design(scene, out, cache)
+    seen = []
+    for line in p.stderr:
+        seen.append(line)
+        if marker in line:
+            time.sleep(delay)
+            break
+    else:
+        p.wait()
+        raise AssertionError(f"{marker!r} never showed: {''.join(seen)}")
+    t = time.perf_counter()
+    os.killpg(p.pid, signal.SIGINT)
+    code = p.wait(timeout=30)
+    elapsed = time.perf_counter() - t
+    return code, elapsed, "".join(seen) + p.stderr.read()
+
+
+def _check(scene, tmp_path, points):
+    cache = tmp_path / "cache"
+    for i, (marker, delay) in enumerate(points):
+        out = tmp_path / f"out{i}"
+        code, elapsed, err = _interrupt_at(scene, out, cache, marker, delay)
+        print(f"  Ctrl-C {delay:g} s after {marker!r}: exit {code} in {elapsed:.2f} s")
+        assert code == 130, err
+        assert elapsed < 2.0, (marker, delay, elapsed)
+        assert err.strip().splitlines()[-1] == "shaftfem: interrupted; nothing was published"
+        assert "Traceback" not in err
+        assert not out.exists(), (marker, list(out.rglob("*")))   # nothing published
+    # the next run, on the cache the interrupted ones left, is complete and right
+    out = tmp_path / "done"
+    p = _design(scene, out, cache)
+    err = p.stderr.read()
+    assert p.wait() == 0, err
+    from shaftfem.design import MANIFEST
+    from shaftfem.store import manifest_complete
+
+    assert manifest_complete(out, MANIFEST)
+    fresh = subprocess.run([sys.executable, "-m", "shaftfem", "modes", str(scene),
+                            "--mesh-size", "16", "--no-cache", "--no-estimate", "-q",
+                            "--json", str(tmp_path / "fresh.json")], capture_output=True,
+                           text=True, env=dict(os.environ, SHAFTFEM_CACHE=str(cache)))
+    assert fresh.returncode == 0, fresh.stderr
+    a = json.loads((out / "modes.json").read_text())["modes"]
+    b = json.loads((tmp_path / "fresh.json").read_text())["modes"]
+    assert [m["frequency_hz"] for m in a] == pytest.approx([m["frequency_hz"] for m in b],
+                                                           rel=1e-9)
+
+
+def test_ctrl_c_stops_design_at_once_and_publishes_nothing(short_scene, tmp_path):
+    _check(short_scene, tmp_path, QUICK_POINTS)
+
+
+@pytest.mark.slow
+def test_ctrl_c_at_ten_points_of_design(short_scene, tmp_path):
+    _check(short_scene, tmp_path, ALL_POINTS)
