@@ -103,3 +103,29 @@ def test_the_first_mode_rises_with_the_tilting_stiffness_towards_clamped(tilting
     # only (the section under it deforms): the limit stays below clamped.
     clamped = tilting["clamped"].frequencies[0]
     assert 0.8 * clamped < f1[-1] < clamped, (f1[-1], clamped)
+
+
+@pytest.mark.slow
+def test_the_installed_paper_shaft_takes_a_tilting_stiffness(tmp_path):
+    """The example found: a tilting stiffness on both bearings of the installed paper
+    shaft (once refused as a mechanism at 1 to 1e12 N mm/rad) gives its modes, rising
+    with the stiffness, below the clamped seats."""
+    import re
+
+    from shaftfem.scene import GEOMETRY_DIR, load_scene
+
+    text = (GEOMETRY_DIR / "paper2018_installed.toml").read_text()
+    f1 = {}
+    for kt in (1.0, 1e9, 1e12):
+        scene = text.replace("radial_stiffness_n_per_mm = 2.0e5",
+                             f"radial_stiffness_n_per_mm = 2.0e5\ntilting_stiffness_nmm_per_rad = {kt}")
+        (tmp_path / "t.toml").write_text(scene)
+        m = run_modes(load_scene(tmp_path / "t.toml")).modes
+        assert m.n_rigid == 1 and m.residuals.max() < 1e-6
+        f1[kt] = min(f for f, k in zip(m.frequencies, m.kinds) if k == "bending")
+    clamped = re.sub(r"\n(radial|axial)_stiffness_n_per_mm = [^\n]*", "",
+                     text.replace('kind = "springs"', 'kind = "clamped"'))
+    (tmp_path / "c.toml").write_text(clamped)
+    m = run_modes(load_scene(tmp_path / "c.toml")).modes
+    f_clamped = min(f for f, k in zip(m.frequencies, m.kinds) if k == "bending")
+    assert f1[1.0] < f1[1e9] < f1[1e12] < f_clamped, (f1, f_clamped)
