@@ -67,10 +67,12 @@ def test_exact_mass_difference_shrinks_with_the_mesh(tmp_path):
     assert diffs[1] < diffs[0]
 
 
-def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys):
+@pytest.mark.parametrize("coupling", ["distributing", "rigid"])
+def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling):
     """A rigid locating bearing, a spring bearing (radial, axial and tilting) and a gear
     on its seat: CalculiX's *EQUATION, SPRING1 and *RIGID BODY cards against our
-    elimination, with the same 4-point mass."""
+    elimination, with the same 4-point mass; the bearings distributing (mean motion) or
+    rigid rings (*RIGID BODY with springs and holds on its nodes)."""
     from shaftfem.scene import scene_from_dict
     from shaftfem.supports import install
 
@@ -78,10 +80,10 @@ def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys):
             "material": {"youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.277,
                          "density_kg_m3": 7870.0},
             "mesh": {"element_size_mm": 12.0},
-            "support": [dict(position_mm=5, width_mm=10, kind="rigid"),
+            "support": [dict(position_mm=5, width_mm=10, kind="rigid", coupling=coupling),
                         dict(position_mm=310, width_mm=10, kind="springs",
                              radial_stiffness_n_per_mm=1e4, axial_stiffness_n_per_mm=1e3,
-                             tilting_stiffness_nmm_per_rad=1e5)],
+                             tilting_stiffness_nmm_per_rad=1e5, coupling=coupling)],
             "attachment": [dict(position_mm=160, width_mm=6, mass_kg=2.0,
                                 polar_inertia_kg_m2=6e-4, diametral_inertia_kg_m2=4e-4)]}
     exact = run_modes(scene_from_dict(data, "installed.toml"))
@@ -96,5 +98,6 @@ def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys):
     ccx = read_calculix_eig(tmp_path / "shaft.eig")[1:11]
     d = np.max(np.abs(four.frequencies / ccx - 1))
     with capsys.disabled():
-        print(f"\n  CalculiX vs shaftfem, installed cylinder ({four.n_dofs} DOFs): {d:.1e}")
+        print(f"\n  CalculiX vs shaftfem, installed cylinder, {coupling} bearings "
+              f"({four.n_dofs} DOFs): {d:.1e}")
     assert d < 1e-6

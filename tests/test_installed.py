@@ -175,13 +175,15 @@ def test_a_bad_seat_is_one_line_naming_the_key(tmp_path, capsys, support, attach
     assert named in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
 
 
-@pytest.fixture(scope="module")
-def on_soft_springs():
-    """Soft bearings (100 N/mm) and a 1 kg gear: the shaft bounces and rocks on them
-    well below its first bending mode, so ten modes hold nearly all of its mass."""
+@pytest.fixture(scope="module", params=["distributing", "rigid"])
+def on_soft_springs(request):
+    """Soft bearings (100 N/mm), distributing or rigid rings, and a 1 kg gear: the
+    shaft bounces and rocks on them well below its first bending mode, so ten modes
+    hold nearly all of its mass."""
     from shaftfem.pipeline import run_modes
 
-    springs = dict(kind="springs", width_mm=10.0, radial_stiffness_n_per_mm=100.0)
+    springs = dict(kind="springs", width_mm=10.0, radial_stiffness_n_per_mm=100.0,
+                   coupling=request.param)
     gear = dict(position_mm=160, width_mm=4, mass_kg=1.0, polar_inertia_kg_m2=4e-4,
                 diametral_inertia_kg_m2=2e-4)
     return run_modes(_scene([dict(position_mm=20, axial_stiffness_n_per_mm=100.0, **springs),

@@ -36,14 +36,15 @@ def _mass_and_inertia():
     return m, m * (3 * (D / 2) ** 2 + L**2) / 12
 
 
+@pytest.mark.parametrize("coupling", ["distributing", "rigid"])
 @pytest.mark.parametrize("k_n_per_mm", [15.0, 0.5])
-def test_soft_bearings_give_the_rigid_body_on_springs(k_n_per_mm):
+def test_soft_bearings_give_the_rigid_body_on_springs(k_n_per_mm, coupling):
     """Radial and axial springs of k at both bearings: bounce (a pair) and axial motion
     at sqrt(2 k / m) / 2 pi, rocking (a pair) at sqrt(2 k a^2 / I_d) / 2 pi, however low
     (0.5 N/mm: about 2.7 Hz); the turn about the axis stays the one rigid mode."""
     k = k_n_per_mm * 1e3
     r = run_modes(_cylinder(_bearings(radial_stiffness_n_per_mm=k_n_per_mm,
-                                      axial_stiffness_n_per_mm=k_n_per_mm)))
+                                      axial_stiffness_n_per_mm=k_n_per_mm, coupling=coupling)))
     m, I_d = _mass_and_inertia()
     bounce = math.sqrt(2 * k / m) / (2 * math.pi)
     rocking = math.sqrt(2 * k * A**2 / I_d) / (2 * math.pi)
@@ -99,10 +100,40 @@ def test_the_first_mode_rises_with_the_tilting_stiffness_towards_clamped(tilting
     assert f1[-1] > 1.8 * f1[0]                        # near a clamped-clamped beam's 2.27
     assert f1[-1] == pytest.approx(f1[-2], rel=1e-5)   # the stiff limit is reached
     # (above the cap of 1e15 N mm/rad the scene is refused, tests/test_installed.py)
-    # Clamping holds every point of the 16 mm seat, the springs the band's mean motion
-    # only (the section under it deforms): the limit stays below clamped.
+    # Clamping holds every point of the 16 mm seat, distributing springs the band's
+    # mean motion only (the section under it deforms): the limit stays below clamped.
     clamped = tilting["clamped"].frequencies[0]
     assert 0.8 * clamped < f1[-1] < clamped, (f1[-1], clamped)
+
+
+@pytest.mark.parametrize("seat_mm", [16.0, 4.0])
+def test_a_rigid_ring_with_stiff_springs_is_a_clamped_seat(seat_mm):
+    """coupling = "rigid": the band moves as a rigid ring held by the springs. As they
+    stiffen, the bending modes rise to those of clamped seats of the same width (which
+    also hold the turn about the axis, so torsion differs)."""
+    clamped = run_modes(_cylinder([dict(position_mm=(L / 2 + s * A) * 1e3, width_mm=seat_mm,
+                                        kind="clamped") for s in (-1, 1)], count=4)).modes
+    f = {}
+    for kt in (1e9, 1e12, 1e15):
+        seats = [dict(position_mm=(L / 2 + s * A) * 1e3, width_mm=seat_mm, kind="springs",
+                      coupling="rigid", radial_stiffness_n_per_mm=1e9,
+                      axial_stiffness_n_per_mm=1e9, tilting_stiffness_nmm_per_rad=kt)
+                 for s in (-1, 1)]
+        m = run_modes(_cylinder(seats, count=4)).modes
+        assert m.n_rigid == 1 and m.kinds[:4] == ["bending"] * 4
+        f[kt] = m.frequencies[:4]
+    assert np.all(f[1e9] < f[1e12]) and np.all(f[1e12] <= f[1e15] * (1 + 1e-9))
+    assert np.all(np.abs(f[1e15] / clamped.frequencies[:4] - 1) < 1e-4), (f[1e15], clamped)
+    assert np.all(np.abs(f[1e9] / clamped.frequencies[:4] - 1) > 0.02)   # a real approach
+
+
+def test_a_clamped_seat_takes_no_coupling():
+    from shaftfem.errors import SceneError
+
+    with pytest.raises(SceneError, match=r"support\[0\].coupling"):
+        _cylinder([dict(position_mm=100.0, width_mm=16.0, kind="clamped", coupling="rigid")])
+    with pytest.raises(SceneError, match=r"support\[0\].coupling"):
+        _cylinder([dict(position_mm=100.0, width_mm=16.0, kind="rigid", coupling="glued")])
 
 
 @pytest.mark.slow
@@ -129,3 +160,16 @@ def test_the_installed_paper_shaft_takes_a_tilting_stiffness(tmp_path):
     m = run_modes(load_scene(tmp_path / "c.toml")).modes
     f_clamped = min(f for f, k in zip(m.frequencies, m.kinds) if k == "bending")
     assert f1[1.0] < f1[1e9] < f1[1e12] < f_clamped, (f1, f_clamped)
+    # as rigid rings (a shrunk-on inner ring), stiff bearings are clamped seats
+    ring = text.replace('kind = "springs"', 'kind = "springs"\ncoupling = "rigid"').replace(
+        "radial_stiffness_n_per_mm = 2.0e5",
+        "radial_stiffness_n_per_mm = 1e9\naxial_stiffness_n_per_mm = 1e9\n"
+        "tilting_stiffness_nmm_per_rad = 1e15").replace(
+        "axial_stiffness_n_per_mm = 2.0e4   #", "#")
+    (tmp_path / "r.toml").write_text(ring)
+    m = run_modes(load_scene(tmp_path / "r.toml")).modes
+    f_ring = min(f for f, k in zip(m.frequencies, m.kinds) if k == "bending")
+    print(f"\n  installed paper shaft, first bending: tilting 1/1e9/1e12 N mm/rad "
+          f"{f1[1.0]:.2f}/{f1[1e9]:.2f}/{f1[1e12]:.2f} Hz, rigid rings at 1e15 "
+          f"{f_ring:.2f} Hz, clamped {f_clamped:.2f} Hz")
+    assert f_ring == pytest.approx(f_clamped, rel=1e-4)

@@ -234,7 +234,11 @@ def _installation_cards(result: ModalResult) -> str:
     """Seats and parts as CalculiX cards, the same constraints shaftfem eliminates: a
     held mean motion is an *EQUATION over its band; a spring acts on a node of its
     own that the *EQUATION makes the mean, through a SPRING1; a part is a *RIGID BODY
-    of its band with six point masses carrying its mass and inertias."""
+    of its band with six point masses carrying its mass and inertias; a rigid-coupled
+    seat is a *RIGID BODY of its band, its springs SPRING1s on the reference and
+    rotation nodes, its holds *BOUNDARY cards there."""
+    from .supports import ring_stiffness
+
     inst, system, mesh = result.installed, result.system, result.mesh
     assert inst is not None  # called for installed shafts only
     node_of = np.empty(system.nodes.shape[0], dtype=np.int64)
@@ -278,6 +282,23 @@ def _installation_cards(result: ModalResult) -> str:
                     f"*MASS, ELSET=EM{next_el}", f"{m:.12e}"]
             next_el += 1
         next_node += 2 + len(masses)
+    rings = [s for s in result.scene.held if s.kind != "clamped" and s.coupling == "rigid"]
+    for j, (idx, s) in enumerate(zip(inst.rings, rings)):
+        ref, rot = next_node, next_node + 1
+        out += [f"** {s.name}: a rigid ring", "*NODE", f"{ref}, 0.0, 0.0, {s.position:.12e}",
+                f"{rot}, 0.0, 0.0, {s.position:.12e}", f"*NSET, NSET=RING{j + 1}"]
+        members = list(node_of[idx])
+        out += [", ".join(str(n) for n in members[i:i + 8]) for i in range(0, len(members), 8)]
+        out += [f"*RIGID BODY, NSET=RING{j + 1}, REF NODE={ref}, ROT NODE={rot}"]
+        for d, stiffness in enumerate(ring_stiffness(s)):
+            node, dof = (ref if d < 3 else rot), d % 3 + 1   # ROT NODE's DOFs are rotations
+            if math.isinf(stiffness):
+                out += ["*BOUNDARY", f"{node}, {dof}, {dof}"]
+            elif stiffness > 0:
+                out += [f"*ELEMENT, TYPE=SPRING1, ELSET=ES{next_el}", f"{next_el}, {node}",
+                        f"*SPRING, ELSET=ES{next_el}", str(dof), f"{stiffness:.12e}"]
+                next_el += 1
+        next_node += 2
     return "\n".join(out) + "\n"
 
 

@@ -93,7 +93,7 @@ def modal_basis(result: ModalResult) -> ModalBasis:
     normal = splu((Tt @ T).tocsc())
     X = normal.solve(np.asarray(Tt @ result.modes.shapes))   # exact: the shapes are T q
     n_parts = len(inst.tied)
-    first = T.shape[1] - 6 * n_parts
+    first = inst.parts_from
     masses = [part_mass(a) for a in result.scene.attachments]
     loads, totals = [], []
     for d in DIRECTIONS:

@@ -143,6 +143,7 @@ class Support:
     radial: float = 0.0
     axial: float = 0.0
     tilting: float = 0.0
+    coupling: str = "distributing"   # or "rigid": the band moves as a rigid ring
 
     @property
     def seat(self) -> tuple[float, float]:
@@ -412,12 +413,16 @@ def _support(source: str, i: int, t: dict) -> Support:
             if t[key] is not None:
                 raise SceneError(f"{where(source, table, key)} = {t[key]:g}: only with kind = "
                                  f"\"springs\" (this support is {t['kind']!r})")
+    if t["kind"] == "clamped" and t["coupling"] == "rigid":
+        raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a clamped seat "
+                         "already holds every point of its band; leave coupling out")
     radial = (t["radial_stiffness_n_per_mm"] or 0.0) * 1e3
     width = t["width_mm"] * MM
     return Support(name=t["name"] or f"support {i + 1}", position=t["position_mm"] * MM,
                    width=width, kind=t["kind"], radial=radial,
                    axial=(t["axial_stiffness_n_per_mm"] or 0.0) * 1e3,
-                   tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3)
+                   tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3,
+                   coupling=t["coupling"])
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:

@@ -26,6 +26,7 @@ MAX_MODE_COUNT = 200
 DEFAULT_MAX_DOFS = 400_000
 MAX_DOFS_LIMIT = 20_000_000
 SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs")
+COUPLINGS = ("distributing", "rigid")
 # Modal damping of a steel shaft in rolling bearings: 1-3 % of critical is usual.
 DEFAULT_DAMPING_PERCENT = 2.0
 
@@ -128,6 +129,13 @@ SCHEMA: dict[str, dict[str, Key]] = {
             *upto(1e15, "up to 10^15 N mm/rad: the frequencies stop changing near 10^12; "
                   "far beyond, the solve loses the digits it needs", closed_low=True),
             required=False),
+        "coupling": Key(
+            str, "how the bearing holds its seat: \"distributing\" (default: the seat band's "
+            "mean motion, the section under it free to deform, as a ball bearing on a "
+            "slip fit) or \"rigid\" (the band moves as a rigid ring, a shrunk-on inner "
+            "ring; the springs or holds act on the ring, and its stiff limit is clamped)",
+            lambda v: v in COUPLINGS, ", ".join(f'"{c}"' for c in COUPLINGS),
+            default="distributing", required=False),
     },
     "attachment": {  # an array of tables: [[attachment]], a part fixed on a seat
         "name": Key(str, "name of the part, e.g. drive gear", required=False),

@@ -275,6 +275,8 @@ class Installed:
     restraints: tuple[Restraint, ...]
     clamped: np.ndarray                   # DOFs held at zero
     tied: tuple[np.ndarray, ...]          # band nodes of each attached part
+    parts_from: int                       # the parts' (U, Theta) from this column on
+    rings: tuple[np.ndarray, ...]         # band nodes of each rigid-coupled seat
     seconds: float
 
     @property
@@ -295,7 +297,9 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     if n_bodies(K) != 1:
         raise SolverError("the mesh has disconnected parts; a shaft must be one piece")
     radius = scene.shaft.radius
-    restraints: list[Restraint] = []
+    restraints: list[Restraint] = []     # distributing seats: on the band's mean motion
+    rings: list[tuple[Support, np.ndarray]] = []   # rigid-coupled seats and their bands
+    on_rings: list[Restraint] = []       # what those rings' springs and holds resist
     held_bands: list[np.ndarray] = []
     tied: list[tuple[np.ndarray, np.ndarray]] = []
     for s in scene.held:
@@ -305,28 +309,46 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                               f"to {s.seat[1] * 1e3:g} mm)")
         if s.kind == "clamped":
             held_bands.append((3 * idx[:, None] + np.arange(3)).ravel())
+            continue
+        means = seat_restraints(s, nodes, surface_weights(skmesh, order, radius, s.seat))
+        if s.coupling == "rigid":
+            rings.append((s, idx))
+            on_rings += means  # a ring's motion reads a rigid motion as these means do
         else:
-            restraints += seat_restraints(s, nodes, surface_weights(skmesh, order, radius,
-                                                                    s.seat))
+            restraints += means
     for a in scene.attachments:
         idx = band_nodes(nodes, radius, a.seat)
         if idx.size == 0:
             raise SolverError(f"{a.name}: no mesh node on its seat band")
         tied.append((idx, np.array([0.0, 0.0, a.position])))
+    tied += [(idx, np.array([0.0, 0.0, s.position])) for s, idx in rings]
     clamped = np.concatenate(held_bands) if held_bands else np.zeros(0, np.int64)
     K_s = restraint_stiffness(restraints, K.shape[0])
     T = elimination(nodes, clamped, [r for r in restraints if r.held], tied)
-    Tt = T.T.tocsr()
     first = T.shape[1] - 6 * len(tied)
-    parts = sp.block_diag([sp.csr_matrix((first, first))]
-                          + [part_mass(a) for a in scene.attachments], format="csr")
-    K_r, M_r = Tt @ ((K + K_s) @ T), Tt @ (M @ T) + parts
+    n_q = T.shape[1]
+    extra_K, extra_M = sp.lil_matrix((n_q, n_q)), sp.lil_matrix((n_q, n_q))
+    for k, a in enumerate(scene.attachments):
+        c = first + 6 * k
+        extra_M[c:c + 6, c:c + 6] = part_mass(a)
+    keep = np.ones(n_q, dtype=bool)
+    for j, (s, _) in enumerate(rings):
+        c = first + 6 * (len(scene.attachments) + j)
+        for d, stiff in enumerate(ring_stiffness(s)):
+            if math.isinf(stiff):
+                keep[c + d] = False      # held exactly: the ring's DOF is dropped
+            elif stiff > 0:
+                extra_K[c + d, c + d] = stiff
+    T = T[:, keep].tocsr()
+    Tt = T.T.tocsr()
+    K_r = Tt @ ((K + K_s) @ T) + extra_K.tocsr()[keep][:, keep]
+    M_r = Tt @ (M @ T) + extra_M.tocsr()[keep][:, keep]
     # symmetric to round-off: made exactly so for the solvers
     K_r = ((K_r + K_r.T) * 0.5).tocsr()
     M_r = ((M_r + M_r.T) * 0.5).tocsr()
     R6 = rigid_body_modes(nodes)
     R6 /= np.linalg.norm(R6, axis=0)
-    combos = free_motions(R6, clamped, restraints)
+    combos = free_motions(R6, clamped, restraints + on_rings)
     target = R6 @ combos
     rigid = np.asarray(spsolve((Tt @ T).tocsc(), Tt @ target)).reshape(T.shape[1], -1)
     if combos.shape[1]:
@@ -334,6 +356,17 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
         if miss > 1e-9:
             raise SolverError(f"the seats' free rigid motions do not survive the "
                               f"elimination (misfit {miss:.2g})")
+    n_parts = len(scene.attachments)
     return Installed(K=K_r, M=M_r, T=T, rigid=rigid, free=motion_names(target, nodes),
                      restraints=tuple(restraints), clamped=clamped,
-                     tied=tuple(i for i, _ in tied), seconds=time.perf_counter() - t0)
+                     tied=tuple(i for i, _ in tied[:n_parts]), parts_from=first,
+                     rings=tuple(idx for _, idx in rings), seconds=time.perf_counter() - t0)
+
+
+def ring_stiffness(s: Support) -> tuple[float, ...]:
+    """What a rigid-coupled seat's ring resists along its (U_x, U_y, U_z, Theta_x,
+    Theta_y, Theta_z): N/m, N m/rad, math.inf where held, 0 where free."""
+    rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
+    radial, axial = rigid.get(s.kind, (s.radial, s.axial))
+    tilting = s.tilting if s.kind == "springs" else 0.0
+    return (radial, radial, axial, tilting, tilting, 0.0)
