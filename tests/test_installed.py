@@ -335,6 +335,18 @@ def test_the_commands_use_the_supports_and_free_leaves_them_off(tmp_path, capsys
     assert held["modes"][0]["frequency_hz"] < 0.8 * free["modes"][0]["frequency_hz"]
 
 
+def test_design_prints_the_effective_masses_as_modes_does(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr("shaftfem.render.render_into", lambda *a, **k: [])  # no pictures
+    f = tmp_path / "installed.toml"
+    f.write_text(INSTALLED_TOML)
+    assert main(["design", str(f), "-q", "--no-estimate", "--out", str(tmp_path / "d")]) == 0
+    out = capsys.readouterr().out
+    table = out[out.index("effective modal mass"):].splitlines()
+    # one row per mode solved (4), numbered, with its frequency
+    rows = [r for r in table if r.split()[:1] in (["1"], ["2"], ["3"], ["4"])]
+    assert len(rows) == 4 and all(" Hz " in r for r in rows), table
+
+
 def test_api684_margin_follows_the_amplification_factor():
     """API 684: no margin below AF 2.5; 17 (1 - 1/(AF - 1.5)) % above; 2 % damping is
     AF 25, a margin of 16.3 %."""
@@ -392,3 +404,28 @@ def test_a_clamped_seat_leaves_no_rigid_motion():
     R, E, nu, rho = _beam(r)
     free_free = timoshenko_free_free_hz(1, L_MM * 1e-3, R, E, nu, rho)[0]
     assert r.modes.frequencies[0] < 0.25 * free_free
+
+
+def test_the_response_picture_reads_at_the_harmonics():
+    """Two panels: every mode on a log frequency axis from below the lowest harmonic,
+    and the excitation band (to 1.5 x the highest harmonic) with the transmissibility
+    written at each harmonic, labels at staggered heights."""
+    from shaftfem.plots import response_figure
+    from shaftfem.response import FrequencyResponse
+
+    f = np.union1d(np.linspace(0, 3000, 1200), np.geomspace(0.3, 3000, 1200))
+    fn, zeta = 230.0, 0.02
+    r = f / fn
+    t = np.sqrt((1 + (2 * zeta * r) ** 2) / ((1 - r**2) ** 2 + (2 * zeta * r) ** 2))
+    fr = FrequencyResponse(frequencies=f, transmissibility=t, direction="x",
+                           point=np.zeros(3), damping=zeta)
+    marks = [(name, hz, float(np.interp(hz, f, t))) for name, hz in
+             (("shaft x1", 1.333), ("engine x1", 60.0), ("engine x2", 120.0))]
+    fig = response_figure(fr, marks, "test")
+    wide, near = fig.axes
+    assert wide.get_xscale() == "log" and wide.get_xlim()[0] < 1.333
+    assert near.get_xlim() == pytest.approx((0, 180.0))
+    texts = [a.get_text() for a in near.texts]
+    assert any("engine x2" in s and "120 Hz: x1.3" in s for s in texts), texts  # 1/(1-r^2)
+    heights = sorted(a.xyann[1] for a in near.texts)
+    assert len(set(heights)) == 3                       # no two labels at one height

@@ -196,6 +196,10 @@ def _cmd_design(args) -> int:
     if d.adapted is not None:
         print(d.adapted.summary() + "\n")
     print(modes_text(d.result, d.estimate) + "\n")
+    if d.participation is not None:
+        from .tables import participation_text
+
+        print(participation_text(d.result, d.participation) + "\n")
     print(verdict_text(d.verdict) if d.verdict is not None
           else verdict_line(None).replace("**", ""))
     print(f"\nreport: {d.report}")

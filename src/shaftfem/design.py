@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from .estimate import ErrorEstimate
     from .pipeline import ModalResult
     from .resonance import ResonanceVerdict
+    from .response import Participation
     from .sizing import SizingResult
 
 
@@ -41,6 +42,7 @@ class DesignResult:
     pictures: list[Path]
     report: Path
     adapted: Adapted | None = None   # how the mesh was adapted, when it was
+    participation: Participation | None = None   # installed shafts: effective masses
 
     @property
     def ok(self) -> bool:
@@ -70,7 +72,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     result, est, adapted = run_bounded(scene, estimate=estimate, use_cache=use_cache,
                                        progress=say, factorizer=factorizer)
     verdict = check_result(result, margin)
-    free, part, response = None, None, None
+    free, part, response, basis = None, None, None, None
     if scene.held:
         from .pipeline import solve_mesh
         from .response import modal_basis, participation, response_sweep
@@ -88,21 +90,29 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         say("rendering pictures")
         pictures = render_into(result, stage)
         if response is not None:
-            pictures.append(_response_picture(result, response, stage / "response.png"))
+            pictures.append(_response_picture(result, response, basis, stage / "response.png"))
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
                      free=free, participation=part)
     files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
     report = out / "report.md"
     say(f"report written: {report}")
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
-                        files=files, pictures=pictures, report=report, adapted=adapted)
+                        files=files, pictures=pictures, report=report, adapted=adapted,
+                        participation=part)
 
 
-def _response_picture(result: ModalResult, response, path: Path) -> Path:
-    """response.png: the transmissibility with every excitation harmonic marked."""
+def _response_picture(result: ModalResult, response, basis, path: Path) -> Path:
+    """response.png: the transmissibility, with its value at every excitation harmonic."""
+    import numpy as np
+
     from .plots import response_figure, save_png
+    from .response import base_response
 
     harmonics = [(f"{e.name} x{k}", k * e.frequency) for e in result.scene.excitations
                  for k in e.orders]
-    return save_png(response_figure(response, harmonics, f"{result.scene.name}: lateral base "
+    hz = np.array([h for _, h in harmonics])
+    at = (base_response(result, hz, response.direction, basis=basis).transmissibility
+          if hz.size else np.zeros(0))
+    marks = [(text, h, float(v)) for (text, h), v in zip(harmonics, at)]
+    return save_png(response_figure(response, marks, f"{result.scene.name}: lateral base "
                                     "motion at the supports"), path)

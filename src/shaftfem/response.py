@@ -185,5 +185,7 @@ def response_sweep(result: ModalResult, direction: str = "x", n: int = 1200,
     """The response over 0..1.2 x the highest frequency solved, on a grid that also
     lands on every natural frequency (where the peaks are)."""
     top = 1.2 * float(result.modes.frequencies[-1])
-    grid = np.union1d(np.linspace(0.0, top, n), result.modes.frequencies)
+    # linear for the excitation band, logarithmic for a log axis down to 1e-4 x top
+    grid = np.union1d(np.union1d(np.linspace(0.0, top, n), np.geomspace(1e-4 * top, top, n)),
+                      result.modes.frequencies)
     return base_response(result, grid, direction, basis=basis)
