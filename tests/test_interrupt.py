@@ -104,3 +104,18 @@ def test_ctrl_c_stops_design_at_once_and_publishes_nothing(short_scene, tmp_path
 @pytest.mark.slow
 def test_ctrl_c_at_ten_points_of_design(short_scene, tmp_path):
     _check(short_scene, tmp_path, ALL_POINTS)
+
+
+@pytest.mark.parametrize("argv,code,stream,text", [
+    (["--help"], 0, "stdout", "usage: shaftfem"),
+    (["modes", "--bogus"], 2, "stderr", "unrecognized arguments: --bogus"),
+    (["size", "no_such_scene"], 2, "stderr", "no_such_scene"),
+])
+def test_the_command_says_things_once(argv, code, stream, text):
+    """The command's parent parses the command line only to know its output folders:
+    help and errors are printed once, by the command itself."""
+    p = subprocess.run([sys.executable, "-m", "shaftfem", *argv], capture_output=True,
+                       text=True, timeout=120)
+    assert p.returncode == code, p.stderr
+    out = getattr(p, stream)
+    assert out.count(text) == 1, out

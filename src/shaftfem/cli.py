@@ -439,15 +439,23 @@ def entry() -> None:
     from .supervise import supervised
 
     argv = sys.argv[1:]
-    sys.exit(supervised(lambda: main(argv), _output_folders(argv)))
+    folders = _output_folders(argv)
+    if folders is None:  # --help, or a bad command line: nothing to supervise
+        sys.exit(main(argv))
+    sys.exit(supervised(lambda: main(argv), folders))
 
 
-def _output_folders(argv: list[str]) -> list[Path]:
-    """The folders a command line may write into, for the clean-up after a stop."""
+def _output_folders(argv: list[str]) -> list[Path] | None:
+    """The folders a command line may write into, for the clean-up after a stop; None
+    where it does not parse (or asks for help), said by main() itself."""
+    import contextlib
+    import io
+
     try:
-        args = build_parser().parse_args(argv)
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            args = build_parser().parse_args(argv)
     except SystemExit:
-        return []
+        return None
     out = getattr(args, "out", None)
     if out:
         return [Path(out)]

@@ -62,7 +62,8 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
     old = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         _, status = os.waitpid(pid, 0)
-        return os.waitstatus_to_exitcode(status)
+        code = os.waitstatus_to_exitcode(status)
+        return 128 - code if code < 0 else code   # killed by signal N: 128 + N, as shells say
     except _Stop as s:
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, signal.SIG_IGN)  # a second Ctrl-C must not cut the clean-up
