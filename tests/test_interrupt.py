@@ -119,3 +119,30 @@ def test_the_command_says_things_once(argv, code, stream, text):
     assert p.returncode == code, p.stderr
     out = getattr(p, stream)
     assert out.count(text) == 1, out
+
+
+def test_ctrl_c_stops_a_sweep_and_its_workers(tmp_path):
+    """Ctrl-C during a sweep: exit 130 at once, no worker left running, the lock and
+    the workers' temp folder gone; the rows written so far stay (a sweep resumes)."""
+    import psutil
+
+    f = tmp_path / "sweep.toml"
+    f.write_text('base = "plain_cylinder"\nmesh_size_mm = 16.0\n[axes]\n'
+                 '"shaft.length_mm" = [500.0, 520.0, 540.0, 560.0, 580.0, 600.0]\n')
+    out = tmp_path / "out"
+    p = subprocess.Popen([sys.executable, "-m", "shaftfem", "sweep", str(f), "--out", str(out),
+                          "--workers", "2"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                         text=True, start_new_session=True)
+    for line in p.stderr:
+        if "to run" in line:
+            break
+    time.sleep(1.0)
+    family = psutil.Process(p.pid).children(recursive=True)
+    assert len(family) >= 3, family       # the command's child and its two workers at least
+    t = time.perf_counter()
+    os.killpg(p.pid, signal.SIGINT)
+    assert p.wait(timeout=30) == 130
+    assert time.perf_counter() - t < 2.0
+    gone, alive = psutil.wait_procs(family, timeout=2.0)
+    assert not alive, alive
+    assert not (out / ".sweep.lock").exists() and not (out / ".sweep-tmp").exists()

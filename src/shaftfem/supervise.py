@@ -2,9 +2,10 @@
 
 gmsh's booleans and VTK's renders run in C++ for seconds at a time, and Python only
 sees a Ctrl-C between bytecodes; VTK even swallows it. So the `shaftfem` command forks:
-the child runs the command (its own process group, with any Dask workers it starts),
-and the parent only waits. On Ctrl-C (SIGINT) or SIGTERM the parent kills the child's
-group at once, removes what the child had staged but not published (the staging
+the child runs the command, ignoring Ctrl-C, and the parent only waits. Both stay in
+the terminal's process group, so Ctrl-Z suspends both and a kill of the group ends
+both. On Ctrl-C (SIGINT) or SIGTERM the parent kills the child and every process it
+started (Dask workers) at once, removes what the child had staged but not published (the staging
 folders of its output folder, a sweep's lock and temp folder, an output folder the
 run made), prints one line and exits 130 (143 for SIGTERM). Published files are
 manifest-vouched (shaftfem.store), and cache entries are written atomically and
@@ -38,8 +39,8 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
     sys.stdout.flush()
     sys.stderr.flush()
     pid = os.fork()
-    if pid == 0:  # the child: its own group, so that the parent alone takes Ctrl-C
-        os.setpgid(0, 0)
+    if pid == 0:  # the child: the parent alone takes Ctrl-C, and stops the child
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
         _follow(os.getppid())
         code = 1
         try:
@@ -51,11 +52,6 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
 
             atexit._run_exitfuncs()
             os._exit(code)
-    try:
-        os.setpgid(pid, pid)  # both sides set it: whichever runs first
-    except OSError:
-        pass
-
     def stop(signum, _frame):
         raise _Stop(signum)
 
@@ -67,7 +63,7 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
     except _Stop as s:
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, signal.SIG_IGN)  # a second Ctrl-C must not cut the clean-up
-        _kill_group(pid)
+        _kill_tree(pid)
         _clean(outputs, made, pid)
         what = "interrupted" if s.signum == signal.SIGINT else "terminated"
         print(f"shaftfem: {what}; nothing was published", file=sys.stderr, flush=True)
@@ -78,29 +74,39 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
 
 
 def _follow(parent: int) -> None:
-    """If the parent dies (SIGKILL, which it cannot catch), end this group too, the
-    Dask workers included, as a kill of the whole command would."""
+    """If the parent dies (SIGKILL, which it cannot catch), end this process and what
+    it started too, as a kill of the whole command would."""
     import threading
     import time
 
     def watch() -> None:
         while os.getppid() == parent:
             time.sleep(0.1)
-        os.killpg(0, signal.SIGKILL)
+        _kill_tree(os.getpid())
 
     threading.Thread(target=watch, daemon=True, name="shaftfem-follow-parent").start()
 
 
-def _kill_group(pid: int) -> None:
-    """The child and everything it started (Dask workers), at once."""
+def _kill_tree(pid: int) -> None:
+    """Process `pid` and every process it started (Dask workers), at once (psutil: the
+    descendants, whatever their process group)."""
+    import psutil
+
     try:
-        os.killpg(pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
-    try:
-        os.waitpid(pid, 0)
-    except ChildProcessError:
-        pass
+        root = psutil.Process(pid)
+        procs = root.children(recursive=True) + [root]
+    except psutil.NoSuchProcess:
+        procs = []
+    for p in procs:
+        try:
+            p.kill()
+        except psutil.NoSuchProcess:
+            pass
+    if pid != os.getpid():
+        try:
+            os.waitpid(pid, 0)
+        except ChildProcessError:
+            pass
 
 
 def _missing(outputs: list[Path]) -> list[Path]:
