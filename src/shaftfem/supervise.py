@@ -35,35 +35,40 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
     `outputs`: the folders the command may write into (cleaned after a stop)."""
     if os.name != "posix" or os.environ.get("SHAFTFEM_NO_SUPERVISOR"):
         return run()
-    made = [p for p in _missing(outputs)]
-    sys.stdout.flush()
-    sys.stderr.flush()
-    pid = os.fork()
-    if pid == 0:  # the child: the parent alone takes Ctrl-C, and stops the child
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
-        _follow(os.getppid())
-        code = 1
-        try:
-            code = run()
-        finally:
-            sys.stdout.flush()
-            sys.stderr.flush()
-            import atexit
+    made = _missing(outputs)
 
-            atexit._run_exitfuncs()
-            os._exit(code)
     def stop(signum, _frame):
         raise _Stop(signum)
 
+    # set before the fork, so that no Ctrl-C falls between the two
     old = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM)}
+    pid = 0
     try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        pid = os.fork()
+        if pid == 0:  # the child: the parent alone takes Ctrl-C, and stops the child
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            _follow(os.getppid())
+            code = 1
+            try:
+                code = run()
+            finally:
+                sys.stdout.flush()
+                sys.stderr.flush()
+                import atexit
+
+                atexit._run_exitfuncs()
+                os._exit(code)
         _, status = os.waitpid(pid, 0)
         code = os.waitstatus_to_exitcode(status)
         return 128 - code if code < 0 else code   # killed by signal N: 128 + N, as shells say
     except _Stop as s:
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, signal.SIG_IGN)  # a second Ctrl-C must not cut the clean-up
-        _kill_tree(pid)
+        if pid:
+            _kill_tree(pid)
         _clean(outputs, made, pid)
         what = "interrupted" if s.signum == signal.SIGINT else "terminated"
         print(f"shaftfem: {what}; nothing was published", file=sys.stderr, flush=True)
