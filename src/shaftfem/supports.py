@@ -128,9 +128,7 @@ def seat_restraints(support: Support, nodes: np.ndarray, weights: np.ndarray
     x, y, z = nodes[on].T
     w = weights[on]
     d = z - w @ z                          # from the band's centre
-    rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
-    radial, axial = rigid.get(support.kind, (support.radial, support.axial))
-    tilting = support.tilting if support.kind == "springs" else 0.0
+    radial, _, axial, tilting, _, _ = ring_stiffness(support)
     # What each rigid motion moves along x, y, z at the band's nodes: (translation,
     # tilt, turn about the axis). A mean reads its own motion and none of the other two.
     seen = {0: (np.ones_like(d), d, -y), 1: (np.ones_like(d), -d, x), 2: (np.ones_like(d), y, -x)}
@@ -364,8 +362,9 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
 
 
 def ring_stiffness(s: Support) -> tuple[float, ...]:
-    """What a rigid-coupled seat's ring resists along its (U_x, U_y, U_z, Theta_x,
-    Theta_y, Theta_z): N/m, N m/rad, math.inf where held, 0 where free."""
+    """What a seat resists along its (U_x, U_y, U_z, Theta_x, Theta_y, Theta_z), a
+    rigid ring's or a distributing seat's means: N/m, N m/rad, math.inf where held, 0
+    where free."""
     rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
     radial, axial = rigid.get(s.kind, (s.radial, s.axial))
     tilting = s.tilting if s.kind == "springs" else 0.0
