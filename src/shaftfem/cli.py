@@ -188,7 +188,7 @@ def _cmd_design(args) -> int:
     from .tables import modes_text, sizing_text, verdict_line, verdict_text
 
     scene = _scene(args)
-    d = run_design(scene, args.out or Path("out") / scene.name, margin=_margin(args),
+    d = run_design(scene, _design_out(args, scene.name), margin=_margin(args),
                    estimate=not args.no_estimate, use_cache=not args.no_cache,
                    factorizer=args.solver, progress=_Progress(args.quiet))
     if d.sizing is not None:
@@ -236,12 +236,23 @@ def _cmd_paper(args) -> int:
     return _accuracy_status(args, adapted)
 
 
+def _design_out(args, scene_name: str) -> Path:
+    """design's output folder: --out, else out/ and the scene's name."""
+    return Path(args.out or Path("out") / scene_name)
+
+
+def _dask_out(args) -> Path:
+    """A sweep's or calibration's output folder: --out, else out/ and its file's name."""
+    file = args.sweep if args.func is _cmd_sweep else args.calibration
+    return Path(args.out or Path("out") / Path(file).stem)
+
+
 def _cmd_sweep(args) -> int:
     from .plots import sweep_plots
     from .sweep import load_sweep, run_sweep
 
     sweep = load_sweep(args.sweep)
-    out = Path(args.out or Path("out") / Path(args.sweep).stem)
+    out = _dask_out(args)
     rows = run_sweep(sweep, out / "results.csv", workers=args.workers,
                      scheduler=args.scheduler, estimate=args.estimate,
                      progress=_Progress(args.quiet))
@@ -262,7 +273,7 @@ def _cmd_calibrate(args) -> int:
     from .tables import calibration_text
 
     cal = load_calibration(args.calibration)
-    out = Path(args.out or Path("out") / Path(args.calibration).stem)
+    out = _dask_out(args)
     res = calibrate(cal, out, workers=args.workers, progress=_Progress(args.quiet),
                     scheduler=args.scheduler)
     print(calibration_text(res, cal))
@@ -456,20 +467,17 @@ def _output_folders(argv: list[str]) -> list[Path] | None:
             args = build_parser().parse_args(argv)
     except SystemExit:
         return None
-    out = getattr(args, "out", None)
-    if out:
-        return [Path(out)]
-    if args.func is _cmd_design:
+    if args.func is _cmd_design and not args.out:
         try:
             from .scene import load_scene
 
-            return [Path("out") / load_scene(args.scene).name]
+            return [_design_out(args, load_scene(args.scene).name)]
         except Exception:  # the child says what is wrong with the scene
             return []
     if args.func in (_cmd_sweep, _cmd_calibrate):
-        return [Path("out") / Path(args.sweep if args.func is _cmd_sweep
-                                   else args.calibration).stem]
-    return []
+        return [_dask_out(args)]
+    out = getattr(args, "out", None)
+    return [Path(out)] if out else []
 
 
 def _show_warning(message, category, *_args, **_kwargs) -> None:

@@ -129,6 +129,7 @@ def _clean(outputs: list[Path], made: list[Path], pid: int) -> None:
     """Remove what a killed run had staged but not published, and the folders it made
     that hold nothing else."""
     from .store import STAGING
+    from .sweep import LOCK, WORKER_TMP
 
     for folder in outputs:
         folder = Path(folder)
@@ -136,8 +137,8 @@ def _clean(outputs: list[Path], made: list[Path], pid: int) -> None:
             continue
         for stage in folder.glob(f"{STAGING}{pid}-*"):
             shutil.rmtree(stage, ignore_errors=True)
-        shutil.rmtree(folder / ".sweep-tmp", ignore_errors=True)
-        (folder / ".sweep.lock").unlink(missing_ok=True)
+        shutil.rmtree(folder / WORKER_TMP, ignore_errors=True)
+        (folder / LOCK).unlink(missing_ok=True)
     for p in made:  # deepest first
         try:
             p.rmdir()

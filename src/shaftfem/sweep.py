@@ -48,6 +48,8 @@ from .store import atomic_path, content_key
 # keep two workers busy for one to five days; a larger grid is a typo more often than
 # a plan (three axes of 1000 values, or 20^5 calibration points).
 MAX_VARIANTS = 10_000
+# In a sweep's folder while it runs: its lock, and its workers' temp folder
+LOCK, WORKER_TMP = ".sweep.lock", ".sweep-tmp"
 
 
 @dataclass(frozen=True)
@@ -280,20 +282,20 @@ def _owned(folder: Path):
 
     made = not folder.exists()
     folder.mkdir(parents=True, exist_ok=True)
-    fh = open(folder / ".sweep.lock", "a+")  # noqa: SIM115 (held until the sweep ends)
+    fh = open(folder / LOCK, "a+")  # noqa: SIM115 (held until the sweep ends)
     try:
         fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except BlockingIOError:
         fh.close()
         raise SceneError(f"another sweep is writing into {folder}: wait for it to finish "
                          "or choose another --out") from None
-    tmp = folder / ".sweep-tmp"
+    tmp = folder / WORKER_TMP
     try:
         tmp.mkdir(exist_ok=True)
         yield tmp
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-        (folder / ".sweep.lock").unlink(missing_ok=True)
+        (folder / LOCK).unlink(missing_ok=True)
         fh.close()
         if made:
             try:
