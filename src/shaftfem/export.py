@@ -282,7 +282,7 @@ def _installation_cards(result: ModalResult) -> str:
                     f"*MASS, ELSET=EM{next_el}", f"{m:.12e}"]
             next_el += 1
         next_node += 2 + len(masses)
-    rings = [s for s in result.scene.held if s.kind != "clamped" and s.coupling == "rigid"]
+    rings = [s for s in result.scene.held if s.coupling == "rigid"]  # as install() took them
     for j, (idx, s) in enumerate(zip(inst.rings, rings)):
         ref, rot = next_node, next_node + 1
         out += [f"** {s.name}: a rigid ring", "*NODE", f"{ref}, 0.0, 0.0, {s.position:.12e}",
