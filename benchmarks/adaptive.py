@@ -29,8 +29,8 @@ def uniform(groove_mm: float, cache: str) -> dict:
     from dataclasses import replace
 
     os.environ["SHAFTFEM_CACHE"] = cache
-    from shaftfem.adapt import run_bounded
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.adapt import run_bounded
 
     t0 = time.perf_counter()
     scene = load_scene("paper2018")
@@ -47,8 +47,8 @@ def adaptive(target_percent: float, cache: str) -> dict:
     import time
 
     os.environ["SHAFTFEM_CACHE"] = cache
-    from shaftfem.adapt import run_bounded, with_accuracy
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.adapt import run_bounded, with_accuracy
 
     t0 = time.perf_counter()
     r, est, a = run_bounded(with_accuracy(load_scene("paper2018"), target_percent))

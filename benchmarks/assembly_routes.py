@@ -20,7 +20,9 @@ from _common import machine  # noqa: E402
 def main(size_mm: float, repeat: int) -> None:
     import numpy as np
 
-    from shaftfem.assembly import (
+    from shaftfem.cad.mesh import mesh_shape
+    from shaftfem.cad.solid import build_shape
+    from shaftfem.fem.assembly import (
         STIFFNESS_INTORDER,
         _gradients,
         _sum_over_chunks,
@@ -28,11 +30,9 @@ def main(size_mm: float, repeat: int) -> None:
         elasticity_blocks,
         stiffness,
     )
-    from shaftfem.geometry import build_shape
-    from shaftfem.mesh import mesh_shape
-    from shaftfem.pipeline import with_mesh
     from shaftfem.runtime import assembly_threads
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import with_mesh
 
     scene = with_mesh(load_scene("paper2018"), size_mm)
     shape = build_shape(scene.shaft, scene.grooves)

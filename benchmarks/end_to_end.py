@@ -39,8 +39,8 @@ def one(cache: str, mesh_mm: str | None, out: str, export: bool = True) -> dict:
     os.environ["SHAFTFEM_CACHE"] = cache
     from dataclasses import replace
 
-    from shaftfem.pipeline import run_modes, with_mesh
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     scene = replace(load_scene("paper2018"), max_dofs=20_000_000)  # research runs
     if mesh_mm and "/" in mesh_mm:
@@ -53,7 +53,7 @@ def one(cache: str, mesh_mm: str | None, out: str, export: bool = True) -> dict:
     sec = dict(r.timings.items())
     sec["export"] = 0.0
     if export:
-        from shaftfem.export import export_modes, write_calculix
+        from shaftfem.outputs.export import export_modes, write_calculix
 
         t = time.perf_counter()
         export_modes(r, out)

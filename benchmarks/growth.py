@@ -13,8 +13,8 @@ from _common import in_fresh_process, machine, peak_mb  # noqa: E402
 def one(size_mm: float, factorizer: str) -> dict:
     from dataclasses import replace
 
-    from shaftfem.pipeline import run_modes, with_mesh
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     scene = replace(load_scene("plain_cylinder"), max_dofs=20_000_000)  # research runs
     r = run_modes(with_mesh(scene, size_mm), factorizer=factorizer)
@@ -24,7 +24,7 @@ def one(size_mm: float, factorizer: str) -> dict:
 
 def main() -> None:
     sizes = [float(x) for x in (sys.argv[1] if len(sys.argv) > 1 else "10,8,6,5,4,3").split(",")]
-    from shaftfem.factor import available_factorizers
+    from shaftfem.fem.factor import available_factorizers
 
     print(f"machine: {machine()}\n")
     print("| factoriser | size (mm) | DOFs | assembly (s) | factorisation (s) | eigensolve (s) "

@@ -108,7 +108,8 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
     import scipy.sparse as sp
     from skfem import Basis
 
-    from shaftfem.assembly import (
+    from shaftfem.cad.mesh import skfem_mesh
+    from shaftfem.fem.assembly import (
         Pattern,
         _gradients,
         _reference_values,
@@ -116,12 +117,11 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
         elasticity_blocks,
         mass_blocks,
     )
-    from shaftfem.estimate import recovery_estimate
-    from shaftfem.mesh import skfem_mesh
-    from shaftfem.modal import solve_modes
-    from shaftfem.pipeline import run_modes
-    from shaftfem.scene import load_scene
-    from shaftfem.supports import rigid_body_modes
+    from shaftfem.fem.estimate import recovery_estimate
+    from shaftfem.fem.modal import solve_modes
+    from shaftfem.fem.supports import rigid_body_modes
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import run_modes
 
     scene = replace(load_scene("paper2018"), max_dofs=20_000_000)
     if root_radius_mm is not None:

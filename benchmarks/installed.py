@@ -19,9 +19,9 @@ from _common import machine  # noqa: E402
 
 def main() -> None:
     repeat = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-    from shaftfem.pipeline import run_modes
-    from shaftfem.response import modal_basis, participation, response_sweep
-    from shaftfem.scene import load_scene
+    from shaftfem.fem.response import modal_basis, participation, response_sweep
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import run_modes
 
     scene = load_scene("paper2018_installed")
     run_modes(scene)  # mesh and solid into the cache

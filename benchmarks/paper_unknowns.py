@@ -15,9 +15,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from shaftfem.paper2018 import TABLE2_HZ
-from shaftfem.pipeline import run_modes, with_mesh
-from shaftfem.scene import load_scene
+from shaftfem.cases.paper2018 import TABLE2_HZ
+from shaftfem.scene.model import load_scene
+from shaftfem.workflows.pipeline import run_modes, with_mesh
 
 PAPER = np.array(TABLE2_HZ)
 

@@ -22,9 +22,9 @@ def main() -> None:
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 20
     import numpy as np
 
-    from shaftfem import modal
-    from shaftfem.pipeline import run_modes
-    from shaftfem.scene import load_scene
+    from shaftfem.fem import modal
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import run_modes
 
     r = run_modes(load_scene("paper2018"))
     s = r.system

@@ -9,10 +9,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from shaftfem.assembly import assemble
-from shaftfem.modal import modal_analysis
-from shaftfem.pipeline import run_modes
-from shaftfem.scene import Material, scene_from_dict
+from shaftfem.fem.assembly import assemble
+from shaftfem.fem.modal import modal_analysis
+from shaftfem.scene.model import Material, scene_from_dict
+from shaftfem.workflows.pipeline import run_modes
 
 
 def scene(length, diameter, size, nu=0.277, order=2, grooves=None):
@@ -46,7 +46,7 @@ def main():
     md = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
     row("density x 1000", md, f"f ~ 1/sqrt(rho): "
         f"{np.max(np.abs(md.frequencies * np.sqrt(1e3) / base.modes.frequencies - 1)):.1e}")
-    from shaftfem.mesh import ShaftMesh
+    from shaftfem.cad.mesh import ShaftMesh
 
     mm = ShaftMesh(base.mesh.points * 1e3, base.mesh.cells, 2, 1.0, 0, 0.0)
     s = assemble(mm, Material("mm", m.youngs_modulus * 1e-6, m.poisson_ratio, m.density * 1e-12))

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from references import torsion_hz
-from shaftfem.adapt import run_adaptive
 from shaftfem.cli import main
-from shaftfem.pipeline import with_mesh
-from shaftfem.scene import load_scene
+from shaftfem.scene.model import load_scene
+from shaftfem.workflows.adapt import run_adaptive
+from shaftfem.workflows.pipeline import with_mesh
 
 TARGET = 1e-4
 

@@ -90,7 +90,7 @@ def test_bad_sweep_or_calibration_file(tmp_path, capsys, command, text, named):
 
 
 def test_a_second_sweep_into_the_same_folder_is_refused(tmp_path, capsys):
-    from shaftfem.sweep import _owned
+    from shaftfem.workflows.sweep import _owned
 
     f = tmp_path / "sweep.toml"
     f.write_text(SWEEP_OK + '[axes]\n"shaft.length_mm" = [500.0]\n')

@@ -11,9 +11,9 @@ import json
 import numpy as np
 import pytest
 
-from shaftfem.pipeline import run_modes, with_mesh, with_modes
-from shaftfem.scene import load_scene
+from shaftfem.scene.model import load_scene
 from shaftfem.store import CacheWarning
+from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
 
 
 def _scene():

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from shaftfem.calibrate import Calibration, calibrate
-from shaftfem.sweep import run_variant
+from shaftfem.workflows.calibrate import Calibration, calibrate
+from shaftfem.workflows.sweep import run_variant
 
 
 @pytest.mark.slow  # about 70 s: a 3x3 grid and a least-squares fit, each a modal run

@@ -20,7 +20,7 @@ def _one_line_exit_2(capsys, argv, named):
 @pytest.fixture()
 def no_solve(monkeypatch):
     """Any solve is an error: a refusal must come before the work."""
-    from shaftfem import adapt, pipeline
+    from shaftfem.workflows import adapt, pipeline
 
     def never(*_a, **_k):
         raise AssertionError("the solve ran")
@@ -32,7 +32,7 @@ def no_solve(monkeypatch):
 @pytest.mark.parametrize("name", ["../x", "/tmp/shaftfem-abs", ".", "..", "a/b", ""])
 def test_a_scene_name_is_a_folder_name_not_a_path(tmp_path, capsys, monkeypatch, no_solve,
                                                   name):
-    from shaftfem.scene import GEOMETRY_DIR
+    from shaftfem.scene.model import GEOMETRY_DIR
 
     monkeypatch.chdir(tmp_path)
     f = tmp_path / "named.toml"
@@ -94,7 +94,7 @@ def test_no_cache_reaches_every_solve(tmp_path, monkeypatch, command):
         scene = tmp_path / "installed.toml"
         scene.write_text(INSTALLED_TOML)
         out = ["--out", str(tmp_path / "out")]
-        monkeypatch.setattr("shaftfem.render.render_into", lambda *a, **k: [])
+        monkeypatch.setattr("shaftfem.outputs.render.render_into", lambda *a, **k: [])
     extra = ["--mesh-size", "16", "-q"]
     assert main([command, str(scene), "--no-cache", *out, *extra]) == 0
     assert bad.read_text() == "x"
@@ -108,7 +108,7 @@ def test_no_cache_reaches_every_solve(tmp_path, monkeypatch, command):
 def test_a_smaller_run_removes_the_files_of_the_larger_one_before(tmp_path):
     """A 12-mode export, then a 10-mode one into the same folder: mode_11 and mode_12
     are gone, and the manifest vouches for exactly what is there."""
-    from shaftfem.export import MANIFEST
+    from shaftfem.outputs.export import MANIFEST
     from shaftfem.store import manifest_complete
 
     out = tmp_path / "out"
@@ -123,7 +123,7 @@ def test_a_smaller_run_removes_the_files_of_the_larger_one_before(tmp_path):
 
 
 def test_a_run_interrupted_before_publishing_leaves_no_folder(tmp_path, capsys, monkeypatch):
-    from shaftfem import export
+    from shaftfem.outputs import export
 
     def interrupted(*_a, **_k):
         raise KeyboardInterrupt
@@ -135,7 +135,7 @@ def test_a_run_interrupted_before_publishing_leaves_no_folder(tmp_path, capsys, 
 
 
 def test_a_scene_with_a_byte_order_mark_is_read(tmp_path):
-    from shaftfem.scene import GEOMETRY_DIR, load_scene, read_scene_text
+    from shaftfem.scene.model import GEOMETRY_DIR, load_scene, read_scene_text
 
     f = tmp_path / "bom.toml"
     f.write_bytes(b"\xef\xbb\xbf" + (GEOMETRY_DIR / "plain_cylinder.toml").read_bytes())

@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from shaftfem.errors import ClusterError
-from shaftfem.scene import GEOMETRY_DIR
-from shaftfem.sweep import load_sweep, run_sweep, run_variant, variant_id
+from shaftfem.scene.model import GEOMETRY_DIR
+from shaftfem.workflows.sweep import load_sweep, run_sweep, run_variant, variant_id
 
 DASK = str(Path(sys.executable).with_name("dask"))
 
@@ -93,8 +93,8 @@ def test_a_calibration_grid_runs_on_the_cluster_without_the_scene_file(cluster, 
 
     import numpy as np
 
-    from shaftfem.calibrate import calibrate, load_calibration
-    from shaftfem.sweep import read_results
+    from shaftfem.workflows.calibrate import calibrate, load_calibration
+    from shaftfem.workflows.sweep import read_results
 
     folder = tmp_path / "user"
     _user_sweep(folder)

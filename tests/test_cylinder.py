@@ -56,7 +56,7 @@ def test_residuals_and_mass_orthonormality(cylinder):
 
 def test_p1_is_stiffer_than_p2(cylinder):
     """Linear tets lock: at the same mesh P1 frequencies sit well above P2's."""
-    from shaftfem.pipeline import run_modes, with_mesh
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     p1 = run_modes(with_mesh(cylinder.scene, order=1))
     L, R, E, nu, rho = _props(cylinder)

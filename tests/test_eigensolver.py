@@ -8,9 +8,9 @@ import pytest
 import scipy.linalg as la
 import scipy.sparse as sp
 
-from shaftfem import modal
 from shaftfem.errors import SolverError
-from shaftfem.factor import Pencil, ShiftedFactor, available_factorizers
+from shaftfem.fem import modal
+from shaftfem.fem.factor import Pencil, ShiftedFactor, available_factorizers
 
 
 def _chain(n=300, cut=None):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from references import axial_love_hz, torsion_hz
-from shaftfem.estimate import SAFETY, combine, estimate_errors, matched
+from shaftfem.fem.estimate import SAFETY, combine, estimate_errors, matched
 
 
 def test_two_meshes_recover_the_error_when_the_recovery_falls_short_alike():
@@ -77,8 +77,8 @@ def test_the_bound_on_ten_torsion_modes_of_the_cylinder():
     modes every bound holds, and on at least eight it is 1-3 times the true error
     (the lowest ones, 0.003 % off, sit below the mesh's volume allowance). The
     recovery estimate alone is 1-3 times the truth on the first three."""
-    from shaftfem.pipeline import run_modes, with_modes
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import run_modes, with_modes
 
     r = run_modes(with_modes(load_scene("plain_cylinder"), max_frequency=31000.0))
     ref, _ = _exact(r.scene, r.modes.kinds)
@@ -99,7 +99,7 @@ def test_the_bound_on_ten_torsion_modes_of_the_cylinder():
 def test_bound_holds_on_the_cylinder(cylinder):
     """Against closed forms (torsion; axial to Love's own accuracy) and, for bending,
     against the lower bound f - f_fine that a finer mesh (6 mm) proves."""
-    from shaftfem.pipeline import run_modes, with_mesh
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     est = estimate_errors(cylinder)
     f = cylinder.modes.frequencies
@@ -122,7 +122,7 @@ def test_bound_holds_on_the_grooved_shaft(paper):
     the bound must exceed; and the bound is not looser than 3 x twice that part."""
     from dataclasses import replace
 
-    from shaftfem.pipeline import run_modes, with_mesh
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     est = estimate_errors(paper)
     fine = run_modes(with_mesh(replace(paper.scene, max_dofs=2_000_000), 4.0))

@@ -10,7 +10,7 @@ import pytest
 from references import timoshenko_beam_hz, timoshenko_free_free_hz, timoshenko_ss_hz
 from shaftfem.cli import main
 from shaftfem.errors import SceneError
-from shaftfem.scene import scene_from_dict
+from shaftfem.scene.model import scene_from_dict
 
 STEEL = {"youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.277, "density_kg_m3": 7870.0}
 L_MM, D_MM, SEAT_MM = 320.0, 32.0, 2.0
@@ -53,7 +53,7 @@ def _bending(result, n_pairs):
 
 @pytest.fixture(scope="module")
 def on_rigid_seats():
-    from shaftfem.pipeline import run_modes
+    from shaftfem.workflows.pipeline import run_modes
 
     return run_modes(_scene(_ends()))
 
@@ -73,7 +73,7 @@ def test_rigid_seats_give_the_simply_supported_timoshenko_beam(on_rigid_seats):
 
 
 def test_stiff_springs_approach_the_rigid_seats(on_rigid_seats):
-    from shaftfem.pipeline import run_modes
+    from shaftfem.workflows.pipeline import run_modes
 
     rigid = _bending(on_rigid_seats, 2)
     stiff = _bending(run_modes(_scene(_springs(1e9))), 2)
@@ -82,7 +82,7 @@ def test_stiff_springs_approach_the_rigid_seats(on_rigid_seats):
 
 
 def test_zero_stiffness_is_the_free_shaft_on_the_same_mesh():
-    from shaftfem.pipeline import run_modes
+    from shaftfem.workflows.pipeline import run_modes
 
     scene = _scene(_springs(0.0), size_mm=12.0)  # the same mesh for both: any size will do
     held, free = run_modes(scene), run_modes(scene.free())
@@ -96,7 +96,7 @@ def test_a_disk_at_mid_span_matches_a_timoshenko_beam_with_the_disk():
     """A 2 kg gear (I_d = 3e-4 kg m^2) on a 2 mm hub at mid-span: the hub is narrow so
     that the shaft under it is the beam's (a wide hub stiffens a 3D shaft partly, which
     a beam cannot say)."""
-    from shaftfem.pipeline import run_modes
+    from shaftfem.workflows.pipeline import run_modes
 
     gear = dict(position_mm=L_MM / 2, width_mm=2.0, mass_kg=2.0, polar_inertia_kg_m2=6e-4,
                 diametral_inertia_kg_m2=3e-4)
@@ -113,7 +113,7 @@ def test_a_disk_at_mid_span_matches_a_timoshenko_beam_with_the_disk():
 
 def test_one_bearing_in_the_middle_leaves_four_rigid_motions():
     """Tilting about the bearing, turning and sliding along the axis are free."""
-    from shaftfem.pipeline import run_modes
+    from shaftfem.workflows.pipeline import run_modes
 
     r = run_modes(_scene([dict(position_mm=L_MM / 2, width_mm=SEAT_MM, kind="rigid-radial")]))
     assert r.modes.n_rigid == 4
@@ -157,7 +157,7 @@ BAD = [
 
 @pytest.mark.parametrize("support,attachment,named", BAD)
 def test_a_bad_seat_is_one_line_naming_the_key(tmp_path, capsys, support, attachment, named):
-    from shaftfem.scene import GEOMETRY_DIR
+    from shaftfem.scene.model import GEOMETRY_DIR
 
     text = (GEOMETRY_DIR / "paper2018.toml").read_text()
     if support is not None:
@@ -167,7 +167,7 @@ def test_a_bad_seat_is_one_line_naming_the_key(tmp_path, capsys, support, attach
     f = tmp_path / "bad.toml"
     f.write_text(text)
     with pytest.raises(SceneError, match=named.replace("[", r"\[").replace("]", r"\]")):
-        from shaftfem.scene import load_scene
+        from shaftfem.scene.model import load_scene
 
         load_scene(f)
     assert main(["modes", str(f), "--quiet"]) == 2
@@ -180,7 +180,7 @@ def on_soft_springs(request):
     """Soft bearings (100 N/mm), distributing or rigid rings, and a 1 kg gear: the
     shaft bounces and rocks on them well below its first bending mode, so ten modes
     hold nearly all of its mass."""
-    from shaftfem.pipeline import run_modes
+    from shaftfem.workflows.pipeline import run_modes
 
     springs = dict(kind="springs", width_mm=10.0, radial_stiffness_n_per_mm=100.0,
                    coupling=request.param)
@@ -191,7 +191,7 @@ def on_soft_springs(request):
 
 
 def test_effective_masses_add_up_to_shaft_and_gear(on_soft_springs):
-    from shaftfem.response import modal_basis, participation
+    from shaftfem.fem.response import modal_basis, participation
 
     r = on_soft_springs
     p = participation(modal_basis(r))
@@ -208,8 +208,8 @@ def test_effective_masses_add_up_to_shaft_and_gear(on_soft_springs):
 def test_participation_factor_is_x_transpose_M_r(on_soft_springs):
     """G_i = x_i^T M r computed on the full mesh: the shaft's DOFs plus the gear's
     rigid motion, which its band nodes carry."""
-    from shaftfem.response import influence, modal_basis, participation
-    from shaftfem.supports import part_mass
+    from shaftfem.fem.response import influence, modal_basis, participation
+    from shaftfem.fem.supports import part_mass
 
     r = on_soft_springs
     p = participation(modal_basis(r))
@@ -237,7 +237,7 @@ def _levi_civita():
 
 
 def test_base_motion_far_below_the_first_mode_moves_the_shaft_rigidly(on_soft_springs):
-    from shaftfem.response import base_response
+    from shaftfem.fem.response import base_response
 
     r = on_soft_springs
     f = 1e-2 * r.modes.frequencies[0]
@@ -246,7 +246,7 @@ def test_base_motion_far_below_the_first_mode_moves_the_shaft_rigidly(on_soft_sp
 
 
 def test_at_a_separated_mode_its_coordinate_is_amplified_one_over_two_zeta(on_rigid_seats):
-    from shaftfem.response import modal_basis, modal_coordinates
+    from shaftfem.fem.response import modal_basis, modal_coordinates
 
     r = on_rigid_seats
     basis = modal_basis(r)
@@ -264,7 +264,7 @@ def test_a_mechanism_the_seats_did_not_leave_free_is_refused(on_rigid_seats):
     from dataclasses import replace
 
     from shaftfem.errors import SolverError
-    from shaftfem.modal import modal_analysis
+    from shaftfem.fem.modal import modal_analysis
 
     r = on_rigid_seats
     blind = replace(r.installed, rigid=r.installed.rigid[:, :0], free=())
@@ -336,7 +336,7 @@ def test_the_commands_use_the_supports_and_free_leaves_them_off(tmp_path, capsys
 
 
 def test_design_prints_the_effective_masses_as_modes_does(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("shaftfem.render.render_into", lambda *a, **k: [])  # no pictures
+    monkeypatch.setattr("shaftfem.outputs.render.render_into", lambda *a, **k: [])  # no pictures
     f = tmp_path / "installed.toml"
     f.write_text(INSTALLED_TOML)
     assert main(["design", str(f), "-q", "--no-estimate", "--out", str(tmp_path / "d")]) == 0
@@ -350,7 +350,7 @@ def test_design_prints_the_effective_masses_as_modes_does(tmp_path, capsys, monk
 def test_api684_margin_follows_the_amplification_factor():
     """API 684: no margin below AF 2.5; 17 (1 - 1/(AF - 1.5)) % above; 2 % damping is
     AF 25, a margin of 16.3 %."""
-    from shaftfem.resonance import api684_margin
+    from shaftfem.checks.resonance import api684_margin
 
     assert api684_margin(2.4) == 0.0
     assert abs(api684_margin(1 / (2 * 0.02)) - 0.17 * (1 - 1 / 23.5)) < 1e-15
@@ -371,9 +371,9 @@ def test_the_api684_criterion_sets_the_required_margin(tmp_path, capsys):
 def test_a_sweep_or_calibration_names_a_bearing_by_its_index(tmp_path):
     """'support[1].position_mm' moves the second bearing; an index the base scene does
     not have is refused with the file and the count."""
-    from shaftfem.calibrate import load_calibration
-    from shaftfem.scene import load_scene
-    from shaftfem.sweep import load_sweep
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.calibrate import load_calibration
+    from shaftfem.workflows.sweep import load_sweep
 
     scene = load_scene("paper2018_installed", overrides={
         "support[1].position_mm": 500.0, "support[0].radial_stiffness_n_per_mm": 1e5})
@@ -395,7 +395,7 @@ def test_a_sweep_or_calibration_names_a_bearing_by_its_index(tmp_path):
 
 
 def test_a_clamped_seat_leaves_no_rigid_motion():
-    from shaftfem.pipeline import run_modes
+    from shaftfem.workflows.pipeline import run_modes
 
     r = run_modes(_scene([dict(position_mm=5.0, width_mm=10.0, kind="clamped")], size_mm=12.0))
     assert r.modes.n_rigid == 0 and r.installed.free == ()
@@ -410,8 +410,8 @@ def test_the_response_picture_reads_at_the_harmonics():
     """Two panels: every mode on a log frequency axis from below the lowest harmonic,
     and the excitation band (to 1.5 x the highest harmonic) with the transmissibility
     written at each harmonic, labels at staggered heights."""
-    from shaftfem.plots import response_figure
-    from shaftfem.response import FrequencyResponse
+    from shaftfem.fem.response import FrequencyResponse
+    from shaftfem.outputs.plots import response_figure
 
     f = np.union1d(np.linspace(0, 3000, 1200), np.geomspace(0.3, 3000, 1200))
     fn, zeta = 230.0, 0.02

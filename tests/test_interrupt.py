@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from shaftfem.scene import GEOMETRY_DIR
+from shaftfem.scene.model import GEOMETRY_DIR
 
 # (progress line that starts the step, seconds into it): CAD, meshing, the solve, the
 # bound's coarser mesh, export, rendering
@@ -82,8 +82,8 @@ def _check(scene, tmp_path, points):
     p = _design(scene, out, cache)
     err = p.stderr.read()
     assert p.wait() == 0, err
-    from shaftfem.design import MANIFEST
     from shaftfem.store import manifest_complete
+    from shaftfem.workflows.design import MANIFEST
 
     assert manifest_complete(out, MANIFEST)
     fresh = subprocess.run([sys.executable, "-m", "shaftfem", "modes", str(scene),

@@ -19,7 +19,7 @@ def _pencil(n=60):
 
 
 def test_a_failed_factorisation_is_a_solver_error(monkeypatch):
-    from shaftfem import factor, modal
+    from shaftfem.fem import factor, modal
 
     def broken(A, backend="auto"):
         raise RuntimeError("Factor is exactly singular")
@@ -30,7 +30,7 @@ def test_a_failed_factorisation_is_a_solver_error(monkeypatch):
 
 
 def test_an_arpack_failure_is_a_solver_error(monkeypatch):
-    from shaftfem import modal
+    from shaftfem.fem import modal
 
     def broken(*a, **k):
         raise sp.linalg.ArpackError(-9999)
@@ -43,8 +43,8 @@ def test_an_arpack_failure_is_a_solver_error(monkeypatch):
 def test_a_meshio_exit_is_a_mesh_error(monkeypatch):
     import meshio
 
-    from shaftfem.occ import mesh_solid
-    from shaftfem.scene import load_scene
+    from shaftfem.cad.occ import mesh_solid
+    from shaftfem.scene.model import load_scene
 
     def exits(*a, **k):
         raise SystemExit("Couldn't read file as either of ansys, gmsh")
@@ -56,7 +56,7 @@ def test_a_meshio_exit_is_a_mesh_error(monkeypatch):
 
 
 def test_an_opencascade_failure_is_a_geometry_error_and_exit_3(monkeypatch, tmp_path, capsys):
-    from shaftfem import occ
+    from shaftfem.cad import occ
 
     def broken(*a, **k):
         raise Exception("BRepAlgoAPI_Cut failed")  # as gmsh raises OCC's errors
@@ -70,7 +70,7 @@ def test_an_opencascade_failure_is_a_geometry_error_and_exit_3(monkeypatch, tmp_
 
 
 def _paper_parts():
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
 
     s = load_scene("paper2018")
     return s.shaft, s.grooves

@@ -5,10 +5,10 @@ import re
 import numpy as np
 import pytest
 
-from shaftfem import modal
-from shaftfem.assembly import assemble
+from shaftfem.cad.mesh import check_jacobians, jacobian_ratio, straighten_bad_elements
 from shaftfem.errors import MeshError, SolverError
-from shaftfem.mesh import check_jacobians, jacobian_ratio, straighten_bad_elements
+from shaftfem.fem import modal
+from shaftfem.fem.assembly import assemble
 
 
 def test_curved_mesh_has_positive_jacobians(cylinder):
@@ -53,7 +53,7 @@ def test_mesh_volume_matches_the_cylinder(cylinder):
 
 
 def test_disconnected_mesh_is_an_error(cylinder):
-    from shaftfem.mesh import ShaftMesh
+    from shaftfem.cad.mesh import ShaftMesh
 
     m = cylinder.mesh
     shifted = m.points + np.array([1.0, 0.0, 0.0])
@@ -84,9 +84,9 @@ def test_a_shift_that_misses_the_lowest_modes_is_an_error(cylinder, monkeypatch)
 def test_mesh_cache_returns_the_same_mesh_and_misses_on_a_change(tmp_path, monkeypatch):
     from dataclasses import replace
 
-    from shaftfem.geometry import build_shape
-    from shaftfem.mesh import mesh_shape
-    from shaftfem.scene import load_scene
+    from shaftfem.cad.mesh import mesh_shape
+    from shaftfem.cad.solid import build_shape
+    from shaftfem.scene.model import load_scene
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")
@@ -111,10 +111,10 @@ def test_threaded_assembly_equals_one_piece(order, tmp_path, monkeypatch):
     cached mapping yet) they must equal scikit-fem's one-piece assembly."""
     from dataclasses import replace
 
-    from shaftfem.assembly import MASS_INTORDER, scalar_mass, stiffness
-    from shaftfem.geometry import build_shape
-    from shaftfem.mesh import mesh_shape
-    from shaftfem.scene import load_scene
+    from shaftfem.cad.mesh import mesh_shape
+    from shaftfem.cad.solid import build_shape
+    from shaftfem.fem.assembly import MASS_INTORDER, scalar_mass, stiffness
+    from shaftfem.scene.model import load_scene
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")
@@ -130,8 +130,8 @@ def test_threaded_assembly_equals_one_piece(order, tmp_path, monkeypatch):
 
 
 def test_stiffness_that_resists_a_translation_is_refused(cylinder):
-    from shaftfem.assembly import _check_translations
     from shaftfem.errors import AssemblyError
+    from shaftfem.fem.assembly import _check_translations
 
     K = cylinder.system.K.copy()
     _check_translations(K, cylinder.system.nodes)  # the real one passes

@@ -10,8 +10,8 @@ from scipy.spatial import cKDTree
 
 from references import timoshenko_free_free_hz
 from shaftfem.cli import main
-from shaftfem.export import export_modes
-from shaftfem.scene import GEOMETRY_DIR
+from shaftfem.outputs.export import export_modes
+from shaftfem.scene.model import GEOMETRY_DIR
 
 CYL = (GEOMETRY_DIR / "plain_cylinder.toml").read_text()
 
@@ -59,7 +59,7 @@ def exported(cylinder, tmp_path_factory):
 def test_vtu_shapes_read_back_exactly_and_are_mass_orthonormal(cylinder, exported):
     import pyvista as pv
 
-    from shaftfem.export import KIND_FIELD, KINDS
+    from shaftfem.outputs.export import KIND_FIELD, KINDS
 
     nodes, M, X = cylinder.system.nodes, cylinder.system.M, cylinder.modes.shapes
     Y, Z = np.zeros_like(X), np.zeros_like(X)
@@ -105,7 +105,7 @@ def test_tables_solid_and_mesh_are_written(cylinder, exported):
 
 
 def test_failure_mid_export_leaves_no_file(cylinder, tmp_path, monkeypatch):
-    from shaftfem import vtkio
+    from shaftfem.outputs import vtk as vtkio
 
     calls = {"n": 0}
     real = vtkio.write_vtu
@@ -126,8 +126,7 @@ def test_failure_mid_export_leaves_no_file(cylinder, tmp_path, monkeypatch):
 def test_pictures_have_a_panel_per_mode_a_colour_bar_and_moving_gifs(cylinder, tmp_path):
     from PIL import Image
 
-    from shaftfem.pipeline import run_modes, with_modes
-    from shaftfem.render import (
+    from shaftfem.outputs.render import (
         BAR_HEIGHT,
         GEOMETRY_SIZE,
         GIF_FRAMES,
@@ -137,6 +136,7 @@ def test_pictures_have_a_panel_per_mode_a_colour_bar_and_moving_gifs(cylinder, t
         render_mode_gifs,
         render_modes,
     )
+    from shaftfem.workflows.pipeline import run_modes, with_modes
 
     def drawn(img):  # fraction of pixels that are not the white background
         return 1 - np.all(img == 255, axis=2).mean()
@@ -181,9 +181,9 @@ import os, signal, sys
 from pathlib import Path
 import shaftfem.runtime
 shaftfem.runtime.configure_threads()
-from shaftfem.export import export_modes
-from shaftfem.pipeline import run_modes, with_mesh, with_modes
-from shaftfem.scene import load_scene
+from shaftfem.outputs.export import export_modes
+from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
+from shaftfem.scene.model import load_scene
 
 out, kill_at = Path(sys.argv[1]), int(sys.argv[2])
 moves, real = [0], os.replace
@@ -208,7 +208,7 @@ def test_an_export_killed_anywhere_is_complete_or_vouched_for_by_no_manifest(tmp
     import subprocess
     import sys
 
-    from shaftfem.export import MANIFEST
+    from shaftfem.outputs.export import MANIFEST
     from shaftfem.store import STAGING, manifest_complete
 
     out = tmp_path / "out"

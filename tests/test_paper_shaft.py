@@ -4,8 +4,8 @@ import json
 
 import numpy as np
 
+from shaftfem.cad.profile import groove_volume
 from shaftfem.cli import main
-from shaftfem.profile import groove_volume
 
 
 def test_exactly_six_rigid_body_modes(paper):
@@ -29,7 +29,7 @@ def test_groove_volume_within_one_percent_of_analytic(paper):
 
 def test_groove_volume_integral_against_hand_formula():
     """Rectangular grooves: one groove removes L_g * (phi/2) (R^2 - (R-d)^2)."""
-    from shaftfem.scene import Grooves
+    from shaftfem.scene.model import Grooves
 
     g = Grooves(hands=(1,), pitch=0.08, width=0.008, depth=0.003, root_radius=0.0,
                 length=0.36, start=0.0)

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shaftfem.export import export_modes
+from shaftfem.outputs.export import export_modes
 
 PVPYTHON = shutil.which("pvpython")
 needs_paraview = pytest.mark.skipif(

@@ -6,7 +6,7 @@ import pytest
 
 from shaftfem.cli import main
 from shaftfem.errors import SceneError
-from shaftfem.scene import GEOMETRY_DIR, load_scene
+from shaftfem.scene.model import GEOMETRY_DIR, load_scene
 
 PAPER = (GEOMETRY_DIR / "paper2018.toml").read_text()
 
@@ -127,7 +127,7 @@ def test_a_binary_scene_file_is_bad_input(tmp_path, capsys):
 @pytest.mark.parametrize("option", ["--out-file", "--json-dir"])
 def test_unusable_output_paths_are_refused_before_the_solve(tmp_path, capsys, monkeypatch,
                                                             option):
-    from shaftfem import pipeline
+    from shaftfem.workflows import pipeline
 
     def never(*_a, **_k):
         raise AssertionError("the solve ran")

@@ -14,8 +14,8 @@ import tomllib
 import pytest
 
 from shaftfem.cli import main
-from shaftfem.scene import GEOMETRY_DIR
-from shaftfem.schema import SCHEMA
+from shaftfem.scene.model import GEOMETRY_DIR
+from shaftfem.scene.schema import SCHEMA
 
 PAPER = tomllib.loads((GEOMETRY_DIR / "paper2018.toml").read_text())
 

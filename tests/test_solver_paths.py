@@ -3,16 +3,16 @@
 import numpy as np
 import pytest
 
-from shaftfem.factor import available_factorizers
-from shaftfem.modal import modal_analysis
+from shaftfem.fem.factor import available_factorizers
+from shaftfem.fem.modal import modal_analysis
 
 
 @pytest.fixture(scope="module")
 def short_grooved(_fresh_shape_cache):
     """The paper's shaft cut to 200 mm with two turns of its grooves (about 30k DOFs):
     the same grooves and mesh sizes, a SuperLU solve a fifth as long."""
-    from shaftfem.pipeline import run_modes
-    from shaftfem.scene import load_scene
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.pipeline import run_modes
 
     return run_modes(load_scene("paper2018", overrides={
         "shaft.length_mm": 200.0, "grooves.grooved_length_mm": 120.0}), factorizer="pardiso")

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from references import timoshenko_free_free_hz, torsion_hz
-from shaftfem.assembly import assemble
-from shaftfem.modal import modal_analysis
-from shaftfem.pipeline import run_modes
-from shaftfem.scene import Material, scene_from_dict
+from shaftfem.fem.assembly import assemble
+from shaftfem.fem.modal import modal_analysis
+from shaftfem.scene.model import Material, scene_from_dict
+from shaftfem.workflows.pipeline import run_modes
 
 
 def _scene(length_mm, diameter_mm, size_mm, nu=0.277, order=2, grooves=None):
@@ -57,7 +57,7 @@ def test_frequencies_scale_exactly_with_sqrt_E(cylinder, factor):
 def test_the_one_factorisation_at_a_hint_scales_too(cylinder, factor):
     """The solve from a shift hint (PARDISO, one factorisation, Lanczos below the
     hint) under the same extreme stiffnesses: healthy modes, the same sqrt(E) law."""
-    from shaftfem.factor import available_factorizers
+    from shaftfem.fem.factor import available_factorizers
 
     if "pardiso" not in available_factorizers():
         pytest.skip("PARDISO is not installed")
@@ -81,7 +81,7 @@ def test_density_scaling(cylinder):
 
 def test_same_shaft_in_mm_gives_the_same_hz(cylinder):
     """Coordinates in mm, E in N/mm^2 (MPa), density in t/mm^3: a consistent unit set."""
-    from shaftfem.mesh import ShaftMesh
+    from shaftfem.cad.mesh import ShaftMesh
 
     m, mesh = cylinder.scene.material, cylinder.mesh
     mm = ShaftMesh(points=mesh.points * 1e3, cells=mesh.cells, order=2,

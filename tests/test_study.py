@@ -3,8 +3,8 @@
 import numpy as np
 
 from references import torsion_hz
-from shaftfem.scene import load_scene
-from shaftfem.study import run_study, study_reference, study_table
+from shaftfem.scene.model import load_scene
+from shaftfem.workflows.study import run_study, study_reference, study_table
 
 
 def test_study_recovers_torsion_and_order_four():

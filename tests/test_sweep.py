@@ -8,8 +8,8 @@ import time
 
 import pytest
 
-from shaftfem.plots import sweep_plots
-from shaftfem.sweep import load_sweep, read_results, run_sweep, run_variant, variant_id
+from shaftfem.outputs.plots import sweep_plots
+from shaftfem.workflows.sweep import load_sweep, read_results, run_sweep, run_variant, variant_id
 
 SWEEP = """
 base = "plain_cylinder"

@@ -16,7 +16,7 @@ import pytest
 
 from references import torsion_hz
 from shaftfem.cli import main
-from shaftfem.scene import GEOMETRY_DIR
+from shaftfem.scene.model import GEOMETRY_DIR
 
 REPO = Path(__file__).resolve().parents[1]
 CYL = (GEOMETRY_DIR / "plain_cylinder.toml").read_text()
@@ -64,8 +64,8 @@ def test_twenty_modes_and_a_frequency_limit(cylinder, tmp_path):
 def test_gmsh_leaves_a_callers_session_as_it_was(tmp_path):
     import gmsh
 
-    from shaftfem.occ import write_solid
-    from shaftfem.scene import load_scene
+    from shaftfem.cad.occ import write_solid
+    from shaftfem.scene.model import load_scene
 
     gmsh.initialize(readConfigFiles=False)
     try:
@@ -120,7 +120,8 @@ def test_exit_status_says_what_failed(monkeypatch, capsys, raised, code):
     no traceback, whatever raised it (ours, the disk, or an untranslated library error)."""
     import builtins
 
-    from shaftfem import errors, pipeline
+    from shaftfem import errors
+    from shaftfem.workflows import pipeline
 
     exc = getattr(errors, raised, None) or getattr(builtins, raised)
 

@@ -6,5 +6,5 @@ by the steps that need them (geometry/mesh, assembly, render).
 
 __version__ = "0.1.0"
 
-from .errors import GeometryError, MeshError, SceneError, ShaftfemError, SolverError  # noqa: F401
-from .scene import Scene, load_scene  # noqa: F401
+from shaftfem.errors import GeometryError, MeshError, SceneError, ShaftfemError, SolverError  # noqa: F401
+from shaftfem.scene.model import Scene, load_scene  # noqa: F401

@@ -1,3 +1,3 @@
-from .cli import entry
+from shaftfem.cli import entry
 
 entry()

@@ -9,7 +9,7 @@ NumPy is imported. The CLI, the sweep workers, the tests and the benchmarks
 call it first; a library user does the same:
 
     import shaftfem.runtime
-    shaftfem.runtime.configure_threads()   # before numpy / scipy / shaftfem.pipeline
+    shaftfem.runtime.configure_threads()   # before numpy / scipy / shaftfem.workflows.pipeline
 
 A user's own OPENBLAS_NUM_THREADS wins.
 """

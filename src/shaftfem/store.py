@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import SceneError
+from shaftfem.errors import SceneError
 
 
 class CacheWarning(UserWarning):

@@ -128,8 +128,8 @@ def _missing(outputs: list[Path]) -> list[Path]:
 def _clean(outputs: list[Path], made: list[Path], pid: int) -> None:
     """Remove what a killed run had staged but not published, and the folders it made
     that hold nothing else."""
-    from .store import STAGING
-    from .sweep import LOCK, WORKER_TMP
+    from shaftfem.store import STAGING
+    from shaftfem.workflows.sweep import LOCK, WORKER_TMP
 
     for folder in outputs:
         folder = Path(folder)

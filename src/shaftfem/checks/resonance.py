@@ -1,0 +1,138 @@
+"""Resonance check: how far each natural frequency sits from each excitation harmonic.
+
+For mode frequency f and the k-th harmonic of a source at f_exc, the separation
+margin is |f - k f_exc| / (k f_exc). The check holds when every margin is at
+least the required margin (default 15 %).
+
+The default follows common machinery practice: a flat separation margin of about
+15 % between a natural frequency and any running-speed harmonic. API 684 and
+API 617 tie the required margin to each mode's amplification factor (more margin
+for lightly damped modes, none for critically damped ones): `[resonance]
+criterion = "api684"` takes the margin from the amplification factor of the
+scene's modal damping, AF = 1 / (2 zeta) (2 %: AF 25, margin 16.3 %).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.scene.model import Excitation
+from shaftfem.scene.schema import DEFAULT_MARGIN_PERCENT
+
+if TYPE_CHECKING:
+    from shaftfem.workflows.pipeline import ModalResult
+
+DEFAULT_MARGIN = DEFAULT_MARGIN_PERCENT / 100
+
+
+@dataclass(frozen=True)
+class Approach:
+    """One mode against one source harmonic."""
+
+    mode: int            # 1-based elastic mode number
+    frequency: float     # Hz
+    kind: str
+    source: str
+    order: int
+    excitation: float    # k f_exc, Hz
+    margin: float        # |f - k f_exc| / (k f_exc)
+    required: float
+    # installed shaft: transmissibility at the response point for lateral base motion at
+    # k f_exc (shaftfem.fem.response); None for a free shaft
+    amplification: float | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.margin >= self.required
+
+
+@dataclass
+class ResonanceVerdict:
+    approaches: list[Approach]   # every pair, closest first
+    required: float
+
+    @property
+    def ok(self) -> bool:
+        return all(a.ok for a in self.approaches)
+
+    @property
+    def violations(self) -> list[Approach]:
+        return [a for a in self.approaches if not a.ok]
+
+    def closest_per_harmonic(self) -> list[Approach]:
+        """For each source harmonic, the mode closest to it."""
+        best: dict[tuple[str, int], Approach] = {}
+        for a in self.approaches:
+            key = (a.source, a.order)
+            if key not in best or a.margin < best[key].margin:
+                best[key] = a
+        return sorted(best.values(), key=lambda a: a.margin)
+
+    def as_dict(self) -> dict:
+        return {
+            "ok": self.ok,
+            "required_margin": self.required,
+            "approaches": [
+                {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,
+                 "order": a.order, "excitation_hz": a.excitation, "margin": a.margin,
+                 "ok": a.ok, "amplification": a.amplification}
+                for a in self.approaches
+            ],
+        }
+
+
+def check_resonance(frequencies: np.ndarray, kinds: list[str],
+                    excitations: tuple[Excitation, ...] | list[Excitation],
+                    required: float = DEFAULT_MARGIN,
+                    amplification: Callable[[float], float] | None = None) -> ResonanceVerdict:
+    """Separation margin of every mode from every harmonic of every source;
+    `amplification(f)`: the response's amplification at frequency f (Hz), if known."""
+    out = []
+    for exc in excitations:
+        for k in exc.orders:
+            fk = k * exc.frequency
+            amp = None if amplification is None else amplification(fk)
+            for i, (f, kind) in enumerate(zip(frequencies, kinds)):
+                out.append(Approach(mode=i + 1, frequency=float(f), kind=kind, source=exc.name,
+                                    order=k, excitation=fk, margin=float(abs(f - fk) / fk),
+                                    required=required, amplification=amp))
+    out.sort(key=lambda a: a.margin)
+    return ResonanceVerdict(approaches=out, required=required)
+
+
+def api684_margin(amplification_factor: float) -> float:
+    """API 684's separation margin (fraction) for a mode of amplification factor AF:
+    none below AF = 2.5, else 0.17 (1 - 1 / (AF - 1.5))."""
+    if amplification_factor < 2.5:
+        return 0.0
+    return 0.17 * (1 - 1 / (amplification_factor - 1.5))
+
+
+def check_result(result: ModalResult, required: float | None = None) -> ResonanceVerdict | None:
+    """The modes of a run against its scene's excitations (None if it has none); the
+    required margin (fraction) defaults to the scene's: its flat margin, or with
+    criterion "api684" the margin of the modal damping's amplification factor
+    AF = 1 / (2 zeta) (the half-power bandwidth's f / (f2 - f1) of every mode)."""
+    scene = result.scene
+    if not scene.excitations:
+        return None
+    if required is None:
+        required = (api684_margin(1 / (2 * scene.damping_ratio)) if scene.criterion == "api684"
+                    else scene.required_margin)
+    return check_resonance(result.modes.frequencies, result.modes.kinds, scene.excitations,
+                           required, _lateral_amplification(result))
+
+
+def _lateral_amplification(result: ModalResult) -> Callable[[float], float] | None:
+    """f (Hz) -> transmissibility for lateral base motion, for a shaft in supports."""
+    if result.installed is None or not result.scene.held:
+        return None
+    from shaftfem.fem.response import base_response, modal_basis
+
+    basis = modal_basis(result)
+    return lambda f: float(base_response(result, np.array([f]), "x",
+                                         basis=basis).transmissibility[0])

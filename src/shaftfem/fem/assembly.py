@@ -1,0 +1,302 @@
+"""Stiffness K and consistent mass M of 3D isotropic linear elasticity (scikit-fem).
+
+    a(u, v) = int lambda div(u) div(v) + 2 mu eps(u) : eps(v) dx      (K, N/m)
+    m(u, v) = int rho u . v dx                                         (M, kg)
+
+Displacement DOFs are interleaved: global DOF 3 * n + c is component c (x, y, z)
+of scalar node n of scikit-fem's P1/P2 basis (scikit-fem's vector ordering).
+
+Both come from scikit-fem's scalar basis (values, gradients and quadrature
+weights on the curved elements): with D[a, i, b, j] = int d_i phi_a d_j phi_b dx,
+the 3x3 block of K coupling nodes a and b is
+
+    K_ab[i, j] = lambda D[a, i, b, j] + mu D[a, j, b, i] + mu delta_ij sum_k D[a, k, b, k],
+
+one batched matrix product per chunk of elements, summed into the blocks of a
+3x3-block sparse matrix. It is the same K as scikit-fem's vector-valued
+`BilinearForm` (`stiffness` below, to round-off: a test checks it), several times
+faster because it touches each scalar gradient once instead of 30 vector ones
+(benchmarks/assembly_routes.py). M is the scalar mass times the 3x3 identity.
+"""
+
+from __future__ import annotations
+
+import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from shaftfem.errors import AssemblyError
+from shaftfem.runtime import assembly_threads
+from shaftfem.scene.model import Material
+
+# Quadrature orders: 2 integrates P2 stiffness exactly on straight tets (4 points,
+# as CalculiX's C3D10 does); 4 integrates the P2 mass exactly.
+STIFFNESS_INTORDER = {1: 1, 2: 2}
+MASS_INTORDER = {1: 2, 2: 4}
+# Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
+# element) stay in cache-sized arrays, and the chunks spread over the threads.
+CHUNK = 4096
+
+
+@dataclass(frozen=True)
+class System:
+    """K (N/m) and M (kg) in CSR form, with the nodes their DOFs belong to.
+
+    Displacement DOF 3 n + c is component c of scalar node n; `point_dofs[i]` is
+    the scalar node of the mesh's point i, so u at the points is
+    X.reshape(-1, 3)[point_dofs].
+    """
+
+    K: sp.csr_matrix
+    M: sp.csr_matrix
+    mass_scalar: sp.csr_matrix  # scalar consistent mass, kg (for energy splits)
+    nodes: np.ndarray           # (n_nodes, 3) positions of the scalar DOFs, m
+    point_dofs: np.ndarray      # (n_points,) scalar node of each mesh point
+    order: int
+    seconds: float
+
+    @property
+    def n_dofs(self) -> int:
+        return self.K.shape[0]
+
+    def at_points(self, X: np.ndarray) -> np.ndarray:
+        """Displacement vectors (n_dofs, m) at the mesh's points: (m, n_points, 3)."""
+        n = self.nodes.shape[0]
+        return np.stack([X[:, k].reshape(n, 3)[self.point_dofs] for k in range(X.shape[1])])
+
+
+def _element(order: int):
+    from skfem import ElementTetP1, ElementTetP2
+
+    return ElementTetP2() if order == 2 else ElementTetP1()
+
+
+# --------------------------------------------------------------------------
+# Element kernels: pure functions of the basis at the quadrature points
+
+
+def elasticity_blocks(grad: np.ndarray, dx: np.ndarray, lam: float, mu: float) -> np.ndarray:
+    """Element stiffness blocks (E, n, n, 3, 3), N/m, of lam div u div v + 2 mu eps(u):eps(v).
+
+    grad (E, Q, n, 3): gradients of the n scalar basis functions at Q points;
+    dx (E, Q): quadrature weights times |J|."""
+    E, Q, n, _ = grad.shape
+    G = grad.reshape(E, Q, 3 * n)
+    D = np.matmul((G * dx[:, :, None]).transpose(0, 2, 1), G).reshape(E, n, 3, n, 3)
+    K = lam * D.transpose(0, 1, 3, 2, 4) + mu * D.transpose(0, 1, 3, 4, 2)
+    div_free = mu * np.einsum("eakbk->eab", D)
+    for c in range(3):
+        K[:, :, :, c, c] += div_free
+    return K
+
+
+def mass_blocks(phi: np.ndarray, dx: np.ndarray) -> np.ndarray:
+    """Scalar element mass matrices (E, n, n), m^3: int phi_a phi_b dx.
+
+    phi (Q, n): the reference functions at the Q points (isoparametric elements:
+    the same on every element); dx (E, Q): quadrature weights times |J|."""
+    n = phi.shape[1]
+    return (dx @ (phi[:, :, None] * phi[:, None, :]).reshape(len(phi), n * n)).reshape(-1, n, n)
+
+
+# --------------------------------------------------------------------------
+# Sparse structure: one 3x3 block per pair of nodes that share an element
+
+
+@dataclass(frozen=True)
+class Pattern:
+    """Where each element's (a, b) node pair lands among the matrix's stored blocks."""
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    slot: np.ndarray  # (E * n * n,) index of the block of element e's pair (a, b)
+    n_nodes: int
+
+    @classmethod
+    def of(cls, element_dofs: np.ndarray, n_nodes: int) -> Pattern:
+        """element_dofs (n, E): the scalar node of each element's local function."""
+        n = element_dofs.shape[0]
+        e = element_dofs.T.astype(np.int64)
+        key = (np.repeat(e, n, axis=1) * n_nodes + np.tile(e, (1, n))).ravel()
+        pairs, slot = np.unique(key, return_inverse=True)
+        indptr = np.searchsorted(pairs // n_nodes, np.arange(n_nodes + 1))
+        return cls(indptr=indptr.astype(np.int32), indices=(pairs % n_nodes).astype(np.int32),
+                   slot=slot.ravel(), n_nodes=n_nodes)
+
+    @property
+    def n_blocks(self) -> int:
+        return len(self.indices)
+
+    def sum_blocks(self, values: np.ndarray, elements: slice) -> np.ndarray:
+        """Sum (E, n, n, k) element values of `elements` into (n_blocks, k) stored ones."""
+        E, n = values.shape[0], values.shape[1]
+        v = values.reshape(E * n * n, -1)
+        s = self.slot[elements.start * n * n: elements.stop * n * n]
+        # a 0/1 matrix with one entry per column: its product scatters and adds in C
+        scatter = sp.csc_matrix((np.ones(len(s)), s, np.arange(len(s) + 1)),
+                                shape=(self.n_blocks, len(s)))
+        return scatter @ v
+
+    def matrix(self, blocks: np.ndarray, size: int) -> sp.csr_matrix:
+        """The CSR matrix of (n_blocks, size * size) summed blocks."""
+        shape = (size * self.n_nodes,) * 2
+        if size == 1:
+            return sp.csr_matrix((blocks[:, 0], self.indices, self.indptr), shape=shape)
+        return sp.bsr_matrix((blocks.reshape(-1, size, size), self.indices, self.indptr),
+                             shape=shape).tocsr()
+
+
+def _reference_values(basis, intorder: int) -> tuple[np.ndarray, np.ndarray]:
+    """The basis' reference functions (Q, n) at the points of a rule of `intorder` on
+    the reference tetrahedron, and the rule's weights times |J| on each element (E, Q)."""
+    from skfem.quadrature import get_quadrature
+
+    X, W = get_quadrature(basis.elem.refdom, intorder)
+    phi = np.stack([basis.elem.lbasis(X, a)[0] for a in range(basis.Nbfun)], axis=-1)
+    return phi, np.abs(basis.mapping.detDF(X)) * W
+
+
+def _gradients(basis) -> np.ndarray:
+    """Gradients (E, Q, n, 3) of a scalar scikit-fem basis' n functions, 1/m."""
+    return np.stack([basis.basis[a][0].grad for a in range(basis.Nbfun)],
+                    axis=-1).transpose(1, 2, 3, 0)
+
+
+def _sum_over_chunks(kernel, n_elements: int, pattern: Pattern, threads: int) -> np.ndarray:
+    """Sum of kernel(chunk) over chunks of elements, in `threads` threads (NumPy's
+    products release the GIL). The kernels only read arrays made before: scikit-fem
+    fills a mesh's mapping lazily and not thread-safely (a cold P1 stiffness once came
+    out 18 % wrong), so no scikit-fem call runs in the threads."""
+    chunks = [slice(i, min(i + CHUNK, n_elements)) for i in range(0, n_elements, CHUNK)]
+
+    def work(part):
+        total = None
+        for c in part:
+            s = pattern.sum_blocks(kernel(c), c)
+            total = s if total is None else total + s
+        return total
+
+    parts = [chunks[i::threads] for i in range(threads) if chunks[i::threads]]
+    if len(parts) == 1:
+        return work(parts[0])
+    with ThreadPoolExecutor(len(parts)) as pool:
+        return sum(pool.map(work, parts))
+
+
+@dataclass(frozen=True)
+class Discretisation:
+    """A mesh's scalar basis and the sparsity of its K and M, before any value: what
+    the solver's analysis (ordering) needs, so that it can start while K and M are
+    assembled."""
+
+    basis: Any         # scikit-fem's scalar basis at the stiffness quadrature
+    pattern: Pattern
+    order: int
+
+    @property
+    def n_dofs(self) -> int:
+        return 3 * self.pattern.n_nodes
+
+    def upper_structure(self) -> sp.csr_matrix:
+        """The upper triangle of K's sparsity (values: ones), as `assemble` stores K."""
+        from shaftfem.fem.factor import upper_triangle
+
+        return upper_triangle(self.pattern.matrix(np.ones((self.pattern.n_blocks, 9)), 3))
+
+
+def discretise(mesh) -> Discretisation:
+    """The scalar P1/P2 basis on a mesh.ShaftMesh and the block sparsity of K and M."""
+    from skfem import Basis
+
+    basis = Basis(mesh.to_skfem(), _element(mesh.order), intorder=STIFFNESS_INTORDER[mesh.order])
+    return Discretisation(basis=basis,
+                          pattern=Pattern.of(basis.element_dofs, basis.N), order=mesh.order)
+
+
+def assemble(mesh, material: Material, mass_intorder: int | None = None,
+             threads: int | None = None, discretisation: Discretisation | None = None
+             ) -> System:
+    """K and M of a mesh.ShaftMesh with P1/P2 elements (its order), on `threads`
+    threads (default: one per core); `discretisation`: the mesh's, if made already."""
+    t0 = time.perf_counter()
+    d = discretisation or discretise(mesh)
+    order, k_basis, pattern = d.order, d.basis, d.pattern
+    lam, mu = material.lame
+    n_threads = assembly_threads(threads)
+    grad = _gradients(k_basis)
+    phi, m_dx = _reference_values(k_basis, mass_intorder or MASS_INTORDER[order])
+    n_el = grad.shape[0]
+    K = pattern.matrix(_sum_over_chunks(
+        lambda c: elasticity_blocks(grad[c], k_basis.dx[c], lam, mu).reshape(
+            c.stop - c.start, grad.shape[2], grad.shape[2], 9),
+        n_el, pattern, n_threads), 3)
+    Ms = material.density * pattern.matrix(_sum_over_chunks(
+        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, n_threads), 1)
+    M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
+    nodes = np.ascontiguousarray(k_basis.doflocs.T)
+    _check_translations(K, nodes)
+    return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
+                  point_dofs=point_dofs(mesh.cells, k_basis.element_dofs, nodes, mesh.points),
+                  order=order, seconds=time.perf_counter() - t0)
+
+
+def point_dofs(cells: np.ndarray, element_dofs: np.ndarray, nodes: np.ndarray,
+               points: np.ndarray) -> np.ndarray:
+    """The scalar DOF of every mesh point: column j of `cells` is local DOF j of the
+    scalar basis (mesh.skfem_mesh). Checked against the positions."""
+    out = np.full(points.shape[0], -1, dtype=np.int64)
+    out[cells.T] = element_dofs
+    if np.any(out < 0) or np.max(np.abs(nodes[out] - points)) > 1e-12 * np.abs(points).max():
+        raise AssemblyError("the mesh's points and the basis' DOF nodes do not correspond")
+    return out
+
+
+def _check_translations(K: sp.csr_matrix, nodes: np.ndarray) -> None:
+    """A rigid translation must cost no strain energy: K t = 0 to round-off."""
+    scale = np.abs(K.data).max() * np.sqrt(nodes.shape[0])
+    for c in range(3):
+        t = np.zeros(K.shape[0])
+        t[c::3] = 1.0
+        ratio = np.linalg.norm(K @ t) / scale
+        if ratio > 1e-9:
+            raise AssemblyError(
+                f"the assembled stiffness resists a rigid translation along {'xyz'[c]} "
+                f"(|K t| / |K| = {ratio:.2g}): K is wrong")
+
+
+# --------------------------------------------------------------------------
+# scikit-fem's own forms: the reference the block route is checked against
+
+
+def stiffness(skmesh, order: int, lam: float, mu: float,
+              elements: np.ndarray | None = None) -> sp.csr_matrix:
+    """Elastic stiffness (N/m) with scikit-fem's vector-valued P1/P2 basis, of all
+    elements or only of `elements` (indices)."""
+    from skfem import Basis, BilinearForm, ElementVector
+    from skfem.helpers import ddot, sym_grad, trace
+
+    @BilinearForm
+    def elasticity(u, v, _):
+        eps_u, eps_v = sym_grad(u), sym_grad(v)
+        return lam * trace(eps_u) * trace(eps_v) + 2 * mu * ddot(eps_u, eps_v)
+
+    basis = Basis(skmesh, ElementVector(_element(order)), intorder=STIFFNESS_INTORDER[order],
+                  elements=elements)
+    return elasticity.assemble(basis).tocsr()
+
+
+def scalar_mass(skmesh, order: int, intorder: int,
+                elements: np.ndarray | None = None) -> sp.csr_matrix:
+    """int phi_i phi_j dx (m^3) with the scalar P1/P2 basis; times density it is the mass."""
+    from skfem import Basis, BilinearForm
+
+    @BilinearForm
+    def mass(u, v, _):
+        return u * v
+
+    return mass.assemble(Basis(skmesh, _element(order), intorder=intorder,
+                               elements=elements)).tocsr()

@@ -1,0 +1,131 @@
+"""Charts as matplotlib Figures (study, sweeps): no pyplot, no backend switch.
+
+`matplotlib.figure.Figure` renders to PNG through its own Agg canvas, so
+drawing here never changes the caller's matplotlib state.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from shaftfem.store import atomic_path
+
+
+def _figure(size: tuple[float, float]):
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=size)
+    return fig, fig.add_subplot()
+
+
+def save_png(fig, path: str | Path, dpi: int = 110) -> Path:
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=dpi, format="png")
+    return Path(path)
+
+
+def study_figure(rows: list[dict]):
+    """Log-log: the max relative frequency error against wall time, per element."""
+    fig, ax = _figure((7, 4.5))
+    for el in sorted({r["element"] for r in rows}):
+        rs = sorted((r for r in rows if r["element"] == el), key=lambda r: r["total_s"])
+        ax.loglog([r["total_s"] for r in rs], [r["max_rel_error"] for r in rs], "o-", label=el)
+        for r in rs:
+            ax.annotate(f"{r['size_mm']:g} mm", (r["total_s"], r["max_rel_error"]),
+                        fontsize=7, textcoords="offset points", xytext=(4, 4))
+    ax.set_xlabel("wall time of the run, s")
+    ax.set_ylabel("max relative frequency error, all modes")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    return fig
+
+
+def frequencies_figure(rows: list[dict], parameter: str, n_modes: int):
+    """Each natural frequency against one swept parameter."""
+    fig, ax = _figure((7, 4.5))
+    x = [float(r[parameter]) for r in rows]
+    for i in range(1, n_modes + 1):
+        ax.plot(x, [float(r[f"f{i}_hz"]) for r in rows], "o", ms=4, label=f"mode {i}")
+    ax.set_xlabel(parameter)
+    ax.set_ylabel("natural frequency, Hz")
+    ax.set_yscale("log")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    return fig
+
+
+def margin_figure(rows: list[dict], parameters: list[str]):
+    """The smallest resonance margin over one or two swept parameters."""
+    fig, ax = _figure((6, 4.5))
+    margin = [100 * float(r["min_margin"]) for r in rows]
+    if len(parameters) >= 2:
+        sc = ax.scatter([float(r[parameters[0]]) for r in rows],
+                        [float(r[parameters[1]]) for r in rows], c=margin, cmap="RdYlGn", s=80)
+        ax.set_ylabel(parameters[1])
+        fig.colorbar(sc, ax=ax, label="smallest separation margin, %")
+    else:
+        ax.plot([float(r[parameters[0]]) for r in rows], margin, "o")
+        ax.set_ylabel("smallest separation margin, %")
+    ax.set_xlabel(parameters[0])
+    ax.grid(True, alpha=0.3)
+    return fig
+
+
+def sweep_plots(rows: list[dict], parameters: list[str], n_modes: int,
+                out: str | Path) -> list[Path]:
+    """PNG per swept parameter (each frequency against it) and a resonance-margin map."""
+    ok = [r for r in rows if r["status"] == "ok"]
+    out = Path(out)
+    if not ok:
+        return []
+    # 'support[1].position_mm' -> frequencies_vs_support1_position_mm.png
+    written = [save_png(frequencies_figure(ok, p, n_modes), out / "frequencies_vs_{}.png".format(
+        p.replace(".", "_").replace("[", "").replace("]", ""))) for p in parameters]
+    if ok[0].get("min_margin") not in (None, ""):
+        written.append(save_png(margin_figure(ok, parameters), out / "resonance_margin.png"))
+    return written
+
+
+def response_figure(fr, marks: list[tuple[str, float, float]], title: str = ""):
+    """Transmissibility for base motion at the supports, in two panels: every mode
+    solved (log frequency, from below the lowest harmonic), and the excitation band
+    (linear, up to 1.5 x the highest harmonic) with the transmissibility at each
+    harmonic marked and written. `marks`: (label, frequency Hz, transmissibility)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(10, 4.5))
+    wide, near = fig.subplots(1, 2, gridspec_kw={"width_ratios": [3, 2]})
+    label = f"{fr.direction} at z = {fr.point[2] * 1e3:.0f} mm, zeta = {100 * fr.damping:g} %"
+    f, t = fr.frequencies, fr.transmissibility
+    low = min([hz for _, hz, _ in marks if hz > 0] + [f[-1] / 100]) / 2
+    keep = f >= low
+    wide.loglog(f[keep], t[keep], "-", lw=1.2, label=label)
+    for _, hz, _ in marks:
+        wide.axvline(hz, color="tab:red", ls="--", lw=0.8)
+    wide.axhline(1.0, color="0.5", lw=0.6)
+    wide.set_xlim(low, f[-1])
+    wide.set_xlabel("excitation frequency, Hz (log)")
+    wide.set_ylabel("transmissibility |u / u_base|")
+    wide.set_title("every mode solved; dashed: excitation harmonics", fontsize=9)
+    wide.grid(True, which="both", alpha=0.3)
+    wide.legend(fontsize=8, loc="upper left")
+    top = 1.5 * max(hz for _, hz, _ in marks) if marks else f[-1] / 5
+    band = f <= top
+    near.plot(f[band], t[band], "-", lw=1.2)
+    near.axhline(1.0, color="0.5", lw=0.6)
+    peak = max([float(t[band].max())] + [v for _, _, v in marks])
+    for i, (text, hz, value) in enumerate(sorted(marks, key=lambda m: m[1])):
+        near.plot([hz], [value], "o", color="tab:red", ms=5)
+        # staggered heights keep neighbouring labels apart
+        near.annotate(f"{text}\n{hz:.4g} Hz: x{value:.3g}", (hz, value), fontsize=7,
+                      color="tab:red", ha="left", va="bottom", textcoords="offset points",
+                      xytext=(4, 6 + 22 * (i % 3)))
+    near.set_xlim(0, top)
+    near.set_ylim(0, 1.45 * peak)
+    near.set_xlabel("excitation frequency, Hz")
+    near.set_title("the excitation band: transmissibility at each harmonic", fontsize=9)
+    near.grid(True, alpha=0.3)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    return fig

@@ -1,0 +1,78 @@
+"""The design report: one Markdown file with the tables, the pictures and a verdict."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from shaftfem.outputs import tables
+from shaftfem.store import write_text
+
+if TYPE_CHECKING:
+    from shaftfem.checks.resonance import ResonanceVerdict
+    from shaftfem.checks.sizing import SizingResult
+    from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.response import Participation
+    from shaftfem.workflows.pipeline import ModalResult
+
+
+def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
+                    sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
+                    files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
+                    free: ModalResult | None = None,
+                    participation: Participation | None = None) -> str:
+    """report.md's text; picture and file names are relative to the report's folder."""
+    scene, m = result.scene, result.modes
+    mat, g = scene.material, scene.grooves
+    lines = [f"# Modal design report: {scene.name}", "", tables.verdict_line(verdict), "",
+             "## Shaft", "",
+             f"- {scene.shaft.length * 1e3:g} mm long, {scene.shaft.diameter * 1e3:g} mm "
+             f"diameter, {mat.name} (E = {mat.youngs_modulus / 1e6:g} MPa, "
+             f"nu = {mat.poisson_ratio:g}, rho = {mat.density:g} kg/m^3)"]
+    if g:
+        hands = " and ".join("right" if h > 0 else "left" for h in g.hands)
+        lines.append(f"- grooves: {hands}-hand, pitch {g.pitch * 1e3:g} mm, width "
+                     f"{g.width * 1e3:g} mm (axial), depth {g.depth * 1e3:g} mm, root radius "
+                     f"{g.root_radius * 1e3:g} mm, over {g.length * 1e3:g} mm from "
+                     f"{g.start * 1e3:g} mm; removed volume "
+                     f"{result.shape.groove_volume_cad * 1e9:.1f} mm^3 (analytic "
+                     f"{result.shape.groove_volume_analytic * 1e9:.1f} mm^3)")
+    lines += [f"- mesh: P{scene.mesh.order}, {m.n_dofs} DOFs, {result.mesh.n_elements} elements",
+              ""]
+    if sizing is not None:
+        lines += ["## Sizing (paper equations 1-9)", ""] + tables.sizing_markdown(sizing) + [""]
+    if scene.supports or scene.attachments:
+        lines += ["## Installation", ""] + [f"- {l}" for l in tables.installation_lines(result)]
+        lines.append("")
+    title = "installed" if scene.held else "free-free"
+    lines += [f"## Natural frequencies ({title})", ""] + tables.modes_markdown(result, estimate)
+    lines += ["", f"Rigid-body modes: {m.n_rigid}."]
+    if estimate is not None:
+        lines += tables.estimate_notes(estimate)
+    if free is not None:
+        lines += ["", "### Installed beside free-free (same mesh)", ""]
+        lines += tables.side_by_side_markdown(result, free)
+    if participation is not None:
+        lines += ["", "### Effective modal mass for base motion at the supports", ""]
+        lines += tables.participation_markdown(result, participation)
+    lines += ["", "## Resonance check", ""]
+    lines += (tables.verdict_markdown(verdict) if verdict is not None
+              else ["No [[excitation]] sources in the scene: nothing to check against."])
+    lines.append("")
+    if pictures:
+        lines += ["## Pictures", ""] + [f"![{Path(p).stem}]({Path(p).name})" for p in pictures]
+        lines.append("")
+    if files:
+        lines += ["## Files", ""] + [f"- `{Path(f).name}`" for f in files] + [""]
+    lines += ["## Run time", "", tables.timings_line(result), ""]
+    return "\n".join(lines)
+
+
+def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdict | None,
+                 sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
+                 files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
+                 free: ModalResult | None = None,
+                 participation: Participation | None = None) -> Path:
+    return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,
+                                            free, participation))

@@ -1,0 +1,68 @@
+"""The mesh as a VTK grid, and VTU files written by VTK's own XML writer.
+
+VTK is the reference implementation of the format ParaView reads: it writes
+the field data (a mode's number, frequency and kind code) that meshio's VTU
+writer leaves out, and 10-node tetrahedra in the node order meshio and gmsh-through-
+meshio already use (VTK's). pyvista wraps the same grid for pictures.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from shaftfem.cad.mesh import ShaftMesh
+
+
+def grid(mesh: ShaftMesh, scale: float = 1.0):
+    """A vtkUnstructuredGrid of the mesh, coordinates times `scale` (1: m, 1e3: mm)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import (
+        VTK_QUADRATIC_TETRA,
+        VTK_TETRA,
+        vtkCellArray,
+        vtkUnstructuredGrid,
+    )
+
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(mesh.points * scale), deep=True))
+    n, per = mesh.cells.shape
+    cells = vtkCellArray()
+    cells.SetData(numpy_to_vtkIdTypeArray(np.arange(0, (n + 1) * per, per), deep=True),
+                  numpy_to_vtkIdTypeArray(np.ascontiguousarray(mesh.cells.ravel()), deep=True))
+    g = vtkUnstructuredGrid()
+    g.SetPoints(points)
+    g.SetCells(VTK_QUADRATIC_TETRA if per == 10 else VTK_TETRA, cells)
+    return g
+
+
+def _array(name: str, values):
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+
+    a = numpy_to_vtk(np.ascontiguousarray(np.atleast_1d(values)), deep=True)
+    a.SetName(name)
+    return a
+
+
+def write_vtu(path: str | Path, mesh: ShaftMesh, point_data: dict[str, np.ndarray],
+              field_data: dict[str, Any]) -> Path:
+    """mesh with point arrays (n_points,) or (n_points, 3) and numeric field arrays,
+    as a binary VTU file."""
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+
+    g = grid(mesh)
+    for name, values in point_data.items():
+        g.GetPointData().AddArray(_array(name, values))
+    for name, values in field_data.items():
+        g.GetFieldData().AddArray(_array(name, values))
+    w = vtkXMLUnstructuredGridWriter()
+    w.SetFileName(str(path))
+    w.SetInputData(g)
+    w.SetDataModeToBinary()  # inline base64, zlib-compressed: meshio reads it too
+    if not w.Write():
+        raise OSError(f"VTK could not write {path}")
+    return Path(path)

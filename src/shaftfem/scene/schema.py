@@ -1,0 +1,352 @@
+"""The scene file's schema: every key, its unit, what it must satisfy.
+
+Declarative on purpose: `validate_table` checks any table against its entry
+here, so a new key is one line, and every error names the file, the key, the
+value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from shaftfem.errors import SceneError
+
+# A flat separation margin of about 15 % between a natural frequency and any
+# running-speed harmonic is common machinery practice (see shaftfem.checks.resonance).
+DEFAULT_MARGIN_PERCENT = 15.0
+DEFAULT_MODE_COUNT = 10
+MAX_MODE_COUNT = 200
+# An adaptive mesh stops before it needs more DOFs than this (about 6 GB at the peak).
+DEFAULT_MAX_DOFS = 400_000
+MAX_DOFS_LIMIT = 20_000_000
+SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs")
+COUPLINGS = ("distributing", "rigid")
+# Modal damping of a steel shaft in rolling bearings: 1-3 % of critical is usual.
+DEFAULT_DAMPING_PERCENT = 2.0
+
+
+@dataclass(frozen=True)
+class Key:
+    kind: type | tuple  # float, int, str, or ("list", str)
+    doc: str
+    check: Callable[[Any], bool] | None = None
+    allowed: str = ""
+    default: Any = None
+    required: bool = True
+
+
+def upto(high: float, why: str, low: float = 0.0,
+         closed_low: bool = False) -> tuple[Callable[[Any], bool], str]:
+    """A check and its words: low < v <= high (low <= v with closed_low), and why the cap.
+
+    The caps are far beyond any machine shaft; they keep absurd values (1e300) away
+    from the CAD kernel and the solvers, which fail on them without a useful message."""
+    def check(v: float) -> bool:
+        return (low <= v if closed_low else low < v) and v <= high
+    return check, f"in {'[' if closed_low else '('}{low:g}, {high:g}] ({why})"
+
+
+SCHEMA: dict[str, dict[str, Key]] = {
+    "": {
+        "name": Key(str, "short name of the scene; it names the default output folder "
+                    "out/NAME", lambda v: re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._-]*", v) is not None,
+                    "letters, digits, '.', '_' and '-', starting with a letter or digit (a "
+                    "folder name, not a path)", required=False),
+        "description": Key(str, "free text", required=False),
+    },
+    "shaft": {
+        "length_mm": Key(float, "overall shaft length, mm", *upto(20_000, "a shaft up to 20 m")),
+        "diameter_mm": Key(float, "outer diameter, mm", *upto(2_000, "up to 2 m")),
+    },
+    "material": {
+        "name": Key(str, "material name", required=False, default="steel"),
+        "youngs_modulus_mpa": Key(float, "Young's modulus E, MPa",
+                                  *upto(1.2e6, "up to 1200 GPa, above diamond")),
+        "poisson_ratio": Key(
+            float, "Poisson's ratio", lambda v: -1.0 < v < 0.5, "in (-1, 0.5)"
+        ),
+        "density_kg_m3": Key(float, "density, kg/m^3", *upto(25_000, "above osmium")),
+    },
+    "grooves": {
+        "hands": Key(
+            ("list", str),
+            'groove hands, e.g. ["right", "left"]',
+            lambda v: 1 <= len(v) <= 2
+            and all(h in ("right", "left") for h in v)
+            and len(set(v)) == len(v),
+            'one or two of "right", "left", each at most once',
+        ),
+        "pitch_mm": Key(float, "helix pitch (lead), mm", *upto(20_000, "up to 20 m")),
+        "width_mm": Key(float, "groove width along the shaft axis, mm",
+                         *upto(10_000, "up to 10 m")),
+        "depth_mm": Key(float, "groove depth, mm", *upto(1_000, "up to 1 m")),
+        "root_radius_mm": Key(
+            float, "fillet radius at the groove's floor corners, mm (0 = sharp)",
+            *upto(1_000, "up to 1 m", closed_low=True), default=0.0, required=False,
+        ),
+        "grooved_length_mm": Key(float, "axial length of the grooved zone, mm",
+                                  *upto(20_000, "up to 20 m")),
+        "start_mm": Key(
+            float, "distance from the shaft's left end to the grooved zone, mm "
+            "(default: the zone is centred)", *upto(20_000, "up to 20 m", closed_low=True),
+            required=False,
+        ),
+    },
+    "excitation": {  # an array of tables: [[excitation]]
+        "name": Key(str, "name of the source, e.g. engine"),
+        "speed_rpm": Key(float, "speed of the source, r/min (f = n / 60 Hz)",
+                         *upto(1e6, "up to 10^6 r/min")),
+        "orders": Key(("list", int), "harmonic orders that excite, e.g. [1, 2]",
+                      lambda v: len(v) >= 1 and all(k >= 1 for k in v), "integers >= 1",
+                      default=[1], required=False),
+    },
+    "support": {  # an array of tables: [[support]], a bearing seat (shaftfem.fem.supports)
+        "name": Key(str, "name of the support, e.g. drive-end bearing", required=False),
+        "position_mm": Key(float, "centre of the bearing seat from the shaft's left end, mm",
+                           *upto(20_000, "up to 20 m", closed_low=True)),
+        "width_mm": Key(float, "width of the bearing seat along the axis, mm",
+                        *upto(20_000, "up to 20 m")),
+        "kind": Key(str, "how the seat is held: \"rigid\" (its mean radial and axial "
+                    "displacement), \"rigid-radial\" (radial only: a floating bearing), "
+                    "\"clamped\" (every point of it, in every direction), \"springs\" (the "
+                    "stiffnesses below); rigid and springs let the shaft tilt and turn",
+                    lambda v: v in SUPPORT_KINDS, ", ".join(f'"{k}"' for k in SUPPORT_KINDS)),
+        "radial_stiffness_n_per_mm": Key(
+            float, "radial stiffness of the bearing, N/mm (kind = \"springs\")",
+            *upto(1e12, "up to 10^12 N/mm", closed_low=True), required=False),
+        "axial_stiffness_n_per_mm": Key(
+            float, "axial stiffness, N/mm (kind = \"springs\"; default 0: free axially)",
+            *upto(1e12, "up to 10^12 N/mm", closed_low=True), required=False),
+        "tilting_stiffness_nmm_per_rad": Key(
+            float, "tilting stiffness, N mm/rad (kind = \"springs\"; default 0: the shaft "
+            "tilts freely in the bearing, as in a ball bearing)",
+            *upto(1e15, "up to 10^15 N mm/rad: the frequencies stop changing near 10^12; "
+                  "far beyond, the solve loses the digits it needs", closed_low=True),
+            required=False),
+        "coupling": Key(
+            str, "how the bearing holds its seat: \"distributing\" (default: the seat band's "
+            "mean motion, the section under it free to deform, as a ball bearing on a "
+            "slip fit) or \"rigid\" (the band moves as a rigid ring, a shrunk-on inner "
+            "ring; the springs or holds act on the ring, and its stiff limit is clamped)",
+            lambda v: v in COUPLINGS, ", ".join(f'"{c}"' for c in COUPLINGS),
+            default="distributing", required=False),
+    },
+    "attachment": {  # an array of tables: [[attachment]], a part fixed on a seat
+        "name": Key(str, "name of the part, e.g. drive gear", required=False),
+        "position_mm": Key(float, "centre of the part's seat from the shaft's left end, mm",
+                           *upto(20_000, "up to 20 m", closed_low=True)),
+        "width_mm": Key(float, "width of the seat (hub length) along the axis, mm",
+                        *upto(20_000, "up to 20 m")),
+        "mass_kg": Key(float, "mass of the part, kg", *upto(1e6, "up to 1000 t", closed_low=True)),
+        "polar_inertia_kg_m2": Key(
+            float, "moment of inertia about the shaft axis, kg m^2",
+            *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
+        "diametral_inertia_kg_m2": Key(
+            float, "moment of inertia about a diameter through its centre, kg m^2",
+            *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
+    },
+    "response": {  # base excitation at the supports (shaftfem.fem.response)
+        "damping_ratio_percent": Key(
+            float, f"modal damping ratio zeta, % (default {DEFAULT_DAMPING_PERCENT:g}: "
+            "a steel shaft in rolling bearings, 1-3 %)", *upto(50, "up to 50 %"),
+            default=DEFAULT_DAMPING_PERCENT, required=False),
+        "point_mm": Key(float, "axial position of the point whose response is plotted, mm "
+                        "(default: mid-span)", *upto(20_000, "up to 20 m", closed_low=True),
+                        required=False),
+    },
+    "sizing": {  # the paper's screw sizing, equations (1)-(9); see shaftfem.checks.sizing
+        "power_kw": Key(float, "power through the shaft, kW", *upto(1e6, "up to 1 GW")),
+        "speed_rpm": Key(float, "shaft speed n, r/min", *upto(1e6, "up to 10^6 r/min")),
+        "friction_coefficient": Key(float, "friction coefficient f of the groove pair",
+                                    lambda v: 0 < v < 1, "in (0, 1)"),
+        "lead_angle_deg": Key(float, "helix lead angle lambda, deg", lambda v: 0 < v < 90,
+                              "in (0, 90)"),
+        "pressure_angle_deg": Key(float, "groove pressure angle alpha, deg",
+                                  lambda v: 0 < v < 90, "in (0, 90)"),
+        "allowable_pressure_angle_deg": Key(
+            float, "largest pressure angle before self-locking, deg", lambda v: 0 < v < 90,
+            "in (0, 90)", default=38.0, required=False),
+        "allowable_pressure_mpa": Key(float, "allowable bearing pressure P_p, MPa",
+                                      *upto(10_000, "up to 10 GPa")),
+        "psi": Key(float, "nut-height factor psi", *upto(100, "the usual 1.2-3.5, at most 100")),
+        "keyways": Key(int, "keyways in the section: 0, 1 or 2 (180 deg apart)",
+                       lambda v: v in (0, 1, 2), "0, 1 or 2", default=0, required=False),
+        "rounding_step_mm": Key(float, "the diameter is rounded up to a multiple of this, mm",
+                                *upto(100, "up to 100 mm"), default=1.0, required=False),
+        "crest_clearance_mm": Key(float, "crest clearance a_c, mm",
+                                   *upto(100, "up to 100 mm", closed_low=True)),
+        "feed_step_mm": Key(float, "box feed step b per pick, mm", *upto(10_000, "up to 10 m")),
+        "picks_per_row": Key(int, "picks per row n",
+                             *upto(10_000, "up to 10,000", low=2, closed_low=True)),
+        "needle_width_mm": Key(float, "needle width h, mm",
+                                *upto(10_000, "up to 10 m", closed_low=True)),
+        "drive_teeth": Key(int, "teeth on the driving gear Z_drive",
+                           *upto(10_000, "up to 10,000", low=1, closed_low=True)),
+        "driven_teeth": Key(int, "teeth on the driven gear Z_driven",
+                            *upto(10_000, "up to 10,000", low=1, closed_low=True)),
+    },
+    "resonance": {
+        "required_margin_percent": Key(
+            float, "least separation |f - k f_exc| / (k f_exc) between a mode and an "
+            f"excitation harmonic, % (default {DEFAULT_MARGIN_PERCENT:g})",
+            lambda v: 0 < v < 100, "in (0, 100)", default=DEFAULT_MARGIN_PERCENT,
+            required=False),
+        "criterion": Key(
+            str, "\"flat\": every mode needs required_margin_percent; \"api684\": the "
+            "margin follows each mode's amplification factor AF = 1 / (2 zeta) (API 684: "
+            "17 (1 - 1 / (AF - 1.5)) %, none below AF = 2.5), zeta from [response]",
+            lambda v: v in ("flat", "api684"), '"flat" or "api684"', default="flat",
+            required=False),
+    },
+    "modes": {
+        "count": Key(int, f"elastic modes to compute (default {DEFAULT_MODE_COUNT})",
+                     lambda v: 1 <= v <= MAX_MODE_COUNT, f"in [1, {MAX_MODE_COUNT}]",
+                     default=DEFAULT_MODE_COUNT, required=False),
+        "max_frequency_hz": Key(
+            float, "compute every elastic mode below this frequency, Hz (instead of a count)",
+            *upto(1e7, "up to 10 MHz"), required=False),
+    },
+    "mesh": {
+        "element_size_mm": Key(float, "element size away from the grooves, mm",
+                               *upto(20_000, "at most the shaft length, up to 20 m")),
+        "groove_element_size_mm": Key(
+            float, "element size in the grooved zone, mm (default: element_size_mm / 2)",
+            *upto(20_000, "at most element_size_mm"), required=False,
+        ),
+        "edge_element_size_mm": Key(
+            float, "element size at the groove's inner floor edges, mm "
+            "(default: the root radius, or groove size / 3 for sharp corners)",
+            *upto(20_000, "at most element_size_mm"), required=False,
+        ),
+        "order": Key(int, "element order: 1 (P1) or 2 (P2)", lambda v: v in (1, 2), "1 or 2",
+                     default=2, required=False),
+        "target_error_percent": Key(
+            float, "bound wanted on every frequency's discretisation error, %: the mesh is "
+            "adapted until it holds (default: the fixed mesh above, with its bound)",
+            *upto(50, "up to 50 %"), required=False),
+        "max_dofs": Key(int, "DOF budget of an adaptive mesh",
+                        lambda v: 1000 <= v <= MAX_DOFS_LIMIT,
+                        f"1000 to {MAX_DOFS_LIMIT}", default=DEFAULT_MAX_DOFS, required=False),
+    },
+}
+
+
+
+def where(source: str, table: str, key: str) -> str:
+    return f"{source}: {table + '.' if table else ''}{key}"
+
+
+def _coerce(source: str, table: str, key: str, spec: Key, value: Any) -> Any:
+    at = where(source, table, key)
+    if spec.kind is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise SceneError(f"{at} = {value!r}: expected a number ({spec.doc})")
+        value = float(value)
+        if not math.isfinite(value):
+            raise SceneError(f"{at} = {value!r}: expected a finite number ({spec.doc})")
+    elif spec.kind is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise SceneError(f"{at} = {value!r}: expected an integer ({spec.doc})")
+    elif spec.kind is str:
+        if not isinstance(value, str):
+            raise SceneError(f"{at} = {value!r}: expected a string ({spec.doc})")
+    elif isinstance(spec.kind, tuple) and spec.kind[0] == "list":
+        if not isinstance(value, list) or not all(isinstance(v, spec.kind[1]) for v in value):
+            raise SceneError(f"{at} = {value!r}: expected a list ({spec.doc})")
+    if spec.check is not None and not spec.check(value):
+        raise SceneError(f"{at} = {value!r}: must be {spec.allowed} ({spec.doc})")
+    return value
+
+
+def validate_table(source: str, table: str, data: Any, schema: dict[str, Key]) -> dict:
+    """Check one table against its schema; return it with defaults filled in."""
+    if not isinstance(data, dict):
+        raise SceneError(f"{source}: [{table}] must be a table")
+    out = {}
+    for key, value in data.items():
+        if table == "" and key in SCHEMA and key:
+            continue  # sub-tables are checked on their own
+        if key not in schema:
+            raise SceneError(
+                f"{where(source, table, key)}: unknown key; allowed: {', '.join(schema)}"
+            )
+        out[key] = _coerce(source, table, key, schema[key], value)
+    for key, spec in schema.items():
+        if key not in out:
+            if spec.required:
+                raise SceneError(f"{where(source, table, key)}: missing ({spec.doc})")
+            out[key] = spec.default
+    return out
+
+
+def read_toml(path: str | Path, what: str = "file") -> dict:
+    """A TOML file as a dict; a missing or malformed file is a SceneError naming it.
+    A UTF-8 byte-order mark (Windows editors write one) is accepted."""
+    path = Path(path)
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8-sig"))
+    except FileNotFoundError:
+        raise SceneError(f"{what} {str(path)!r}: no such file") from None
+    except (IsADirectoryError, PermissionError) as exc:
+        raise SceneError(f"{what} {str(path)!r}: cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise SceneError(f"{path.name}: not a text file (TOML is UTF-8 text)") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+
+
+# --------------------------------------------------------------------------
+# Checks for the other files the tool reads (sweeps, calibrations): each error names
+# the file, the key, the value and what is allowed.
+
+
+def known_keys(source: str, data: object, allowed: set[str], where_: str = "") -> dict:
+    """`data` must be a table whose keys are all in `allowed`."""
+    if not isinstance(data, dict):
+        raise SceneError(f"{source}: {where_ or 'the file'} = {data!r}: must be a table")
+    for key in data:
+        if key not in allowed:
+            raise SceneError(f"{source}: {where_ + '.' if where_ else ''}{key}: unknown key; "
+                             f"allowed: {', '.join(sorted(allowed))}")
+    return data
+
+
+def number(source: str, key: str, value: object, low: float, high: float) -> float:
+    """A finite number with low < value <= high."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
+            math.isfinite(value) and low < value <= high):
+        raise SceneError(f"{source}: {key} = {value!r}: must be a number in ({low:g}, {high:g}]")
+    return float(value)
+
+
+# Tables a scene may repeat ([[support]]): a parameter names one entry by its index.
+ARRAY_TABLES = ("excitation", "support", "attachment")
+
+
+def split_parameter(name: str) -> tuple[str, int | None, str] | None:
+    """'table.key' -> (table, None, key); 'table[i].key' -> (table, i, key); else None."""
+    m = re.fullmatch(r"([a-z_]+)(?:\[(\d+)\])?\.([a-z0-9_]+)", name)
+    if m is None:
+        return None
+    table, index, key = m.groups()
+    if (index is None) == (table in ARRAY_TABLES):
+        return None
+    return table, None if index is None else int(index), key
+
+
+def parameter(source: str, name: object) -> str:
+    """A numeric scene key written 'table.key' (e.g. 'grooves.depth_mm'), or
+    'table[i].key' for entry i of a repeated table (e.g. 'support[1].position_mm')."""
+    parts = split_parameter(name) if isinstance(name, str) else None
+    spec = SCHEMA.get(parts[0], {}).get(parts[2]) if parts else None
+    if spec is None or spec.kind not in (float, int):
+        raise SceneError(f"{source}: {name!r}: not a numeric scene key; a parameter is "
+                         "'table.key', e.g. 'grooves.depth_mm' or 'shaft.length_mm', or "
+                         "'table[i].key' for a repeated table, e.g. 'support[1].position_mm'")
+    return str(name)

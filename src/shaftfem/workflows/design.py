@@ -1,0 +1,118 @@
+"""The design workflow: sizing, modes with error estimates, the resonance verdict,
+files, pictures and a report, in one call.
+
+    from shaftfem.workflows.design import run_design
+    from shaftfem.scene.model import load_scene
+    d = run_design(load_scene("paper2018"), "out/paper2018")
+    d.ok, d.report
+
+A scene without [[excitation]] sources gets everything but the verdict (the
+report says there was nothing to check against); a scene without [sizing]
+skips the sizing.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from shaftfem.scene.model import Scene
+
+MANIFEST = "design.manifest.json"   # lists every file of the last complete design run
+
+if TYPE_CHECKING:
+    from shaftfem.checks.resonance import ResonanceVerdict
+    from shaftfem.checks.sizing import SizingResult
+    from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.response import Participation
+    from shaftfem.workflows.adapt import Adapted
+    from shaftfem.workflows.pipeline import ModalResult
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    sizing: SizingResult | None
+    result: ModalResult
+    estimate: ErrorEstimate | None
+    verdict: ResonanceVerdict | None   # None: the scene has no excitations
+    files: list[Path]
+    pictures: list[Path]
+    report: Path
+    adapted: Adapted | None = None   # how the mesh was adapted, when it was
+    participation: Participation | None = None   # installed shafts: effective masses
+
+    @property
+    def ok(self) -> bool:
+        """No mode too close to an excitation harmonic (also when there was none)."""
+        return self.verdict is None or self.verdict.ok
+
+
+def run_design(scene: Scene, out: str | Path, margin: float | None = None,
+               estimate: bool = True, use_cache: bool = True, factorizer: str = "auto",
+               progress: Callable[[str], None] | None = None) -> DesignResult:
+    """Everything a designer signs off, written to `out`. `margin`: required separation
+    (fraction), default the scene's."""
+    from shaftfem.checks.resonance import check_result
+    from shaftfem.checks.sizing import size_from_scene
+    from shaftfem.outputs.export import write_mode_files
+    from shaftfem.outputs.render import render_into
+    from shaftfem.outputs.report import write_report
+    from shaftfem.store import staged_directory
+    from shaftfem.workflows.adapt import run_bounded
+
+    say = progress or (lambda _m: None)
+    out = Path(out)
+    sizing = None
+    if scene.sizing is not None:
+        say("sizing (equations 1-9)")
+        sizing = size_from_scene(scene)
+    result, est, adapted = run_bounded(scene, estimate=estimate, use_cache=use_cache,
+                                       progress=say, factorizer=factorizer)
+    verdict = check_result(result, margin)
+    free, part, response, basis = None, None, None, None
+    if scene.held:
+        from shaftfem.fem.response import modal_basis, participation, response_sweep
+        from shaftfem.workflows.pipeline import solve_mesh
+
+        say("the same shaft hanging free, on the same mesh, for comparison")
+        free = solve_mesh(scene.free(), result.shape, result.mesh, time.perf_counter(), 0.0,
+                          0.0, say, factorizer, use_cache=use_cache)
+        basis = modal_basis(result)
+        part = participation(basis)
+        response = response_sweep(result, "x", basis=basis)
+    # every file of the run is published at once, under design.manifest.json
+    with staged_directory(out, MANIFEST) as stage:
+        say("exporting mode shapes, mesh and solid")
+        files = write_mode_files(result, stage, est)
+        say("rendering pictures")
+        pictures = render_into(result, stage)
+        if response is not None:
+            pictures.append(_response_picture(result, response, basis, stage / "response.png"))
+        write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
+                     free=free, participation=part)
+    files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
+    report = out / "report.md"
+    say(f"report written: {report}")
+    return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
+                        files=files, pictures=pictures, report=report, adapted=adapted,
+                        participation=part)
+
+
+def _response_picture(result: ModalResult, response, basis, path: Path) -> Path:
+    """response.png: the transmissibility, with its value at every excitation harmonic."""
+    import numpy as np
+
+    from shaftfem.fem.response import base_response
+    from shaftfem.outputs.plots import response_figure, save_png
+
+    harmonics = [(f"{e.name} x{k}", k * e.frequency) for e in result.scene.excitations
+                 for k in e.orders]
+    hz = np.array([h for _, h in harmonics])
+    at = (base_response(result, hz, response.direction, basis=basis).transmissibility
+          if hz.size else np.zeros(0))
+    marks = [(text, h, float(v)) for (text, h), v in zip(harmonics, at)]
+    return save_png(response_figure(response, marks, f"{result.scene.name}: lateral base "
+                                    "motion at the supports"), path)

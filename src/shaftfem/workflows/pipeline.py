@@ -1,0 +1,215 @@
+"""The modal chain, one step after another: Scene -> shape -> mesh -> K, M -> modes.
+
+Each step is a function of the one before; this module only calls them in order
+and keeps what each produced and how long it took.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, fields, replace
+from typing import TYPE_CHECKING
+
+from shaftfem.errors import SceneError
+from shaftfem.scene.model import Scene
+
+if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
+    import numpy as np
+
+    from shaftfem.cad.mesh import ShaftMesh
+    from shaftfem.cad.solid import ShaftShape
+    from shaftfem.fem.assembly import System
+    from shaftfem.fem.modal import Modes
+    from shaftfem.fem.supports import Installed
+
+
+@dataclass(frozen=True)
+class Timings:
+    """Wall time of each step of one modal run, s."""
+
+    cad: float
+    mesh: float
+    assembly: float
+    factorisation: float
+    eigensolve: float
+    total: float
+
+    def items(self) -> Iterator[tuple[str, float]]:
+        return ((f.name, getattr(self, f.name)) for f in fields(self))
+
+
+@dataclass(frozen=True)
+class ModalResult:
+    scene: Scene
+    shape: ShaftShape
+    mesh: ShaftMesh
+    system: System
+    modes: Modes
+    timings: Timings
+    warnings: tuple[str, ...] = ()
+    installed: Installed | None = None  # the seats and parts (None: free-free)
+
+    def shapes_at_points(self) -> np.ndarray:
+        """Mode shapes at the mesh's points: (n_modes, n_points, 3), m / sqrt(kg)."""
+        return self.system.at_points(self.modes.shapes)
+
+
+def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None) -> Scene:
+    """The scene with another element size (all sizes scaled alike) and/or order."""
+    m = scene.mesh
+    if size_mm is not None:
+        if not 0 < size_mm <= scene.shaft.length * 1e3:  # also refuses nan and inf
+            raise SceneError(f"element size {size_mm:g} mm: must be > 0 and not exceed the "
+                             f"shaft length ({scene.shaft.length * 1e3:g} mm)")
+        k = size_mm * 1e-3 / m.size
+        m = replace(m, size=m.size * k, groove_size=m.groove_size * k, edge_size=m.edge_size * k)
+    if order is not None:
+        m = replace(m, order=order)
+    return replace(scene, mesh=m)
+
+
+def with_modes(scene: Scene, count: int | None = None,
+               max_frequency: float | None = None) -> Scene:
+    """The scene asking for another number of modes, or every mode below max_frequency (Hz)."""
+    if count is None and max_frequency is None:
+        return scene
+    req = scene.modes
+    if count is not None:
+        req = replace(req, count=count, max_frequency=None)
+    if max_frequency is not None:
+        req = replace(req, max_frequency=max_frequency)
+    return replace(scene, modes=req)
+
+
+def run_modes(scene: Scene, use_cache: bool = True,
+              progress: Callable[[str], None] | None = None,
+              factorizer: str = "auto", threads: int | None = None) -> ModalResult:
+    """Build, mesh, assemble and solve `scene`; return every intermediate result.
+
+    `threads`: assembly threads (default one per core; sweep workers use 1)."""
+    from shaftfem.cad.mesh import check_budget, mesh_shape
+    from shaftfem.cad.solid import build_shape
+
+    say = progress or (lambda _msg: None)
+    t0 = time.perf_counter()
+    check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
+
+    say("building the shaft's solid (CAD)")
+    shape = build_shape(scene.shaft, scene.grooves, use_cache=use_cache)
+    t_cad = time.perf_counter() - t0
+    say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
+
+    t = time.perf_counter()
+    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache,
+                      cuts=scene.seat_cuts())
+    t_mesh = time.perf_counter() - t
+    say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
+        "assembling K and M")
+    return solve_mesh(scene, shape, mesh, t0, t_cad, t_mesh, say, factorizer, threads,
+                      use_cache=use_cache)
+
+
+def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_cad: float,
+               t_mesh: float, say: Callable[[str], None], factorizer: str = "auto",
+               threads: int | None = None, use_cache: bool = True) -> ModalResult:
+    """Assemble and solve one mesh of the scene's solid (the run began at t0).
+
+    `use_cache`: start from the shift where the last solve of this scene (any mesh)
+    proved its modes complete, and keep this solve's (see modal.solve_modes)."""
+    from shaftfem.fem.assembly import assemble, discretise
+    from shaftfem.fem.factor import analyse_in_background, uses_pardiso
+    from shaftfem.fem.modal import modal_analysis
+
+    t = time.perf_counter()
+    d = discretise(mesh)
+    # The solver's ordering needs only the sparsity: it runs while K and M are filled
+    # (a free shaft's: seats change the sparsity).
+    analysis = (analyse_in_background(d.upper_structure())
+                if not scene.installed and uses_pardiso(factorizer, d.n_dofs) else None)
+    system = assemble(mesh, scene.material, threads=threads, discretisation=d)
+    installed = None
+    if scene.installed:
+        from shaftfem.fem.supports import install
+
+        installed = install(scene, system.K, system.M, system.nodes, d.basis.mesh, d.order)
+    t_assembly = time.perf_counter() - t
+    n_dofs = system.n_dofs if installed is None else installed.K.shape[0]
+    say(f"{n_dofs} DOFs; factorising and solving")
+    hint = shift_hint(scene) if use_cache else None
+    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
+                           scene.modes.count, factorizer=factorizer,
+                           max_frequency=scene.modes.max_frequency, analysis=analysis,
+                           installed=installed, shift_hint=hint)
+    if use_cache and modes.inertia_shift != hint:
+        keep_shift(scene, modes.inertia_shift)
+    timings = Timings(cad=t_cad, mesh=t_mesh, assembly=t_assembly,
+                      factorisation=modes.factorisation_seconds,
+                      eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
+    return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
+                       timings=timings, warnings=scene_warnings(scene, modes),
+                       installed=installed)
+
+
+def _shift_path(scene: Scene):
+    """Where the proven shift of the scene's pencil is kept: keyed by everything that
+    makes K and M except the mesh, so that a finer or adapted mesh of the same shaft
+    starts from it too."""
+    from dataclasses import asdict
+
+    from shaftfem.store import cache_dir, content_key
+
+    key = content_key({"version": 1, "shaft": asdict(scene.shaft),
+                       "grooves": asdict(scene.grooves) if scene.grooves else None,
+                       "material": asdict(scene.material), "order": scene.mesh.order,
+                       "supports": [asdict(s) for s in scene.supports],
+                       "attachments": [asdict(a) for a in scene.attachments],
+                       "modes": asdict(scene.modes)})
+    return cache_dir() / "shifts" / f"{key}.npz"
+
+
+def shift_hint(scene: Scene) -> float | None:
+    """The shift (rad^2/s^2) above the wanted modes that the last solve of this scene
+    counted at, if one was kept: where the next solve factorises first."""
+    from shaftfem.store import discard, load_arrays
+
+    path = _shift_path(scene)
+    if not path.exists():
+        return None
+    fields, why = load_arrays(path, ("shift",))
+    if fields is None or not float(fields["shift"]) > 0:
+        discard("shift hint", why or "not a positive shift", path)
+        return None
+    return float(fields["shift"])
+
+
+def keep_shift(scene: Scene, shift: float) -> None:
+    """Keep a solve's proven shift for the next solve of the scene."""
+    import numpy as np
+
+    from shaftfem.store import save_arrays
+
+    if shift > 0:
+        save_arrays(_shift_path(scene), {"shift": np.float64(shift)})
+
+
+def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
+    """Cases the method handles poorly: said, never silently computed."""
+    out = []
+    m, R = scene.mesh, scene.shaft.radius
+    if m.size > R:
+        out.append(f"element size {m.size * 1e3:g} mm exceeds the shaft radius "
+                   f"({R * 1e3:g} mm): fewer than two elements across the section, the "
+                   "frequencies can be far from converged (see the error estimate)")
+    nu = scene.material.poisson_ratio
+    if m.order == 1 and nu > 0.45:
+        out.append(f"P1 (linear) elements lock for a nearly incompressible material "
+                   f"(nu = {nu:g}): bending frequencies come out too high; use order 2")
+    if scene.grooves is not None and m.groove_size > scene.grooves.width:
+        out.append(f"groove element size {m.groove_size * 1e3:g} mm exceeds the groove width "
+                   f"({scene.grooves.width * 1e3:g} mm): the grooves are barely resolved")
+    fmax = scene.modes.max_frequency
+    if modes is not None and fmax is not None and modes.frequencies[0] >= fmax:
+        out.append(f"no elastic mode below {fmax:g} Hz; the lowest "
+                   f"({modes.frequencies[0]:.2f} Hz) is shown")
+    return tuple(out)
