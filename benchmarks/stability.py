@@ -10,7 +10,7 @@ from dataclasses import replace
 import numpy as np
 
 from shaftfem.fem.assembly import assemble
-from shaftfem.fem.modal import modal_analysis
+from shaftfem.fem.modes import modal_analysis
 from shaftfem.scene.model import Material, scene_from_dict
 from shaftfem.workflows.pipeline import run_modes
 
@@ -39,18 +39,18 @@ def main():
     sk, m = base.mesh, base.scene.material
     for k in (1e6, 1e-6):
         s = assemble(sk, replace(m, youngs_modulus=m.youngs_modulus * k))
-        md = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+        md = modal_analysis(s)
         err = np.max(np.abs(md.frequencies / base.modes.frequencies / np.sqrt(k) - 1))
         row(f"E x {k:g}", md, f"f ~ sqrt(E): {err:.1e}")
     s = assemble(sk, replace(m, density=m.density * 1e3))
-    md = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+    md = modal_analysis(s)
     row("density x 1000", md, f"f ~ 1/sqrt(rho): "
         f"{np.max(np.abs(md.frequencies * np.sqrt(1e3) / base.modes.frequencies - 1)):.1e}")
     from shaftfem.cad.mesh import ShaftMesh
 
     mm = ShaftMesh(base.mesh.points * 1e3, base.mesh.cells, 2, 1.0, 0, 0.0)
     s = assemble(mm, Material("mm", m.youngs_modulus * 1e-6, m.poisson_ratio, m.density * 1e-12))
-    md = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+    md = modal_analysis(s)
     row("same shaft in mm, MPa, t/mm^3", md,
         f"same Hz: {np.max(np.abs(md.frequencies / base.modes.frequencies - 1)):.1e}")
     from tests_references import timoshenko_free_free_hz

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from shaftfem.fem.assembly import assemble
-from shaftfem.fem.modal import modal_analysis
+from shaftfem.fem.modes import modal_analysis
 from shaftfem.outputs.export import read_calculix_eig, read_calculix_frequencies, write_calculix
 from shaftfem.scene.model import load_scene
 from shaftfem.workflows.pipeline import run_modes, with_mesh
@@ -46,7 +46,7 @@ def test_same_mesh_same_frequencies(scene, size, tmp_path, capsys):
     # CalculiX's 4-point mass on the very same mesh (gmsh's high-order optimiser does
     # not place curved nodes bit-identically twice, so the mesh is not re-made)
     s = assemble(exact.mesh, exact.scene.material, mass_intorder=2)
-    four = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+    four = modal_analysis(s)
     ccx = _ccx(exact, tmp_path)
     d4 = np.max(np.abs(four.frequencies / ccx - 1))
     dx = np.max(np.abs(exact.modes.frequencies / ccx - 1))
@@ -90,7 +90,7 @@ def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling):
     assert exact.modes.n_rigid == 1
     s = assemble(exact.mesh, exact.scene.material, mass_intorder=2)
     inst = install(exact.scene, s.K, s.M, s.nodes, exact.mesh.to_skfem(), 2)
-    four = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar, installed=inst)
+    four = modal_analysis(s, installed=inst)
     write_calculix(exact, tmp_path / "shaft.inp")
     p = subprocess.run(["ccx", "-i", "shaft"], cwd=tmp_path, capture_output=True, text=True,
                        timeout=600)

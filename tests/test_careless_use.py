@@ -20,13 +20,13 @@ def _one_line_exit_2(capsys, argv, named):
 @pytest.fixture()
 def no_solve(monkeypatch):
     """Any solve is an error: a refusal must come before the work."""
-    from shaftfem.workflows import adapt, pipeline
+    from shaftfem.workflows import bounded, pipeline
 
     def never(*_a, **_k):
         raise AssertionError("the solve ran")
 
     monkeypatch.setattr(pipeline, "run_modes", never)
-    monkeypatch.setattr(adapt, "run_bounded", never)
+    monkeypatch.setattr(bounded, "run_bounded", never)
 
 
 @pytest.mark.parametrize("name", ["../x", "/tmp/shaftfem-abs", ".", "..", "a/b", ""])

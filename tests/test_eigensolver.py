@@ -9,8 +9,11 @@ import scipy.linalg as la
 import scipy.sparse as sp
 
 from shaftfem.errors import SolverError
-from shaftfem.fem import modal
-from shaftfem.fem.factor import Pencil, ShiftedFactor, available_factorizers
+from shaftfem.fem import eigen
+from shaftfem.fem.eigen import SolverSettings, Wanted
+from shaftfem.fem.factor import Pencil, ShiftedFactor, available_factorisers
+from shaftfem.fem.modes import modal_analysis
+from shaftfem.fem.supports import rigid_body_modes
 
 
 def _chain(n=300, cut=None):
@@ -34,7 +37,7 @@ def _consistent_mass_beside_a_cut_spring(n=300):
 
 
 @pytest.mark.parametrize("pencil", [_chain, _consistent_mass_beside_a_cut_spring])
-@pytest.mark.parametrize("backend", available_factorizers())
+@pytest.mark.parametrize("backend", available_factorisers())
 def test_the_inertia_count_equals_a_dense_eigenvalue_count(backend, pencil):
     K, M = pencil()
     lam = la.eigvalsh(K.toarray(), M.toarray())
@@ -64,10 +67,10 @@ def test_a_krylov_space_blind_to_a_mode_is_caught_by_the_inertia_count(cylinder,
     real_solve = ShiftedFactor.solve
     monkeypatch.setattr(ShiftedFactor, "solve", lambda self, b: wrap(
         lambda c: real_solve(self, c))(b))
-    monkeypatch.setattr(modal, "INERTIA_RETRIES", 0)
-    rigid = modal.rigid_body_modes(s.nodes)
+    monkeypatch.setattr(eigen, "INERTIA_RETRIES", 0)
+    rigid = rigid_body_modes(s.nodes)
     with pytest.raises(SolverError, match="a mode was skipped") as caught:
-        modal.solve_modes(s.K, s.M, 10, rigid=rigid)
+        eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid)
     found, counted = map(int, re.search(r"found (\d+) .* counts (\d+)", str(caught.value)).groups())
     assert counted == found + 1  # exactly the one mode it could not see
 
@@ -80,19 +83,19 @@ def test_a_too_small_krylov_space_is_caught_and_retried(cylinder, monkeypatch):
     s = cylinder.system
     true = cylinder.modes
     x = true.shapes[:, true.kinds.index("torsion")]
-    start = modal.start_vector
+    start = eigen.start_vector
 
     def deficient(n, attempt=0):
         v = start(n, attempt)
         return v - x * (x @ (s.M @ v)) if attempt == 0 else v
 
-    monkeypatch.setattr(modal, "start_vector", deficient)
-    rigid = modal.rigid_body_modes(s.nodes)
-    monkeypatch.setattr(modal, "INERTIA_RETRIES", 0)
+    monkeypatch.setattr(eigen, "start_vector", deficient)
+    rigid = rigid_body_modes(s.nodes)
+    monkeypatch.setattr(eigen, "INERTIA_RETRIES", 0)
     with pytest.raises(SolverError, match="no eigenpair|a mode was skipped"):
-        modal.solve_modes(s.K, s.M, 10, tol=1e-2, ncv=14, rigid=rigid)
-    monkeypatch.setattr(modal, "INERTIA_RETRIES", 1)
-    sol = modal.solve_modes(s.K, s.M, 10, tol=1e-2, ncv=14, rigid=rigid)
+        eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings(tol=1e-2, ncv=14))
+    monkeypatch.setattr(eigen, "INERTIA_RETRIES", 1)
+    sol = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings(tol=1e-2, ncv=14))
     f = np.sqrt(sol.eigenvalues[6:16]) / (2 * np.pi)
     assert np.max(np.abs(f / true.frequencies - 1)) < 1e-9
     assert sol.inertia_count == 16
@@ -102,7 +105,7 @@ def test_rigid_motions_are_rigid(cylinder):
     """The six rigid motions the solver keeps out of its Krylov space cost no strain
     energy (K R = 0 to round-off) and are what the free body's six zero modes span."""
     s = cylinder.system
-    R = modal.rigid_body_modes(s.nodes)
+    R = rigid_body_modes(s.nodes)
     KR = s.K @ R
     assert np.max(np.linalg.norm(KR, axis=0) / (abs(s.K).max() * np.linalg.norm(R, axis=0))) < 1e-12
     assert np.linalg.matrix_rank(R) == 6
@@ -113,8 +116,8 @@ def test_other_start_vectors_give_the_same_modes_with_small_residuals(paper, mon
     1e-8 and the same frequencies (benchmarks/repeatability.py does 20)."""
     s = paper.system
     for seed in (1, 2, 3):
-        monkeypatch.setattr(modal, "START_SEED", 7919 * seed)
-        m = modal.modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+        monkeypatch.setattr(eigen, "START_SEED", 7919 * seed)
+        m = modal_analysis(s)
         assert m.residuals.max() < 1e-8
         assert np.max(np.abs(m.frequencies / paper.modes.frequencies - 1)) < 1e-10
         assert m.inertia_count >= 6 + len(m.frequencies)
@@ -123,11 +126,11 @@ def test_other_start_vectors_give_the_same_modes_with_small_residuals(paper, mon
 @pytest.fixture(scope="module")
 def plain(cylinder):
     """The cylinder's pencil solved by PARDISO the ordinary way (two factorisations)."""
-    if "pardiso" not in available_factorizers():
+    if "pardiso" not in available_factorisers():
         pytest.skip("PARDISO is not installed")
     s = cylinder.system
-    rigid = modal.rigid_body_modes(s.nodes)
-    return s, rigid, modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso")
+    rigid = rigid_body_modes(s.nodes)
+    return s, rigid, eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"))
 
 
 def _factorisations(monkeypatch):
@@ -149,13 +152,13 @@ def test_a_shift_hint_needs_one_factorisation_and_finds_the_same_modes(plain, mo
     there counting all sixteen."""
     s, rigid, sol = plain
     shifts = _factorisations(monkeypatch)
-    hinted = modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso",
+    hinted = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"),
                                shift_hint=sol.inertia_shift)
     assert shifts == [sol.inertia_shift]
     assert hinted.inertia_count == 16 and hinted.inertia_shift == sol.inertia_shift
     assert np.max(np.abs(hinted.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
     assert hinted.pairs.relative_residuals()[6:].max() < 1e-8
-    lu = modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="superlu")
+    lu = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("superlu"))
     f, f_lu = np.sqrt(hinted.eigenvalues[6:]), np.sqrt(lu.eigenvalues[6:])
     assert np.max(np.abs(f / f_lu - 1)) < 1e-8
 
@@ -169,7 +172,7 @@ def test_a_hint_that_does_not_serve_falls_back(plain, monkeypatch, where):
     hint = {"too low": np.sqrt(lam[10] * lam[11]), "too high": 4.0 * lam[-1],
             "below every mode": 0.5 * lam[6]}[where]
     shifts = _factorisations(monkeypatch)
-    again = modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso",
+    again = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"),
                               shift_hint=hint)
     assert len(shifts) == 3 and shifts[0] == hint
     assert again.inertia_shift == pytest.approx(sol.inertia_shift, rel=1e-9)
@@ -188,5 +191,5 @@ def test_a_krylov_space_blind_to_a_mode_is_caught_below_a_hint_too(cylinder, pla
     monkeypatch.setattr(ShiftedFactor, "solve", lambda self, b: wrap(
         lambda c: real_solve(self, c))(b))
     with pytest.raises(SolverError, match="a mode was skipped"):
-        modal.solve_modes(s.K, s.M, 10, rigid=rigid, factorizer="pardiso",
+        eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"),
                           shift_hint=sol.inertia_shift)

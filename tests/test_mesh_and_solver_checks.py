@@ -7,8 +7,9 @@ import pytest
 
 from shaftfem.cad.mesh import check_jacobians, jacobian_ratio, straighten_bad_elements
 from shaftfem.errors import MeshError, SolverError
-from shaftfem.fem import modal
+from shaftfem.fem import eigen
 from shaftfem.fem.assembly import assemble
+from shaftfem.fem.modes import modal_analysis
 
 
 def test_curved_mesh_has_positive_jacobians(cylinder):
@@ -59,22 +60,21 @@ def test_disconnected_mesh_is_an_error(cylinder):
     shifted = m.points + np.array([1.0, 0.0, 0.0])
     two = ShaftMesh(points=np.vstack([m.points, shifted]),
                     cells=np.vstack([m.cells, m.cells + len(m.points)]), order=2,
-                    min_jacobian_ratio=m.min_jacobian_ratio, straightened=0,
-                    seconds=0.0)
+                    min_jacobian_ratio=m.min_jacobian_ratio, straightened=0)
     sys_ = assemble(two, cylinder.scene.material)
     with pytest.raises(SolverError, match="2 disconnected parts"):
-        modal.modal_analysis(sys_.K, sys_.M, sys_.nodes, sys_.mass_scalar)
+        modal_analysis(sys_)
 
 
 def test_a_shift_that_misses_the_lowest_modes_is_an_error(cylinder, monkeypatch):
     # a shift far above the lowest modes: shift-invert finds modes near it instead,
     # and the inertia count below the highest of them shows the ones it skipped
-    monkeypatch.setattr(modal, "SHIFT_FACTOR", -1e-3)
+    monkeypatch.setattr(eigen, "SHIFT_FACTOR", -1e-3)
     s = cylinder.system
     # Which pairs the Krylov space yields about that shift depends on ARPACK's version;
     # the class of failure does not: the modes below the count are named as missing.
     with pytest.raises(SolverError, match="a mode was skipped") as caught:
-        modal.modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+        modal_analysis(s)
     found, counted, missing = map(int, re.search(
         r"found (\d+) eigenvalues below .* counts (\d+): a mode was skipped \((\d+) missing\)",
         str(caught.value)).groups())

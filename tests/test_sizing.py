@@ -102,6 +102,24 @@ def test_import_and_size_load_no_mesher_or_fem():
     assert p.returncode == 0, p.stderr
 
 
+def test_the_public_api_is_lazy_and_complete():
+    """`import shaftfem` and the names a library user calls load no mesher, FE or solver
+    library until a step runs; every name it lists resolves."""
+    code = (
+        "import sys, shaftfem;"
+        "heavy = lambda: [m for m in ('gmsh', 'skfem', 'scipy', 'pyvista', 'meshio') "
+        "if m in sys.modules];"
+        "assert not heavy(), heavy();"
+        "s = shaftfem.load_scene('paper2018'); o = shaftfem.RunOptions(use_cache=False);"
+        "f = (shaftfem.run_modes, shaftfem.run_bounded, shaftfem.run_design);"
+        "assert not heavy(), heavy();"
+        "[getattr(shaftfem, n) for n in shaftfem.__all__];"
+        "assert 'scipy' in sys.modules and isinstance(s, shaftfem.Scene)"
+    )
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+
+
 def test_the_scene_shaft_and_grooves_are_checked_against_the_sizing(tmp_path, capsys):
     """Across tables: a [shaft] thinner than the duty's D, and a [grooves] pitch that the
     feed step and gears (equation 1) do not give, are broken limits (exit 1), said."""

@@ -12,7 +12,8 @@ import pytest
 
 from references import timoshenko_free_free_hz, torsion_hz
 from shaftfem.fem.assembly import assemble
-from shaftfem.fem.modal import modal_analysis
+from shaftfem.fem.eigen import SolverSettings
+from shaftfem.fem.modes import modal_analysis
 from shaftfem.scene.model import Material, scene_from_dict
 from shaftfem.workflows.pipeline import run_modes
 
@@ -41,7 +42,7 @@ def _healthy(modes):
 
 def _solve(mesh, material):
     s = assemble(mesh, material)
-    return modal_analysis(s.K, s.M, s.nodes, s.mass_scalar)
+    return modal_analysis(s)
 
 
 @pytest.mark.parametrize("factor", [1e6, 1e-6])
@@ -57,14 +58,14 @@ def test_frequencies_scale_exactly_with_sqrt_E(cylinder, factor):
 def test_the_one_factorisation_at_a_hint_scales_too(cylinder, factor):
     """The solve from a shift hint (PARDISO, one factorisation, Lanczos below the
     hint) under the same extreme stiffnesses: healthy modes, the same sqrt(E) law."""
-    from shaftfem.fem.factor import available_factorizers
+    from shaftfem.fem.factor import available_factorisers
 
-    if "pardiso" not in available_factorizers():
+    if "pardiso" not in available_factorisers():
         pytest.skip("PARDISO is not installed")
     m = cylinder.scene.material
     s = assemble(cylinder.mesh, replace(m, youngs_modulus=m.youngs_modulus * factor))
     hint = cylinder.modes.inertia_shift * factor
-    modes = modal_analysis(s.K, s.M, s.nodes, s.mass_scalar, factorizer="pardiso",
+    modes = modal_analysis(s, settings=SolverSettings("pardiso"),
                            shift_hint=hint)
     _healthy(modes)
     assert modes.inertia_shift == hint  # solved at the hint, not by the fallback
@@ -85,8 +86,7 @@ def test_same_shaft_in_mm_gives_the_same_hz(cylinder):
 
     m, mesh = cylinder.scene.material, cylinder.mesh
     mm = ShaftMesh(points=mesh.points * 1e3, cells=mesh.cells, order=2,
-                   min_jacobian_ratio=mesh.min_jacobian_ratio, straightened=0,
-                   seconds=0.0)
+                   min_jacobian_ratio=mesh.min_jacobian_ratio, straightened=0)
     modes = _solve(mm, Material("40Cr (t, mm, s)", m.youngs_modulus * 1e-6,
                                 m.poisson_ratio, m.density * 1e-12))
     _healthy(modes)

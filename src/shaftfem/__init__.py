@@ -1,10 +1,70 @@
 """shaftfem: finite-element modal analysis of machine shafts.
 
-Importing the package is cheap: gmsh, scikit-fem and pyvista are imported only
-by the steps that need them (geometry/mesh, assembly, render).
+    import shaftfem
+    scene = shaftfem.load_scene("paper2018")          # a shipped scene, or a file
+    run = shaftfem.run_bounded(scene)                 # modes and their error bounds
+    run.result.modes.frequencies, run.estimate.relative_error
+    shaftfem.run_design(scene, "out/paper2018")       # sizing, check, files, report
+
+Importing the package is cheap: the names below load their modules on first use,
+and gmsh, scikit-fem, SciPy and pyvista only come with the steps that need them.
 """
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING
+
+from shaftfem.errors import (
+    GeometryError,
+    MeshError,
+    SceneError,
+    ShaftfemError,
+    SolverError,
+)
 
 __version__ = "0.1.0"
 
-from shaftfem.errors import GeometryError, MeshError, SceneError, ShaftfemError, SolverError  # noqa: F401
-from shaftfem.scene.model import Scene, load_scene  # noqa: F401
+# name -> the module that defines it, imported when the name is first used
+_LAZY = {
+    "Scene": "shaftfem.scene.model",
+    "load_scene": "shaftfem.scene.model",
+    "RunOptions": "shaftfem.runtime",
+    "ModalResult": "shaftfem.workflows.pipeline",
+    "run_modes": "shaftfem.workflows.pipeline",
+    "with_mesh": "shaftfem.workflows.pipeline",
+    "with_modes": "shaftfem.workflows.pipeline",
+    "Bounded": "shaftfem.workflows.bounded",
+    "run_bounded": "shaftfem.workflows.bounded",
+    "with_accuracy": "shaftfem.workflows.bounded",
+    "DesignResult": "shaftfem.workflows.design",
+    "run_design": "shaftfem.workflows.design",
+    "Modes": "shaftfem.fem.modes",
+    "ErrorEstimate": "shaftfem.fem.estimate",
+}
+
+__all__ = ["GeometryError", "MeshError", "SceneError", "ShaftfemError", "SolverError",
+           "__version__", *_LAZY]
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'shaftfem' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # once loaded, an ordinary attribute
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
+
+
+if TYPE_CHECKING:
+    from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.modes import Modes
+    from shaftfem.runtime import RunOptions
+    from shaftfem.scene.model import Scene, load_scene
+    from shaftfem.workflows.bounded import Bounded, run_bounded, with_accuracy
+    from shaftfem.workflows.design import DesignResult, run_design
+    from shaftfem.workflows.pipeline import ModalResult, run_modes, with_mesh, with_modes

@@ -1,4 +1,4 @@
-"""Thread pools, set in one place.
+"""How a run is carried out, set in one place: thread pools and RunOptions.
 
 MKL PARDISO's threads do the heavy work of the eigensolve. NumPy's OpenBLAS
 pool, started beside them, fights MKL's for the cores: on 2 cores it doubled
@@ -19,6 +19,8 @@ from __future__ import annotations
 import os
 import sys
 import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
 
 BLAS_THREADS = 1
 
@@ -42,3 +44,20 @@ def assembly_threads(requested: int | None = None) -> int:
 def worker_env() -> dict[str, str]:
     """Environment for worker processes that share the cores with their siblings."""
     return {"OPENBLAS_NUM_THREADS": str(BLAS_THREADS)}
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How a run is carried out, never what it computes: whether the cache is read and
+    written, the factoriser ('auto', 'pardiso', 'cholmod', 'superlu'), the assembly
+    threads (None: one per core) and where progress lines go (None: nowhere)."""
+
+    use_cache: bool = True
+    factoriser: str = "auto"
+    threads: int | None = None
+    progress: Callable[[str], None] | None = None
+
+    def say(self, message: str) -> None:
+        """One progress line."""
+        if self.progress is not None:
+            self.progress(message)

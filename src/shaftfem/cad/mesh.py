@@ -14,7 +14,6 @@ excitation, another margin) skips meshing and gets the very same nodes.
 
 from __future__ import annotations
 
-import time
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -52,7 +51,6 @@ class ShaftMesh:
     order: int
     min_jacobian_ratio: float
     straightened: int  # P2 elements whose curved edges were straightened to stay valid
-    seconds: float
     from_cache: bool = False
 
     @property
@@ -141,13 +139,12 @@ def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     """Mesh the solid (or fetch the same mesh from the cache; without `use_cache` the
     cache is neither read nor written); `cuts`: z (m) where the mesh must have faces
     (the edges of seat bands)."""
-    t0 = time.perf_counter()
     key = mesh_key(shape, shaft, grooves, settings, cuts)
     path = cache_dir() / "meshes" / f"{key}.npz"
     if use_cache and path.exists():
         fields, why = load_arrays(path, MESH_ARRAYS)
         if fields is not None:
-            return mesh_from_arrays(fields, time.perf_counter() - t0)
+            return mesh_from_arrays(fields)
         discard(f"mesh {key}", why, path)
     mesh = _generate(shape, shaft, grooves, settings, cuts=cuts)
     if use_cache:
@@ -165,11 +162,11 @@ def mesh_arrays(mesh: ShaftMesh) -> dict[str, Any]:
                 straightened=np.int64(mesh.straightened))
 
 
-def mesh_from_arrays(fields: dict, seconds: float) -> ShaftMesh:
+def mesh_from_arrays(fields: dict) -> ShaftMesh:
     """The mesh of a cache entry's arrays."""
     return ShaftMesh(points=fields["points"], cells=fields["cells"], order=int(fields["order"]),
                      min_jacobian_ratio=float(fields["ratio"]),
-                     straightened=int(fields["straightened"]), seconds=seconds,
+                     straightened=int(fields["straightened"]),
                      from_cache=True)
 
 
@@ -185,7 +182,6 @@ def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
               settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = ()) -> ShaftMesh:
     from shaftfem.cad.occ import mesh_solid
 
-    t0 = time.perf_counter()
     points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
@@ -195,7 +191,7 @@ def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         points, straightened = straighten_bad_elements(points, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
-                     straightened=straightened, seconds=time.perf_counter() - t0)
+                     straightened=straightened)
 
 
 def _four_copies(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

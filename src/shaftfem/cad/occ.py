@@ -104,7 +104,7 @@ def translated(kind: type[ShaftfemError], what: str):
     except ShaftfemError:
         raise
     except (Exception, SystemExit) as exc:
-        raise kind(f"{what}: {type(exc).__name__}: {exc}") from None
+        raise kind(f"{what}: {type(exc).__name__}: {exc}") from exc
 
 
 @contextmanager

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import math
-import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -35,7 +34,6 @@ class ShaftShape:
     groove_volume_analytic: float
     groove_volume_cad: float
     n_volumes: int
-    build_seconds: float
     from_cache: bool
 
     @property
@@ -60,7 +58,7 @@ def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -
     if grooves is None:
         return ShaftShape(brep=None, volume=math.pi * shaft.radius**2 * shaft.length,
                           groove_volume_analytic=0.0, groove_volume_cad=0.0, n_volumes=1,
-                          build_seconds=0.0, from_cache=False)
+                          from_cache=False)
     key = shape_key(shaft, grooves)
     folder = (cache_dir() if use_cache else scratch_dir()) / "shapes"
     brep, meta_file = folder / f"{key}.brep", folder / f"{key}.json"
@@ -72,7 +70,6 @@ def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -
 
     from shaftfem.cad.occ import build_solid
 
-    t0 = time.perf_counter()
     v_grooves = groove_volume(grooves, shaft.radius)
     with atomic_path(brep) as tmp:
         volume, n_volumes = build_solid(shaft, grooves, tmp)
@@ -84,14 +81,13 @@ def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -
                 f"volume is {v_grooves * 1e9:.1f} mm^3 ({100 * err:+.2f} %, allowed "
                 f"{100 * VOLUME_TOLERANCE:.0f} %): the CAD booleans went wrong")
     meta = dict(volume=volume, groove_volume_analytic=v_grooves, groove_volume_cad=removed,
-                n_volumes=n_volumes, build_seconds=time.perf_counter() - t0)
+                n_volumes=n_volumes)
     write_json(meta_file, {**meta, "brep_sha256": checksum(brep.read_bytes()),
                            "sha256": _meta_checksum(meta)})
     return ShaftShape(brep=brep, from_cache=False, **meta)
 
 
-META_KEYS = ("volume", "groove_volume_analytic", "groove_volume_cad", "n_volumes",
-             "build_seconds")
+META_KEYS = ("volume", "groove_volume_analytic", "groove_volume_cad", "n_volumes")
 
 
 def _meta_checksum(meta: dict) -> str:

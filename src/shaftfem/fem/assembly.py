@@ -21,7 +21,6 @@ faster because it touches each scalar gradient once instead of 30 vector ones
 
 from __future__ import annotations
 
-import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any
@@ -57,7 +56,6 @@ class System:
     nodes: np.ndarray           # (n_nodes, 3) positions of the scalar DOFs, m
     point_dofs: np.ndarray      # (n_points,) scalar node of each mesh point
     order: int
-    seconds: float
 
     @property
     def n_dofs(self) -> int:
@@ -201,11 +199,9 @@ class Discretisation:
     def n_dofs(self) -> int:
         return 3 * self.pattern.n_nodes
 
-    def upper_structure(self) -> sp.csr_matrix:
-        """The upper triangle of K's sparsity (values: ones), as `assemble` stores K."""
-        from shaftfem.fem.factor import upper_triangle
-
-        return upper_triangle(self.pattern.matrix(np.ones((self.pattern.n_blocks, 9)), 3))
+    def structure(self) -> sp.csr_matrix:
+        """K's sparsity (values: ones), as `assemble` stores K."""
+        return self.pattern.matrix(np.ones((self.pattern.n_blocks, 9)), 3)
 
 
 def discretise(mesh) -> Discretisation:
@@ -222,7 +218,6 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
              ) -> System:
     """K and M of a mesh.ShaftMesh with P1/P2 elements (its order), on `threads`
     threads (default: one per core); `discretisation`: the mesh's, if made already."""
-    t0 = time.perf_counter()
     d = discretisation or discretise(mesh)
     order, k_basis, pattern = d.order, d.basis, d.pattern
     lam, mu = material.lame
@@ -241,7 +236,7 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
     _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
                   point_dofs=point_dofs(mesh.cells, k_basis.element_dofs, nodes, mesh.points),
-                  order=order, seconds=time.perf_counter() - t0)
+                  order=order)
 
 
 def point_dofs(cells: np.ndarray, element_dofs: np.ndarray, nodes: np.ndarray,

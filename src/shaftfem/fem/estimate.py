@@ -31,7 +31,6 @@ not larger) the bound is the recovery estimate alone, and is said to be so.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -41,9 +40,8 @@ import scipy.sparse as sp
 if TYPE_CHECKING:
     from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.cad.solid import ShaftShape
-    from shaftfem.fem.modal import Modes
+    from shaftfem.fem.modes import Modes
     from shaftfem.scene.model import Material, Shaft
-    from shaftfem.workflows.pipeline import ModalResult
 
 # On the larger estimate. Measured effectivities (estimate / true error) before it:
 # 1.25-1.9 on the paper's shaft (two-mesh, against an independent NGSolve order-3
@@ -53,7 +51,6 @@ if TYPE_CHECKING:
 SAFETY = 1.5
 RHO_MAX = 0.9        # above: the coarser mesh's estimate is not clearly larger
 CLUSTER = 1e-3       # relative gap below which modes share one bound (bending pairs)
-COARSER = 1.5        # size ratio of the coarser mesh behind a fixed mesh's estimate
 
 
 @dataclass(frozen=True)
@@ -119,13 +116,13 @@ def _operators(skmesh, order: int):
 def recovery_estimate(mesh: ShaftMesh, material: Material, modes: Modes,
                       chunk: int = 4) -> Recovery:
     """Zienkiewicz-Zhu estimate of each mode's relative frequency error, per element."""
-    from shaftfem.fem.factor import factorize
+    from shaftfem.fem.factor import factorise
 
     lam, mu = material.lame
     value, grads, dx = _operators(mesh.to_skfem(), mesh.order)
     ne, nq = dx.shape
     w = dx.ravel()
-    solve, _ = factorize((value.T @ sp.diags(w) @ value).tocsc(), "auto")
+    solve, _ = factorise((value.T @ sp.diags(w) @ value).tocsc(), "auto")
     X = modes.shapes
     n = X.shape[1]
     omega2 = (2 * np.pi * modes.frequencies) ** 2
@@ -214,28 +211,3 @@ def matched(ref_kinds: list[str], kinds: list[str], values: np.ndarray) -> np.nd
         for a, b in zip(mine, theirs):
             out[a] = values[b]
     return out
-
-
-def estimate_errors(result: ModalResult, ratio: float = COARSER,
-                    progress: Callable[[str], None] | None = None,
-                    factorizer: str = "auto", threads: int | None = None,
-                    use_cache: bool = True) -> ErrorEstimate:
-    """The bound of a fixed mesh's frequencies: its recovery estimate, confirmed by the
-    same scene solved on a mesh `ratio` times coarser (cached like any solve, unless
-    `use_cache` is off)."""
-    from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
-
-    say = progress or (lambda _m: None)
-    scene, m = result.scene, result.modes
-    size_mm = scene.mesh.size * 1e3 * ratio
-    say(f"error estimate: recovery on this mesh, and a coarser mesh ({size_mm:.3g} mm)")
-    fine = recovery_estimate(result.mesh, scene.material, m)
-    # the same modes, counted (a frequency limit could select others on a coarse mesh)
-    coarse_scene = with_modes(with_mesh(scene, size_mm), count=m.count)
-    coarse = run_modes(coarse_scene, factorizer=factorizer, threads=threads, use_cache=use_cache)
-    ceta = recovery_estimate(coarse.mesh, scene.material, coarse.modes).relative
-    return combine(m.frequencies, fine.relative,
-                   matched(m.kinds, coarse.modes.kinds, coarse.modes.frequencies),
-                   matched(m.kinds, coarse.modes.kinds, ceta), coarse.modes.n_dofs,
-                   method=f"recovery, confirmed on a {ratio:g}x coarser mesh",
-                   geometry=volume_difference(fine.volume, result.shape, scene.shaft))

@@ -22,7 +22,7 @@ import scipy.sparse as sp
 
 from shaftfem.errors import SolverError
 
-FACTORIZERS = ("pardiso", "cholmod", "superlu")
+FACTORISERS = ("pardiso", "cholmod", "superlu")
 # 'auto' takes SuperLU below this many DOFs: there its solves give residuals of
 # 1e-10..1e-12 and the factorisation is a small part of the time. Above it
 # factorisation dominates and PARDISO is 7x faster (benchmarks/).
@@ -36,7 +36,7 @@ _IPARM = {1: 1, 2: 3, 8: 0, 10: 8, 35: 0}
 _SYMMETRIC_INDEFINITE = -2
 
 
-def available_factorizers() -> list[str]:
+def available_factorisers() -> list[str]:
     """The factorisation back-ends importable here, fastest first (SuperLU always)."""
     import importlib.util
 
@@ -197,7 +197,7 @@ class Pardiso:
             pass
 
 
-def factorize(A: sp.spmatrix, backend: str = "auto"
+def factorise(A: sp.spmatrix, backend: str = "auto"
               ) -> tuple[Callable[[np.ndarray], np.ndarray], str]:
     """A solve function x = A^-1 b for the SPD matrix A, and the back-end used.
 
@@ -207,7 +207,7 @@ def factorize(A: sp.spmatrix, backend: str = "auto"
     checks 1e-8).
     """
     if backend == "auto":
-        backend = "superlu" if A.shape[0] < AUTO_SUPERLU_BELOW else available_factorizers()[0]
+        backend = "superlu" if A.shape[0] < AUTO_SUPERLU_BELOW else available_factorisers()[0]
     if backend == "pardiso":
         return Pardiso(upper_triangle(A)).solve, backend
     if backend == "cholmod":
@@ -228,14 +228,14 @@ def factorize(A: sp.spmatrix, backend: str = "auto"
         from scipy.sparse.linalg import splu
 
         return splu(sp.csc_matrix(A)).solve, backend
-    raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORIZERS)}")
+    raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORISERS)}")
 
 
 def _resolve(backend: str, n: int) -> str:
     if backend == "auto":
-        return "superlu" if n < AUTO_SUPERLU_BELOW else available_factorizers()[0]
-    if backend not in FACTORIZERS:
-        raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORIZERS)}")
+        return "superlu" if n < AUTO_SUPERLU_BELOW else available_factorisers()[0]
+    if backend not in FACTORISERS:
+        raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORISERS)}")
     return backend
 
 
@@ -244,12 +244,12 @@ def uses_pardiso(backend: str, n: int) -> bool:
     return _resolve(backend, n) == "pardiso"
 
 
-def analyse_in_background(upper: sp.csr_matrix) -> Future:
-    """PARDISO's analysis of a sparsity (the upper triangle's structure), started in a
+def analyse_in_background(structure: sp.csr_matrix) -> Future:
+    """PARDISO's analysis of a symmetric matrix's sparsity (`structure`), started in a
     thread: it needs no values, so it runs while they are assembled (ctypes releases
     the GIL for the call). The future's result is a `Pardiso` awaiting `refactor`."""
     pool = ThreadPoolExecutor(1, thread_name_prefix="pardiso-analysis")
-    future = pool.submit(Pardiso, upper, False)
+    future = pool.submit(Pardiso, upper_triangle(structure), False)
     pool.shutdown(wait=False)
     return future
 
@@ -286,7 +286,7 @@ class ShiftedFactor:
                 self._pardiso.refactor(upper)
             self._solve = self._pardiso.solve
         else:
-            self._solve, _ = factorize(self.pencil.full(s), self.backend)
+            self._solve, _ = factorise(self.pencil.full(s), self.backend)
         self.shift = s
 
     def solve(self, b: np.ndarray) -> np.ndarray:

@@ -37,7 +37,6 @@ the solve.
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -275,7 +274,6 @@ class Installed:
     tied: tuple[np.ndarray, ...]          # band nodes of each attached part
     parts_from: int                       # the parts' (U, Theta) from this column on
     rings: tuple[np.ndarray, ...]         # band nodes of each rigid-coupled seat
-    seconds: float
 
     @property
     def n_rigid(self) -> int:
@@ -291,7 +289,6 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     """The scene's seats and parts applied to the free shaft's K (N/m) and M (kg) on
     `nodes` (the scalar DOFs' positions); `skmesh` the scikit-fem mesh, for the bands'
     surface."""
-    t0 = time.perf_counter()
     if n_bodies(K) != 1:
         raise SolverError("the mesh has disconnected parts; a shaft must be one piece")
     radius = scene.shaft.radius
@@ -358,7 +355,7 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     return Installed(K=K_r, M=M_r, T=T, rigid=rigid, free=motion_names(target, nodes),
                      restraints=tuple(restraints), clamped=clamped,
                      tied=tuple(i for i, _ in tied[:n_parts]), parts_from=first,
-                     rings=tuple(idx for _, idx in rings), seconds=time.perf_counter() - t0)
+                     rings=tuple(idx for _, idx in rings))
 
 
 def ring_stiffness(s: Support) -> tuple[float, ...]:

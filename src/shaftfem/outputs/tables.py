@@ -95,7 +95,7 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     lines = [
         f"scene {scene.name}: P{scene.mesh.order}, {m.n_dofs} DOFs, "
         f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm "
-        f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factorizer}",
+        f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factoriser}",
         *installation_lines(result),
         f"{rigid}; Sturm check: {m.inertia_count} eigenvalues below "
         f"{m.inertia_shift_hz:.1f} Hz, as many as found",
@@ -261,8 +261,8 @@ def calibration_text(res: CalibrationResult, cal: Calibration) -> str:
     return "\n".join(lines)
 
 
-STUDY_COLUMNS = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "factorisation_s",
-                 "eigensolve_s", "total_s", "peak_memory_mb", "max_rel_error"]
+STUDY_COLUMNS = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "solve_s",
+                 "total_s", "peak_memory_mb", "max_rel_error"]
 
 
 def study_markdown(study: StudyResult) -> str:

@@ -291,14 +291,14 @@ def read_toml(path: str | Path, what: str = "file") -> dict:
     path = Path(path)
     try:
         return tomllib.loads(path.read_text(encoding="utf-8-sig"))
-    except FileNotFoundError:
-        raise SceneError(f"{what} {str(path)!r}: no such file") from None
+    except FileNotFoundError as exc:
+        raise SceneError(f"{what} {str(path)!r}: no such file") from exc
     except (IsADirectoryError, PermissionError) as exc:
-        raise SceneError(f"{what} {str(path)!r}: cannot be read ({exc.strerror})") from None
-    except UnicodeDecodeError:
-        raise SceneError(f"{path.name}: not a text file (TOML is UTF-8 text)") from None
+        raise SceneError(f"{what} {str(path)!r}: cannot be read ({exc.strerror})") from exc
+    except UnicodeDecodeError as exc:
+        raise SceneError(f"{path.name}: not a text file (TOML is UTF-8 text)") from exc
     except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{path.name}: not valid TOML: {exc}") from None
+        raise SceneError(f"{path.name}: not valid TOML: {exc}") from exc
 
 
 # --------------------------------------------------------------------------

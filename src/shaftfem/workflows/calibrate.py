@@ -24,13 +24,13 @@ smaller than a few percent of a parameter's range would see mesh noise.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from shaftfem.errors import SceneError, ShaftfemError
+from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import SceneText, check_entries, load_scene, read_scene_text, scene_beside
 from shaftfem.scene.schema import (
     DEFAULT_MODE_COUNT,
@@ -140,13 +140,13 @@ def grid_points(cal: Calibration) -> list[dict]:
 
 
 def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
-              progress: Callable[[str], None] | None = None,
-              scheduler: str | None = None) -> CalibrationResult:
+              scheduler: str | None = None,
+              options: RunOptions = RunOptions()) -> CalibrationResult:
     """Grid on the sweep engine (local workers, or the cluster at `scheduler`), then a
     local bounded least-squares fit."""
     from scipy.optimize import least_squares
 
-    say = progress or (lambda _m: None)
+    say = options.say
     names = list(cal.unknowns)
     lo = np.array([cal.unknowns[n][0] for n in names])
     hi = np.array([cal.unknowns[n][1] for n in names])
@@ -164,7 +164,7 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     base = read_scene_text(cal.base)  # read once here; its content goes to the workers
     rows = run_sweep(Sweep(base, cal.mesh_size_mm, variants, names, cal.n_modes),
                      Path(workdir) / "grid.csv", workers=workers, scheduler=scheduler,
-                     progress=say)
+                     options=options)
     ok = [r for r in rows if r["status"] == "ok"]
     if not ok:
         raise ShaftfemError(f"every one of the {len(rows)} grid runs failed; the first: "

@@ -1,8 +1,7 @@
 """The design workflow: sizing, modes with error estimates, the resonance verdict,
 files, pictures and a report, in one call.
 
-    from shaftfem.workflows.design import run_design
-    from shaftfem.scene.model import load_scene
+    from shaftfem import load_scene, run_design
     d = run_design(load_scene("paper2018"), "out/paper2018")
     d.ok, d.report
 
@@ -13,12 +12,11 @@ skips the sizing.
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 MANIFEST = "design.manifest.json"   # lists every file of the last complete design run
@@ -51,8 +49,7 @@ class DesignResult:
 
 
 def run_design(scene: Scene, out: str | Path, margin: float | None = None,
-               estimate: bool = True, use_cache: bool = True, factorizer: str = "auto",
-               progress: Callable[[str], None] | None = None) -> DesignResult:
+               estimate: bool = True, options: RunOptions = RunOptions()) -> DesignResult:
     """Everything a designer signs off, written to `out`. `margin`: required separation
     (fraction), default the scene's."""
     from shaftfem.checks.resonance import check_result
@@ -61,16 +58,16 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     from shaftfem.outputs.render import render_into
     from shaftfem.outputs.report import write_report
     from shaftfem.store import staged_directory
-    from shaftfem.workflows.adapt import run_bounded
+    from shaftfem.workflows.bounded import run_bounded
 
-    say = progress or (lambda _m: None)
+    say = options.say
     out = Path(out)
     sizing = None
     if scene.sizing is not None:
         say("sizing (equations 1-9)")
         sizing = size_from_scene(scene)
-    result, est, adapted = run_bounded(scene, estimate=estimate, use_cache=use_cache,
-                                       progress=say, factorizer=factorizer)
+    bounded = run_bounded(scene, estimate, options)
+    result, est = bounded.result, bounded.estimate
     verdict = check_result(result, margin)
     free, part, response, basis = None, None, None, None
     if scene.held:
@@ -78,8 +75,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         from shaftfem.workflows.pipeline import solve_mesh
 
         say("the same shaft hanging free, on the same mesh, for comparison")
-        free = solve_mesh(scene.free(), result.shape, result.mesh, time.perf_counter(), 0.0,
-                          0.0, say, factorizer, use_cache=use_cache)
+        free = solve_mesh(scene.free(), result.shape, result.mesh, options)
         basis = modal_basis(result)
         part = participation(basis)
         response = response_sweep(result, "x", basis=basis)
@@ -97,7 +93,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     report = out / "report.md"
     say(f"report written: {report}")
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
-                        files=files, pictures=pictures, report=report, adapted=adapted,
+                        files=files, pictures=pictures, report=report, adapted=bounded.adapted,
                         participation=part)
 
 

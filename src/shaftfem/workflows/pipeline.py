@@ -7,11 +7,13 @@ and keeps what each produced and how long it took.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, fields, replace
 from typing import TYPE_CHECKING
 
 from shaftfem.errors import SceneError
+from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
@@ -20,23 +22,41 @@ if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only wh
     from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.cad.solid import ShaftShape
     from shaftfem.fem.assembly import System
-    from shaftfem.fem.modal import Modes
+    from shaftfem.fem.modes import Modes
     from shaftfem.fem.supports import Installed
 
 
 @dataclass(frozen=True)
 class Timings:
-    """Wall time of each step of one modal run, s."""
+    """Wall time of each step of one modal run, s, as the workflow measured it."""
 
-    cad: float
-    mesh: float
-    assembly: float
-    factorisation: float
-    eigensolve: float
-    total: float
+    cad: float = 0.0
+    mesh: float = 0.0
+    assembly: float = 0.0
+    solve: float = 0.0   # factorisations, eigensolve and the inertia proof
+    total: float = 0.0
 
     def items(self) -> Iterator[tuple[str, float]]:
         return ((f.name, getattr(self, f.name)) for f in fields(self))
+
+
+class Stopwatch:
+    """The laps of one run: `with watch.lap("mesh"): ...`, then `watch.timings()`."""
+
+    def __init__(self) -> None:
+        self.start = time.perf_counter()
+        self.laps: dict[str, float] = {}
+
+    @contextmanager
+    def lap(self, name: str) -> Iterator[None]:
+        t = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.laps[name] = self.laps.get(name, 0.0) + time.perf_counter() - t
+
+    def timings(self) -> Timings:
+        return Timings(**self.laps, total=time.perf_counter() - self.start)
 
 
 @dataclass(frozen=True)
@@ -82,72 +102,62 @@ def with_modes(scene: Scene, count: int | None = None,
     return replace(scene, modes=req)
 
 
-def run_modes(scene: Scene, use_cache: bool = True,
-              progress: Callable[[str], None] | None = None,
-              factorizer: str = "auto", threads: int | None = None) -> ModalResult:
-    """Build, mesh, assemble and solve `scene`; return every intermediate result.
-
-    `threads`: assembly threads (default one per core; sweep workers use 1)."""
+def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
+    """Build, mesh, assemble and solve `scene`; return every intermediate result."""
     from shaftfem.cad.mesh import check_budget, mesh_shape
     from shaftfem.cad.solid import build_shape
 
-    say = progress or (lambda _msg: None)
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
-
-    say("building the shaft's solid (CAD)")
-    shape = build_shape(scene.shaft, scene.grooves, use_cache=use_cache)
-    t_cad = time.perf_counter() - t0
-    say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
-
-    t = time.perf_counter()
-    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=use_cache,
-                      cuts=scene.seat_cuts())
-    t_mesh = time.perf_counter() - t
-    say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
-        "assembling K and M")
-    return solve_mesh(scene, shape, mesh, t0, t_cad, t_mesh, say, factorizer, threads,
-                      use_cache=use_cache)
+    options.say("building the shaft's solid (CAD)")
+    with watch.lap("cad"):
+        shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)
+    options.say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
+    with watch.lap("mesh"):
+        mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
+                          use_cache=options.use_cache, cuts=scene.seat_cuts())
+    options.say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
+                "assembling K and M")
+    return solve_mesh(scene, shape, mesh, options, watch)
 
 
-def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, t0: float, t_cad: float,
-               t_mesh: float, say: Callable[[str], None], factorizer: str = "auto",
-               threads: int | None = None, use_cache: bool = True) -> ModalResult:
-    """Assemble and solve one mesh of the scene's solid (the run began at t0).
+def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
+               options: RunOptions = RunOptions(), watch: Stopwatch | None = None
+               ) -> ModalResult:
+    """Assemble and solve one mesh of the scene's solid (`watch`: the run's laps so far).
 
-    `use_cache`: start from the shift where the last solve of this scene (any mesh)
-    proved its modes complete, and keep this solve's (see modal.solve_modes)."""
+    With the cache: start from the shift where the last solve of this scene (any mesh)
+    proved its modes complete, and keep this solve's (see fem.eigen.solve_modes)."""
     from shaftfem.fem.assembly import assemble, discretise
+    from shaftfem.fem.eigen import SolverSettings, Wanted
     from shaftfem.fem.factor import analyse_in_background, uses_pardiso
-    from shaftfem.fem.modal import modal_analysis
+    from shaftfem.fem.modes import modal_analysis
 
-    t = time.perf_counter()
-    d = discretise(mesh)
-    # The solver's ordering needs only the sparsity: it runs while K and M are filled
-    # (a free shaft's: seats change the sparsity).
-    analysis = (analyse_in_background(d.upper_structure())
-                if not scene.installed and uses_pardiso(factorizer, d.n_dofs) else None)
-    system = assemble(mesh, scene.material, threads=threads, discretisation=d)
-    installed = None
-    if scene.installed:
-        from shaftfem.fem.supports import install
+    watch = watch or Stopwatch()
+    with watch.lap("assembly"):
+        d = discretise(mesh)
+        # The solver's ordering needs only the sparsity: it runs while K and M are filled
+        # (a free shaft's: seats change the sparsity).
+        analysis = (analyse_in_background(d.structure())
+                    if not scene.installed and uses_pardiso(options.factoriser, d.n_dofs)
+                    else None)
+        system = assemble(mesh, scene.material, threads=options.threads, discretisation=d)
+        installed = None
+        if scene.installed:
+            from shaftfem.fem.supports import install
 
-        installed = install(scene, system.K, system.M, system.nodes, d.basis.mesh, d.order)
-    t_assembly = time.perf_counter() - t
+            installed = install(scene, system.K, system.M, system.nodes, d.basis.mesh, d.order)
     n_dofs = system.n_dofs if installed is None else installed.K.shape[0]
-    say(f"{n_dofs} DOFs; factorising and solving")
-    hint = shift_hint(scene) if use_cache else None
-    modes = modal_analysis(system.K, system.M, system.nodes, system.mass_scalar,
-                           scene.modes.count, factorizer=factorizer,
-                           max_frequency=scene.modes.max_frequency, analysis=analysis,
-                           installed=installed, shift_hint=hint)
-    if use_cache and modes.inertia_shift != hint:
+    options.say(f"{n_dofs} DOFs; factorising and solving")
+    hint = shift_hint(scene) if options.use_cache else None
+    with watch.lap("solve"):
+        modes = modal_analysis(system, Wanted(scene.modes.count, scene.modes.max_frequency),
+                               SolverSettings(options.factoriser, analysis=analysis),
+                               installed=installed, shift_hint=hint)
+    if options.use_cache and modes.inertia_shift != hint:
         keep_shift(scene, modes.inertia_shift)
-    timings = Timings(cad=t_cad, mesh=t_mesh, assembly=t_assembly,
-                      factorisation=modes.factorisation_seconds,
-                      eigensolve=modes.eigensolve_seconds, total=time.perf_counter() - t0)
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
-                       timings=timings, warnings=scene_warnings(scene, modes),
+                       timings=watch.timings(), warnings=scene_warnings(scene, modes),
                        installed=installed)
 
 

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaftfem.fem.estimate import matched
+from shaftfem.runtime import RunOptions
 from shaftfem.workflows.pipeline import Timings
 
 # Eigenvalue errors of smooth problems fall as h^(2k) for P_k elements.
@@ -123,32 +124,31 @@ class StudyResult:
     order: int        # element order of the reference runs
 
 
-def _one_run(scene, size_mm: float, order: int, factorizer: str) -> dict:
+def _one_run(scene, size_mm: float, order: int, factoriser: str) -> dict:
     """Run in a fresh process, so that its peak memory is its own."""
     import resource
 
     from shaftfem.workflows.pipeline import run_modes, with_mesh
 
-    r = run_modes(with_mesh(scene, size_mm, order), factorizer=factorizer)
+    r = run_modes(with_mesh(scene, size_mm, order), RunOptions(factoriser=factoriser))
     return {"dofs": r.modes.n_dofs, "timings": r.timings,
             "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
             "frequencies": r.modes.frequencies, "kinds": r.modes.kinds}
 
 
-def run_study(scene, ladders: dict[int, list[float]], factorizer: str = "auto",
-              progress=None) -> list[StudyRun]:
+def run_study(scene, ladders: dict[int, list[float]],
+              options: RunOptions = RunOptions()) -> list[StudyRun]:
     """Solve `scene` at every (order, size) of the ladders, each in its own process."""
     import multiprocessing as mp
     from concurrent.futures import ProcessPoolExecutor
 
-    say = progress or (lambda _m: None)
     runs = []
     ctx = mp.get_context("spawn")
     for order, sizes in ladders.items():
         for h in sorted(sizes, reverse=True):
-            say(f"study: P{order} at {h:g} mm")
+            options.say(f"study: P{order} at {h:g} mm")
             with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
-                d = pool.submit(_one_run, scene, h, order, factorizer).result()
+                d = pool.submit(_one_run, scene, h, order, options.factoriser).result()
             runs.append(StudyRun(order=order, size_mm=h, **d))
     return runs
 

@@ -33,13 +33,12 @@ import itertools
 import math
 import os
 import time
-from collections.abc import Callable
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from shaftfem.errors import ClusterError, SceneError
-from shaftfem.runtime import worker_env
+from shaftfem.runtime import RunOptions, worker_env
 from shaftfem.scene.model import SceneText, check_entries, load_scene, read_scene_text, scene_beside
 from shaftfem.scene.schema import known_keys, number, parameter, read_toml
 from shaftfem.store import atomic_path, content_key
@@ -157,7 +156,7 @@ def mesh_size(src: str, size: object, base: SceneText) -> float | None:
         scene = with_mesh(load_scene(base), size)
         check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
     except SceneError as exc:
-        raise SceneError(f"{src}: mesh_size_mm = {size:g} for the base scene: {exc}") from None
+        raise SceneError(f"{src}: mesh_size_mm = {size:g} for the base scene: {exc}") from exc
     return size
 
 
@@ -167,11 +166,11 @@ def variant_id(overrides: dict) -> str:
 
 def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | None = None,
                 estimate: bool = False, n_modes: int | None = None,
-                threads: int | None = None) -> dict:
+                options: RunOptions = RunOptions()) -> dict:
     """One variant, start to finish; never raises: a failure is a row with its error.
 
     `base`: the scene's content (as sent to workers), or a scene file or name. Records
-    the lowest `n_modes` (default: the scene's count), assembled on `threads` threads."""
+    the lowest `n_modes` (default: the scene's count), run with `options`."""
     t0 = time.perf_counter()
     row = {"id": variant_id(overrides), **overrides}
     try:
@@ -180,15 +179,15 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
 
         scene = with_mesh(load_scene(base, overrides=overrides), mesh_size_mm)
         scene = with_modes(scene, count=n_modes or scene.modes.count)
-        r = run_modes(scene, threads=threads)
+        r = run_modes(scene, options)
         m = r.modes
         for i in range(m.count):
             row[f"f{i + 1}_hz"] = float(m.frequencies[i])
             row[f"kind{i + 1}"] = m.kinds[i]
         if estimate:
-            from shaftfem.fem.estimate import estimate_errors
+            from shaftfem.workflows.bounded import estimate_errors
 
-            est = estimate_errors(r, threads=threads)
+            est = estimate_errors(r, options)
             for i in range(m.count):
                 row[f"err{i + 1}"] = float(est.relative_error[i])
         v = check_result(r)
@@ -230,18 +229,18 @@ def _connect(address: str):
     try:
         client = Client(address, timeout="10s")
     except OSError as exc:
-        raise ClusterError(f"no Dask scheduler answers at {address}: {exc}") from None
+        raise ClusterError(f"no Dask scheduler answers at {address}: {exc}") from exc
     try:
         client.wait_for_workers(1, timeout=60)
         versions = client.run(worker_version)
-    except TimeoutError:
+    except TimeoutError as exc:
         client.close()
-        raise ClusterError(f"the Dask scheduler at {address} has no workers (waited 60 s)") from None
+        raise ClusterError(f"the Dask scheduler at {address} has no workers (waited 60 s)") from exc
     except Exception as exc:  # a worker that cannot even import shaftfem
         client.close()
         raise ClusterError(f"the workers at {address} cannot run shaftfem "
                            f"({type(exc).__name__}: {exc}); install shaftfem {__version__} "
-                           "in the workers' environment") from None
+                           "in the workers' environment") from exc
     wrong = {w: v for w, v in versions.items() if v != __version__}
     if wrong:
         client.close()
@@ -285,10 +284,10 @@ def _owned(folder: Path):
     fh = open(folder / LOCK, "a+")  # noqa: SIM115 (held until the sweep ends)
     try:
         fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
+    except BlockingIOError as exc:
         fh.close()
         raise SceneError(f"another sweep is writing into {folder}: wait for it to finish "
-                         "or choose another --out") from None
+                         "or choose another --out") from exc
     tmp = folder / WORKER_TMP
     try:
         tmp.mkdir(exist_ok=True)
@@ -306,14 +305,16 @@ def _owned(folder: Path):
 
 def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
               scheduler: str | None = None, estimate: bool = False,
-              progress: Callable[[str], None] | None = None) -> list[dict]:
+              options: RunOptions = RunOptions()) -> list[dict]:
     """Run every variant not yet in `results` on Dask; append each row as it finishes.
-    `results` must be new, or hold rows of this same sweep (its key file says so)."""
+    `results` must be new, or hold rows of this same sweep (its key file says so).
+    The workers solve with `options`' cache use and factoriser, one thread each on a
+    local cluster."""
     results = Path(results)
     with _owned(results.parent) as tmp:
         _claim(results, sweep.key(estimate))
         try:
-            return _run_sweep(sweep, results, workers, scheduler, estimate, progress, tmp)
+            return _run_sweep(sweep, results, workers, scheduler, estimate, options, tmp)
         finally:
             if not results.exists():  # no row was written: the key claims nothing
                 key_path(results).unlink(missing_ok=True)
@@ -347,10 +348,10 @@ def _claim(results: Path, key: dict) -> None:
 
 
 def _run_sweep(sweep: Sweep, results: Path, workers: int, scheduler: str | None,
-               estimate: bool, progress: Callable[[str], None] | None, tmp: Path) -> list[dict]:
+               estimate: bool, options: RunOptions, tmp: Path) -> list[dict]:
     from distributed import Client, LocalCluster, as_completed
 
-    say = progress or (lambda _m: None)
+    say = options.say
     _drop_partial_line(results)
     done = {r["id"] for r in read_results(results)}
     todo = [v for v in sweep.variants if variant_id(v) not in done]
@@ -370,8 +371,9 @@ def _run_sweep(sweep: Sweep, results: Path, workers: int, scheduler: str | None,
         client, threads = Client(cluster), 1
     t0, n_ok, n_failed = time.perf_counter(), 0, 0
     try:
+        worker = replace(options, threads=threads, progress=None)
         futures = [client.submit(run_variant, sweep.base, v, sweep.mesh_size_mm, estimate,
-                                 sweep.n_modes, threads, pure=False) for v in todo]
+                                 sweep.n_modes, worker, pure=False) for v in todo]
         with open(results, "a", newline="") as fh:
             w = csv.DictWriter(fh, fieldnames=columns(sweep.parameters, sweep.n_modes),
                                extrasaction="ignore")

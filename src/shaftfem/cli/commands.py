@@ -1,0 +1,252 @@
+"""The commands: each builds its scene and options from the command line, calls one
+library function, prints the result and returns the exit code."""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+from shaftfem.errors import EXIT_COMPUTATION, SceneError
+from shaftfem.runtime import RunOptions
+
+
+class Progress:
+    """Progress lines with elapsed time on stderr, for the long steps."""
+
+    def __init__(self, quiet: bool = False):
+        self.t0 = time.perf_counter()
+        self.quiet = quiet
+
+    def __call__(self, msg: str) -> None:
+        if not self.quiet:
+            print(f"[{time.perf_counter() - self.t0:7.1f} s] {msg}", file=sys.stderr, flush=True)
+
+
+def _options(args) -> RunOptions:
+    """How the command line asks the run to be carried out."""
+    return RunOptions(use_cache=not getattr(args, "no_cache", False),
+                      factoriser=getattr(args, "solver", "auto"),
+                      progress=Progress(args.quiet))
+
+
+def check_outputs(args) -> None:
+    """Refuse output paths, and a cache, that cannot work before any heavy work, not
+    after it: by writing there (os.access says yes to root on a read-only folder)."""
+    from shaftfem.store import check_cache, probe_writable
+
+    for name, folder in (("json", False), ("out", True)):
+        path = getattr(args, name, None)
+        if path is None:
+            continue
+        if not str(path).strip():
+            raise SceneError(f"--{name} '': give a {'folder' if folder else 'file name'}")
+        p = Path(path)
+        if folder and p.exists() and not p.is_dir():
+            raise SceneError(f"--out {path}: is a file, not a folder")
+        if not folder and p.is_dir():
+            raise SceneError(f"--json {path}: is a folder; give a file name")
+        probe_writable(p if folder else p.parent, f"--{name} {path}")
+    if (hasattr(args, "no_cache") and not args.no_cache) or args.func in (cmd_sweep,
+                                                                         cmd_calibrate):
+        check_cache()
+
+
+def _scene(args):
+    """The scene with the command line's mesh and mode overrides."""
+    from shaftfem.scene.model import load_scene
+    from shaftfem.workflows.bounded import with_accuracy
+    from shaftfem.workflows.pipeline import with_mesh, with_modes
+
+    scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
+    if getattr(args, "free", False):
+        scene = scene.free()
+    scene = with_accuracy(scene, args.accuracy, args.max_dofs, fixed=args.mesh_size is not None)
+    return with_modes(scene, args.modes, args.max_frequency)
+
+
+def _bounded(args, estimate: bool = False):
+    """(result, bound or None, adaptation or None) as the command line asks."""
+    from shaftfem.workflows.bounded import run_bounded
+
+    b = run_bounded(_scene(args), estimate, _options(args))
+    if b.adapted is not None:
+        print(b.adapted.summary(), file=sys.stdout if b.adapted.reached else sys.stderr)
+    return b.result, b.estimate, b.adapted
+
+
+def _accuracy_status(args, adapted) -> int:
+    """1 when a strict accuracy was asked for and not reached."""
+    return 1 if adapted is not None and not adapted.reached and args.strict_accuracy else 0
+
+
+def _margin(args) -> float | None:
+    return None if args.margin is None else args.margin / 100
+
+
+def _write_json(path: str, data: dict) -> None:
+    from shaftfem.store import write_json
+
+    write_json(path, data)
+    print(f"wrote {path}")
+
+
+def cmd_modes(args) -> int:
+    from shaftfem.outputs.export import modes_record
+    from shaftfem.outputs.tables import modes_text
+
+    result, est, adapted = _bounded(args, estimate=not args.no_estimate)
+    print(modes_text(result, est))
+    if result.scene.held:
+        from shaftfem.fem.response import modal_basis, participation
+        from shaftfem.outputs.tables import participation_text
+
+        print("\n" + participation_text(result, participation(modal_basis(result))))
+    if args.json:
+        _write_json(args.json, modes_record(result, est))
+    return _accuracy_status(args, adapted)
+
+
+def cmd_check(args) -> int:
+    from shaftfem.checks.resonance import check_result
+    from shaftfem.outputs.tables import verdict_text
+
+    result, _, adapted = _bounded(args)
+    verdict = check_result(result, _margin(args))
+    if verdict is None:
+        raise SceneError(f"{result.scene.source}: no [[excitation]] sources to check against")
+    print(verdict_text(verdict))
+    if args.json:
+        _write_json(args.json, {"scene": result.scene.name, **verdict.as_dict()})
+    return 1 if not verdict.ok else _accuracy_status(args, adapted)
+
+
+def cmd_export(args) -> int:
+    from shaftfem.outputs.export import export_modes, write_calculix
+
+    result, est, adapted = _bounded(args)  # an adapted mesh's bounds go into the tables
+    if args.format == "calculix":
+        deck = write_calculix(result, Path(args.out) / "shaft.inp")
+        print(f"wrote {deck} (run: cd {deck.parent} && ccx -i shaft; frequencies in "
+              "shaft.dat, full precision in shaft.eig)")
+        return _accuracy_status(args, adapted)
+    files = export_modes(result, args.out, est)
+    print(f"wrote {len(files)} files to {args.out}: " + ", ".join(f.name for f in files))
+    return _accuracy_status(args, adapted)
+
+
+def cmd_render(args) -> int:
+    from shaftfem.outputs.render import render_all
+
+    result, _, adapted = _bounded(args)
+    files = render_all(result, args.out)
+    print(f"wrote {len(files)} pictures to {args.out}: " + ", ".join(f.name for f in files))
+    return _accuracy_status(args, adapted)
+
+
+def cmd_design(args) -> int:
+    from shaftfem.outputs.tables import modes_text, sizing_text, verdict_line, verdict_text
+    from shaftfem.workflows.design import run_design
+
+    scene = _scene(args)
+    d = run_design(scene, design_out(args, scene.name), margin=_margin(args),
+                   estimate=not args.no_estimate, options=_options(args))
+    if d.sizing is not None:
+        print(sizing_text(d.sizing) + "\n")
+    if d.adapted is not None:
+        print(d.adapted.summary() + "\n")
+    print(modes_text(d.result, d.estimate) + "\n")
+    if d.participation is not None:
+        from shaftfem.outputs.tables import participation_text
+
+        print(participation_text(d.result, d.participation) + "\n")
+    print(verdict_text(d.verdict) if d.verdict is not None
+          else verdict_line(None).replace("**", ""))
+    print(f"\nreport: {d.report}")
+    return 1 if not d.ok else _accuracy_status(args, d.adapted)
+
+
+def cmd_study(args) -> int:
+    from shaftfem.outputs.plots import save_png, study_figure
+    from shaftfem.outputs.tables import study_markdown
+    from shaftfem.scene.model import load_scene
+    from shaftfem.store import write_csv, write_text
+    from shaftfem.workflows.study import run_study, summarize_study
+
+    scene = load_scene(args.scene)
+    ladders = {k: v for k, v in {2: args.p2, 1: args.p1}.items() if v}
+    runs = run_study(scene, ladders, _options(args))
+    study = summarize_study(runs, singular=scene.grooves is not None)
+    out = Path(args.out)
+    md = study_markdown(study)
+    files = [write_csv(out / "study.csv", study.rows), write_text(out / "study.md", md),
+             save_png(study_figure(study.rows), out / "study.png", dpi=120)]
+    print(md)
+    print("wrote " + ", ".join(map(str, files)))
+    return 0
+
+
+def cmd_paper(args) -> int:
+    from shaftfem.checks.sizing import size_from_scene
+    from shaftfem.outputs.tables import paper_text
+
+    result, _, adapted = _bounded(args)
+    sizing = size_from_scene(result.scene) if result.scene.sizing else None
+    print(paper_text(result, sizing))
+    return _accuracy_status(args, adapted)
+
+
+def design_out(args, scene_name: str) -> Path:
+    """design's output folder: --out, else out/ and the scene's name."""
+    return Path(args.out or Path("out") / scene_name)
+
+
+def dask_out(args) -> Path:
+    """A sweep's or calibration's output folder: --out, else out/ and its file's name."""
+    file = args.sweep if args.func is cmd_sweep else args.calibration
+    return Path(args.out or Path("out") / Path(file).stem)
+
+
+def cmd_sweep(args) -> int:
+    from shaftfem.outputs.plots import sweep_plots
+    from shaftfem.workflows.sweep import load_sweep, run_sweep
+
+    sweep = load_sweep(args.sweep)
+    out = dask_out(args)
+    rows = run_sweep(sweep, out / "results.csv", workers=args.workers,
+                     scheduler=args.scheduler, estimate=args.estimate, options=_options(args))
+    ok = sum(r["status"] == "ok" for r in rows)
+    print(f"{len(rows)} variants in {out / 'results.csv'}: {ok} ok, {len(rows) - ok} failed")
+    pics = sweep_plots(rows, sweep.parameters, sweep.n_modes, out)
+    if pics:
+        print("plots: " + ", ".join(str(p) for p in pics))
+    for r in rows:
+        if r["status"] != "ok":
+            print(f"  failed {r['id']}: " + ", ".join(f"{p} = {r[p]}" for p in sweep.parameters)
+                  + f": {r['error']}")
+    return 0 if ok else EXIT_COMPUTATION  # nothing usable came out
+
+
+def cmd_calibrate(args) -> int:
+    from shaftfem.outputs.tables import calibration_text
+    from shaftfem.workflows.calibrate import calibrate, load_calibration
+
+    cal = load_calibration(args.calibration)
+    out = dask_out(args)
+    res = calibrate(cal, out, workers=args.workers, scheduler=args.scheduler,
+                    options=_options(args))
+    print(calibration_text(res, cal))
+    _write_json(str(out / "calibration.json"), res.as_dict(cal))
+    return 0
+
+
+def cmd_size(args) -> int:
+    from shaftfem.checks.sizing import size_from_scene
+    from shaftfem.outputs.tables import sizing_text
+    from shaftfem.scene.model import load_scene
+
+    result = size_from_scene(load_scene(args.scene))
+    print(sizing_text(result))
+    if args.json:
+        _write_json(args.json, result.as_dict())
+    return 0 if result.ok else 1

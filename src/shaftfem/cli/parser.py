@@ -1,0 +1,173 @@
+"""The command line's grammar: every command, its arguments, their units and bounds."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from shaftfem.cli import commands as cmd
+from shaftfem.errors import EXIT_BAD_INPUT
+from shaftfem.scene.schema import DEFAULT_MAX_DOFS, MAX_DOFS_LIMIT, MAX_MODE_COUNT
+
+# fem.factor.FACTORISERS plus "auto"; spelled out here because the CLI must not import
+# SciPy before a command needs it (`shaftfem size` loads no solver).
+SOLVERS = ("auto", "pardiso", "cholmod", "superlu")
+SCENE_HELP = "scene file or name of a shipped scene (default: paper2018)"
+
+
+def _number(kind, high: float, exclusive: bool = False):
+    """An argparse type: a finite number in (0, high] ((0, high) if exclusive)."""
+    def parse(text: str):
+        try:
+            v = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not {kind.__name__}") from None
+        if not (0 < v < high if exclusive else 0 < v <= high):  # also refuses nan and inf
+            raise argparse.ArgumentTypeError(
+                f"{text!r} must be in (0, {high:g}{')' if exclusive else ']'}")
+        return v
+    return parse
+
+
+_size_mm = _number(float, 20_000)
+_percent = _number(float, 100, exclusive=True)
+_hz = _number(float, 1e7)
+_count = _number(int, MAX_MODE_COUNT)
+_workers = _number(int, 1024)
+_accuracy = _number(float, 50)
+_max_dofs = _number(int, MAX_DOFS_LIMIT)
+
+
+def _sizes(text: str) -> list[float]:
+    try:
+        v = [float(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected sizes in mm, e.g. 12,9,6.75") from None
+    if not v or not all(0 < x <= 20_000 for x in v):
+        raise argparse.ArgumentTypeError(f"{text!r}: sizes must be in (0, 20000] mm")
+    return v
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors on one line like every other error (exit 2)."""
+
+    def error(self, message: str):
+        print(f"{self.prog}: error: {message} (see {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(EXIT_BAD_INPUT)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(
+        prog="shaftfem",
+        description="Finite-element modal analysis of machine shafts: free-free, or installed "
+        "in the bearings of the scene's [[support]] tables.",
+    )
+    sub = p.add_subparsers(dest="command", required=True)
+    _modal_command(sub, "modes", "natural frequencies with their error bounds (in the scene's "
+                   "supports if it has any, else free-free)", cmd.cmd_modes, estimate=True)
+    _modal_command(sub, "check", "resonance check against the scene's excitations (exit 1 if "
+                   "a margin is violated)", cmd.cmd_check, margin=True)
+    e = _modal_command(sub, "export", "mode shapes (VTU/PVD), tables (CSV/JSON), mesh (MSH), "
+                       "solid (STEP/BREP); or a CalculiX deck", cmd.cmd_export, json=False,
+                       out="required")
+    e.add_argument("--format", choices=("vtk", "calculix"), default="vtk",
+                   help="vtk: mode shapes and tables (default); calculix: shaft.inp, a C3D10 "
+                   "*FREQUENCY deck of the same mesh and material")
+    _modal_command(sub, "render", "pictures: the shaft, every mode (PNG) and each mode moving "
+                   "(GIF)", cmd.cmd_render, json=False, out="required")
+    _modal_command(sub, "design", "sizing, modes, resonance check, files, pictures and a report",
+                   cmd.cmd_design, json=False, out="optional", estimate=True, margin=True)
+    _modal_command(sub, "paper", "the paper's Table 2 and stated sizing beside ours",
+                   cmd.cmd_paper, json=False)
+    sw = _dask_command(sub, "sweep", "run many variants of a scene on Dask (resumable)",
+                       "sweep file (TOML): base scene and parameter axes or points", cmd.cmd_sweep)
+    sw.add_argument("--estimate", action="store_true",
+                    help="also bound each frequency's error (one more solve per variant, "
+                    "on a coarser mesh)")
+    _dask_command(sub, "calibrate", "find unknown scene values that reproduce target "
+                  "frequencies (grid on Dask, then least squares)",
+                  "calibration file (TOML): base, unknowns, targets", cmd.cmd_calibrate)
+    _study_command(sub)
+    s = sub.add_parser("size", help="size the screw shaft from its duty (paper eqs. 1-9)")
+    s.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
+    s.add_argument("--json", metavar="FILE", help="also write the results as JSON")
+    s.set_defaults(func=cmd.cmd_size)
+    return p
+
+
+def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str | None = None,
+                   estimate: bool = False, margin: bool = False) -> argparse.ArgumentParser:
+    """A command that solves a scene's modes: the scene, its mesh and modes, the outputs."""
+    c = sub.add_parser(name, help=help)
+    c.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
+    c.add_argument("--mesh-size", type=_size_mm, metavar="MM",
+                   help="element size away from the grooves, mm (groove sizes scale with it)")
+    c.add_argument("--order", type=int, choices=(1, 2), help="element order (default: scene)")
+    c.add_argument("--modes", type=_count, metavar="N",
+                   help="number of elastic modes (default: the scene's [modes] count, else 10)")
+    c.add_argument("--max-frequency", type=_hz, metavar="HZ",
+                   help="every elastic mode below this frequency, Hz, instead of a count")
+    if json:
+        c.add_argument("--json", metavar="FILE", help="also write the results as JSON")
+    if out is not None:
+        c.add_argument("--out", metavar="DIR", required=out == "required",
+                       help="output folder" + ("" if out == "required"
+                                               else " (default: out/SCENE)"))
+    c.add_argument("--solver", choices=SOLVERS,
+                   default="auto", help="sparse factorisation behind shift-invert "
+                   "(default: the fastest installed; superlu is pure SciPy)")
+    if margin:
+        c.add_argument("--margin", type=_percent, metavar="PERCENT",
+                       help="required separation margin, %% (default: scene, else 15)")
+    if estimate:
+        c.add_argument("--no-estimate", action="store_true",
+                       help="skip the error bound (one more solve on a coarser mesh)")
+    _accuracy_arguments(c)
+    c.add_argument("--free", action="store_true",
+                   help="free-free: leave the scene's [[support]] bearings off (the shaft "
+                   "hanging free, as in a hammer test; attached parts stay on)")
+    c.add_argument("--no-cache", action="store_true",
+                   help="neither read nor write the cache: build the CAD solid and every "
+                   "mesh afresh and keep none of them")
+    c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
+    c.set_defaults(func=func)
+    return c
+
+
+def _accuracy_arguments(c: argparse.ArgumentParser) -> None:
+    c.add_argument("--accuracy", type=_accuracy, metavar="PERCENT",
+                   help="adapt the mesh until every frequency's error bound is below "
+                   "PERCENT (default: the scene's [mesh] target_error_percent, else the "
+                   "fixed mesh)")
+    c.add_argument("--max-dofs", type=_max_dofs, metavar="N",
+                   help="DOF budget of the adaptive mesh (default: the scene's, else "
+                   f"{DEFAULT_MAX_DOFS})")
+    c.add_argument("--strict-accuracy", action="store_true",
+                   help="exit 1 when the accuracy asked for is not reached in the budget")
+
+
+def _dask_command(sub, name: str, help: str, file_help: str, func) -> argparse.ArgumentParser:
+    """A command that runs many scenes on Dask workers."""
+    c = sub.add_parser(name, help=help)
+    c.add_argument(name if name == "sweep" else "calibration", help=file_help)
+    c.add_argument("--out", help=f"output folder (default out/ and the {name} file's name)")
+    c.add_argument("--workers", type=_workers, default=2,
+                   help="local worker processes (default 2)")
+    c.add_argument("--scheduler", metavar="ADDRESS",
+                   help="an existing Dask scheduler, e.g. tcp://host:8786, instead of local "
+                   "workers")
+    c.add_argument("-q", "--quiet", action="store_true")
+    c.set_defaults(func=func)
+    return c
+
+
+def _study_command(sub) -> None:
+    st = sub.add_parser("study", help="work-precision study: a ladder of P1 and P2 meshes")
+    st.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
+    st.add_argument("--p2", type=_sizes, default=[12.0, 9.0, 6.75, 5.0625],
+                    help="P2 element sizes, mm (geometric; the three finest make the reference)")
+    st.add_argument("--p1", type=_sizes, default=[8.0, 6.0, 4.5], help="P1 element sizes, mm")
+    st.add_argument("--out", default="out/study", help="output folder (default: out/study)")
+    st.add_argument("--solver", choices=SOLVERS, default="auto")
+    st.add_argument("-q", "--quiet", action="store_true")
+    st.set_defaults(func=cmd.cmd_study)
