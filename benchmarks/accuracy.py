@@ -22,7 +22,7 @@ from _common import in_fresh_process, machine, peak_mb  # noqa: E402
 
 
 def one(groove_mm: float, root_radius_mm: float | None) -> dict:
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes
 
     scene = replace(load_scene("paper2018"), max_dofs=20_000_000)  # research runs

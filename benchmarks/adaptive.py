@@ -29,7 +29,7 @@ def uniform(groove_mm: float, cache: str) -> dict:
     from dataclasses import replace
 
     os.environ["SHAFTFEM_CACHE"] = cache
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.adapt import run_bounded
 
     t0 = time.perf_counter()
@@ -47,7 +47,7 @@ def adaptive(target_percent: float, cache: str) -> dict:
     import time
 
     os.environ["SHAFTFEM_CACHE"] = cache
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.adapt import run_bounded, with_accuracy
 
     t0 = time.perf_counter()

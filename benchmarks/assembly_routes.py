@@ -31,7 +31,7 @@ def main(size_mm: float, repeat: int) -> None:
         stiffness,
     )
     from shaftfem.runtime import assembly_threads
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import with_mesh
 
     scene = with_mesh(load_scene("paper2018"), size_mm)

@@ -39,7 +39,7 @@ def one(cache: str, mesh_mm: str | None, out: str, export: bool = True) -> dict:
     os.environ["SHAFTFEM_CACHE"] = cache
     from dataclasses import replace
 
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     scene = replace(load_scene("paper2018"), max_dofs=20_000_000)  # research runs

@@ -17,7 +17,7 @@ import tempfile
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # what shaftfem.runtime does (older commits lack it)
 os.environ["SHAFTFEM_CACHE"] = tempfile.mkdtemp()
 
-from shaftfem.scene.model import load_scene  # noqa: E402
+from shaftfem.scene.load import load_scene  # noqa: E402
 from shaftfem.workflows.pipeline import run_modes  # noqa: E402
 
 for name in ("paper2018", "plain_cylinder"):

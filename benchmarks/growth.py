@@ -14,7 +14,7 @@ def one(size_mm: float, factoriser: str) -> dict:
     from dataclasses import replace
 
     from shaftfem.runtime import RunOptions
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     scene = replace(load_scene("plain_cylinder"), max_dofs=20_000_000)  # research runs

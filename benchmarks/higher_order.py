@@ -120,7 +120,7 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
     from shaftfem.fem.eigen import Wanted, solve_modes
     from shaftfem.fem.estimate import recovery_estimate
     from shaftfem.fem.supports import rigid_body_modes
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes
 
     scene = replace(load_scene("paper2018"), max_dofs=20_000_000)

@@ -20,7 +20,7 @@ from _common import machine  # noqa: E402
 def main() -> None:
     repeat = int(sys.argv[1]) if len(sys.argv) > 1 else 3
     from shaftfem.fem.response import modal_basis, participation, response_sweep
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes
 
     scene = load_scene("paper2018_installed")

@@ -16,7 +16,7 @@ from dataclasses import replace
 import numpy as np
 
 from shaftfem.cases.paper2018 import TABLE2_HZ
-from shaftfem.scene.model import load_scene
+from shaftfem.scene.load import load_scene
 from shaftfem.workflows.pipeline import run_modes, with_mesh
 
 PAPER = np.array(TABLE2_HZ)

@@ -24,7 +24,7 @@ def main() -> None:
 
     from shaftfem.fem import eigen
     from shaftfem.fem.modes import modal_analysis
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes
 
     r = run_modes(load_scene("paper2018"))

@@ -11,7 +11,8 @@ import numpy as np
 
 from shaftfem.fem.assembly import assemble
 from shaftfem.fem.modes import modal_analysis
-from shaftfem.scene.model import Material, scene_from_dict
+from shaftfem.scene.load import scene_from_dict
+from shaftfem.scene.model import Material
 from shaftfem.workflows.pipeline import run_modes
 
 

@@ -21,7 +21,7 @@ def _fresh_shape_cache(tmp_path_factory):
 @pytest.fixture(scope="session")
 def cylinder(_fresh_shape_cache):
     """The plain 32 x 550 mm cylinder, P2 at 8 mm (4-fold symmetric mesh)."""
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes
 
     return run_modes(load_scene("plain_cylinder"))
@@ -30,7 +30,7 @@ def cylinder(_fresh_shape_cache):
 @pytest.fixture(scope="session")
 def paper(_fresh_shape_cache):
     """The paper's grooved shaft with its default mesh."""
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes
 
     return run_modes(load_scene("paper2018"))

@@ -6,7 +6,7 @@ import pytest
 
 from references import torsion_hz
 from shaftfem.cli import main
-from shaftfem.scene.model import load_scene
+from shaftfem.scene.load import load_scene
 from shaftfem.workflows.adapt import run_adaptive
 from shaftfem.workflows.pipeline import with_mesh
 

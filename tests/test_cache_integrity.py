@@ -11,7 +11,7 @@ import json
 import numpy as np
 import pytest
 
-from shaftfem.scene.model import load_scene
+from shaftfem.scene.load import load_scene
 from shaftfem.store import CacheWarning
 from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
 

@@ -14,7 +14,7 @@ import pytest
 from shaftfem.fem.assembly import assemble
 from shaftfem.fem.modes import modal_analysis
 from shaftfem.outputs.export import read_calculix_eig, read_calculix_frequencies, write_calculix
-from shaftfem.scene.model import load_scene
+from shaftfem.scene.load import load_scene
 from shaftfem.workflows.pipeline import run_modes, with_mesh
 
 pytestmark = pytest.mark.skipif(
@@ -74,7 +74,7 @@ def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling):
     elimination, with the same 4-point mass; the bearings distributing (mean motion) or
     rigid rings (*RIGID BODY with springs and holds on its nodes)."""
     from shaftfem.fem.supports import install
-    from shaftfem.scene.model import scene_from_dict
+    from shaftfem.scene.load import scene_from_dict
 
     data = {"shaft": {"length_mm": 320.0, "diameter_mm": 32.0},
             "material": {"youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.277,

@@ -32,7 +32,7 @@ def no_solve(monkeypatch):
 @pytest.mark.parametrize("name", ["../x", "/tmp/shaftfem-abs", ".", "..", "a/b", ""])
 def test_a_scene_name_is_a_folder_name_not_a_path(tmp_path, capsys, monkeypatch, no_solve,
                                                   name):
-    from shaftfem.scene.model import GEOMETRY_DIR
+    from shaftfem.scene.load import GEOMETRY_DIR
 
     monkeypatch.chdir(tmp_path)
     f = tmp_path / "named.toml"
@@ -135,7 +135,7 @@ def test_a_run_interrupted_before_publishing_leaves_no_folder(tmp_path, capsys, 
 
 
 def test_a_scene_with_a_byte_order_mark_is_read(tmp_path):
-    from shaftfem.scene.model import GEOMETRY_DIR, load_scene, read_scene_text
+    from shaftfem.scene.load import GEOMETRY_DIR, load_scene, read_scene_text
 
     f = tmp_path / "bom.toml"
     f.write_bytes(b"\xef\xbb\xbf" + (GEOMETRY_DIR / "plain_cylinder.toml").read_bytes())

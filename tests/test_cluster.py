@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from shaftfem.errors import ClusterError
-from shaftfem.scene.model import GEOMETRY_DIR
+from shaftfem.scene.load import GEOMETRY_DIR
 from shaftfem.workflows.sweep import load_sweep, run_sweep, run_variant, variant_id
 
 DASK = str(Path(sys.executable).with_name("dask"))

@@ -78,7 +78,7 @@ def test_the_bound_on_ten_torsion_modes_of_the_cylinder():
     modes every bound holds, and on at least eight it is 1-3 times the true error
     (the lowest ones, 0.003 % off, sit below the mesh's volume allowance). The
     recovery estimate alone is 1-3 times the truth on the first three."""
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes, with_modes
 
     r = run_modes(with_modes(load_scene("plain_cylinder"), max_frequency=31000.0))

@@ -10,7 +10,7 @@ import pytest
 from references import timoshenko_beam_hz, timoshenko_free_free_hz, timoshenko_ss_hz
 from shaftfem.cli import main
 from shaftfem.errors import SceneError
-from shaftfem.scene.model import scene_from_dict
+from shaftfem.scene.load import scene_from_dict
 
 STEEL = {"youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.277, "density_kg_m3": 7870.0}
 L_MM, D_MM, SEAT_MM = 320.0, 32.0, 2.0
@@ -157,7 +157,7 @@ BAD = [
 
 @pytest.mark.parametrize("support,attachment,named", BAD)
 def test_a_bad_seat_is_one_line_naming_the_key(tmp_path, capsys, support, attachment, named):
-    from shaftfem.scene.model import GEOMETRY_DIR
+    from shaftfem.scene.load import GEOMETRY_DIR
 
     text = (GEOMETRY_DIR / "paper2018.toml").read_text()
     if support is not None:
@@ -167,7 +167,7 @@ def test_a_bad_seat_is_one_line_naming_the_key(tmp_path, capsys, support, attach
     f = tmp_path / "bad.toml"
     f.write_text(text)
     with pytest.raises(SceneError, match=named.replace("[", r"\[").replace("]", r"\]")):
-        from shaftfem.scene.model import load_scene
+        from shaftfem.scene.load import load_scene
 
         load_scene(f)
     assert main(["modes", str(f), "--quiet"]) == 2
@@ -372,7 +372,7 @@ def test_the_api684_criterion_sets_the_required_margin(tmp_path, capsys):
 def test_a_sweep_or_calibration_names_a_bearing_by_its_index(tmp_path):
     """'support[1].position_mm' moves the second bearing; an index the base scene does
     not have is refused with the file and the count."""
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.calibrate import load_calibration
     from shaftfem.workflows.sweep import load_sweep
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from shaftfem.scene.model import GEOMETRY_DIR
+from shaftfem.scene.load import GEOMETRY_DIR
 
 # (progress line that starts the step, seconds into it): CAD, meshing, the solve, the
 # bound's coarser mesh, export, rendering

@@ -46,7 +46,7 @@ def test_a_meshio_exit_is_a_mesh_error(monkeypatch):
     import meshio
 
     from shaftfem.cad.occ import mesh_solid
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
 
     def exits(*a, **k):
         raise SystemExit("Couldn't read file as either of ansys, gmsh")
@@ -72,7 +72,7 @@ def test_an_opencascade_failure_is_a_geometry_error_and_exit_3(monkeypatch, tmp_
 
 
 def _paper_parts():
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
 
     s = load_scene("paper2018")
     return s.shaft, s.grooves

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from shaftfem.scene.model import scene_from_dict
+from shaftfem.scene.load import scene_from_dict
 from shaftfem.workflows.pipeline import run_modes
 
 STEEL = {"youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.277, "density_kg_m3": 7870.0}
@@ -143,7 +143,7 @@ def test_the_installed_paper_shaft_takes_a_tilting_stiffness(tmp_path):
     with the stiffness, below the clamped seats."""
     import re
 
-    from shaftfem.scene.model import GEOMETRY_DIR, load_scene
+    from shaftfem.scene.load import GEOMETRY_DIR, load_scene
 
     text = (GEOMETRY_DIR / "paper2018_installed.toml").read_text()
     f1 = {}

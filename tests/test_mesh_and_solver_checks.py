@@ -86,7 +86,7 @@ def test_mesh_cache_returns_the_same_mesh_and_misses_on_a_change(tmp_path, monke
 
     from shaftfem.cad.mesh import mesh_shape
     from shaftfem.cad.solid import build_shape
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")
@@ -114,7 +114,7 @@ def test_threaded_assembly_equals_one_piece(order, tmp_path, monkeypatch):
     from shaftfem.cad.mesh import mesh_shape
     from shaftfem.cad.solid import build_shape
     from shaftfem.fem.assembly import MASS_INTORDER, scalar_mass, stiffness
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")

@@ -11,7 +11,7 @@ from scipy.spatial import cKDTree
 from references import timoshenko_free_free_hz
 from shaftfem.cli import main
 from shaftfem.outputs.export import export_modes
-from shaftfem.scene.model import GEOMETRY_DIR
+from shaftfem.scene.load import GEOMETRY_DIR
 
 CYL = (GEOMETRY_DIR / "plain_cylinder.toml").read_text()
 

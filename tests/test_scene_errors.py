@@ -6,7 +6,7 @@ import pytest
 
 from shaftfem.cli import main
 from shaftfem.errors import SceneError
-from shaftfem.scene.model import GEOMETRY_DIR, load_scene
+from shaftfem.scene.load import GEOMETRY_DIR, load_scene
 
 PAPER = (GEOMETRY_DIR / "paper2018.toml").read_text()
 

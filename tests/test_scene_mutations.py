@@ -14,7 +14,7 @@ import tomllib
 import pytest
 
 from shaftfem.cli import main
-from shaftfem.scene.model import GEOMETRY_DIR
+from shaftfem.scene.load import GEOMETRY_DIR
 from shaftfem.scene.schema import SCHEMA
 
 PAPER = tomllib.loads((GEOMETRY_DIR / "paper2018.toml").read_text())

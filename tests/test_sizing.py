@@ -8,7 +8,7 @@ import pytest
 
 from shaftfem.checks.sizing import axial_load_n, keyway_increase_percent, min_mean_diameter_mm, size_screw
 from shaftfem.cli import main
-from shaftfem.scene.model import load_scene
+from shaftfem.scene.load import load_scene
 
 INPUTS = dict(load_scene("paper2018").sizing)
 
@@ -70,7 +70,7 @@ def test_self_locking_limit_is_reported(capsys, tmp_path):
 def test_bad_sizing_input_names_the_key(tmp_path, capsys, key, value):
     import re
 
-    from shaftfem.scene.model import GEOMETRY_DIR
+    from shaftfem.scene.load import GEOMETRY_DIR
 
     head, tail = (GEOMETRY_DIR / "paper2018.toml").read_text().split("[sizing]")
     tail, n = re.subn(rf"(?m)^{key}\s*=.*$", f"{key} = {value}", tail)
@@ -123,7 +123,7 @@ def test_the_public_api_is_lazy_and_complete():
 def test_the_scene_shaft_and_grooves_are_checked_against_the_sizing(tmp_path, capsys):
     """Across tables: a [shaft] thinner than the duty's D, and a [grooves] pitch that the
     feed step and gears (equation 1) do not give, are broken limits (exit 1), said."""
-    from shaftfem.scene.model import GEOMETRY_DIR
+    from shaftfem.scene.load import GEOMETRY_DIR
 
     paper = (GEOMETRY_DIR / "paper2018.toml").read_text()
     f = tmp_path / "thin.toml"

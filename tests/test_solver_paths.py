@@ -13,7 +13,7 @@ def short_grooved(_fresh_shape_cache):
     """The paper's shaft cut to 200 mm with two turns of its grooves (about 30k DOFs):
     the same grooves and mesh sizes, a SuperLU solve a fifth as long."""
     from shaftfem.runtime import RunOptions
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import run_modes
 
     return run_modes(load_scene("paper2018", overrides={

@@ -14,7 +14,8 @@ from references import timoshenko_free_free_hz, torsion_hz
 from shaftfem.fem.assembly import assemble
 from shaftfem.fem.eigen import SolverSettings
 from shaftfem.fem.modes import modal_analysis
-from shaftfem.scene.model import Material, scene_from_dict
+from shaftfem.scene.load import scene_from_dict
+from shaftfem.scene.model import Material
 from shaftfem.workflows.pipeline import run_modes
 
 

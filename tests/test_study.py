@@ -3,7 +3,7 @@
 import numpy as np
 
 from references import torsion_hz
-from shaftfem.scene.model import load_scene
+from shaftfem.scene.load import load_scene
 from shaftfem.workflows.study import run_study, study_reference, study_table
 
 

@@ -16,7 +16,7 @@ import pytest
 
 from references import torsion_hz
 from shaftfem.cli import main
-from shaftfem.scene.model import GEOMETRY_DIR
+from shaftfem.scene.load import GEOMETRY_DIR
 
 REPO = Path(__file__).resolve().parents[1]
 CYL = (GEOMETRY_DIR / "plain_cylinder.toml").read_text()
@@ -65,7 +65,7 @@ def test_gmsh_leaves_a_callers_session_as_it_was(tmp_path):
     import gmsh
 
     from shaftfem.cad.occ import write_solid
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
 
     gmsh.initialize(readConfigFiles=False)
     try:

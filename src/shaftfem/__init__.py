@@ -15,20 +15,14 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING
 
-from shaftfem.errors import (
-    GeometryError,
-    MeshError,
-    SceneError,
-    ShaftfemError,
-    SolverError,
-)
+from shaftfem.errors import GeometryError, MeshError, SceneError, ShaftfemError, SolverError
 
 __version__ = "0.1.0"
 
 # name -> the module that defines it, imported when the name is first used
 _LAZY = {
     "Scene": "shaftfem.scene.model",
-    "load_scene": "shaftfem.scene.model",
+    "load_scene": "shaftfem.scene.load",
     "RunOptions": "shaftfem.runtime",
     "ModalResult": "shaftfem.workflows.pipeline",
     "run_modes": "shaftfem.workflows.pipeline",
@@ -64,7 +58,8 @@ if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.modes import Modes
     from shaftfem.runtime import RunOptions
-    from shaftfem.scene.model import Scene, load_scene
+    from shaftfem.scene.load import load_scene
+    from shaftfem.scene.model import Scene
     from shaftfem.workflows.bounded import Bounded, run_bounded, with_accuracy
     from shaftfem.workflows.design import DesignResult, run_design
     from shaftfem.workflows.pipeline import ModalResult, run_modes, with_mesh, with_modes

@@ -76,7 +76,7 @@ def _output_folders(argv: list[str]) -> list[Path] | None:
         return None
     if args.func is commands.cmd_design and not args.out:
         try:
-            from shaftfem.scene.model import load_scene
+            from shaftfem.scene.load import load_scene
 
             return [commands.design_out(args, load_scene(args.scene).name)]
         except Exception:  # the child says what is wrong with the scene

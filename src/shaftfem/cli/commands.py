@@ -54,7 +54,7 @@ def check_outputs(args) -> None:
 
 def _scene(args):
     """The scene with the command line's mesh and mode overrides."""
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.workflows.bounded import with_accuracy
     from shaftfem.workflows.pipeline import with_mesh, with_modes
 
@@ -169,7 +169,7 @@ def cmd_design(args) -> int:
 def cmd_study(args) -> int:
     from shaftfem.outputs.plots import save_png, study_figure
     from shaftfem.outputs.tables import study_markdown
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
     from shaftfem.store import write_csv, write_text
     from shaftfem.workflows.study import run_study, summarize_study
 
@@ -243,7 +243,7 @@ def cmd_calibrate(args) -> int:
 def cmd_size(args) -> int:
     from shaftfem.checks.sizing import size_from_scene
     from shaftfem.outputs.tables import sizing_text
-    from shaftfem.scene.model import load_scene
+    from shaftfem.scene.load import load_scene
 
     result = size_from_scene(load_scene(args.scene))
     print(sizing_text(result))

@@ -31,7 +31,7 @@ import numpy as np
 
 from shaftfem.errors import SceneError, ShaftfemError
 from shaftfem.runtime import RunOptions
-from shaftfem.scene.model import SceneText, check_entries, load_scene, read_scene_text, scene_beside
+from shaftfem.scene.load import SceneText, check_entries, load_scene, read_scene_text, scene_beside
 from shaftfem.scene.schema import (
     DEFAULT_MODE_COUNT,
     SCHEMA,

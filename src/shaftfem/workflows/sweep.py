@@ -39,7 +39,7 @@ from pathlib import Path
 
 from shaftfem.errors import ClusterError, SceneError
 from shaftfem.runtime import RunOptions, worker_env
-from shaftfem.scene.model import SceneText, check_entries, load_scene, read_scene_text, scene_beside
+from shaftfem.scene.load import SceneText, check_entries, load_scene, read_scene_text, scene_beside
 from shaftfem.scene.schema import known_keys, number, parameter, read_toml
 from shaftfem.store import atomic_path, content_key
 

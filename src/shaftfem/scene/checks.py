@@ -1,0 +1,93 @@
+"""Checks across a scene's tables, in file units: grooves that fit the shaft, and seats
+that can be meshed and mean something."""
+
+from __future__ import annotations
+
+from shaftfem.errors import SceneError
+from shaftfem.scene.model import MM, Attachment, Grooves, MeshSettings, Shaft, Support
+from shaftfem.scene.schema import where
+
+# A seat's band must be meshable and mean something: at least SEAT_MIN wide (no bearing
+# or hub is narrower) and 1/16 of the element size (the band's faces need elements of
+# about its width), and at least SEAT_MIN from another seat, a shaft end or the grooved
+# zone, or exactly at it (nearer, the cut leaves a sliver the mesher cannot fill).
+SEAT_MIN = 1e-3  # m
+SEAT_PER_ELEMENT = 1 / 16
+
+
+def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
+                 supports: tuple[Support, ...], attachments: tuple[Attachment, ...],
+                 mesh: MeshSettings) -> None:
+    """Every seat wide enough to mesh, on the shaft, clear of the grooves, and no two
+    seats overlapping; none nearer than SEAT_MIN to an edge it does not sit on."""
+    seats = ([(f"support[{i}]", s) for i, s in enumerate(supports)]
+             + [(f"attachment[{i}]", a) for i, a in enumerate(attachments)])
+    L = shaft.length
+    narrowest = max(SEAT_MIN, SEAT_PER_ELEMENT * mesh.size)
+    edges = [0.0, L] + ([] if grooves is None else [grooves.start, grooves.start + grooves.length])
+    for table, part in seats:
+        lo, hi = part.seat
+        at = where(source, table, "position_mm")
+        if part.width < narrowest - 1e-12:
+            raise SceneError(
+                f"{where(source, table, 'width_mm')} = {part.width / MM:g}: a seat must be at "
+                f"least {narrowest / MM:g} mm wide (1 mm, and 1/16 of the element size "
+                f"{mesh.size / MM:g} mm): narrower, it is no bearing or hub seat and its band "
+                "cannot be meshed")
+        near = [e for e in edges for z in (lo, hi) if 1e-12 < abs(z - e) < SEAT_MIN]
+        if near:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm ends "
+                f"within {SEAT_MIN / MM:g} mm of {near[0] / MM:g} mm (a shaft end or the "
+                "grooved zone): put it exactly there or at least 1 mm away")
+        if lo < -1e-12 or hi > L + 1e-12:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm "
+                f"(width_mm = {part.width / MM:g}) must lie on the shaft, 0 to {L / MM:g} mm")
+        if grooves is not None and lo < grooves.start + grooves.length and hi > grooves.start:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm lies "
+                f"over the grooved zone ({grooves.start / MM:g} to "
+                f"{(grooves.start + grooves.length) / MM:g} mm); seats must be on plain shaft")
+    ordered = sorted(seats, key=lambda s: s[1].seat[0])
+    for (ta, a), (tb, b) in zip(ordered, ordered[1:]):
+        # seats that touch would share the nodes of their common edge
+        if b.seat[0] < a.seat[1] + SEAT_MIN - 1e-12:
+            raise SceneError(
+                f"{where(source, tb, 'position_mm')} = {b.position / MM:g}: its seat "
+                f"({b.seat[0] / MM:g} to {b.seat[1] / MM:g} mm) overlaps, touches or comes "
+                f"within {SEAT_MIN / MM:g} mm of the seat of {ta} ({a.seat[0] / MM:g} to "
+                f"{a.seat[1] / MM:g} mm)")
+
+
+def check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:
+    def fail(key: str, msg: str) -> SceneError:
+        return SceneError(f"{where(source, 'grooves', key)} = {g[key]!r}: {msg}")
+
+    radius = shaft_t["diameter_mm"] / 2
+    length = shaft_t["length_mm"]
+    if g["depth_mm"] >= radius:
+        raise fail("depth_mm", f"must be less than the shaft radius ({radius:g} mm)")
+    if g["width_mm"] > g["pitch_mm"] / 2:
+        raise fail("width_mm", f"must not exceed half the pitch ({g['pitch_mm'] / 2:g} mm)")
+    if g["root_radius_mm"] > min(g["depth_mm"], g["width_mm"] / 2):
+        raise fail("root_radius_mm", "must not exceed the depth nor half the width "
+                   f"({min(g['depth_mm'], g['width_mm'] / 2):g} mm)")
+    if g["grooved_length_mm"] > length:
+        raise fail("grooved_length_mm", f"must not exceed the shaft length ({length:g} mm)")
+    start = g["start_mm"]
+    if start is None:
+        start = (length - g["grooved_length_mm"]) / 2
+    elif start + g["grooved_length_mm"] > length:
+        raise fail("start_mm", f"start + grooved_length_mm must not exceed the shaft length "
+                   f"({length:g} mm)")
+    # The groove ends need a little solid beyond them for the CAD to stay one body.
+    return Grooves(
+        hands=tuple(+1 if h == "right" else -1 for h in g["hands"]),
+        pitch=g["pitch_mm"] * MM,
+        width=g["width_mm"] * MM,
+        depth=g["depth_mm"] * MM,
+        root_radius=g["root_radius_mm"] * MM,
+        length=g["grooved_length_mm"] * MM,
+        start=start * MM,
+    )

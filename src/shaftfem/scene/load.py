@@ -1,0 +1,274 @@
+"""Scene files: a shaft, its material, its grooves and its mesh, read from TOML.
+
+A scene file is written in the units designers use (mm, MPa, kg/m^3, kW, r/min);
+every key names its unit. `load_scene` checks every value and returns a `Scene`
+in SI units (m, Pa, kg/m^3, W, rad/s), which is all the solver ever sees.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+from shaftfem.errors import SceneError
+from shaftfem.scene.checks import check_grooves, check_seats
+from shaftfem.scene.model import (
+    MM,
+    Attachment,
+    Excitation,
+    Grooves,
+    Material,
+    MeshSettings,
+    ModeRequest,
+    Scene,
+    Shaft,
+    Support,
+)
+from shaftfem.scene.schema import SCHEMA, read_toml, split_parameter, validate_table, where
+
+# The scenes shipped with shaftfem: the repository's geometry/ folder, which an
+# installed package carries as shaftfem/scenes (pyproject.toml maps one onto the other).
+_PACKAGED = Path(__file__).resolve().parents[1] / "scenes"
+GEOMETRY_DIR = _PACKAGED if _PACKAGED.is_dir() else Path(__file__).resolve().parents[3] / "geometry"
+DEFAULT_SCENE = "paper2018"
+
+MPA = 1e6
+
+
+
+def resolve_scene_path(scene: str | Path | None) -> Path:
+    """A scene argument is a path to a .toml file or the name of one in geometry/."""
+    if scene is None:
+        scene = DEFAULT_SCENE
+    p = Path(scene)
+    if p.suffix != ".toml" and not p.exists():
+        p = GEOMETRY_DIR / f"{scene}.toml"
+    if not p.is_file():
+        names = sorted(q.stem for q in GEOMETRY_DIR.glob("*.toml"))
+        raise SceneError(f"scene {str(scene)!r}: no such file (scenes in geometry/: {', '.join(names)})")
+    return p
+
+
+def scene_beside(base: str, file: str | Path) -> str:
+    """A scene named in another file (sweep, calibration): a relative .toml path is taken
+    relative to that file; a bare name stays a name in geometry/."""
+    if not Path(base).is_absolute() and Path(base).suffix == ".toml":
+        return str(Path(file).parent / base)
+    return base
+
+
+@dataclass(frozen=True)
+class SceneText:
+    """A scene file's content and its name: what travels to a worker that cannot see
+    the user's files (a sweep on a cluster)."""
+
+    text: str
+    source: str
+
+
+def read_scene_text(scene: str | Path | SceneText | None = None) -> SceneText:
+    """The content of a scene file (a path, or the name of a shipped scene), checked."""
+    if isinstance(scene, SceneText):
+        return scene
+    path = resolve_scene_path(scene)
+    read_toml(path, "scene")  # a missing or malformed file is named here
+    out = SceneText(text=path.read_text(encoding="utf-8-sig"), source=path.name)
+    load_scene(out)  # and a bad value too, before anything is sent anywhere
+    return out
+
+
+def load_scene(scene: str | Path | SceneText | None = None,
+               overrides: dict | None = None) -> Scene:
+    """Read and check a scene (a file, a shipped scene's name, or a SceneText);
+    `overrides` maps 'table.key' (or 'table[i].key' for entry i of a repeated table) to
+    a value in file units."""
+    if isinstance(scene, SceneText):
+        data, source = tomllib.loads(scene.text), scene.source
+    else:
+        path = resolve_scene_path(scene)
+        data, source = read_toml(path, "scene"), path.name
+    for dotted, value in (overrides or {}).items():
+        table, index, key = split_parameter(dotted) or (None, None, None)
+        if table is None:
+            raise SceneError(f"{source}: {dotted!r}: not a scene key (table.key or "
+                             "table[i].key)")
+        spec = SCHEMA.get(table, {}).get(key or "")
+        if spec is not None and spec.kind is int and isinstance(value, float) and value.is_integer():
+            value = int(value)  # sweep axes and calibration grids carry numbers as floats
+        if index is None:
+            data.setdefault(table, {})[key] = value
+            continue
+        entries = _entries_with(source, dotted, data, table, index, "the scene", source)
+        data[table] = entries
+        entries[index][key] = value
+    return scene_from_dict(data, source=source)
+
+
+def check_entries(source: str, base: SceneText, names: list[str]) -> None:
+    """Each 'table[i].key' parameter of a sweep or calibration file names an entry the
+    base scene has."""
+    data = tomllib.loads(base.text)
+    for name in names:
+        table, index, _ = split_parameter(name) or (None, None, None)
+        if table is not None and index is not None:
+            _entries_with(source, name, data, table, index, f"the base scene {base.source}",
+                          base.source)
+
+
+def _entries_with(source: str, name: str, data: dict, table: str, index: int, scene: str,
+                  scene_source: str) -> list:
+    """The [[table]] entries of a parsed scene, which must include entry `index` (named by
+    parameter `name` of file `source`)."""
+    entries = _array(scene_source, data, table)
+    if index >= len(entries):
+        raise SceneError(f"{source}: {name}: {scene} has {len(entries)} [[{table}]] "
+                         "table(s), numbered from 0")
+    return entries
+
+
+def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
+    """Check a parsed scene (file units) and convert it to SI."""
+    _check_tables(source, data)
+    t = {name: validate_table(source, name, data.get(name, {}), SCHEMA[name])
+         for name in ("shaft", "material", "mesh", "resonance", "modes", "response")}
+    top = validate_table(source, "", data, SCHEMA[""])
+    sizing = (validate_table(source, "sizing", data["sizing"], SCHEMA["sizing"])
+              if "sizing" in data else None)
+    shaft_t, mat_t, mesh_t, res_t = t["shaft"], t["material"], t["mesh"], t["resonance"]
+    shaft = Shaft(length=shaft_t["length_mm"] * MM, diameter=shaft_t["diameter_mm"] * MM)
+    material = Material(name=mat_t["name"], youngs_modulus=mat_t["youngs_modulus_mpa"] * MPA,
+                        poisson_ratio=mat_t["poisson_ratio"], density=mat_t["density_kg_m3"])
+    grooves = None
+    if "grooves" in data:
+        g = validate_table(source, "grooves", data["grooves"], SCHEMA["grooves"])
+        grooves = check_grooves(source, g, shaft_t)
+    mesh = _mesh_settings(source, mesh_t, shaft_t, grooves)
+    supports = tuple(_support(source, i, e) for i, e in enumerate(_array(source, data, "support")))
+    attachments = tuple(_attachment(source, i, e)
+                        for i, e in enumerate(_array(source, data, "attachment")))
+    check_seats(source, shaft, grooves, supports, attachments, mesh)
+    point = _response_point(source, t["response"], shaft_t)
+    target = mesh_t["target_error_percent"]
+    return Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,
+                 material=material, grooves=grooves, mesh=mesh,
+                 excitations=_excitations(source, data), sizing=sizing,
+                 required_margin=res_t["required_margin_percent"] / 100,
+                 modes=ModeRequest(count=t["modes"]["count"],
+                                   max_frequency=t["modes"]["max_frequency_hz"]),
+                 target_error=None if target is None else target / 100,
+                 max_dofs=mesh_t["max_dofs"], supports=supports, attachments=attachments,
+                 damping_ratio=t["response"]["damping_ratio_percent"] / 100,
+                 response_point=None if point is None else point * MM,
+                 criterion=res_t["criterion"])
+
+
+def _check_tables(source: str, data: dict) -> None:
+    """Every table of the file is one the schema knows."""
+    known = set(SCHEMA)
+    for table, value in data.items():
+        is_table = isinstance(value, dict) or (
+            isinstance(value, list) and value and all(isinstance(v, dict) for v in value))
+        if is_table and table not in known:
+            raise SceneError(
+                f"{source}: [{table}]: unknown table; allowed: "
+                f"{', '.join(sorted(k for k in known if k))}"
+            )
+
+
+def _excitations(source: str, data: dict) -> tuple[Excitation, ...]:
+    out = []
+    for i, e in enumerate(_array(source, data, "excitation")):
+        e = validate_table(source, f"excitation[{i}]", e, SCHEMA["excitation"])
+        out.append(Excitation(name=e["name"], frequency=e["speed_rpm"] / 60.0,
+                              orders=tuple(e["orders"])))
+    return tuple(out)
+
+
+def _mesh_settings(source: str, mesh_t: dict, shaft_t: dict, grooves: Grooves | None
+                   ) -> MeshSettings:
+    """The element sizes (defaults: grooves half the size, their edges a third of that or
+    the root radius), none above the element size, which is not above the shaft."""
+    size = mesh_t["element_size_mm"]
+    groove_size = mesh_t["groove_element_size_mm"] or size / 2
+    if mesh_t["edge_element_size_mm"] is not None:
+        edge_size = mesh_t["edge_element_size_mm"]
+    elif grooves is not None and grooves.root_radius > 0:
+        edge_size = min(groove_size, grooves.root_radius / MM)
+    else:
+        edge_size = groove_size / 3
+    for key, value in (("groove_element_size_mm", groove_size), ("edge_element_size_mm", edge_size)):
+        if value > size:
+            raise SceneError(
+                f"{where(source, 'mesh', key)} = {value:g}: must not exceed "
+                f"element_size_mm = {size:g}"
+            )
+    if size > shaft_t["length_mm"]:
+        raise SceneError(
+            f"{where(source, 'mesh', 'element_size_mm')} = {size:g}: must not exceed the "
+            f"shaft length ({shaft_t['length_mm']:g} mm)"
+        )
+    return MeshSettings(size=size * MM, groove_size=groove_size * MM, edge_size=edge_size * MM,
+                        order=mesh_t["order"])
+
+
+def _response_point(source: str, resp_t: dict, shaft_t: dict) -> float | None:
+    """The response point, mm, on the shaft (None: the default)."""
+    point = resp_t["point_mm"]
+    if point is not None and point > shaft_t["length_mm"]:
+        raise SceneError(f"{where(source, 'response', 'point_mm')} = {point:g}: must lie on the "
+                         f"shaft, 0 to {shaft_t['length_mm']:g} mm")
+    return point
+
+
+def _array(source: str, data: dict, table: str) -> list:
+    """An array of tables ([[table]]); a single [table] is taken as one entry."""
+    items = data.get(table, [])
+    if isinstance(items, dict):
+        items = [items]
+    if not isinstance(items, list):
+        raise SceneError(f"{source}: {table} must be an array of tables ([[{table}]])")
+    return items
+
+
+def _support(source: str, i: int, t: dict) -> Support:
+    table = f"support[{i}]"
+    t = validate_table(source, table, t, SCHEMA["support"])
+    springs = ("radial_stiffness_n_per_mm", "axial_stiffness_n_per_mm",
+               "tilting_stiffness_nmm_per_rad")
+    if t["kind"] == "springs":
+        if t["radial_stiffness_n_per_mm"] is None:
+            raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: missing "
+                             "(kind = \"springs\" needs the bearing's radial stiffness, N/mm)")
+    else:
+        for key in springs:
+            if t[key] is not None:
+                raise SceneError(f"{where(source, table, key)} = {t[key]:g}: only with kind = "
+                                 f"\"springs\" (this support is {t['kind']!r})")
+    if t["kind"] == "clamped" and t["coupling"] == "rigid":
+        raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a clamped seat "
+                         "already holds every point of its band; leave coupling out")
+    radial = (t["radial_stiffness_n_per_mm"] or 0.0) * 1e3
+    width = t["width_mm"] * MM
+    return Support(name=t["name"] or f"support {i + 1}", position=t["position_mm"] * MM,
+                   width=width, kind=t["kind"], radial=radial,
+                   axial=(t["axial_stiffness_n_per_mm"] or 0.0) * 1e3,
+                   tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3,
+                   coupling=t["coupling"])
+
+
+def _attachment(source: str, i: int, t: dict) -> Attachment:
+    t = validate_table(source, f"attachment[{i}]", t, SCHEMA["attachment"])
+    polar, diametral = t["polar_inertia_kg_m2"], t["diametral_inertia_kg_m2"]
+    if t["mass_kg"] == 0 and polar + diametral > 0:
+        raise SceneError(f"{where(source, f'attachment[{i}]', 'mass_kg')} = 0: a part with "
+                         "moments of inertia has a mass")
+    if diametral < polar / 2 * (1 - 1e-12):
+        raise SceneError(
+            f"{where(source, f'attachment[{i}]', 'diametral_inertia_kg_m2')} = {diametral:g}: "
+            f"a rigid part's moment about a diameter is at least half its polar moment "
+            f"({polar / 2:g} kg m^2; a thin disk has exactly half)")
+    return Attachment(name=t["name"] or f"attachment {i + 1}", position=t["position_mm"] * MM,
+                      width=t["width_mm"] * MM, mass=t["mass_kg"],
+                      polar_inertia=t["polar_inertia_kg_m2"],
+                      diametral_inertia=t["diametral_inertia_kg_m2"])
