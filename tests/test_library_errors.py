@@ -45,7 +45,7 @@ def test_an_arpack_failure_is_a_solver_error(monkeypatch):
 def test_a_meshio_exit_is_a_mesh_error(monkeypatch):
     import meshio
 
-    from shaftfem.cad.occ import mesh_solid
+    from shaftfem.cad.mesher import mesh_solid
     from shaftfem.scene.load import load_scene
 
     def exits(*a, **k):
@@ -58,17 +58,25 @@ def test_a_meshio_exit_is_a_mesh_error(monkeypatch):
 
 
 def test_an_opencascade_failure_is_a_geometry_error_and_exit_3(monkeypatch, tmp_path, capsys):
-    from shaftfem.cad import occ
+    from shaftfem.cad import build
 
     def broken(*a, **k):
         raise Exception("BRepAlgoAPI_Cut failed")  # as gmsh raises OCC's errors
 
-    monkeypatch.setattr(occ, "_build", broken)
+    monkeypatch.setattr(build, "_build", broken)
     with pytest.raises(GeometryError, match="OpenCASCADE could not build .* BRepAlgoAPI_Cut"):
-        occ.build_solid(*_paper_parts(), tmp_path / "x.brep")
-    assert main(["modes", "paper2018", "--no-cache", "--no-estimate", "-q"]) == EXIT_COMPUTATION
+        build.build_solid(*_paper_parts(), tmp_path / "x.brep")
+    argv = ["modes", "paper2018", "--no-cache", "--no-estimate", "-q"]
+    assert main(argv) == EXIT_COMPUTATION
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "BRepAlgoAPI_Cut" in err[0] and "Traceback" not in err[0]
+    # for debugging: the traceback, with OpenCASCADE's error kept as the cause
+    monkeypatch.setenv("SHAFTFEM_DEBUG", "1")
+    assert main(argv) == EXIT_COMPUTATION
+    err = capsys.readouterr().err
+    assert "Exception: BRepAlgoAPI_Cut failed" in err
+    assert "The above exception was the direct cause of the following exception" in err
+    assert err.strip().splitlines()[-1].startswith("shaftfem: error: OpenCASCADE could not build")
 
 
 def _paper_parts():

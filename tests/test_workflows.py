@@ -64,7 +64,7 @@ def test_twenty_modes_and_a_frequency_limit(cylinder, tmp_path):
 def test_gmsh_leaves_a_callers_session_as_it_was(tmp_path):
     import gmsh
 
-    from shaftfem.cad.occ import write_solid
+    from shaftfem.cad.build import write_solid
     from shaftfem.scene.load import load_scene
 
     gmsh.initialize(readConfigFiles=False)

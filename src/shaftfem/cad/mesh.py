@@ -1,4 +1,4 @@
-"""Tetrahedral meshes of the shaft's solid (occ.py meshes; this module checks and caches).
+"""Tetrahedral meshes of the shaft's solid (cad.mesher meshes; this module checks and caches).
 
 Second-order elements are curved onto the CAD surfaces; every element's
 Jacobian determinant is checked and a mesh with an inverted or degenerate
@@ -85,8 +85,8 @@ def _graded(h0: float, h1: float, d0: float, d1: float, measure) -> float:
 def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings) -> int:
     """About how many DOFs `settings` give on this shaft, without meshing: the shaft at
     the element size, plus a graded layer over the groove faces and a tube around the
-    floor edges (the size fields of occ.py)."""
-    from shaftfem.cad.occ import EDGE_GRADING
+    floor edges (the size fields of cad.mesher)."""
+    from shaftfem.cad.mesher import EDGE_GRADING
 
     s, order = settings.size, settings.order
     volume = np.pi * shaft.radius**2 * shaft.length
@@ -122,7 +122,8 @@ def check_budget(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
 def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
              settings: MeshSettings, cuts: tuple[float, ...] = ()) -> str:
     """A hash of everything the mesh depends on."""
-    from shaftfem.cad.occ import EDGE_GRADING, gmsh_version
+    from shaftfem.cad.mesher import EDGE_GRADING
+    from shaftfem.cad.session import gmsh_version
 
     payload = {
         "version": MESH_VERSION, "gmsh": gmsh_version(),
@@ -180,7 +181,7 @@ def remesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None, settings: M
 
 def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
               settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = ()) -> ShaftMesh:
-    from shaftfem.cad.occ import mesh_solid
+    from shaftfem.cad.mesher import mesh_solid
 
     points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts)
     if shape.brep is None:

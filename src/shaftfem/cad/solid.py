@@ -45,7 +45,7 @@ class ShaftShape:
 
 
 def shape_key(shaft: Shaft, grooves: Grooves | None) -> str:
-    from shaftfem.cad.occ import SECTIONS_PER_CELL
+    from shaftfem.cad.build import SECTIONS_PER_CELL
 
     return content_key({"version": CONSTRUCTION_VERSION, "sections": SECTIONS_PER_CELL,
                         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None})
@@ -68,7 +68,7 @@ def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -
             return ShaftShape(brep=brep, from_cache=True, **meta)
         discard(f"solid {key}", why, brep, meta_file)
 
-    from shaftfem.cad.occ import build_solid
+    from shaftfem.cad.build import build_solid
 
     v_grooves = groove_volume(grooves, shaft.radius)
     with atomic_path(brep) as tmp:

@@ -130,7 +130,7 @@ def write_mode_files(result: ModalResult, folder: Path,
 
     import meshio
 
-    from shaftfem.cad.occ import write_solid
+    from shaftfem.cad.build import write_solid
     from shaftfem.outputs.vtk import write_vtu
 
     shapes = result.shapes_at_points()

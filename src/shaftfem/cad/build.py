@@ -1,0 +1,197 @@
+"""The shaft's solid on OpenCASCADE (through gmsh), written as BREP or STEP.
+
+The solid (why it is built this way is in the comments):
+
+* A groove of one hand is invariant under the screw motion (rotate by 2*pi*dz/P,
+  translate by dz), so each of its cross-sections perpendicular to the axis is a
+  rotated copy of one planar section: the axial-section profile mapped to angles
+  by theta = 2*pi*s/P. Straight groove walls become radial lines, the floor and
+  top become circular arcs, the root fillets short splines.
+* A right- and a left-hand groove of the same pitch together repeat every half
+  pitch, turned by 180 degrees. So one "cell" (half a pitch long) is built with
+  booleans and then copied; the cells and the plain ends are glued with one
+  fragment. The grooves cross once inside each cell, never on a cell face.
+* Each groove piece is a loft (ThruSections) through exact sections that start
+  and end exactly on the cell faces, so neighbouring cells meet on identical
+  edges. The piece is cut oversized (from below the floor to above the surface)
+  and intersected with the ring R-d <= r <= R+1 mm, so that every groove floor
+  is the same exact cylinder and two crossing floors never meet as two slightly
+  different surfaces (a trial showed full-length swept tubes failing there).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from shaftfem.cad.profile import TOOL_OVERSHOOT, profile_outline
+from shaftfem.cad.session import session, stdout_to_devnull, translated
+from shaftfem.errors import GeometryError
+from shaftfem.scene.model import Grooves, Shaft
+
+SECTIONS_PER_CELL = 13          # exact sections per half turn (15 degree steps)
+
+
+# --------------------------------------------------------------------------
+# The solid
+
+
+def _section_wire(occ, outline, z: float, theta: float, pitch: float) -> int:
+    """One transverse section of a groove tool at height z, centred at angle theta."""
+    k = 2 * math.pi / pitch
+
+    def xy(s: float, r: float) -> tuple[float, float, float]:
+        ang = theta + k * s
+        return r * math.cos(ang), r * math.sin(ang), z
+
+    points: dict[tuple[float, float], int] = {}
+
+    def pt(s: float, r: float) -> int:
+        key = (round(s, 12), round(r, 12))
+        if key not in points:
+            points[key] = occ.addPoint(*xy(s, r))
+        return points[key]
+
+    centre = None
+    curves = []
+    for kind, pts in outline:
+        if kind == "radial":
+            curves.append(occ.addLine(pt(*pts[0]), pt(*pts[1])))
+        elif kind == "arc":
+            if centre is None:
+                centre = occ.addPoint(0.0, 0.0, z)
+            curves.append(occ.addCircleArc(pt(*pts[0]), centre, pt(*pts[-1])))
+        else:
+            tags = [pt(*pts[0])] + [occ.addPoint(*xy(*p)) for p in pts[1:-1]] + [pt(*pts[-1])]
+            curves.append(occ.addSpline(tags))
+    return occ.addWire(curves)
+
+
+def _groove_piece(occ, g: Grooves, radius: float, outline, hand: int,
+                  z0: float, length: float, theta0: float) -> int:
+    """A groove tool over [z0, z0 + length] whose centre starts at angle theta0."""
+    n = max(3, math.ceil((SECTIONS_PER_CELL - 1) * length / (g.pitch / 2)) + 1)
+    wires = []
+    for z in np.linspace(z0, z0 + length, n):
+        theta = theta0 + hand * 2 * math.pi * (z - z0) / g.pitch
+        wires.append(_section_wire(occ, outline, float(z), theta, g.pitch))
+    out = occ.addThruSections(wires, makeSolid=True, makeRuled=False)
+    vols = [t for d, t in out if d == 3]
+    if len(vols) != 1:
+        raise GeometryError(f"groove loft gave {len(vols)} solids instead of 1")
+    return vols[0]
+
+
+def _cell(occ, g: Grooves, radius: float, outline, z0: float, length: float,
+          turn: float) -> int:
+    """A grooved stretch [z0, z0 + length]: cylinder minus each hand's groove piece.
+
+    `turn` is the angle of the right-hand groove's centre at z0 minus pi/2.
+    """
+    floor = radius - g.depth
+    body = occ.addCylinder(0, 0, z0, 0, 0, length, radius)
+    for hand in g.hands:
+        theta0 = hand * (math.pi / 2 + turn)
+        tool = _groove_piece(occ, g, radius, outline, hand, z0, length, theta0)
+        outer = occ.addCylinder(0, 0, z0 - 1e-3, 0, 0, length + 2e-3, radius + 2 * TOOL_OVERSHOOT)
+        inner = occ.addCylinder(0, 0, z0 - 2e-3, 0, 0, length + 4e-3, floor)
+        ring, _ = occ.cut([(3, outer)], [(3, inner)])
+        piece, _ = occ.intersect([(3, tool)], ring)
+        if not piece:
+            raise GeometryError("a groove piece does not meet the ring R-d..R+1 mm")
+        cut, _ = occ.cut([(3, body)], piece)
+        if len(cut) != 1:
+            raise GeometryError(f"cutting a groove piece left {len(cut)} solids instead of 1")
+        body = cut[0][1]
+    return body
+
+
+def _build(gmsh, shaft: Shaft, grooves: Grooves | None) -> None:
+    """Create the shaft in the current gmsh model (not yet synchronised)."""
+    occ = gmsh.model.occ
+    R, L = shaft.radius, shaft.length
+    if grooves is None:
+        occ.addCylinder(0, 0, 0, 0, 0, L, R)
+        return
+    g = grooves
+    outline = profile_outline(g, R)
+    half = g.pitch / 2
+    n_full = int(math.floor(g.length / half + 1e-9))
+    rest = g.length - n_full * half
+    pieces = []
+    if g.start > 1e-9:
+        pieces.append((3, occ.addCylinder(0, 0, 0, 0, 0, g.start, R)))
+    if n_full:
+        cell = _cell(occ, g, R, outline, g.start, half, 0.0)
+        pieces.append((3, cell))
+        for k in range(1, n_full):
+            copy = occ.copy([(3, cell)])
+            if k % 2:
+                occ.rotate(copy, 0, 0, 0, 0, 0, 1, math.pi)
+            occ.translate(copy, 0, 0, k * half)
+            pieces += copy
+    if rest > 1e-9:
+        pieces.append((3, _cell(occ, g, R, outline, g.start + n_full * half, rest,
+                                n_full * math.pi)))
+    end = g.start + g.length
+    if L - end > 1e-9:
+        pieces.append((3, occ.addCylinder(0, 0, end, 0, 0, L - end, R)))
+    if len(pieces) > 1:
+        occ.fragment(pieces[:1], pieces[1:])
+
+
+def _check_connected(gmsh) -> None:
+    """All volumes must form one body: every volume shares a face with another."""
+    vols = [t for _, t in gmsh.model.getEntities(3)]
+    if len(vols) < 2:
+        return
+    faces: dict[int, list[int]] = {}
+    for v in vols:
+        _, bnd = gmsh.model.getAdjacencies(3, v)
+        for f in bnd:
+            faces.setdefault(int(f), []).append(v)
+    parent = {v: v for v in vols}
+
+    def find(v):
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    for owners in faces.values():
+        for a in owners[1:]:
+            parent[find(a)] = find(owners[0])
+    roots = {find(v) for v in vols}
+    if len(roots) != 1:
+        raise GeometryError(f"the solid fell apart into {len(roots)} bodies after the booleans")
+
+def build_solid(shaft: Shaft, grooves: Grooves | None, brep: Path) -> tuple[float, int]:
+    """Build the shaft, check it is one body, write it to `brep`; return its volume
+    (m^3) and how many CAD volumes it has."""
+    with session("shaft") as s, translated(GeometryError, "OpenCASCADE could not build the "
+                                           "shaft's solid (check the groove dimensions)"):
+        gmsh = s.gmsh
+        _build(gmsh, shaft, grooves)
+        gmsh.model.occ.synchronize()
+        vols = gmsh.model.getEntities(3)
+        volume = sum(gmsh.model.occ.getMass(3, t) for _, t in vols)
+        _check_connected(gmsh)
+        gmsh.write(str(brep))
+    return volume, len(vols)
+
+
+def write_solid(brep: Path | None, shaft: Shaft, paths: list[Path]) -> None:
+    """The solid as STEP or BREP files (by suffix; for CAD and the workshop): from its
+    BREP, or, for a shaft without grooves, a plain cylinder built on the spot."""
+    with session("export") as s, stdout_to_devnull(), \
+            translated(GeometryError, "the solid could not be written as STEP/BREP"):
+        gmsh = s.gmsh
+        if brep is None:
+            gmsh.model.occ.addCylinder(0, 0, 0, 0, 0, shaft.length, shaft.radius)
+        else:
+            gmsh.model.occ.importShapes(str(brep))
+        gmsh.model.occ.synchronize()
+        for path in paths:
+            gmsh.write(str(path))

@@ -1,0 +1,206 @@
+"""The solid's tetrahedral mesh, made by gmsh and read back through meshio.
+
+The mesh: `MeshSettings.size` away from the grooves, `groove_size` at the groove
+faces, `edge_size` at the curves on the floor radius (where sharp corners make
+the elastic field singular), graded in between. A shaft without grooves is
+meshed as a 90-degree periodic sector (the caller copies it four times).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from shaftfem.cad.session import session, translated
+from shaftfem.errors import MeshError
+from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
+
+# Distance (in units of the size jump) over which the element size grows from the
+# edge size to the groove size: 1 means each element is about twice its inner neighbour.
+EDGE_GRADING = 1.0
+
+
+# --------------------------------------------------------------------------
+# The mesh
+
+
+def _sample(gmsh, dim: int, tag: int, n: int = 3) -> np.ndarray:
+    lo, hi = gmsh.model.getParametrizationBounds(dim, tag)
+    if dim == 1:
+        params = np.linspace(lo[0], hi[0], n + 2)[1:-1]
+    else:
+        u = np.linspace(lo[0], hi[0], n + 2)[1:-1]
+        v = np.linspace(lo[1], hi[1], n + 2)[1:-1]
+        params = np.array([[a, b] for a in u for b in v]).ravel()
+    return np.asarray(gmsh.model.getValue(dim, tag, params)).reshape(-1, 3)
+
+
+def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], list[int], float]:
+    """Boundary faces of the grooves, and the helical curves along their floor edges."""
+    R, L = shaft.radius, shaft.length
+    floor = R - grooves.depth
+    tol = 1e-6
+    faces = []
+    for _, s in gmsh.model.getEntities(2):
+        up, _ = gmsh.model.getAdjacencies(2, s)
+        if len(up) != 1:
+            continue  # a face between two cells
+        xyz = _sample(gmsh, 2, s)
+        r = np.hypot(xyz[:, 0], xyz[:, 1])
+        if np.all(np.abs(r - R) < tol) or np.all(np.abs(xyz[:, 2]) < tol) or np.all(
+            np.abs(xyz[:, 2] - L) < tol
+        ):
+            continue
+        faces.append(s)
+    edges, longest = [], 0.0
+    for _, c in gmsh.model.getEntities(1):
+        xyz = _sample(gmsh, 1, c, 5)
+        r = np.hypot(xyz[:, 0], xyz[:, 1])
+        # every curve on the floor radius: the helical floor edges, and the arcs where
+        # the grooves' flat ends meet the floor (sharp re-entrant edges)
+        if np.all(np.abs(r - floor) < tol):
+            edges.append(c)
+            longest = max(longest, float(np.sum(np.linalg.norm(np.diff(xyz, axis=0), axis=1))))
+    return faces, edges, longest * 6 / 5
+
+
+def _size_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> None:
+    f = gmsh.model.mesh.field
+    faces, edges, longest = _groove_entities(gmsh, shaft, grooves)
+    fields = []
+    if faces:
+        d = f.add("Distance")
+        f.setNumbers(d, "SurfacesList", faces)
+        f.setNumber(d, "Sampling", 60)
+        t = f.add("Threshold")
+        f.setNumber(t, "InField", d)
+        f.setNumber(t, "SizeMin", s.groove_size)
+        f.setNumber(t, "SizeMax", s.size)
+        f.setNumber(t, "DistMin", 0.5 * s.groove_size)
+        f.setNumber(t, "DistMax", 0.5 * s.groove_size + 2.5 * (s.size - s.groove_size))
+        fields.append(t)
+    if edges and s.edge_size < s.groove_size:
+        d = f.add("Distance")
+        f.setNumbers(d, "CurvesList", edges)
+        f.setNumber(d, "Sampling", max(20, math.ceil(2 * longest / s.edge_size)))
+        t = f.add("Threshold")
+        f.setNumber(t, "InField", d)
+        f.setNumber(t, "SizeMin", s.edge_size)
+        f.setNumber(t, "SizeMax", s.groove_size)
+        f.setNumber(t, "DistMin", 0.5 * s.edge_size)
+        f.setNumber(t, "DistMax", 0.5 * s.edge_size + EDGE_GRADING * (s.groove_size - s.edge_size))
+        fields.append(t)
+    if fields:
+        m = f.add("Min")
+        f.setNumbers(m, "FieldsList", fields)
+        f.setAsBackgroundMesh(m)
+
+
+def _cut_at(gmsh, cuts: tuple[float, ...], radius: float) -> None:
+    """Split the solid by the planes z = cuts, so that the mesh has faces there and a
+    seat band (shaftfem.fem.supports) is exactly a set of boundary faces."""
+    if not cuts:
+        return
+    occ = gmsh.model.occ
+    disks = [(2, occ.addDisk(0, 0, z, 2 * radius, 2 * radius)) for z in cuts]
+    occ.fragment(occ.getEntities(3), disks)
+    occ.synchronize()
+    # the disks' parts outside the shaft bound no volume
+    stray = [(2, t) for _, t in gmsh.model.getEntities(2)
+             if len(gmsh.model.getAdjacencies(2, t)[0]) == 0]
+    occ.remove(stray, recursive=True)
+    occ.synchronize()
+
+
+def _quarter_cylinder(gmsh, shaft: Shaft, cuts: tuple[float, ...] = ()) -> None:
+    occ = gmsh.model.occ
+    occ.addCylinder(0, 0, 0, 0, 0, shaft.length, shaft.radius, angle=math.pi / 2)
+    occ.synchronize()
+    _cut_at(gmsh, cuts, shaft.radius)
+    planes: dict[str, dict[float, int]] = {"x0": {}, "y0": {}}
+    for _, f in gmsh.model.getEntities(2):
+        c = gmsh.model.occ.getCenterOfMass(2, f)
+        if abs(c[1]) < 1e-12 and c[0] > 0:
+            planes["y0"][round(c[2], 9)] = f
+        elif abs(c[0]) < 1e-12 and c[1] > 0:
+            planes["x0"][round(c[2], 9)] = f
+    if sorted(planes["x0"]) != sorted(planes["y0"]):
+        raise MeshError("the quarter cylinder's two cut planes do not match")
+    # exact quarter turn about z: (x, y) -> (-y, x)
+    turn = [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    for z, f in planes["x0"].items():
+        gmsh.model.mesh.setPeriodic(2, [f], [planes["y0"][z]], turn)
+
+def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]
+                      ) -> tuple[float, int]:
+    """Element sizes from a former mesh: `sizes` = (points (N, 3), tets (E, 4), size at
+    each point, m), a list-based view read through a PostView field. Returns the smallest
+    size and the view (to be removed after meshing)."""
+    points, tets, h = sizes
+    xyz = points[tets]
+    data = np.hstack([xyz[:, :, 0], xyz[:, :, 1], xyz[:, :, 2], h[tets]])
+    view = gmsh.view.add("element size")
+    gmsh.view.addListData(view, "SS", len(tets), data.ravel().tolist())
+    f = gmsh.model.mesh.field
+    field = f.add("PostView")
+    f.setNumber(field, "ViewTag", view)
+    f.setAsBackgroundMesh(field)
+    return float(h.min()), view
+
+
+def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
+               settings: MeshSettings,
+               sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+               cuts: tuple[float, ...] = ()) -> tuple[np.ndarray, np.ndarray]:
+    """Tetrahedra of the solid in `brep` (None: a plain shaft's 90-degree sector):
+    points (N, 3) in m and cells (E, 4 or 10) in meshio's node order. `sizes`: an
+    element-size field (points, tets, size at each point, m) in place of the
+    settings' groove and edge sizes; `cuts`: z (m) of planes the mesh must follow."""
+    import meshio
+
+    with session("mesh") as s, translated(MeshError, "gmsh could not mesh the solid"):
+        gmsh = s.gmsh
+        if brep is None:
+            _quarter_cylinder(gmsh, shaft, cuts)
+        else:
+            gmsh.model.occ.importShapes(str(brep))
+            gmsh.model.occ.synchronize()
+            _cut_at(gmsh, cuts, shaft.radius)
+        smallest, view = min(settings.edge_size, settings.size), None
+        if sizes is not None:
+            smallest, view = _background_sizes(gmsh, sizes)
+        elif grooves is not None:
+            _size_fields(gmsh, shaft, grooves, settings)
+        s.option("Mesh.MeshSizeMax", settings.size)
+        s.option("Mesh.MeshSizeMin", smallest * 0.5)
+        s.option("Mesh.MeshSizeFromPoints", 0)
+        s.option("Mesh.MeshSizeFromCurvature", 0)
+        s.option("Mesh.MeshSizeExtendFromBoundary", 0)
+        s.option("Mesh.Optimize", 1)
+        gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "shaft")
+        try:
+            gmsh.model.mesh.generate(3)
+            if settings.order == 2:
+                gmsh.model.mesh.setOrder(2)
+        finally:
+            if view is not None:
+                gmsh.view.remove(view)
+        # through an .msh file and meshio: meshio puts the 10-node tets in VTK order
+        fd, tmp = tempfile.mkstemp(suffix=".msh")
+        os.close(fd)
+        try:
+            gmsh.write(tmp)
+            with contextlib.redirect_stdout(io.StringIO()):  # meshio prints a blank line
+                m = meshio.read(tmp)
+        finally:
+            os.unlink(tmp)
+    cells = m.cells_dict.get(cell_type(settings.order))
+    if cells is None or len(cells) == 0:
+        raise MeshError("the mesh has no tetrahedra")
+    return m.points, cells
