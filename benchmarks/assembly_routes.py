@@ -22,7 +22,14 @@ def main(size_mm: float, repeat: int) -> None:
 
     from shaftfem.cad.mesh import mesh_shape
     from shaftfem.cad.solid import build_shape
-    from shaftfem.fem.assembly import STIFFNESS_INTORDER, _gradients, _sum_over_chunks, discretise, elasticity_blocks, stiffness
+    from shaftfem.fem.assembly import (
+        STIFFNESS_INTORDER,
+        _gradients,
+        _sum_over_chunks,
+        discretise,
+        elasticity_blocks,
+        stiffness,
+    )
     from shaftfem.runtime import assembly_threads
     from shaftfem.scene.load import load_scene
     from shaftfem.workflows.pipeline import with_mesh

@@ -53,7 +53,8 @@ def one(cache: str, mesh_mm: str | None, out: str, export: bool = True) -> dict:
     sec = dict(r.timings.items())
     sec["export"] = 0.0
     if export:
-        from shaftfem.outputs.export import export_modes, write_calculix
+        from shaftfem.outputs.calculix import write_calculix
+        from shaftfem.outputs.export import export_modes
 
         t = time.perf_counter()
         export_modes(r, out)

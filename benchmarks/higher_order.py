@@ -109,7 +109,14 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
     from skfem import Basis
 
     from shaftfem.cad.mesh import skfem_mesh
-    from shaftfem.fem.assembly import Pattern, _gradients, _reference_values, _sum_over_chunks, elasticity_blocks, mass_blocks
+    from shaftfem.fem.assembly import (
+        Pattern,
+        _gradients,
+        _reference_values,
+        _sum_over_chunks,
+        elasticity_blocks,
+        mass_blocks,
+    )
     from shaftfem.fem.eigen import Wanted, solve_modes
     from shaftfem.fem.estimate import recovery_estimate
     from shaftfem.fem.supports import rigid_body_modes

@@ -10,7 +10,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 from _common import machine  # noqa: E402
-from shaftfem.workflows.sweep import Sweep, run_sweep  # noqa: E402
+from shaftfem.workflows.sweep import run_sweep  # noqa: E402
+from shaftfem.workflows.sweep_file import Sweep
 
 
 def main() -> None:

@@ -13,7 +13,7 @@ import pytest
 
 from shaftfem.fem.assembly import assemble
 from shaftfem.fem.modes import modal_analysis
-from shaftfem.outputs.export import read_calculix_eig, read_calculix_frequencies, write_calculix
+from shaftfem.outputs.calculix import read_calculix_eig, read_calculix_frequencies, write_calculix
 from shaftfem.scene.load import load_scene
 from shaftfem.workflows.pipeline import run_modes, with_mesh
 
@@ -73,7 +73,7 @@ def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling):
     on its seat: CalculiX's *EQUATION, SPRING1 and *RIGID BODY cards against our
     elimination, with the same 4-point mass; the bearings distributing (mean motion) or
     rigid rings (*RIGID BODY with springs and holds on its nodes)."""
-    from shaftfem.fem.supports import install
+    from shaftfem.fem.installation import install
     from shaftfem.scene.load import scene_from_dict
 
     data = {"shaft": {"length_mm": 320.0, "diameter_mm": 32.0},

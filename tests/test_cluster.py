@@ -12,7 +12,8 @@ import pytest
 
 from shaftfem.errors import ClusterError
 from shaftfem.scene.load import GEOMETRY_DIR
-from shaftfem.workflows.sweep import load_sweep, run_sweep, run_variant, variant_id
+from shaftfem.workflows.sweep import run_sweep, run_variant, variant_id
+from shaftfem.workflows.sweep_file import load_sweep
 
 DASK = str(Path(sys.executable).with_name("dask"))
 

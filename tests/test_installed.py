@@ -374,7 +374,7 @@ def test_a_sweep_or_calibration_names_a_bearing_by_its_index(tmp_path):
     not have is refused with the file and the count."""
     from shaftfem.scene.load import load_scene
     from shaftfem.workflows.calibrate import load_calibration
-    from shaftfem.workflows.sweep import load_sweep
+    from shaftfem.workflows.sweep_file import load_sweep
 
     scene = load_scene("paper2018_installed", overrides={
         "support[1].position_mm": 500.0, "support[0].radial_stiffness_n_per_mm": 1e5})

@@ -9,7 +9,8 @@ import time
 import pytest
 
 from shaftfem.outputs.plots import sweep_plots
-from shaftfem.workflows.sweep import load_sweep, read_results, run_sweep, run_variant, variant_id
+from shaftfem.workflows.sweep import read_results, run_sweep, run_variant, variant_id
+from shaftfem.workflows.sweep_file import load_sweep
 
 SWEEP = """
 base = "plain_cylinder"

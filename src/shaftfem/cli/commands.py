@@ -122,7 +122,8 @@ def cmd_check(args) -> int:
 
 
 def cmd_export(args) -> int:
-    from shaftfem.outputs.export import export_modes, write_calculix
+    from shaftfem.outputs.calculix import write_calculix
+    from shaftfem.outputs.export import export_modes
 
     result, est, adapted = _bounded(args)  # an adapted mesh's bounds go into the tables
     if args.format == "calculix":
@@ -209,7 +210,8 @@ def dask_out(args) -> Path:
 
 def cmd_sweep(args) -> int:
     from shaftfem.outputs.plots import sweep_plots
-    from shaftfem.workflows.sweep import load_sweep, run_sweep
+    from shaftfem.workflows.sweep import run_sweep
+    from shaftfem.workflows.sweep_file import load_sweep
 
     sweep = load_sweep(args.sweep)
     out = dask_out(args)

@@ -27,8 +27,9 @@ from shaftfem.fem.eigen import (
     Wanted,
     solve_modes,
 )
+from shaftfem.fem.installation import Installed
 from shaftfem.fem.ritz import Ritz
-from shaftfem.fem.supports import Installed, n_bodies, rigid_body_modes
+from shaftfem.fem.supports import n_bodies, rigid_body_modes
 
 if TYPE_CHECKING:
     from shaftfem.fem.assembly import System

@@ -1,4 +1,4 @@
-"""The installed shaft: bearing seats that hold it and parts fixed on it.
+"""Bearing seats that hold the shaft and parts fixed on it, as stiffness and ties.
 
 A seat is the band of shaft surface r = R, z0 <= z <= z1 (the mesh has faces at z0
 and z1, so the band is a set of boundary faces and every node on it is known).
@@ -24,14 +24,6 @@ tilting stiffness is given.
   rigid housing).
 * An attached part ties its band rigidly to its centre c on the axis,
   u_i = U + Theta x (x_i - c), and adds its mass and inertias there.
-
-With u = T q the pencil solved is
-
-    K_r = T^T (K + K_s) T,    M_r = T^T M T + M_parts,
-
-and the rigid motions the seats leave free (six for a free shaft, one, the turn
-about the axis, in two bearings) are found from the seats alone, then checked by
-the solve.
 """
 
 from __future__ import annotations
@@ -42,10 +34,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
-from scipy.sparse.linalg import spsolve
 
 from shaftfem.errors import SolverError
-from shaftfem.scene.model import Attachment, Scene, Support
+from shaftfem.scene.model import Attachment, Support
 
 # A node lies on a seat band within this distance (m): the mesh follows the seats.
 ON_SURFACE = 1e-7
@@ -177,185 +168,6 @@ def tie_rows(nodes: np.ndarray, idx: np.ndarray, centre: np.ndarray) -> np.ndarr
     B[:, 1, 3], B[:, 1, 5] = -d[:, 2], d[:, 0]
     B[:, 2, 3], B[:, 2, 4] = d[:, 1], -d[:, 0]
     return B
-
-
-def elimination(nodes: np.ndarray, clamped: np.ndarray, held: list[Restraint],
-                tied: list[tuple[np.ndarray, np.ndarray]]) -> sp.csr_matrix:
-    """T (3 n, n_q) with u = T q: clamped DOFs are dropped; each held restraint's
-    pivot DOF follows from the others of its band (c . u = 0); tied nodes follow
-    their part's (U, Theta) at its centre, the last 6 columns per part.
-
-    The held restraints of one seat act on disjoint DOFs (x, y, z means), so each
-    pivot is eliminated on its own."""
-    n = 3 * nodes.shape[0]
-    keep = np.ones(n, dtype=bool)
-    keep[clamped] = False
-    for idx, _ in tied:
-        keep[(3 * idx[:, None] + np.arange(3)).ravel()] = False
-    pivots = []
-    for r in held:
-        p = int(np.argmax(np.abs(r.coeffs)))
-        pivots.append(p)
-        keep[r.dofs[p]] = False
-    col = np.cumsum(keep) - 1
-    kept = np.flatnonzero(keep)
-    rows, cols, vals = [kept], [col[kept]], [np.ones(kept.size)]
-    for r, p in zip(held, pivots):
-        others = np.arange(r.dofs.size) != p
-        rows.append(np.full(others.sum(), r.dofs[p]))
-        cols.append(col[r.dofs[others]])
-        vals.append(-r.coeffs[others] / r.coeffs[p])
-    first = kept.size
-    for k, (idx, centre) in enumerate(tied):
-        B = tie_rows(nodes, idx, centre)
-        rows.append(np.broadcast_to(3 * idx[:, None, None] + np.arange(3)[None, :, None],
-                                    B.shape).ravel())
-        cols.append(np.broadcast_to(first + 6 * k + np.arange(6), B.shape).ravel())
-        vals.append(B.ravel())
-    T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(n, first + 6 * len(tied)))
-    T.eliminate_zeros()
-    return T
-
-
-def free_motions(R: np.ndarray, clamped: np.ndarray, restraints: list[Restraint]
-                 ) -> np.ndarray:
-    """(6, r) orthonormal: the combinations of the rigid motions R (3 n, 6, columns of
-    unit norm) that no seat resists."""
-    A = np.zeros((6, 6))
-    parts = [R[clamped]] + [r.coeffs @ R[r.dofs] for r in restraints]
-    for C in parts:
-        C = np.atleast_2d(C)
-        if C.size:
-            G = C.T @ C
-            A += G / max(np.abs(G).max(), 1e-300)
-    lam, V = np.linalg.eigh(A)
-    return V[:, lam <= FREE_MOTION * max(lam.max(), 1.0)]
-
-
-def motion_names(free: np.ndarray, nodes: np.ndarray) -> tuple[str, ...]:
-    """Names of the free rigid motions `free` (3 n, r): translations, the turn about
-    the axis, tilting about x or y (about some point of the axis); a count when these
-    do not describe them."""
-    r = free.shape[1]
-    if r in (0, 6):
-        return () if r == 0 else ("all six rigid motions",)
-    motions = rigid_body_modes(nodes, np.array([0.0, 0.0, nodes[:, 2].mean()]))
-    unit = dict(zip(("tx", "ty", "tz", "rx", "ry", "rz"), motions.T))
-    Q = np.linalg.qr(free)[0]
-
-    def shared(*names: str) -> int:
-        """Dimension of span(free) and span(names) in common."""
-        B = np.linalg.qr(np.column_stack([unit[n] for n in names]))[0]
-        # the seats hold the mean of a mesh that is not exactly symmetric: near enough
-        return int(np.sum(np.linalg.svd(Q.T @ B, compute_uv=False) > 1 - 1e-6))
-
-    named = [label for label, n in (("translation along x", "tx"), ("translation along y", "ty"),
-                                    ("translation along z", "tz"),
-                                    ("rotation about the axis (z)", "rz")) if shared(n)]
-    for label, rot, move in (("tilting about x", "rx", "ty"), ("tilting about y", "ry", "tx")):
-        if shared(rot, move) > shared(move):
-            named.append(label)
-    return tuple(named) if len(named) == r else (f"{r} rigid motions",)
-
-
-@dataclass(frozen=True)
-class Installed:
-    """The shaft in its seats: the reduced pencil (K_r N/m, M_r kg), u = T q, the rigid
-    motions the seats leave free (reduced coordinates), and what the export needs."""
-
-    K: sp.csr_matrix
-    M: sp.csr_matrix
-    T: sp.csr_matrix
-    rigid: np.ndarray
-    free: tuple[str, ...]                 # names of the free rigid motions
-    restraints: tuple[Restraint, ...]
-    clamped: np.ndarray                   # DOFs held at zero
-    tied: tuple[np.ndarray, ...]          # band nodes of each attached part
-    parts_from: int                       # the parts' (U, Theta) from this column on
-    rings: tuple[np.ndarray, ...]         # band nodes of each rigid-coupled seat
-
-    @property
-    def n_rigid(self) -> int:
-        return self.rigid.shape[1]
-
-    def expand(self, X: np.ndarray) -> np.ndarray:
-        """Reduced vectors (n_q, m) as displacements of every node (3 n, m)."""
-        return self.T @ X
-
-
-def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
-            skmesh, order: int) -> Installed:
-    """The scene's seats and parts applied to the free shaft's K (N/m) and M (kg) on
-    `nodes` (the scalar DOFs' positions); `skmesh` the scikit-fem mesh, for the bands'
-    surface."""
-    if n_bodies(K) != 1:
-        raise SolverError("the mesh has disconnected parts; a shaft must be one piece")
-    radius = scene.shaft.radius
-    restraints: list[Restraint] = []     # distributing seats: on the band's mean motion
-    rings: list[tuple[Support, np.ndarray]] = []   # rigid-coupled seats and their bands
-    on_rings: list[Restraint] = []       # what those rings' springs and holds resist
-    held_bands: list[np.ndarray] = []
-    tied: list[tuple[np.ndarray, np.ndarray]] = []
-    for s in scene.held:
-        idx = band_nodes(nodes, radius, s.seat)
-        if idx.size == 0:
-            raise SolverError(f"{s.name}: no mesh node on its seat band ({s.seat[0] * 1e3:g} "
-                              f"to {s.seat[1] * 1e3:g} mm)")
-        if s.kind == "clamped":
-            held_bands.append((3 * idx[:, None] + np.arange(3)).ravel())
-            continue
-        means = seat_restraints(s, nodes, surface_weights(skmesh, order, radius, s.seat))
-        if s.coupling == "rigid":
-            rings.append((s, idx))
-            on_rings += means  # a ring's motion reads a rigid motion as these means do
-        else:
-            restraints += means
-    for a in scene.attachments:
-        idx = band_nodes(nodes, radius, a.seat)
-        if idx.size == 0:
-            raise SolverError(f"{a.name}: no mesh node on its seat band")
-        tied.append((idx, np.array([0.0, 0.0, a.position])))
-    tied += [(idx, np.array([0.0, 0.0, s.position])) for s, idx in rings]
-    clamped = np.concatenate(held_bands) if held_bands else np.zeros(0, np.int64)
-    K_s = restraint_stiffness(restraints, K.shape[0])
-    T = elimination(nodes, clamped, [r for r in restraints if r.held], tied)
-    first = T.shape[1] - 6 * len(tied)
-    n_q = T.shape[1]
-    extra_K, extra_M = sp.lil_matrix((n_q, n_q)), sp.lil_matrix((n_q, n_q))
-    for k, a in enumerate(scene.attachments):
-        c = first + 6 * k
-        extra_M[c:c + 6, c:c + 6] = part_mass(a)
-    keep = np.ones(n_q, dtype=bool)
-    for j, (s, _) in enumerate(rings):
-        c = first + 6 * (len(scene.attachments) + j)
-        for d, stiff in enumerate(ring_stiffness(s)):
-            if math.isinf(stiff):
-                keep[c + d] = False      # held exactly: the ring's DOF is dropped
-            elif stiff > 0:
-                extra_K[c + d, c + d] = stiff
-    T = T[:, keep].tocsr()
-    Tt = T.T.tocsr()
-    K_r = Tt @ ((K + K_s) @ T) + extra_K.tocsr()[keep][:, keep]
-    M_r = Tt @ (M @ T) + extra_M.tocsr()[keep][:, keep]
-    # symmetric to round-off: made exactly so for the solvers
-    K_r = ((K_r + K_r.T) * 0.5).tocsr()
-    M_r = ((M_r + M_r.T) * 0.5).tocsr()
-    R6 = rigid_body_modes(nodes)
-    R6 /= np.linalg.norm(R6, axis=0)
-    combos = free_motions(R6, clamped, restraints + on_rings)
-    target = R6 @ combos
-    rigid = np.asarray(spsolve((Tt @ T).tocsc(), Tt @ target)).reshape(T.shape[1], -1)
-    if combos.shape[1]:
-        miss = np.linalg.norm(T @ rigid - target) / np.linalg.norm(target)
-        if miss > 1e-9:
-            raise SolverError(f"the seats' free rigid motions do not survive the "
-                              f"elimination (misfit {miss:.2g})")
-    n_parts = len(scene.attachments)
-    return Installed(K=K_r, M=M_r, T=T, rigid=rigid, free=motion_names(target, nodes),
-                     restraints=tuple(restraints), clamped=clamped,
-                     tied=tuple(i for i, _ in tied[:n_parts]), parts_from=first,
-                     rings=tuple(idx for _, idx in rings))
 
 
 def ring_stiffness(s: Support) -> tuple[float, ...]:

@@ -41,7 +41,8 @@ from shaftfem.scene.schema import (
     read_toml,
     split_parameter,
 )
-from shaftfem.workflows.sweep import Sweep, check_count, check_variants, mesh_size, run_sweep, run_variant
+from shaftfem.workflows.sweep import run_sweep, run_variant
+from shaftfem.workflows.sweep_file import Sweep, check_count, check_variants, mesh_size
 
 
 @dataclass(frozen=True)

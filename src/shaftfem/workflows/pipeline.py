@@ -22,8 +22,8 @@ if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only wh
     from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.cad.solid import ShaftShape
     from shaftfem.fem.assembly import System
+    from shaftfem.fem.installation import Installed
     from shaftfem.fem.modes import Modes
-    from shaftfem.fem.supports import Installed
 
 
 @dataclass(frozen=True)
@@ -144,7 +144,7 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
         system = assemble(mesh, scene.material, threads=options.threads, discretisation=d)
         installed = None
         if scene.installed:
-            from shaftfem.fem.supports import install
+            from shaftfem.fem.installation import install
 
             installed = install(scene, system.K, system.M, system.nodes, d.basis.mesh, d.order)
     n_dofs = system.n_dofs if installed is None else installed.K.shape[0]
