@@ -74,9 +74,11 @@ def _arrays_checksum(fields: dict) -> str:
 
 
 def cache_dir() -> Path:
-    """The cache root: $SHAFTFEM_CACHE, else ~/.cache/shaftfem."""
-    root = os.environ.get("SHAFTFEM_CACHE") or Path.home() / ".cache" / "shaftfem"
-    return Path(root)
+    """The cache root: $SHAFTFEM_CACHE, else the platform's cache folder for shaftfem
+    (~/.cache/shaftfem on Linux, or $XDG_CACHE_HOME/shaftfem)."""
+    import platformdirs
+
+    return Path(os.environ.get("SHAFTFEM_CACHE") or platformdirs.user_cache_dir("shaftfem"))
 
 
 @functools.cache

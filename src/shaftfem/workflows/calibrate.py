@@ -24,7 +24,7 @@ smaller than a few percent of a parameter's range would see mesh noise.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -147,45 +147,28 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     local bounded least-squares fit."""
     from scipy.optimize import least_squares
 
-    say = options.say
     names = list(cal.unknowns)
     lo = np.array([cal.unknowns[n][0] for n in names])
     hi = np.array([cal.unknowns[n][1] for n in names])
-    n_t = len(cal.targets)
-
-    def residual_of(row: dict) -> np.ndarray:
-        if row["status"] != "ok":  # a failed run never becomes a model frequency
-            at = ", ".join(f"{n} = {row[n]:g}" for n in names)
-            raise ShaftfemError(f"calibration run at {at} failed: {row['error']}")
-        f = np.array([float(row[f"f{i + 1}_hz"]) for i in range(n_t)])
-        return (f - cal.targets) / cal.sigma
-
     # 1. coarse grid on the sweep engine (resumable like any sweep)
-    variants = grid_points(cal)
     base = read_scene_text(cal.base)  # read once here; its content goes to the workers
-    rows = run_sweep(Sweep(base, cal.mesh_size_mm, variants, names, cal.n_modes),
+    rows = run_sweep(Sweep(base, cal.mesh_size_mm, grid_points(cal), names, cal.n_modes),
                      Path(workdir) / "grid.csv", workers=workers, scheduler=scheduler,
                      options=options)
-    ok = [r for r in rows if r["status"] == "ok"]
-    if not ok:
-        raise ShaftfemError(f"every one of the {len(rows)} grid runs failed; the first: "
-                            f"{rows[0]['error']}")
-    chi2 = [float(np.sum(residual_of(r) ** 2)) for r in ok]
-    best = ok[int(np.argmin(chi2))]
-    x0 = np.array([float(best[n]) for n in names])
-    say(f"calibrate: best grid point {dict(zip(names, map(float, x0)))}, chi^2 = {min(chi2):.3g}")
-
+    x0 = _best_grid_point(cal, rows, names, options)
     # 2. local least squares in scaled coordinates s = (x - lo) / (hi - lo)
     count = {"n": len(rows)}
+    run = replace(options, progress=None)
 
     def fun(s: np.ndarray) -> np.ndarray:
         x = lo + s * (hi - lo)
         count["n"] += 1
-        r = residual_of(run_variant(base, dict(zip(names, map(float, x))),
-                                    cal.mesh_size_mm, n_modes=cal.n_modes))
-        say(f"calibrate: run {count['n']}: "
-            + ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, x))
-            + f": chi^2 = {np.sum(r ** 2):.3g}")
+        r = _residuals(cal, run_variant(base, dict(zip(names, map(float, x))),
+                                        cal.mesh_size_mm, n_modes=cal.n_modes, options=run),
+                       names)
+        options.say(f"calibrate: run {count['n']}: "
+                    + ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, x))
+                    + f": chi^2 = {np.sum(r ** 2):.3g}")
         return r
 
     # a grid point on a bound is moved just inside: started exactly on a bound, the bounded
@@ -194,15 +177,42 @@ def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
     fit = least_squares(fun, s0, bounds=(0.0, 1.0), diff_step=0.02, x_scale=1.0,
                         max_nfev=30)
     x = lo + fit.x * (hi - lo)
-    # parameter covariance from the Jacobian of the sigma-weighted residuals
-    J = fit.jac * 1.0
-    try:
-        cov_s = np.linalg.inv(J.T @ J)
-        std = np.sqrt(np.clip(np.diag(cov_s), 0, None)) * (hi - lo)
-    except np.linalg.LinAlgError:
-        std = np.full(len(names), math.inf)
-    f = cal.targets + fit.fun * cal.sigma
     return CalibrationResult(parameters=dict(zip(names, map(float, x))),
-                             std=dict(zip(names, map(float, std))), frequencies=f,
+                             std=dict(zip(names, map(float, _std(fit.jac, hi - lo)))),
+                             frequencies=cal.targets + fit.fun * cal.sigma,
                              residuals_sigma=fit.fun, chi2=float(np.sum(fit.fun ** 2)),
                              evaluations=count["n"], grid_best=dict(zip(names, map(float, x0))))
+
+
+def _residuals(cal: Calibration, row: dict, names: list[str]) -> np.ndarray:
+    """(f - target) / sigma of one run's row; a failed run never becomes a model frequency."""
+    if row["status"] != "ok":
+        at = ", ".join(f"{n} = {row[n]:g}" for n in names)
+        raise ShaftfemError(f"calibration run at {at} failed: {row['error']}")
+    f = np.array([float(row[f"f{i + 1}_hz"]) for i in range(len(cal.targets))])
+    return (f - cal.targets) / cal.sigma
+
+
+def _best_grid_point(cal: Calibration, rows: list[dict], names: list[str],
+                     options: RunOptions) -> np.ndarray:
+    """The grid point of least chi^2."""
+    ok = [r for r in rows if r["status"] == "ok"]
+    if not ok:
+        raise ShaftfemError(f"every one of the {len(rows)} grid runs failed; the first: "
+                            f"{rows[0]['error']}")
+    chi2 = [float(np.sum(_residuals(cal, r, names) ** 2)) for r in ok]
+    best = ok[int(np.argmin(chi2))]
+    x0 = np.array([float(best[n]) for n in names])
+    options.say(f"calibrate: best grid point {dict(zip(names, map(float, x0)))}, "
+                f"chi^2 = {min(chi2):.3g}")
+    return x0
+
+
+def _std(jac: np.ndarray, span: np.ndarray) -> np.ndarray:
+    """Standard deviations of the unknowns from the Jacobian of the sigma-weighted
+    residuals in scaled coordinates (inf where it is singular)."""
+    J = jac * 1.0
+    try:
+        return np.sqrt(np.clip(np.diag(np.linalg.inv(J.T @ J)), 0, None)) * span
+    except np.linalg.LinAlgError:
+        return np.full(span.size, math.inf)
