@@ -30,13 +30,14 @@ def uniform(groove_mm: float, cache: str) -> dict:
 
     os.environ["SHAFTFEM_CACHE"] = cache
     from shaftfem.scene.load import load_scene
-    from shaftfem.workflows.adapt import run_bounded
+    from shaftfem.workflows.bounded import run_bounded
 
     t0 = time.perf_counter()
     scene = load_scene("paper2018")
     h = groove_mm * 1e-3
     scene = replace(scene, mesh=replace(scene.mesh, groove_size=h, edge_size=h))
-    r, est, _ = run_bounded(scene)
+    b = run_bounded(scene)
+    r, est = b.result, b.estimate
     return {"kind": f"uniform {groove_mm:g} mm", "dofs": r.modes.n_dofs,
             "seconds": time.perf_counter() - t0, "peak_mb": peak_mb(),
             "f": r.modes.frequencies.tolist(), "bound": est.relative_error.tolist()}
@@ -48,10 +49,11 @@ def adaptive(target_percent: float, cache: str) -> dict:
 
     os.environ["SHAFTFEM_CACHE"] = cache
     from shaftfem.scene.load import load_scene
-    from shaftfem.workflows.adapt import run_bounded, with_accuracy
+    from shaftfem.workflows.bounded import run_bounded, with_accuracy
 
     t0 = time.perf_counter()
-    r, est, a = run_bounded(with_accuracy(load_scene("paper2018"), target_percent))
+    b = run_bounded(with_accuracy(load_scene("paper2018"), target_percent))
+    r, est, a = b.result, b.estimate, b.adapted
     return {"kind": f"adaptive {target_percent:g} %{'' if a.reached else ' (budget)'}"
                     f"{' warm' if a.from_cache else ''}",
             "dofs": r.modes.n_dofs, "seconds": time.perf_counter() - t0, "peak_mb": peak_mb(),

@@ -117,10 +117,11 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
         elasticity_blocks,
         mass_blocks,
     )
-    from shaftfem.fem.eigen import Wanted, solve_modes
+    from shaftfem.fem.eigen import solve_modes
     from shaftfem.fem.estimate import recovery_estimate
     from shaftfem.fem.supports import rigid_body_modes
     from shaftfem.scene.load import load_scene
+    from shaftfem.scene.model import ModeRequest
     from shaftfem.workflows.pipeline import run_modes
 
     scene = replace(load_scene("paper2018"), max_dofs=20_000_000)
@@ -164,7 +165,7 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
         rigid = rigid_body_modes(basis.doflocs.T[scalar])
         rigid[3 * len(p2):] = 0.0   # rigid motions are P1: no cubic part
         t = time.perf_counter()
-        sol = solve_modes(K[idx][:, idx].tocsr(), M[idx][:, idx].tocsr(), Wanted(10), rigid=rigid)
+        sol = solve_modes(K[idx][:, idx].tocsr(), M[idx][:, idx].tocsr(), ModeRequest(10), rigid=rigid)
         lam_e = sol.eigenvalues[6:16]
         rows.append({"space": f"P2 + cubic on {100 * s:g} % of the estimate",
                      "elements": len(chosen), "dofs": len(idx),

@@ -10,10 +10,11 @@ import scipy.sparse as sp
 
 from shaftfem.errors import SolverError
 from shaftfem.fem import eigen
-from shaftfem.fem.eigen import SolverSettings, Wanted
+from shaftfem.fem.eigen import SolverSettings
 from shaftfem.fem.factor import Pencil, ShiftedFactor, available_factorisers
 from shaftfem.fem.modes import modal_analysis
 from shaftfem.fem.supports import rigid_body_modes
+from shaftfem.scene.model import ModeRequest
 
 
 def _chain(n=300, cut=None):
@@ -70,7 +71,7 @@ def test_a_krylov_space_blind_to_a_mode_is_caught_by_the_inertia_count(cylinder,
     monkeypatch.setattr(eigen, "INERTIA_RETRIES", 0)
     rigid = rigid_body_modes(s.nodes)
     with pytest.raises(SolverError, match="a mode was skipped") as caught:
-        eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid)
+        eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid)
     found, counted = map(int, re.search(r"found (\d+) .* counts (\d+)", str(caught.value)).groups())
     assert counted == found + 1  # exactly the one mode it could not see
 
@@ -93,9 +94,9 @@ def test_a_too_small_krylov_space_is_caught_and_retried(cylinder, monkeypatch):
     rigid = rigid_body_modes(s.nodes)
     monkeypatch.setattr(eigen, "INERTIA_RETRIES", 0)
     with pytest.raises(SolverError, match="no eigenpair|a mode was skipped"):
-        eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings(tol=1e-2, ncv=14))
+        eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid, settings=SolverSettings(tol=1e-2, ncv=14))
     monkeypatch.setattr(eigen, "INERTIA_RETRIES", 1)
-    sol = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings(tol=1e-2, ncv=14))
+    sol = eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid, settings=SolverSettings(tol=1e-2, ncv=14))
     f = np.sqrt(sol.eigenvalues[6:16]) / (2 * np.pi)
     assert np.max(np.abs(f / true.frequencies - 1)) < 1e-9
     assert sol.inertia_count == 16
@@ -130,7 +131,8 @@ def plain(cylinder):
         pytest.skip("PARDISO is not installed")
     s = cylinder.system
     rigid = rigid_body_modes(s.nodes)
-    return s, rigid, eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"))
+    return s, rigid, eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid,
+                                       settings=SolverSettings("pardiso"))
 
 
 def _factorisations(monkeypatch):
@@ -152,13 +154,13 @@ def test_a_shift_hint_needs_one_factorisation_and_finds_the_same_modes(plain, mo
     there counting all sixteen."""
     s, rigid, sol = plain
     shifts = _factorisations(monkeypatch)
-    hinted = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"),
+    hinted = eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid, settings=SolverSettings("pardiso"),
                                shift_hint=sol.inertia_shift)
     assert shifts == [sol.inertia_shift]
     assert hinted.inertia_count == 16 and hinted.inertia_shift == sol.inertia_shift
     assert np.max(np.abs(hinted.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
     assert hinted.pairs.relative_residuals()[6:].max() < 1e-8
-    lu = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("superlu"))
+    lu = eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid, settings=SolverSettings("superlu"))
     f, f_lu = np.sqrt(hinted.eigenvalues[6:]), np.sqrt(lu.eigenvalues[6:])
     assert np.max(np.abs(f / f_lu - 1)) < 1e-8
 
@@ -172,7 +174,7 @@ def test_a_hint_that_does_not_serve_falls_back(plain, monkeypatch, where):
     hint = {"too low": np.sqrt(lam[10] * lam[11]), "too high": 4.0 * lam[-1],
             "below every mode": 0.5 * lam[6]}[where]
     shifts = _factorisations(monkeypatch)
-    again = eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"),
+    again = eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid, settings=SolverSettings("pardiso"),
                               shift_hint=hint)
     assert len(shifts) == 3 and shifts[0] == hint
     assert again.inertia_shift == pytest.approx(sol.inertia_shift, rel=1e-9)
@@ -191,5 +193,5 @@ def test_a_krylov_space_blind_to_a_mode_is_caught_below_a_hint_too(cylinder, pla
     monkeypatch.setattr(ShiftedFactor, "solve", lambda self, b: wrap(
         lambda c: real_solve(self, c))(b))
     with pytest.raises(SolverError, match="a mode was skipped"):
-        eigen.solve_modes(s.K, s.M, Wanted(10), rigid=rigid, settings=SolverSettings("pardiso"),
+        eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid, settings=SolverSettings("pardiso"),
                           shift_hint=sol.inertia_shift)

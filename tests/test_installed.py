@@ -264,15 +264,15 @@ def test_a_mechanism_the_seats_did_not_leave_free_is_refused(on_rigid_seats):
     from dataclasses import replace
 
     from shaftfem.errors import SolverError
-    from shaftfem.fem.eigen import Wanted
     from shaftfem.fem.modes import modal_analysis
+    from shaftfem.scene.model import ModeRequest
 
     r = on_rigid_seats
     blind = replace(r.installed, rigid=r.installed.rigid[:, :0], free=())
     with pytest.raises(SolverError,
                        match="found 1 zero-frequency modes .* beside the 0 rigid-body modes, "
                              "where the supports leave 0 rigid-body modes .*: a mechanism"):
-        modal_analysis(r.system, Wanted(4),
+        modal_analysis(r.system, ModeRequest(4),
                        installed=blind)
 
 

@@ -20,26 +20,26 @@ def _pencil(n=60):
 
 def test_a_failed_factorisation_is_a_solver_error(monkeypatch):
     from shaftfem.fem import eigen, factor
-    from shaftfem.fem.eigen import Wanted
+    from shaftfem.scene.model import ModeRequest
 
     def broken(A, backend="auto"):
         raise RuntimeError("Factor is exactly singular")
 
     monkeypatch.setattr(factor, "factorise", broken)
     with pytest.raises(SolverError, match="factorising K - sigma M .* RuntimeError: Factor"):
-        eigen.solve_modes(*_pencil(), Wanted(3))
+        eigen.solve_modes(*_pencil(), ModeRequest(3))
 
 
 def test_an_arpack_failure_is_a_solver_error(monkeypatch):
     from shaftfem.fem import eigen
-    from shaftfem.fem.eigen import Wanted
+    from shaftfem.scene.model import ModeRequest
 
     def broken(*a, **k):
         raise sp.linalg.ArpackError(-9999)
 
     monkeypatch.setattr(eigen, "eigsh", broken)
     with pytest.raises(SolverError, match="ARPACK"):
-        eigen.solve_modes(*_pencil(), Wanted(3))
+        eigen.solve_modes(*_pencil(), ModeRequest(3))
 
 
 def test_a_meshio_exit_is_a_mesh_error(monkeypatch):

@@ -183,7 +183,7 @@ import shaftfem.runtime
 shaftfem.runtime.configure_threads()
 from shaftfem.outputs.export import export_modes
 from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
-from shaftfem.scene.model import load_scene
+from shaftfem.scene.load import load_scene
 
 out, kill_at = Path(sys.argv[1]), int(sys.argv[2])
 moves, real = [0], os.replace

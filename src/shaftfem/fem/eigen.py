@@ -29,7 +29,8 @@ from shaftfem.errors import SolverError
 from shaftfem.fem.factor import Pencil, ShiftedFactor, uses_pardiso
 from shaftfem.fem.inertia import ACCEPT_RESIDUAL, count_below, unproven, verified_gap
 from shaftfem.fem.ritz import Ritz, rayleigh_ritz
-from shaftfem.scene.schema import DEFAULT_MODE_COUNT, MAX_MODE_COUNT
+from shaftfem.scene.model import ModeRequest
+from shaftfem.scene.schema import MAX_MODE_COUNT
 
 RIGID_BODY_MODES = 6
 # sigma = -SHIFT_FACTOR * median(diag K / diag M): scale-free, so frequencies scale
@@ -72,15 +73,6 @@ SLICE_RESTARTS = 10
 # With a frequency limit instead of a count, the Krylov space grows (twice the
 # modes each time) until a mode above the limit is found, up to MAX_MODES modes.
 MAX_MODES = MAX_MODE_COUNT
-
-
-@dataclass(frozen=True)
-class Wanted:
-    """The pairs sought beyond the rigid ones: the lowest `count`, or with
-    `max_frequency` (Hz) every one below it."""
-
-    count: int = DEFAULT_MODE_COUNT
-    max_frequency: float | None = None
 
 
 @dataclass(frozen=True)
@@ -143,10 +135,11 @@ class Problem:
         return (RIGID_FACTOR if self.fixed is None else MECHANISM_FACTOR) * self.scale
 
 
-def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: Wanted = Wanted(),
+def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRequest(),
                 rigid: np.ndarray | None = None, settings: SolverSettings = SolverSettings(),
                 shift_hint: float | None = None) -> EigenSolution:
-    """The lowest pairs: the rigid ones and `wanted` above them, proven complete.
+    """The lowest pairs: the rigid ones and the `wanted` elastic ones above them (the
+    lowest count, or every one below max_frequency, Hz), proven complete.
 
     `rigid` (n_dofs, r): the body's rigid motions (K R = 0), kept out of the Krylov
     space and returned as the r lowest pairs (None: six are found among the pairs).

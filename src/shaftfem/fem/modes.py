@@ -24,12 +24,12 @@ from shaftfem.fem.eigen import (
     SHIFT_FACTOR,
     EigenSolution,
     SolverSettings,
-    Wanted,
     solve_modes,
 )
 from shaftfem.fem.installation import Installed
 from shaftfem.fem.ritz import Ritz
 from shaftfem.fem.supports import n_bodies, rigid_body_modes
+from shaftfem.scene.model import ModeRequest
 
 if TYPE_CHECKING:
     from shaftfem.fem.assembly import System
@@ -76,7 +76,7 @@ class Modes:
         return len(self.frequencies)
 
 
-def modal_analysis(system: System, wanted: Wanted = Wanted(),
+def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
                    settings: SolverSettings = SolverSettings(),
                    installed: Installed | None = None,
                    shift_hint: float | None = None) -> Modes:

@@ -25,6 +25,14 @@ def markdown(head: list[str], rows: list[list[str]]) -> list[str]:
     return out + ["| " + " | ".join(r) + " |" for r in rows]
 
 
+def aligned(rows: list[list[str]], left: frozenset[int] | set[int] = frozenset()) -> list[str]:
+    """Rows of cells as text columns two spaces apart, right-aligned (columns `left`
+    left-aligned), the first row the header."""
+    widths = [max(len(r[k]) for r in rows) for k in range(len(rows[0]))]
+    return ["  ".join(c.ljust(w) if k in left else c.rjust(w)
+                      for k, (c, w) in enumerate(zip(r, widths))).rstrip() for r in rows]
+
+
 def timings_line(result: ModalResult) -> str:
     return ", ".join(f"{k} {v:.1f} s" for k, v in result.timings.items())
 
@@ -101,19 +109,14 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
         f"{m.inertia_shift_hz:.1f} Hz, as many as found",
         "",
     ]
-    head = f"{'mode':>4}  {'frequency':>12}  {'kind':<8}  {'residual':>9}"
-    if est is not None:
-        head += f"  {'error bound':>11}"
-    if exc:
-        head += f"  {'f / ' + exc.name + ' ' + format(exc.frequency, 'g') + ' Hz':>20}"
-    lines.append(head)
+    rows = [["mode", "frequency", "kind", "residual"]
+            + (["error bound"] if est is not None else [])
+            + ([f"f / {exc.name} {exc.frequency:g} Hz"] if exc else [])]
     for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
-        row = f"{i + 1:>4}  {f:>9.2f} Hz  {kind:<8}  {r:>9.1e}"
-        if est is not None:
-            row += f"  {bound_text(est, i):>11}"
-        if exc:
-            row += f"  {f / exc.frequency:>20.2f}"
-        lines.append(row)
+        rows.append([str(i + 1), f"{f:.2f} Hz", kind, f"{r:.1e}"]
+                    + ([bound_text(est, i)] if est is not None else [])
+                    + ([f"{f / exc.frequency:.2f}"] if exc else []))
+    lines += aligned(rows, left={2})
     if est is not None:
         lines += [""] + estimate_notes(est)
     lines += [f"WARNING: {w}" for w in result.warnings]
@@ -144,11 +147,8 @@ def participation_rows(result: ModalResult, p: Participation) -> tuple[list[str]
 def participation_text(result: ModalResult, p: Participation) -> str:
     """ANSYS-style: effective modal mass per direction of base motion at the supports."""
     head, rows = participation_rows(result, p)
-    widths = [max(len(r[k]) for r in [head] + rows) for k in range(len(head))]
-    lines = ["effective modal mass for base motion at the supports (x, y lateral, z axial, "
-             "rz turn about the axis)"]
-    lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in [head] + rows]
-    return "\n".join(lines)
+    return "\n".join(["effective modal mass for base motion at the supports (x, y lateral, "
+                      "z axial, rz turn about the axis)"] + aligned([head] + rows))
 
 
 def participation_markdown(result: ModalResult, p: Participation) -> list[str]:

@@ -129,7 +129,7 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
     With the cache: start from the shift where the last solve of this scene (any mesh)
     proved its modes complete, and keep this solve's (see fem.eigen.solve_modes)."""
     from shaftfem.fem.assembly import assemble, discretise
-    from shaftfem.fem.eigen import SolverSettings, Wanted
+    from shaftfem.fem.eigen import SolverSettings
     from shaftfem.fem.factor import analyse_in_background, uses_pardiso
     from shaftfem.fem.modes import modal_analysis
 
@@ -151,7 +151,7 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
     options.say(f"{n_dofs} DOFs; factorising and solving")
     hint = shift_hint(scene) if options.use_cache else None
     with watch.lap("solve"):
-        modes = modal_analysis(system, Wanted(scene.modes.count, scene.modes.max_frequency),
+        modes = modal_analysis(system, scene.modes,
                                SolverSettings(options.factoriser, analysis=analysis),
                                installed=installed, shift_hint=hint)
     if options.use_cache and modes.inertia_shift != hint:
