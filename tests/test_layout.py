@@ -1,44 +1,72 @@
 """The README's module map is the package: every module it lists exists where it says,
-and every module of src/shaftfem is listed."""
+every module of src/shaftfem is listed, and each imports only modules listed above it."""
 
+import ast
 import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+SRC = ROOT / "src" / "shaftfem"
 
 
-def _readme_modules() -> set[str]:
+def _readme_modules() -> list[str]:
+    """The modules of the README's Layout, in its order, as paths below src/shaftfem."""
     text = (ROOT / "README.md").read_text()
     block = text[text.index("## Layout"):]
     block = block[block.index("```") + 3:]
     block = block[:block.index("```")]
-    found, package = set(), None
+    found: list[str] = []
+    package = None
     for line in block.splitlines():
         if line.startswith("src/shaftfem/"):
             package = ""
             continue
-        if package is None:
+        if package is None or not line.strip():
             continue
-        if not line.startswith("  ") or line.startswith("   " * 7):
-            if not line.startswith(" "):
-                package = None  # the tree below src/ has ended
+        if not line.startswith(" "):
+            package = None  # the tree below src/ has ended
             continue
         sub = re.match(r"^  (\w+)/\s*$", line)
         if sub:
             package = sub.group(1)
             continue
-        mod = re.match(r"^ {2,4}(\w+\.py)\b", line)
+        mod = re.match(r"^( {2,4})(\w+\.py)\b", line)
         if mod:
-            indent = len(line) - len(line.lstrip())
-            found.add(f"{package}/{mod.group(1)}" if indent == 4 else mod.group(1))
+            found.append(f"{package}/{mod.group(2)}" if len(mod.group(1)) == 4 else mod.group(2))
     return found
 
 
+def _module(path: str) -> str:
+    """'fem/eigen.py' -> 'shaftfem.fem.eigen'; 'cli/__init__.py' -> 'shaftfem.cli'."""
+    parts = ["shaftfem", *path.removesuffix(".py").split("/")]
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
 def test_the_readme_layout_lists_every_module_where_it_is():
-    src = ROOT / "src" / "shaftfem"
-    actual = {str(p.relative_to(src)) for p in src.rglob("*.py")
-              if p.name != "__init__.py" or p.parent.name == "cli" or p.parent == src}
+    actual = {str(p.relative_to(SRC)) for p in SRC.rglob("*.py")
+              if p.name != "__init__.py" or p.parent.name == "cli" or p.parent == SRC}
     actual.discard("__main__.py")
     listed = _readme_modules()
-    assert listed == actual, (f"in the README, not in the tree: {sorted(listed - actual)}; "
-                              f"in the tree, not in the README: {sorted(actual - listed)}")
+    assert len(listed) == len(set(listed))
+    assert set(listed) == actual, (f"in the README, not in the tree: "
+                                   f"{sorted(set(listed) - actual)}; in the tree, not in the "
+                                   f"README: {sorted(actual - set(listed))}")
+
+
+def test_every_module_imports_only_what_the_layout_lists_above_it():
+    """One-way data flow, type-only imports included (the public API in __init__ excepted:
+    it names everything, lazily)."""
+    listed = [m for m in _readme_modules() if m != "__init__.py"]
+    rank = {_module(m): i for i, m in enumerate(listed)}
+    upward = []
+    for path in listed:
+        me = _module(path)
+        for node in ast.walk(ast.parse((SRC / path).read_text())):
+            if not isinstance(node, ast.ImportFrom) or node.module is None:
+                continue
+            # `from shaftfem.cli import commands` imports the module shaftfem.cli.commands
+            modules = [m for m in (f"{node.module}.{a.name}" for a in node.names) if m in rank]
+            for other in (m for m in modules or [node.module] if m in rank and m != me):
+                if rank[other] > rank[me]:
+                    upward.append(f"{me} imports {other}")
+    assert not upward, upward

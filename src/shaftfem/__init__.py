@@ -24,7 +24,7 @@ _LAZY = {
     "Scene": "shaftfem.scene.model",
     "load_scene": "shaftfem.scene.load",
     "RunOptions": "shaftfem.runtime",
-    "ModalResult": "shaftfem.workflows.pipeline",
+    "ModalResult": "shaftfem.fem.result",
     "run_modes": "shaftfem.workflows.pipeline",
     "with_mesh": "shaftfem.workflows.pipeline",
     "with_modes": "shaftfem.workflows.pipeline",
@@ -57,9 +57,10 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.modes import Modes
+    from shaftfem.fem.result import ModalResult
     from shaftfem.runtime import RunOptions
     from shaftfem.scene.load import load_scene
     from shaftfem.scene.model import Scene
     from shaftfem.workflows.bounded import Bounded, run_bounded, with_accuracy
     from shaftfem.workflows.design import DesignResult, run_design
-    from shaftfem.workflows.pipeline import ModalResult, run_modes, with_mesh, with_modes
+    from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes

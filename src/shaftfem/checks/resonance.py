@@ -24,7 +24,7 @@ from shaftfem.scene.model import Excitation
 from shaftfem.scene.schema import DEFAULT_MARGIN_PERCENT
 
 if TYPE_CHECKING:
-    from shaftfem.workflows.pipeline import ModalResult
+    from shaftfem.fem.result import ModalResult
 
 DEFAULT_MARGIN = DEFAULT_MARGIN_PERCENT / 100
 

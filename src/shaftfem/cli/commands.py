@@ -169,10 +169,9 @@ def cmd_design(args) -> int:
 
 def cmd_study(args) -> int:
     from shaftfem.outputs.plots import save_png, study_figure
-    from shaftfem.outputs.tables import study_markdown
     from shaftfem.scene.load import load_scene
     from shaftfem.store import write_csv, write_text
-    from shaftfem.workflows.study import run_study, summarize_study
+    from shaftfem.workflows.study import run_study, study_markdown, summarize_study
 
     scene = load_scene(args.scene)
     ladders = {k: v for k, v in {2: args.p2, 1: args.p1}.items() if v}
@@ -230,8 +229,7 @@ def cmd_sweep(args) -> int:
 
 
 def cmd_calibrate(args) -> int:
-    from shaftfem.outputs.tables import calibration_text
-    from shaftfem.workflows.calibrate import calibrate, load_calibration
+    from shaftfem.workflows.calibrate import calibrate, calibration_text, load_calibration
 
     cal = load_calibration(args.calibration)
     out = dask_out(args)

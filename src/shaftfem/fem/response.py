@@ -33,7 +33,7 @@ from shaftfem.errors import SceneError
 from shaftfem.fem.supports import part_mass, rigid_body_modes
 
 if TYPE_CHECKING:
-    from shaftfem.workflows.pipeline import ModalResult
+    from shaftfem.fem.result import ModalResult
 
 # Base-motion directions: unit translations and the turn about the shaft axis.
 DIRECTIONS = ("x", "y", "z", "rz")

@@ -16,7 +16,7 @@ from shaftfem.scene.model import Attachment, Support
 from shaftfem.store import write_text
 
 if TYPE_CHECKING:
-    from shaftfem.workflows.pipeline import ModalResult
+    from shaftfem.fem.result import ModalResult
 
 
 def calculix_deck(result: ModalResult, n_eigen: int = 16) -> str:

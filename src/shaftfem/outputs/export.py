@@ -16,7 +16,7 @@ from shaftfem.store import json_text, staged_directory, write_csv
 
 if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
-    from shaftfem.workflows.pipeline import ModalResult
+    from shaftfem.fem.result import ModalResult
 
 
 def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:

@@ -23,7 +23,7 @@ import numpy as np
 from shaftfem.store import atomic_path, staged_directory
 
 if TYPE_CHECKING:
-    from shaftfem.workflows.pipeline import ModalResult
+    from shaftfem.fem.result import ModalResult
 
 GEOMETRY_SIZE = (1600, 500)
 PANEL_SIZE = (800, 200)        # pixels per mode in modes.png, two modes a row

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
-    from shaftfem.workflows.pipeline import ModalResult
+    from shaftfem.fem.result import ModalResult
 
 
 def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,

@@ -14,9 +14,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
-    from shaftfem.workflows.calibrate import Calibration, CalibrationResult
-    from shaftfem.workflows.pipeline import ModalResult
-    from shaftfem.workflows.study import Extrapolation, StudyResult
+    from shaftfem.fem.result import ModalResult
 
 
 def markdown(head: list[str], rows: list[list[str]]) -> list[str]:
@@ -42,19 +40,6 @@ def estimate_notes(est: ErrorEstimate) -> list[str]:
     return [f"+- : bound on the discretisation error of each frequency ({est.method}, "
             f"plus the mesh's volume difference from the solid, {100 * est.geometry:.1g} %; "
             "the computed frequencies converge from above)"] + list(est.notes)
-
-
-def extrapolation_notes(est: Extrapolation) -> list[str]:
-    """Where a study's Richardson extrapolation had to assume an order."""
-    from shaftfem.workflows.study import FALLBACK_ORDER, SAFETY_FALLBACK
-
-    bad = [i + 1 for i, ok in enumerate(est.reliable) if not ok]
-    if not bad:
-        return []
-    return [f"extrapolation unreliable for mode(s) {', '.join(map(str, bad))}: the meshes "
-            "are not yet in the asymptotic range (non-monotone or implausible observed "
-            f"order); shown with an assumed order p = {FALLBACK_ORDER:g} and safety factor "
-            f"{SAFETY_FALLBACK:g}."]
 
 
 def bound_text(est: ErrorEstimate, i: int) -> str:
@@ -245,36 +230,6 @@ def side_by_side_markdown(installed: ModalResult, free: ModalResult) -> list[str
         right = [f"{b.frequencies[i]:.2f}", b.kinds[i]] if i < b.count else ["", ""]
         rows.append([str(i + 1)] + left + right)
     return markdown(["mode", "installed (Hz)", "kind", "free-free (Hz)", "kind"], rows)
-
-
-def calibration_text(res: CalibrationResult, cal: Calibration) -> str:
-    lines = ["parameter                best value     std. dev.   bounds"]
-    for k, v in res.parameters.items():
-        lo, hi = cal.unknowns[k]
-        lines.append(f"{k:<24} {v:>10.3f}  {res.std[k]:>12.3g}   [{lo:g}, {hi:g}]")
-    lines += ["", "mode   target (Hz)    model (Hz)    diff     in sigma"]
-    for i, (t, f, r) in enumerate(zip(cal.targets, res.frequencies, res.residuals_sigma)):
-        lines.append(f"{i + 1:>4}  {t:>11.2f}  {f:>12.2f}  {100 * (f / t - 1):>+6.2f} %  "
-                     f"{r:>+8.2f}")
-    lines += ["", f"chi^2 = {res.chi2:.3g} for {len(cal.targets)} targets and "
-              f"{len(res.parameters)} unknowns; {res.evaluations} modal runs"]
-    return "\n".join(lines)
-
-
-STUDY_COLUMNS = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "solve_s",
-                 "total_s", "peak_memory_mb", "max_rel_error"]
-
-
-def study_markdown(study: StudyResult) -> str:
-    """The study table in Markdown, with how its reference was made."""
-    lines = markdown(STUDY_COLUMNS, [
-        [f"{r[c]:.2e}" if c == "max_rel_error" else str(r[c]) for c in STUDY_COLUMNS]
-        for r in study.rows])
-    est = study.estimate
-    lines += ["", f"Reference: Richardson extrapolation of the three finest P{study.order} runs; "
-              "observed order per mode: " + ", ".join(f"{p:.2f}" for p in est.observed_order)]
-    lines += extrapolation_notes(est)
-    return "\n".join(lines) + "\n"
 
 
 def paper_text(result: ModalResult, sizing: SizingResult | None) -> str:

@@ -43,9 +43,10 @@ from shaftfem.fem.estimate import (
     recovery_estimate,
     volume_difference,
 )
+from shaftfem.fem.result import ModalResult
 from shaftfem.runtime import RunOptions
 from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
-from shaftfem.workflows.pipeline import ModalResult, Stopwatch, solve_mesh, with_modes
+from shaftfem.workflows.pipeline import Stopwatch, solve_mesh, with_modes
 
 if TYPE_CHECKING:
     from shaftfem.scene.model import Scene

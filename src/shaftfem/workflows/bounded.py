@@ -16,8 +16,8 @@ from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.result import ModalResult
     from shaftfem.workflows.adapt import Adapted
-    from shaftfem.workflows.pipeline import ModalResult
 
 COARSER = 1.5        # size ratio of the coarser mesh behind a fixed mesh's estimate
 

@@ -216,3 +216,17 @@ def _std(jac: np.ndarray, span: np.ndarray) -> np.ndarray:
         return np.sqrt(np.clip(np.diag(np.linalg.inv(J.T @ J)), 0, None)) * span
     except np.linalg.LinAlgError:
         return np.full(span.size, math.inf)
+
+
+def calibration_text(res: CalibrationResult, cal: Calibration) -> str:
+    lines = ["parameter                best value     std. dev.   bounds"]
+    for k, v in res.parameters.items():
+        lo, hi = cal.unknowns[k]
+        lines.append(f"{k:<24} {v:>10.3f}  {res.std[k]:>12.3g}   [{lo:g}, {hi:g}]")
+    lines += ["", "mode   target (Hz)    model (Hz)    diff     in sigma"]
+    for i, (t, f, r) in enumerate(zip(cal.targets, res.frequencies, res.residuals_sigma)):
+        lines.append(f"{i + 1:>4}  {t:>11.2f}  {f:>12.2f}  {100 * (f / t - 1):>+6.2f} %  "
+                     f"{r:>+8.2f}")
+    lines += ["", f"chi^2 = {res.chi2:.3g} for {len(cal.targets)} targets and "
+              f"{len(res.parameters)} unknowns; {res.evaluations} modal runs"]
+    return "\n".join(lines)

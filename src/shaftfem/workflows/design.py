@@ -26,8 +26,8 @@ if TYPE_CHECKING:
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
+    from shaftfem.fem.result import ModalResult
     from shaftfem.workflows.adapt import Adapted
-    from shaftfem.workflows.pipeline import ModalResult
 
 
 @dataclass(frozen=True)

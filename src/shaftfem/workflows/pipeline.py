@@ -9,35 +9,19 @@ from __future__ import annotations
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, fields, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from shaftfem.errors import SceneError
+from shaftfem.fem.result import ModalResult, Timings
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
-    import numpy as np
 
     from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.cad.solid import ShaftShape
-    from shaftfem.fem.assembly import System
-    from shaftfem.fem.installation import Installed
     from shaftfem.fem.modes import Modes
-
-
-@dataclass(frozen=True)
-class Timings:
-    """Wall time of each step of one modal run, s, as the workflow measured it."""
-
-    cad: float = 0.0
-    mesh: float = 0.0
-    assembly: float = 0.0
-    solve: float = 0.0   # factorisations, eigensolve and the inertia proof
-    total: float = 0.0
-
-    def items(self) -> Iterator[tuple[str, float]]:
-        return ((f.name, getattr(self, f.name)) for f in fields(self))
 
 
 class Stopwatch:
@@ -57,22 +41,6 @@ class Stopwatch:
 
     def timings(self) -> Timings:
         return Timings(**self.laps, total=time.perf_counter() - self.start)
-
-
-@dataclass(frozen=True)
-class ModalResult:
-    scene: Scene
-    shape: ShaftShape
-    mesh: ShaftMesh
-    system: System
-    modes: Modes
-    timings: Timings
-    warnings: tuple[str, ...] = ()
-    installed: Installed | None = None  # the seats and parts (None: free-free)
-
-    def shapes_at_points(self) -> np.ndarray:
-        """Mode shapes at the mesh's points: (n_modes, n_points, 3), m / sqrt(kg)."""
-        return self.system.at_points(self.modes.shapes)
 
 
 def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None) -> Scene:

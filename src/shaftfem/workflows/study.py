@@ -25,8 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaftfem.fem.estimate import matched
+from shaftfem.fem.result import Timings
+from shaftfem.outputs.tables import markdown
 from shaftfem.runtime import RunOptions
-from shaftfem.workflows.pipeline import Timings
 
 # Eigenvalue errors of smooth problems fall as h^(2k) for P_k elements.
 SMOOTH_ORDER = {1: 2.0, 2: 4.0}
@@ -189,3 +190,34 @@ def study_table(runs: list[StudyRun], reference: np.ndarray, ref_kinds: list) ->
             **{f"f{i + 1}_hz": float(x) for i, x in enumerate(f)},
         })
     return rows
+
+
+# --------------------------------------------------------------------------
+# The study as a table
+
+
+STUDY_COLUMNS = ["element", "size_mm", "dofs", "mesh_s", "assembly_s", "solve_s",
+                 "total_s", "peak_memory_mb", "max_rel_error"]
+
+
+def study_markdown(study: StudyResult) -> str:
+    """The study table in Markdown, with how its reference was made."""
+    lines = markdown(STUDY_COLUMNS, [
+        [f"{r[c]:.2e}" if c == "max_rel_error" else str(r[c]) for c in STUDY_COLUMNS]
+        for r in study.rows])
+    est = study.estimate
+    lines += ["", f"Reference: Richardson extrapolation of the three finest P{study.order} runs; "
+              "observed order per mode: " + ", ".join(f"{p:.2f}" for p in est.observed_order)]
+    lines += extrapolation_notes(est)
+    return "\n".join(lines) + "\n"
+
+
+def extrapolation_notes(est: Extrapolation) -> list[str]:
+    """Where a study's Richardson extrapolation had to assume an order."""
+    bad = [i + 1 for i, ok in enumerate(est.reliable) if not ok]
+    if not bad:
+        return []
+    return [f"extrapolation unreliable for mode(s) {', '.join(map(str, bad))}: the meshes "
+            "are not yet in the asymptotic range (non-monotone or implausible observed "
+            f"order); shown with an assumed order p = {FALLBACK_ORDER:g} and safety factor "
+            f"{SAFETY_FALLBACK:g}."]

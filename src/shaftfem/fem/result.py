@@ -1,0 +1,50 @@
+"""The record of one modal run: every step's product, how long each step took, and
+what the run warns of. The typed hand-over from the chain to its readers (checks,
+files, pictures, reports)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from shaftfem.cad.mesh import ShaftMesh
+    from shaftfem.cad.solid import ShaftShape
+    from shaftfem.fem.assembly import System
+    from shaftfem.fem.installation import Installed
+    from shaftfem.fem.modes import Modes
+    from shaftfem.scene.model import Scene
+
+
+@dataclass(frozen=True)
+class Timings:
+    """Wall time of each step of one modal run, s, as the workflow measured it."""
+
+    cad: float = 0.0
+    mesh: float = 0.0
+    assembly: float = 0.0
+    solve: float = 0.0   # factorisations, eigensolve and the inertia proof
+    total: float = 0.0
+
+    def items(self) -> Iterator[tuple[str, float]]:
+        return ((f.name, getattr(self, f.name)) for f in fields(self))
+
+
+
+@dataclass(frozen=True)
+class ModalResult:
+    scene: Scene
+    shape: ShaftShape
+    mesh: ShaftMesh
+    system: System
+    modes: Modes
+    timings: Timings
+    warnings: tuple[str, ...] = ()
+    installed: Installed | None = None  # the seats and parts (None: free-free)
+
+    def shapes_at_points(self) -> np.ndarray:
+        """Mode shapes at the mesh's points: (n_modes, n_points, 3), m / sqrt(kg)."""
+        return self.system.at_points(self.modes.shapes)
