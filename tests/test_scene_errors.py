@@ -28,7 +28,7 @@ CASES = [
     ("poisson_ratio", "-1.0", "material.poisson_ratio"),
     ("youngs_modulus_mpa", '"steel"', "material.youngs_modulus_mpa"),  # wrong type
     ("element_size_mm", "0", "mesh.element_size_mm"),
-    ("order", "3", "mesh.order"),
+    ("order", "4", "mesh.order"),
     ("hands", '["right", "right"]', "grooves.hands"),
     ("power_kw", "0", "sizing.power_kw"),
 ]
@@ -43,6 +43,19 @@ def test_bad_value_names_the_key(tmp_path, capsys, key, value, named):
     assert main(["modes", str(f), "-q"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and named in err and "Traceback" not in err
+
+
+def test_cubic_elements_on_an_installed_shaft_are_refused(tmp_path, capsys):
+    """Seats and parts read nodal values that cubic elements do not have: order 3 with
+    [[support]] or [[attachment]] tables is refused at load, naming the key, and on the
+    command line before any work."""
+    f = tmp_path / "installed.toml"
+    f.write_text(_edit((GEOMETRY_DIR / "paper2018_installed.toml").read_text(), "order", "3"))
+    with pytest.raises(SceneError, match=re.escape("mesh.order") + ".*free shafts only"):
+        load_scene(f)
+    assert main(["modes", "paper2018_installed", "--order", "3", "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "free shafts only" in err and "Traceback" not in err
 
 
 def test_unknown_key_is_named(tmp_path, capsys):
@@ -108,7 +121,7 @@ def test_absurd_values_are_refused_before_any_work(tmp_path, capsys, key, value,
     ["check", "--margin", "inf"], ["check", "--margin", "100"], ["modes", "--modes", "0"],
     ["modes", "--modes", "many"], ["modes", "--max-frequency", "nan"],
     ["study", "--p2", "12,0"], ["sweep", "no_such_sweep.toml"], ["size", "no_such_scene"],
-    ["modes", "--order", "3"], ["frobnicate"]])
+    ["modes", "--order", "4"], ["frobnicate"]])
 def test_bad_command_lines_are_one_line_and_exit_2(capsys, args):
     argv = args[:1] + (["plain_cylinder"] if args[0] in ("check", "modes") else []) + args[1:]
     assert main(argv + (["-q"] if args[0] in ("check", "modes") else [])) == 2

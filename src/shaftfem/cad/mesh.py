@@ -61,16 +61,24 @@ class ShaftMesh:
     def cell_type(self) -> str:
         return cell_type(self.order)
 
+    @property
+    def element_cells(self) -> np.ndarray:
+        """The cells as the elements take them: for P3, vertices in ascending order
+        (sorted_cells), so that neighbours agree on their edges' nodes."""
+        if self.order < 3:
+            return self.cells
+        return sorted_cells(self.cells)
+
     def to_skfem(self):
-        """The same mesh as a scikit-fem MeshTet1/MeshTet2."""
-        return skfem_mesh(self.points, self.cells)
+        """The same mesh as a scikit-fem MeshTet1/MeshTet2, its cells as `element_cells`."""
+        return skfem_mesh(self.points, self.element_cells)
 
 
 # Tetrahedra gmsh makes per h^3 of volume (a regular tetrahedron fills h^3 / 8.5; gmsh's
 # are less regular), and DOFs per element of a P2 / P1 mesh; fitted on the shipped scenes
 # (within 40 %, enough to refuse a size that is off by orders of magnitude).
 ELEMENTS_PER_H3 = 6.0
-DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5}
+DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0}
 BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (README, "Speed and memory")
 
 
@@ -188,7 +196,7 @@ def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)
     straightened = 0
-    if settings.order == 2:
+    if settings.order >= 2:
         points, straightened = straighten_bad_elements(points, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
@@ -280,3 +288,20 @@ def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray
     sign = np.sign(np.median(det))
     det = sign * det
     return det.min(axis=1) / np.abs(det).max(axis=1)
+
+
+def sorted_cells(cells: np.ndarray) -> np.ndarray:
+    """Cells (E, 4) or (E, 10, meshio order) with their vertices in ascending order and
+    the edge nodes permuted to match: the cubic element's (fem.elements) edge nodes then agree
+    between neighbours. (An odd permutation flips the element's orientation; the
+    quadrature takes |det J|.)"""
+    perm = np.argsort(cells[:, :4], axis=1)
+    out = np.take_along_axis(cells[:, :4], perm, axis=1)
+    if cells.shape[1] == 4:
+        return out
+    edge_of = np.zeros((4, 4), dtype=np.int64)      # local vertices -> local edge
+    for k, (a, b) in enumerate(EDGES):
+        edge_of[a, b] = edge_of[b, a] = k
+    rows = np.arange(cells.shape[0])
+    mids = [cells[rows, 4 + edge_of[perm[:, a], perm[:, b]]] for a, b in EDGES]
+    return np.hstack([out, np.column_stack(mids)])

@@ -186,7 +186,7 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
         gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "shaft")
         try:
             gmsh.model.mesh.generate(3)
-            if settings.order == 2:
+            if settings.order >= 2:  # curved: the geometry is quadratic for P2 and P3
                 gmsh.model.mesh.setOrder(2)
         finally:
             if view is not None:

@@ -4,7 +4,7 @@
     m(u, v) = int rho u . v dx                                         (M, kg)
 
 Displacement DOFs are interleaved: global DOF 3 * n + c is component c (x, y, z)
-of scalar node n of scikit-fem's P1/P2 basis (scikit-fem's vector ordering).
+of scalar node n of the scalar basis (scikit-fem's vector ordering; fem.elements).
 
 Both come from scikit-fem's scalar basis (values, gradients and quadrature
 weights on the curved elements): with D[a, i, b, j] = int d_i phi_a d_j phi_b dx,
@@ -33,9 +33,9 @@ from shaftfem.runtime import assembly_threads
 from shaftfem.scene.model import Material
 
 # Quadrature orders: 2 integrates P2 stiffness exactly on straight tets (4 points,
-# as CalculiX's C3D10 does); 4 integrates the P2 mass exactly.
-STIFFNESS_INTORDER = {1: 1, 2: 2}
-MASS_INTORDER = {1: 2, 2: 4}
+# as CalculiX's C3D10 does); 4 integrates the P2 mass exactly; likewise 4 and 6 for P3.
+STIFFNESS_INTORDER = {1: 1, 2: 2, 3: 4}
+MASS_INTORDER = {1: 2, 2: 4, 3: 6}
 # Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
 # element) stay in cache-sized arrays, and the chunks spread over the threads.
 CHUNK = 4096
@@ -54,8 +54,10 @@ class System:
     M: sp.csr_matrix
     mass_scalar: sp.csr_matrix  # scalar consistent mass, kg (for energy splits)
     nodes: np.ndarray           # (n_nodes, 3) positions of the scalar DOFs, m
-    point_dofs: np.ndarray      # (n_points,) scalar node of each mesh point
+    point_dofs: np.ndarray      # (n_points,) scalar node of each mesh point (P1, P2)
     order: int
+    # P3: the values at the mesh's points from the scalar DOFs, (n_points, n_nodes)
+    point_values: sp.csr_matrix | None = None
 
     @property
     def n_dofs(self) -> int:
@@ -64,13 +66,15 @@ class System:
     def at_points(self, X: np.ndarray) -> np.ndarray:
         """Displacement vectors (n_dofs, m) at the mesh's points: (m, n_points, 3)."""
         n = self.nodes.shape[0]
+        if self.point_values is not None:
+            return np.stack([self.point_values @ X[:, k].reshape(n, 3) for k in range(X.shape[1])])
         return np.stack([X[:, k].reshape(n, 3)[self.point_dofs] for k in range(X.shape[1])])
 
 
 def _element(order: int):
-    from skfem import ElementTetP1, ElementTetP2
+    from shaftfem.fem.elements import element
 
-    return ElementTetP2() if order == 2 else ElementTetP1()
+    return element(order)
 
 
 # --------------------------------------------------------------------------
@@ -234,6 +238,10 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
     nodes = np.ascontiguousarray(k_basis.doflocs.T)
     _check_translations(K, nodes)
+    if order == 3:  # the mesh's points are no DOF nodes: values there come from the basis
+        return System(K=K, M=M, mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
+                      order=order, point_values=point_values(mesh.element_cells, k_basis,
+                                                             mesh.points.shape[0]))
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
                   point_dofs=point_dofs(mesh.cells, k_basis.element_dofs, nodes, mesh.points),
                   order=order)
@@ -248,6 +256,25 @@ def point_dofs(cells: np.ndarray, element_dofs: np.ndarray, nodes: np.ndarray,
     if np.any(out < 0) or np.max(np.abs(nodes[out] - points)) > 1e-12 * np.abs(points).max():
         raise AssemblyError("the mesh's points and the basis' DOF nodes do not correspond")
     return out
+
+
+def point_values(cells: np.ndarray, basis, n_points: int) -> sp.csr_matrix:
+    """(n_points, n_nodes): the scalar field at every point of the mesh (the vertices and
+    edge nodes of its 10-node cells, in `cells`' local order) from the basis' DOFs."""
+    from shaftfem.cad.mesh import EDGES
+
+    corners = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    ref = np.vstack([corners] + [(corners[a] + corners[b]) / 2 for a, b in EDGES])
+    E = np.stack([basis.elem.lbasis(ref.T, i)[0] for i in range(basis.Nbfun)], axis=-1)
+    # each point from the first element that has it
+    points, first = np.unique(cells.ravel(), return_index=True)
+    element, local = np.divmod(first, cells.shape[1])
+    rows = np.repeat(points, basis.Nbfun)
+    cols = basis.element_dofs[:, element].T.ravel()
+    vals = E[local].ravel()
+    P = sp.csr_matrix((vals, (rows, cols)), shape=(n_points, basis.N))
+    P.eliminate_zeros()
+    return P
 
 
 def _check_translations(K: sp.csr_matrix, nodes: np.ndarray) -> None:

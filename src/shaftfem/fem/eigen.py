@@ -152,7 +152,7 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRe
     p = Problem(K, M, scale, fixed, wanted.count + extra, MAX_MODES + extra)
     pencil = Pencil(K, M)
     if (shift_hint is not None and wanted.max_frequency is None
-            and uses_pardiso(settings.factoriser, pencil.n)):
+            and uses_pardiso(settings.factoriser, pencil.n, K.nnz)):
         factor = shifted_factor(pencil, shift_hint, settings)
         sliced = slice_below(p, factor, shift_hint, settings.ncv)
         if sliced is not None:

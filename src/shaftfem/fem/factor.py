@@ -25,8 +25,12 @@ from shaftfem.errors import SolverError
 FACTORISERS = ("pardiso", "cholmod", "superlu")
 # 'auto' takes SuperLU below this many DOFs: there its solves give residuals of
 # 1e-10..1e-12 and the factorisation is a small part of the time. Above it
-# factorisation dominates and PARDISO is 7x faster (benchmarks/).
+# factorisation dominates and PARDISO is 7x faster (benchmarks/). A denser matrix
+# (P3: 132 nonzeros a row against P2's 75) makes SuperLU slow sooner: above
+# DENSE_ROW nonzeros a row, 'auto' is always the fastest installed (PARDISO solved
+# the cylinder's 29k P3 DOFs in 0.8 s, SuperLU in 3.9 s).
 AUTO_SUPERLU_BELOW = 60_000
+DENSE_ROW = 100
 
 # PARDISO's settings (iparm, 1-based as in MKL's manual): our own values, parallel METIS
 # nested dissection, pivots perturbed below 1e-8 (counted, see `perturbed`), no
@@ -206,8 +210,7 @@ def factorise(A: sp.spmatrix, backend: str = "auto"
     systems, else the fastest installed). All give the same frequencies (a test
     checks 1e-8).
     """
-    if backend == "auto":
-        backend = "superlu" if A.shape[0] < AUTO_SUPERLU_BELOW else available_factorisers()[0]
+    backend = _resolve(backend, A.shape[0], A.nnz)
     if backend == "pardiso":
         return Pardiso(upper_triangle(A)).solve, backend
     if backend == "cholmod":
@@ -231,17 +234,19 @@ def factorise(A: sp.spmatrix, backend: str = "auto"
     raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORISERS)}")
 
 
-def _resolve(backend: str, n: int) -> str:
+def _resolve(backend: str, n: int, nnz: int) -> str:
+    """The back-end `backend` means for n unknowns and nnz nonzeros (both triangles)."""
     if backend == "auto":
-        return "superlu" if n < AUTO_SUPERLU_BELOW else available_factorisers()[0]
+        small = n < AUTO_SUPERLU_BELOW and nnz < DENSE_ROW * n
+        return "superlu" if small else available_factorisers()[0]
     if backend not in FACTORISERS:
         raise SolverError(f"unknown factoriser {backend!r}; choose one of {', '.join(FACTORISERS)}")
     return backend
 
 
-def uses_pardiso(backend: str, n: int) -> bool:
-    """Whether `backend` ('auto' included) means PARDISO for n unknowns."""
-    return _resolve(backend, n) == "pardiso"
+def uses_pardiso(backend: str, n: int, nnz: int) -> bool:
+    """Whether `backend` ('auto' included) means PARDISO for n unknowns and nnz nonzeros."""
+    return _resolve(backend, n, nnz) == "pardiso"
 
 
 def analyse_in_background(structure: sp.csr_matrix) -> Future:
@@ -263,7 +268,7 @@ class ShiftedFactor:
         """`analysis`: PARDISO's analysis of the pencil's sparsity, when it was started
         beforehand (analyse_in_background); used if it matches."""
         self.pencil = pencil
-        self.backend = _resolve(backend, pencil.n)
+        self.backend = _resolve(backend, pencil.n, pencil.K.nnz)
         self._analysis = analysis
         self._pardiso: Pardiso | None = None
         self._solve: Callable[[np.ndarray], np.ndarray] | None = None

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from shaftfem.errors import SceneError
 from shaftfem.fem.supports import Restraint, ring_stiffness
 from shaftfem.scene.model import Attachment, Support
 from shaftfem.store import write_text
@@ -33,7 +34,8 @@ def calculix_deck(result: ModalResult, n_eigen: int = 16) -> str:
 
     mesh, mat = result.mesh, result.scene.material
     if mesh.order != 2:
-        raise ValueError("the CalculiX export writes C3D10 (second-order) meshes only")
+        raise SceneError(f"the CalculiX deck is of C3D10 (order 2) elements; this run is of "
+                         f"order {mesh.order}: export it with --order 2")
     buf = _io.StringIO()
     with tempfile.TemporaryDirectory() as d:
         path = Path(d) / "mesh.inp"

@@ -148,6 +148,10 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     attachments = tuple(_attachment(source, i, e)
                         for i, e in enumerate(_array(source, data, "attachment")))
     check_seats(source, shaft, grooves, supports, attachments, mesh)
+    if mesh.order > 2 and (supports or attachments):
+        raise SceneError(f"{where(source, 'mesh', 'order')} = {mesh.order}: cubic elements take "
+                         "free shafts only for now; use order 2 with [[support]] or "
+                         "[[attachment]] tables")
     point = _response_point(source, t["response"], shaft_t)
     target = mesh_t["target_error_percent"]
     return Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,

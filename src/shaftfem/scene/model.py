@@ -70,13 +70,15 @@ class Grooves:
 
 
 def cell_type(order: int) -> str:
-    """meshio's name of the element: 10-node (P2) or 4-node (P1) tetrahedra."""
-    return "tetra10" if order == 2 else "tetra"
+    """meshio's name of the mesh's cells for an element order: 10-node tetrahedra (curved,
+    for P2 and P3) or 4-node ones (P1)."""
+    return "tetra10" if order >= 2 else "tetra"
 
 
 @dataclass(frozen=True)
 class MeshSettings:
-    """Element sizes in m; `order` 1 (P1, linear) or 2 (P2, quadratic)."""
+    """Element sizes in m; `order` 1 (P1, linear), 2 (P2, quadratic) or 3 (P3, cubic, on
+    the same curved quadratic geometry as P2)."""
 
     size: float
     groove_size: float

@@ -46,14 +46,14 @@ from shaftfem.fem.estimate import (
 from shaftfem.fem.result import ModalResult
 from shaftfem.runtime import RunOptions
 from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
-from shaftfem.workflows.pipeline import Stopwatch, solve_mesh, with_modes
+from shaftfem.workflows.pipeline import Stopwatch, check_order, solve_mesh, with_modes
 
 if TYPE_CHECKING:
     from shaftfem.scene.model import Scene
 
 ADAPT_VERSION = 1
 AIM = 0.5             # aim each new mesh at half the target: fewer rounds
-POWER = 7.0           # 2k + d for P2 elements in 3D
+POWER = 7.0           # 2k + d for P2 elements in 3D (2k + 3 for order k: power(order))
 REFINE_MAX = 4.0      # an element shrinks at most this much per round, and never grows:
                       # each round's error is below the last, as the two-mesh bound needs
 SMALLEST = 0.05e-3    # no element below 0.05 mm
@@ -95,6 +95,12 @@ def element_sizes(mesh: ShaftMesh) -> np.ndarray:
     return np.mean([np.linalg.norm(v[:, a] - v[:, b], axis=1) for a, b in pairs], axis=0)
 
 
+def power(order: int) -> float:
+    """How fast an element's share of the error falls with its size where the solution is
+    smooth: h^(2k + 3) for order k in 3D (POWER for P2)."""
+    return POWER + 2.0 * (order - 2)
+
+
 def size_field(mesh: ShaftMesh, shares: np.ndarray, target: float, largest: float
                ) -> tuple[np.ndarray, float]:
     """Sizes at the mesh's vertices for the next mesh, and its predicted element count.
@@ -104,9 +110,10 @@ def size_field(mesh: ShaftMesh, shares: np.ndarray, target: float, largest: floa
     h = element_sizes(mesh)
     aim = AIM * target
     e = np.maximum(shares, 1e-300)
-    # equidistribution: N' tau = aim with N' = sum (e / tau)^(3 / POWER)
-    tau = (aim / np.sum(e ** (3 / POWER), axis=1)) ** (POWER / (POWER - 3))
-    r = np.max((e / tau[:, None]) ** (1 / POWER), axis=0)
+    q = power(mesh.order)
+    # equidistribution: N' tau = aim with N' = sum (e / tau)^(3 / q)
+    tau = (aim / np.sum(e ** (3 / q), axis=1)) ** (q / (q - 3))
+    r = np.max((e / tau[:, None]) ** (1 / q), axis=0)
     r = np.clip(r, 1.0, REFINE_MAX)
     new = np.clip(h / r, SMALLEST, largest)
     vertices = mesh.cells[:, :4]
@@ -160,6 +167,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int,
     """Solve `scene` on meshes adapted until every frequency's bound is below `target`
     (fraction) or the next mesh would exceed `max_dofs`."""
     watch = Stopwatch()
+    check_order(scene)
     check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
     with watch.lap("cad"):
         shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)

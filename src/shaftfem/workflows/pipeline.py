@@ -57,6 +57,14 @@ def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = No
     return replace(scene, mesh=m)
 
 
+def check_order(scene: Scene) -> None:
+    """Cubic elements take free shafts only: seats and parts read nodal values."""
+    if scene.mesh.order > 2 and scene.installed:
+        raise SceneError(f"{scene.source}: element order {scene.mesh.order}: cubic elements "
+                         "take free shafts only for now; use order 2 (or --free on a scene "
+                         "whose only tables of that kind are [[support]])")
+
+
 def with_modes(scene: Scene, count: int | None = None,
                max_frequency: float | None = None) -> Scene:
     """The scene asking for another number of modes, or every mode below max_frequency (Hz)."""
@@ -76,6 +84,7 @@ def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
     from shaftfem.cad.solid import build_shape
 
     watch = Stopwatch()
+    check_order(scene)
     check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
     options.say("building the shaft's solid (CAD)")
     with watch.lap("cad"):
@@ -106,9 +115,9 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
         d = discretise(mesh)
         # The solver's ordering needs only the sparsity: it runs while K and M are filled
         # (a free shaft's: seats change the sparsity).
+        pardiso = uses_pardiso(options.factoriser, d.n_dofs, 9 * d.pattern.n_blocks)
         analysis = (analyse_in_background(d.structure())
-                    if not scene.installed and uses_pardiso(options.factoriser, d.n_dofs)
-                    else None)
+                    if not scene.installed and pardiso else None)
         system = assemble(mesh, scene.material, threads=options.threads, discretisation=d)
         installed = None
         if scene.installed:
