@@ -127,3 +127,60 @@ def timoshenko_beam_hz(n_modes: int, length: float, radius: float, E: float, nu:
     lam = eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True,
                subset_by_index=[0, n_modes - 1])
     return list(np.sqrt(lam) / (2 * math.pi))
+
+
+def timoshenko_rotor_hz(n_modes: int, length: float, radius: float, E: float, nu: float,
+                        rho: float, bearings: list[tuple[float, float]],
+                        part: tuple | None = None, n_el: int = 1100) -> list[float]:
+    """Bending frequencies of a 1D Timoshenko beam FE in one plane (linear elements,
+    one-point shear, consistent mass with rotary inertia; Hutchinson's shear coefficient
+    for a circular section) on bearings (z, k): a spring k (N/m) on w at z, math.inf
+    for a pin. `part` = (z0, z1, mass, diametral inertia, joint): joint "rigid" makes
+    z0..z1 a rigid segment (EI, kGA x 1e4) with the mass and inertia at its middle;
+    "distributing" puts them on the hub's mean w and mean psi over z0..z1 (trapezoid
+    weights) and stiffens nothing. Positions must fall on element ends (L / n_el)."""
+    from scipy.linalg import eigh
+
+    G = E / (2 * (1 + nu))
+    A, I = math.pi * radius**2, math.pi * radius**4 / 4
+    kappa = 6 * (1 + nu) ** 2 / (7 + 12 * nu + 4 * nu**2)
+    h = length / n_el
+    z = np.linspace(0.0, length, n_el + 1)
+    n = 2 * (n_el + 1)
+    K, M = np.zeros((n, n)), np.zeros((n, n))
+    rigid = part is not None and part[4] == "rigid"
+    for e in range(n_el):
+        hub = rigid and part[0] - 1e-12 <= z[e] and z[e + 1] <= part[1] + 1e-12
+        stiff = 1e4 if hub else 1.0
+        dofs = [2 * e, 2 * e + 1, 2 * e + 2, 2 * e + 3]
+        B = np.array([-1 / h, -0.5, 1 / h, -0.5])
+        K[np.ix_(dofs, dofs)] += stiff * (
+            E * I / h * np.array([[0, 0, 0, 0], [0, 1, 0, -1], [0, 0, 0, 0], [0, -1, 0, 1]])
+            + kappa * G * A * h * np.outer(B, B))
+        lin = h / 6 * np.array([[2, 1], [1, 2]])
+        M[np.ix_(dofs[::2], dofs[::2])] += rho * A * lin
+        M[np.ix_(dofs[1::2], dofs[1::2])] += rho * I * lin
+    if part is not None:
+        i0, i1 = int(round(part[0] / h)), int(round(part[1] / h))
+        w = np.zeros(i1 - i0 + 1)
+        if rigid:
+            w[(i1 - i0) // 2] = 1.0
+        else:
+            w[:] = 1.0
+            w[0] = w[-1] = 0.5
+            w /= w.sum()
+        for comp, mass in ((0, part[2]), (1, part[3])):
+            a = np.zeros(n)
+            a[2 * np.arange(i0, i1 + 1) + comp] = w
+            M += mass * np.outer(a, a)
+    pinned = []
+    for zb, k in bearings:
+        i = 2 * int(round(zb / h))
+        if math.isinf(k):
+            pinned.append(i)
+        else:
+            K[i, i] += k
+    keep = np.setdiff1d(np.arange(n), pinned)
+    lam = eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True,
+               subset_by_index=[0, n_modes - 1])
+    return list(np.sqrt(lam) / (2 * math.pi))

@@ -70,9 +70,10 @@ def test_exact_mass_difference_shrinks_with_the_mesh(tmp_path):
 @pytest.mark.parametrize("coupling", ["distributing", "rigid"])
 def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling):
     """A rigid locating bearing, a spring bearing (radial, axial and tilting) and a gear
-    on its seat: CalculiX's *EQUATION, SPRING1 and *RIGID BODY cards against our
-    elimination, with the same 4-point mass; the bearings distributing (mean motion) or
-    rigid rings (*RIGID BODY with springs and holds on its nodes)."""
+    on a rigid joint (the shaft's slice under its hub held rigid): CalculiX's *EQUATION,
+    SPRING1 and *RIGID BODY cards against our elimination, with the same 4-point mass;
+    the bearings distributing (mean motion) or rigid rings (*RIGID BODY with springs and
+    holds on its nodes)."""
     from shaftfem.fem.installation import install
     from shaftfem.scene.load import scene_from_dict
 

@@ -21,18 +21,22 @@ from scipy.sparse.linalg import spsolve
 from shaftfem.errors import SceneError, SolverError
 from shaftfem.fem.supports import (
     FREE_MOTION,
+    Carried,
     Restraint,
     band_nodes,
+    carried,
+    carried_mass,
     n_bodies,
     part_mass,
     restraint_stiffness,
     rigid_body_modes,
     ring_stiffness,
     seat_restraints,
+    slice_nodes,
     surface_weights,
     tie_rows,
 )
-from shaftfem.scene.model import Scene, Support
+from shaftfem.scene.model import Attachment, Scene, Support
 
 
 @dataclass(frozen=True)
@@ -47,9 +51,12 @@ class Installed:
     free: tuple[str, ...]                 # names of the free rigid motions
     restraints: tuple[Restraint, ...]
     clamped: np.ndarray                   # DOFs held at zero
-    tied: tuple[np.ndarray, ...]          # band nodes of each attached part
-    parts_from: int                       # the parts' (U, Theta) from this column on
+    tied: tuple[np.ndarray, ...]          # slice nodes of each part on a rigid joint
+    parts: tuple[Attachment, ...]         # those parts, in the same order
+    parts_from: int                       # their (U, Theta) from this column on
     rings: tuple[np.ndarray, ...]         # band nodes of each rigid-coupled seat
+    carried: tuple[Carried, ...] = ()     # the parts on distributing joints
+    M_carried: sp.csr_matrix | None = None   # their mass in the shaft's DOFs (kg)
 
     @property
     def n_rigid(self) -> int:
@@ -68,7 +75,9 @@ class _Seats:
     rings: list[tuple[Support, np.ndarray]]   # rigid-coupled seats and their bands
     on_rings: list[Restraint]        # what those rings' springs and holds resist
     clamped: np.ndarray              # DOFs held at zero
-    tied: list[tuple[np.ndarray, np.ndarray]]  # (band nodes, centre) per part, then ring
+    tied: list[tuple[np.ndarray, np.ndarray]]  # (nodes, centre) per tied part, then ring
+    parts: list[Attachment]          # the parts on rigid joints (tied)
+    carried: list[Carried]           # the parts on distributing joints
 
 
 def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
@@ -84,28 +93,31 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
         raise SolverError("the mesh has disconnected parts; a shaft must be one piece")
     seats = _seats(scene, nodes, skmesh, order)
     K_s = restraint_stiffness(seats.restraints, K.shape[0])
+    M_c = carried_mass(seats.carried, M.shape[0]) if seats.carried else None
+    M_full = M if M_c is None else M + M_c
     T = elimination(nodes, seats.clamped, [r for r in seats.restraints if r.held], seats.tied)
     first = T.shape[1] - 6 * len(seats.tied)
     extra_K, extra_M, keep = _parts_and_rings(scene, seats, T.shape[1], first)
     T = T[:, keep].tocsr()
     Tt = T.T.tocsr()
     K_r = Tt @ ((K + K_s) @ T) + extra_K[keep][:, keep]
-    M_r = Tt @ (M @ T) + extra_M[keep][:, keep]
+    M_r = Tt @ (M_full @ T) + extra_M[keep][:, keep]
     # symmetric to round-off: made exactly so for the solvers
     K_r = ((K_r + K_r.T) * 0.5).tocsr()
     M_r = ((M_r + M_r.T) * 0.5).tocsr()
     rigid, target = _free_rigid_motions(nodes, T, Tt, seats)
-    n_parts = len(scene.attachments)
+    n_parts = len(seats.parts)
     return Installed(K=K_r, M=M_r, T=T, rigid=rigid, free=motion_names(target, nodes),
                      restraints=tuple(seats.restraints), clamped=seats.clamped,
-                     tied=tuple(i for i, _ in seats.tied[:n_parts]), parts_from=first,
-                     rings=tuple(idx for _, idx in seats.rings))
+                     tied=tuple(i for i, _ in seats.tied[:n_parts]), parts=tuple(seats.parts),
+                     parts_from=first, rings=tuple(idx for _, idx in seats.rings),
+                     carried=tuple(seats.carried), M_carried=M_c)
 
 
 def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int) -> _Seats:
     """Each seat's band and what holds it; each part's band and centre."""
     radius = scene.shaft.radius
-    out = _Seats([], [], [], np.zeros(0, np.int64), [])
+    out = _Seats([], [], [], np.zeros(0, np.int64), [], [], [])
     held_bands: list[np.ndarray] = []
     for s in scene.held:
         idx = band_nodes(nodes, radius, s.seat)
@@ -125,7 +137,11 @@ def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int) -> _Seats:
         idx = band_nodes(nodes, radius, a.seat)
         if idx.size == 0:
             raise SolverError(f"{a.name}: no mesh node on its seat band")
-        out.tied.append((idx, np.array([0.0, 0.0, a.position])))
+        if a.joint == "distributing":
+            out.carried.append(carried(a, nodes, surface_weights(skmesh, order, radius, a.seat)))
+            continue
+        out.parts.append(a)
+        out.tied.append((slice_nodes(nodes, a.seat), np.array([0.0, 0.0, a.position])))
     out.tied += [(idx, np.array([0.0, 0.0, s.position])) for s, idx in out.rings]
     if held_bands:
         out.clamped = np.concatenate(held_bands)
@@ -137,12 +153,12 @@ def _parts_and_rings(scene: Scene, seats: _Seats, n_q: int, first: int
     """The parts' masses and the rings' springs on their (U, Theta) columns (from `first`
     on), and which columns stay: a ring's DOF held exactly is dropped."""
     extra_K, extra_M = sp.lil_matrix((n_q, n_q)), sp.lil_matrix((n_q, n_q))
-    for k, a in enumerate(scene.attachments):
+    for k, a in enumerate(seats.parts):
         c = first + 6 * k
         extra_M[c:c + 6, c:c + 6] = part_mass(a)
     keep = np.ones(n_q, dtype=bool)
     for j, (s, _) in enumerate(seats.rings):
-        c = first + 6 * (len(scene.attachments) + j)
+        c = first + 6 * (len(seats.parts) + j)
         for d, stiff in enumerate(ring_stiffness(s)):
             if math.isinf(stiff):
                 keep[c + d] = False      # held exactly: the ring's DOF is dropped

@@ -88,13 +88,15 @@ def modal_basis(result: ModalResult) -> ModalBasis:
     if inst is None or not result.scene.held:
         raise SceneError(f"{result.scene.source}: no [[support]] holds the shaft: base "
                          "motion needs supports to come through")
-    T, M = inst.T, system.M
+    T = inst.T
+    M = system.M if inst.M_carried is None else system.M + inst.M_carried  # parts carried
+    # on distributing joints move with the band's mean: their loads come through M
     Tt = T.T.tocsr()
     normal = splu((Tt @ T).tocsc())
     X = normal.solve(np.asarray(Tt @ result.modes.shapes))   # exact: the shapes are T q
     n_parts = len(inst.tied)
     first = inst.parts_from
-    masses = [part_mass(a) for a in result.scene.attachments]
+    masses = [part_mass(a) for a in inst.parts]
     loads, totals = [], []
     for d in DIRECTIONS:
         r, rp = influence(system.nodes, n_parts, d)

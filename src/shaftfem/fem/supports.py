@@ -22,8 +22,14 @@ tilting stiffness is given.
   eliminates one DOF of its band (the one with the largest weight).
 * "clamped" holds every node of the band in every direction (a press fit in a
   rigid housing).
-* An attached part ties its band rigidly to its centre c on the axis,
-  u_i = U + Theta x (x_i - c), and adds its mass and inertias there.
+* A part on a "rigid" joint (a shrink fit, its hub much stiffer than the shaft)
+  ties the shaft's slice under its hub, inside and on the surface, to its centre c
+  on the axis, u_i = U + Theta x (x_i - c), and adds its mass and inertias there:
+  the rigid segment of a beam model.
+* A part on a "distributing" joint (a slip or keyed fit) moves as its band's means,
+  (U, Theta) = C u: the translations and the turn as a bearing's, the tilts from the
+  band's axial displacements (the sections' rotation). It adds C^T M_part C to the
+  mass and no stiffness.
 """
 
 from __future__ import annotations
@@ -73,6 +79,13 @@ def band_nodes(nodes: np.ndarray, radius: float, seat: tuple[float, float]) -> n
     on = (np.abs(r - radius) < ON_SURFACE) & (z > seat[0] - ON_SURFACE) & (
         z < seat[1] + ON_SURFACE)
     return np.flatnonzero(on)
+
+
+def slice_nodes(nodes: np.ndarray, seat: tuple[float, float]) -> np.ndarray:
+    """Indices of the nodes of the shaft's slice between the seat's two edges, inside and
+    on the surface: what a rigid hub holds rigid."""
+    z = nodes[:, 2]
+    return np.flatnonzero((z > seat[0] - ON_SURFACE) & (z < seat[1] + ON_SURFACE))
 
 
 def surface_weights(skmesh, order: int, radius: float, seat: tuple[float, float]
@@ -149,6 +162,46 @@ def restraint_stiffness(restraints: list[Restraint], n_dofs: int) -> sp.csr_matr
         rows.append(np.repeat(r.dofs, r.dofs.size))
         cols.append(np.tile(r.dofs, r.dofs.size))
         vals.append(r.stiffness * np.outer(r.coeffs, r.coeffs).ravel())
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(n_dofs, n_dofs))
+
+
+@dataclass(frozen=True)
+class Carried:
+    """A part on a distributing joint: its (U, Theta) at its centre is the band's mean
+    rigid motion, q = C u over the band's DOFs, and it adds no stiffness."""
+
+    part: Attachment
+    dofs: np.ndarray      # (3 m,) the band's DOFs, node by node
+    C: np.ndarray         # (6, 3 m)
+
+
+def carried(part: Attachment, nodes: np.ndarray, weights: np.ndarray) -> Carried:
+    """The part's joint to its band: its (U, Theta) are the band's means, as a bearing's
+    (seat_restraints): the translations, the tilts from the lateral displacements'
+    slope along the band (where a hub bore bears), the turn from the tangential ones;
+    each reads exactly its own rigid motion of the band. `weights` from
+    `surface_weights`."""
+    on = np.flatnonzero(weights > 1e-12 * weights.max())  # nodes off the band get ~1e-33
+    x, y, z = nodes[on].T
+    w = weights[on]
+    d = z - part.position                  # (U, Theta) at the part's centre
+    seen = {0: (np.ones_like(d), d, -y), 1: (np.ones_like(d), -d, x), 2: (np.ones_like(d), y, -x)}
+    C = np.zeros((6, 3 * on.size))
+    for row, c, own, share in ((0, 0, 0, 1.0), (1, 1, 0, 1.0), (2, 2, 0, 1.0), (3, 2, 1, 1.0),
+                               (4, 2, 2, 1.0), (5, 0, 2, 0.5), (5, 1, 2, 0.5)):
+        C[row, c::3] += share * weighted_mean(w, seen[c], own)
+    return Carried(part, (3 * on[:, None] + np.arange(3)).ravel(), C)
+
+
+def carried_mass(parts: list[Carried], n_dofs: int) -> sp.csr_matrix:
+    """sum C^T M_p C over the parts on distributing joints: their kinetic energy in the
+    shaft's DOFs (kg)."""
+    rows, cols, vals = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)], [np.zeros(0)]
+    for c in parts:
+        rows.append(np.repeat(c.dofs, c.dofs.size))
+        cols.append(np.tile(c.dofs, c.dofs.size))
+        vals.append((c.C.T @ part_mass(c.part) @ c.C).ravel())
     return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                          shape=(n_dofs, n_dofs))
 

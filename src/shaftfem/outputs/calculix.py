@@ -33,6 +33,9 @@ def calculix_deck(result: ModalResult, n_eigen: int = 16) -> str:
     import meshio
 
     mesh, mat = result.mesh, result.scene.material
+    if result.installed is not None and result.installed.carried:
+        raise SceneError("the CalculiX deck has no distributing joint for a part yet: give "
+                         "the parts joint = \"rigid\" to export the deck")
     if mesh.order != 2:
         raise SceneError(f"the CalculiX deck is of C3D10 (order 2) elements; this run is of "
                          f"order {mesh.order}: export it with --order 2")
@@ -86,7 +89,7 @@ def _installation_cards(result: ModalResult) -> str:
     """Seats and parts as CalculiX cards, the same constraints shaftfem eliminates: a
     held mean motion is an *EQUATION over its band; a spring acts on a node of its
     own that the *EQUATION makes the mean, through a SPRING1; a part is a *RIGID BODY
-    of its band with six point masses carrying its mass and inertias; a rigid-coupled
+    of the shaft's slice under its hub with six point masses carrying its mass and inertias; a rigid-coupled
     seat is a *RIGID BODY of its band, its springs SPRING1s on the reference and
     rotation nodes, its holds *BOUNDARY cards there."""
     inst, system, mesh = result.installed, result.system, result.mesh
@@ -100,7 +103,7 @@ def _installation_cards(result: ModalResult) -> str:
         out += [f"{node_of[d // 3]}, {d % 3 + 1}, {d % 3 + 1}" for d in inst.clamped]
     for r in inst.restraints:
         out += _restraint_cards(r, node_of, system.nodes, ids)
-    for k, (idx, part) in enumerate(zip(inst.tied, result.scene.attachments)):
+    for k, (idx, part) in enumerate(zip(inst.tied, inst.parts)):
         out += _part_cards(k, part, node_of[idx], ids)
     rings = [s for s in result.scene.held if s.coupling == "rigid"]  # as install() took them
     for j, (idx, s) in enumerate(zip(inst.rings, rings)):

@@ -95,7 +95,7 @@ def installation_record(result: ModalResult) -> dict | None:
                       "tilting_stiffness_nmm_per_rad": s.tilting * 1e3} for s in scene.held],
         "attachments": [{"name": a.name, "seat_mm": [z * 1e3 for z in a.seat],
                          "mass_kg": a.mass, "polar_inertia_kg_m2": a.polar_inertia,
-                         "diametral_inertia_kg_m2": a.diametral_inertia}
+                         "diametral_inertia_kg_m2": a.diametral_inertia, "joint": a.joint}
                         for a in scene.attachments],
         "free_rigid_motions": list(result.installed.free) if result.installed else
         ["all six"],

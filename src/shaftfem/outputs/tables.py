@@ -72,7 +72,7 @@ def installation_lines(result: ModalResult) -> list[str]:
     for a in scene.attachments:
         out.append(f"part {a.name}: seat {a.seat[0] * 1e3:g}-{a.seat[1] * 1e3:g} mm, "
                    f"{a.mass:g} kg, I_p {a.polar_inertia:.3g} kg m^2, "
-                   f"I_d {a.diametral_inertia:.3g} kg m^2")
+                   f"I_d {a.diametral_inertia:.3g} kg m^2, {a.joint} joint")
     if result.installed is not None:
         free = ", ".join(result.installed.free) or "none"
         out.append(f"rigid motions the supports leave free: {free}")

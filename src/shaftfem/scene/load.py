@@ -275,4 +275,4 @@ def _attachment(source: str, i: int, t: dict) -> Attachment:
     return Attachment(name=t["name"] or f"attachment {i + 1}", position=t["position_mm"] * MM,
                       width=t["width_mm"] * MM, mass=t["mass_kg"],
                       polar_inertia=t["polar_inertia_kg_m2"],
-                      diametral_inertia=t["diametral_inertia_kg_m2"])
+                      diametral_inertia=t["diametral_inertia_kg_m2"], joint=t["joint"])

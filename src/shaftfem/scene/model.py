@@ -138,6 +138,7 @@ class Attachment:
     mass: float
     polar_inertia: float
     diametral_inertia: float
+    joint: str = "rigid"   # or "distributing": on the band's mean motion, no stiffness
 
     @property
     def seat(self) -> tuple[float, float]:

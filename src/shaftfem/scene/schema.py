@@ -150,6 +150,13 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "diametral_inertia_kg_m2": Key(
             float, "moment of inertia about a diameter through its centre, kg m^2",
             *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
+        "joint": Key(
+            str, "how the part is joined to its seat: \"rigid\" (default: a shrink or press "
+            "fit, the hub much stiffer than the shaft: the shaft's slice under it moves with the "
+            "part as one rigid body) or \"distributing\" (a slip or keyed fit: the part's mass and inertia "
+            "act on the band's mean motion and add no stiffness)",
+            lambda v: v in COUPLINGS, ", ".join(f'"{c}"' for c in COUPLINGS),
+            default="rigid", required=False),
     },
     "response": {  # base excitation at the supports (shaftfem.fem.response)
         "damping_ratio_percent": Key(

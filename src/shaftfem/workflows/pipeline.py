@@ -188,6 +188,11 @@ def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
         out.append(f"element size {m.size * 1e3:g} mm exceeds the shaft radius "
                    f"({R * 1e3:g} mm): fewer than two elements across the section, the "
                    "frequencies can be far from converged (see the error estimate)")
+    for a in scene.attachments:
+        if a.width < R:
+            out.append(f"{a.name}: a {a.width * 1e3:g} mm hub on a {2 * R * 1e3:g} mm shaft "
+                       "(shorter than its radius): how the part bears on so short a band "
+                       "decides its modes more than the part does; give the hub's real length")
     nu = scene.material.poisson_ratio
     if m.order == 1 and nu > 0.45:
         out.append(f"P1 (linear) elements lock for a nearly incompressible material "
