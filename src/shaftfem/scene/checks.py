@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from shaftfem.errors import SceneError
 from shaftfem.scene.model import MM, Attachment, Grooves, MeshSettings, Shaft, Support
-from shaftfem.scene.schema import where
+from shaftfem.scene.toml_reading import where
 
 # A seat's band must be meshable and mean something: at least SEAT_MIN wide (no bearing
 # or hub is narrower) and 1/16 of the element size (the band's faces need elements of

@@ -25,7 +25,8 @@ from shaftfem.scene.model import (
     Shaft,
     Support,
 )
-from shaftfem.scene.schema import SCHEMA, read_toml, split_parameter, validate_table, where
+from shaftfem.scene.schema import SCHEMA
+from shaftfem.scene.toml_reading import read_toml, split_parameter, validate_table, where
 
 # The scenes shipped with shaftfem: the repository's geometry/ folder, which an
 # installed package carries as shaftfem/scenes (pyproject.toml maps one onto the other).

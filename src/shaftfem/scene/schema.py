@@ -1,21 +1,15 @@
 """The scene file's schema: every key, its unit, what it must satisfy.
 
-Declarative on purpose: `validate_table` checks any table against its entry
-here, so a new key is one line, and every error names the file, the key, the
-value and what is allowed.
+Declarative on purpose: `scene.toml_reading.validate_table` checks any table
+against its entry here, so a new key is one line.
 """
 
 from __future__ import annotations
 
-import math
 import re
-import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
-
-from shaftfem.errors import SceneError
 
 # A flat separation margin of about 15 % between a natural frequency and any
 # running-speed harmonic is common machinery practice (see shaftfem.checks.resonance).
@@ -39,6 +33,12 @@ class Key:
     allowed: str = ""
     default: Any = None
     required: bool = True
+
+
+def coupling(why: str, default: str) -> Key:
+    """A key naming one of COUPLINGS."""
+    return Key(str, why, lambda v: v in COUPLINGS, ", ".join(f'"{c}"' for c in COUPLINGS),
+               default=default, required=False)
 
 
 def upto(high: float, why: str, low: float = 0.0,
@@ -129,13 +129,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
             *upto(1e15, "up to 10^15 N mm/rad: the frequencies stop changing near 10^12; "
                   "far beyond, the solve loses the digits it needs", closed_low=True),
             required=False),
-        "coupling": Key(
-            str, "how the bearing holds its seat: \"distributing\" (default: the seat band's "
+        "coupling": coupling(
+            "how the bearing holds its seat: \"distributing\" (default: the seat band's "
             "mean motion, the section under it free to deform, as a ball bearing on a "
             "slip fit) or \"rigid\" (the band moves as a rigid ring, a shrunk-on inner "
             "ring; the springs or holds act on the ring, and its stiff limit is clamped)",
-            lambda v: v in COUPLINGS, ", ".join(f'"{c}"' for c in COUPLINGS),
-            default="distributing", required=False),
+            "distributing"),
     },
     "attachment": {  # an array of tables: [[attachment]], a part fixed on a seat
         "name": Key(str, "name of the part, e.g. drive gear", required=False),
@@ -150,13 +149,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "diametral_inertia_kg_m2": Key(
             float, "moment of inertia about a diameter through its centre, kg m^2",
             *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
-        "joint": Key(
-            str, "how the part is joined to its seat: \"rigid\" (default: a shrink or press "
-            "fit, the hub much stiffer than the shaft: the shaft's slice under it moves with the "
-            "part as one rigid body) or \"distributing\" (a slip or keyed fit: the part's mass and inertia "
-            "act on the band's mean motion and add no stiffness)",
-            lambda v: v in COUPLINGS, ", ".join(f'"{c}"' for c in COUPLINGS),
-            default="rigid", required=False),
+        "joint": coupling(
+            "how the part is joined to its seat: \"rigid\" (default: a shrink or press fit, "
+            "the hub much stiffer than the shaft: the shaft's slice under it moves with the "
+            "part as one rigid body) or \"distributing\" (a slip or keyed fit: the part's "
+            "mass and inertia act on the band's mean motion and add no stiffness)", "rigid"),
     },
     "response": {  # base excitation at the supports (shaftfem.fem.response)
         "damping_ratio_percent": Key(
@@ -243,118 +240,3 @@ SCHEMA: dict[str, dict[str, Key]] = {
                         f"1000 to {MAX_DOFS_LIMIT}", default=DEFAULT_MAX_DOFS, required=False),
     },
 }
-
-
-
-def where(source: str, table: str, key: str) -> str:
-    return f"{source}: {table + '.' if table else ''}{key}"
-
-
-def _coerce(source: str, table: str, key: str, spec: Key, value: Any) -> Any:
-    at = where(source, table, key)
-    if spec.kind is float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise SceneError(f"{at} = {value!r}: expected a number ({spec.doc})")
-        value = float(value)
-        if not math.isfinite(value):
-            raise SceneError(f"{at} = {value!r}: expected a finite number ({spec.doc})")
-    elif spec.kind is int:
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise SceneError(f"{at} = {value!r}: expected an integer ({spec.doc})")
-    elif spec.kind is str:
-        if not isinstance(value, str):
-            raise SceneError(f"{at} = {value!r}: expected a string ({spec.doc})")
-    elif isinstance(spec.kind, tuple) and spec.kind[0] == "list":
-        if not isinstance(value, list) or not all(isinstance(v, spec.kind[1]) for v in value):
-            raise SceneError(f"{at} = {value!r}: expected a list ({spec.doc})")
-    if spec.check is not None and not spec.check(value):
-        raise SceneError(f"{at} = {value!r}: must be {spec.allowed} ({spec.doc})")
-    return value
-
-
-def validate_table(source: str, table: str, data: Any, schema: dict[str, Key]) -> dict:
-    """Check one table against its schema; return it with defaults filled in."""
-    if not isinstance(data, dict):
-        raise SceneError(f"{source}: [{table}] must be a table")
-    out = {}
-    for key, value in data.items():
-        if table == "" and key in SCHEMA and key:
-            continue  # sub-tables are checked on their own
-        if key not in schema:
-            raise SceneError(
-                f"{where(source, table, key)}: unknown key; allowed: {', '.join(schema)}"
-            )
-        out[key] = _coerce(source, table, key, schema[key], value)
-    for key, spec in schema.items():
-        if key not in out:
-            if spec.required:
-                raise SceneError(f"{where(source, table, key)}: missing ({spec.doc})")
-            out[key] = spec.default
-    return out
-
-
-def read_toml(path: str | Path, what: str = "file") -> dict:
-    """A TOML file as a dict; a missing or malformed file is a SceneError naming it.
-    A UTF-8 byte-order mark (Windows editors write one) is accepted."""
-    path = Path(path)
-    try:
-        return tomllib.loads(path.read_text(encoding="utf-8-sig"))
-    except FileNotFoundError as exc:
-        raise SceneError(f"{what} {str(path)!r}: no such file") from exc
-    except (IsADirectoryError, PermissionError) as exc:
-        raise SceneError(f"{what} {str(path)!r}: cannot be read ({exc.strerror})") from exc
-    except UnicodeDecodeError as exc:
-        raise SceneError(f"{path.name}: not a text file (TOML is UTF-8 text)") from exc
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{path.name}: not valid TOML: {exc}") from exc
-
-
-# --------------------------------------------------------------------------
-# Checks for the other files the tool reads (sweeps, calibrations): each error names
-# the file, the key, the value and what is allowed.
-
-
-def known_keys(source: str, data: object, allowed: set[str], where_: str = "") -> dict:
-    """`data` must be a table whose keys are all in `allowed`."""
-    if not isinstance(data, dict):
-        raise SceneError(f"{source}: {where_ or 'the file'} = {data!r}: must be a table")
-    for key in data:
-        if key not in allowed:
-            raise SceneError(f"{source}: {where_ + '.' if where_ else ''}{key}: unknown key; "
-                             f"allowed: {', '.join(sorted(allowed))}")
-    return data
-
-
-def number(source: str, key: str, value: object, low: float, high: float) -> float:
-    """A finite number with low < value <= high."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
-            math.isfinite(value) and low < value <= high):
-        raise SceneError(f"{source}: {key} = {value!r}: must be a number in ({low:g}, {high:g}]")
-    return float(value)
-
-
-# Tables a scene may repeat ([[support]]): a parameter names one entry by its index.
-ARRAY_TABLES = ("excitation", "support", "attachment")
-
-
-def split_parameter(name: str) -> tuple[str, int | None, str] | None:
-    """'table.key' -> (table, None, key); 'table[i].key' -> (table, i, key); else None."""
-    m = re.fullmatch(r"([a-z_]+)(?:\[(\d+)\])?\.([a-z0-9_]+)", name)
-    if m is None:
-        return None
-    table, index, key = m.groups()
-    if (index is None) == (table in ARRAY_TABLES):
-        return None
-    return table, None if index is None else int(index), key
-
-
-def parameter(source: str, name: object) -> str:
-    """A numeric scene key written 'table.key' (e.g. 'grooves.depth_mm'), or
-    'table[i].key' for entry i of a repeated table (e.g. 'support[1].position_mm')."""
-    parts = split_parameter(name) if isinstance(name, str) else None
-    spec = SCHEMA.get(parts[0], {}).get(parts[2]) if parts else None
-    if spec is None or spec.kind not in (float, int):
-        raise SceneError(f"{source}: {name!r}: not a numeric scene key; a parameter is "
-                         "'table.key', e.g. 'grooves.depth_mm' or 'shaft.length_mm', or "
-                         "'table[i].key' for a repeated table, e.g. 'support[1].position_mm'")
-    return str(name)

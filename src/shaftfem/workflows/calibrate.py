@@ -32,15 +32,8 @@ import numpy as np
 from shaftfem.errors import SceneError, ShaftfemError
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.load import SceneText, check_entries, load_scene, read_scene_text, scene_beside
-from shaftfem.scene.schema import (
-    DEFAULT_MODE_COUNT,
-    SCHEMA,
-    known_keys,
-    number,
-    parameter,
-    read_toml,
-    split_parameter,
-)
+from shaftfem.scene.schema import DEFAULT_MODE_COUNT, SCHEMA
+from shaftfem.scene.toml_reading import known_keys, number, parameter, read_toml, split_parameter
 from shaftfem.workflows.sweep import run_sweep, run_variant
 from shaftfem.workflows.sweep_file import Sweep, check_count, check_variants, mesh_size
 

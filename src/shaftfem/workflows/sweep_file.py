@@ -24,7 +24,7 @@ from pathlib import Path
 
 from shaftfem.errors import SceneError
 from shaftfem.scene.load import SceneText, check_entries, load_scene, read_scene_text, scene_beside
-from shaftfem.scene.schema import known_keys, number, parameter, read_toml
+from shaftfem.scene.toml_reading import known_keys, number, parameter, read_toml
 from shaftfem.store import content_key
 
 # The largest sweep or calibration grid accepted: at 5-40 s a variant, 10,000 variants
