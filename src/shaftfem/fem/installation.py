@@ -18,7 +18,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
-from shaftfem.errors import SceneError, SolverError
+from shaftfem.errors import SolverError
 from shaftfem.fem.supports import (
     FREE_MOTION,
     Carried,
@@ -83,12 +83,9 @@ class _Seats:
 def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
             skmesh, order: int) -> Installed:
     """The scene's seats and parts applied to the free shaft's K (N/m) and M (kg) on
-    `nodes` (the scalar DOFs' positions); `skmesh` the scikit-fem mesh, for the bands'
-    surface."""
-    if order > 2:
-        raise SceneError(f"{scene.source}: [mesh] order = {order}: cubic elements take free "
-                         "shafts only for now (seats and parts read nodal values); use order 2 "
-                         "for a scene with [[support]] or [[attachment]] tables")
+    `nodes` (the scalar DOFs' positions, of a P1 or P2 basis: seats read nodal values;
+    workflows.pipeline.check_order refuses higher orders); `skmesh` the scikit-fem
+    mesh, for the bands' surface."""
     if n_bodies(K) != 1:
         raise SolverError("the mesh has disconnected parts; a shaft must be one piece")
     seats = _seats(scene, nodes, skmesh, order)

@@ -102,7 +102,7 @@ def surface_weights(skmesh, order: int, radius: float, seat: tuple[float, float]
     if not inside.any():
         raise SolverError(f"no boundary face on the seat band {seat[0] * 1e3:g} to "
                           f"{seat[1] * 1e3:g} mm")
-    element = ElementTetP2() if order == 2 else ElementTetP1()  # install() refuses P3
+    element = ElementTetP2() if order == 2 else ElementTetP1()  # seats take P1 and P2 only
     fb = FacetBasis(skmesh, element, facets=facets[inside], intorder=4)
     diag = BilinearForm(lambda u, v, _: u * v).assemble(fb).diagonal()
     return diag / diag.sum()
