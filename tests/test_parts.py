@@ -1,7 +1,7 @@
 """Parts on their seats against a 1D Timoshenko beam FE (tests/references.py) with the hub
 modelled the same way: a 32 x 550 mm cylinder on radial bearings at 25 and 525 mm (4 mm
 seats), a 2.48 kg gear at mid-span on a 16 or 30 mm hub, joined rigidly (a rigid
-segment the hub's length) or distributing (on the hub's mean motion)."""
+segment the hub's length) or distributing (on the mean w and psi of the hub's slice)."""
 
 import math
 
@@ -51,11 +51,9 @@ def _compare(k, hub, joint, mesh_mm=None):
 
 @pytest.mark.parametrize("joint", ["rigid", "distributing"])
 def test_a_gear_on_its_hub_matches_the_beam(joint):
-    """Bearings of 1e5 N/mm, 30 mm hub: f1-f4 within 0.5 % of the beam (the
-    distributing joint's f4, where the gear's tilting inertia dominates, within 0.6 %)."""
+    """Bearings of 1e5 N/mm, 30 mm hub: f1-f4 within 0.5 % of the beam."""
     f, beam = _compare(1e5, 30.0, joint)
-    err = np.abs(f / beam - 1)
-    assert err[:3].max() < 5e-3 and err[3] < (5e-3 if joint == "rigid" else 6e-3), err
+    assert np.max(np.abs(f / beam - 1)) < 5e-3, (f, beam)
 
 
 @pytest.mark.slow
@@ -70,11 +68,11 @@ def test_a_rigid_joint_matches_a_rigid_segment_at_every_stiffness(hub, k):
 @pytest.mark.parametrize("hub", [16.0, 30.0])
 @pytest.mark.parametrize("k", [1e4, 1e5, 1e6, math.inf])
 def test_a_distributing_joint_against_the_beam_at_every_stiffness(hub, k):
-    """f1-f3 within 0.5 %; f4, where the gear's tilting inertia acts on a 16 mm band,
-    within 1.2 % (the band's local compliance, which the beam has not)."""
+    """f1-f3 within 0.5 %; f4, where the gear's tilting inertia dominates, within 0.7 %
+    at the default mesh, above the beam and falling towards it as the mesh is refined."""
     f, beam = _compare(k, hub, "distributing")
     err = np.abs(f / beam - 1)
-    assert err[:3].max() < 5e-3 and err[3] < 1.2e-2, (f, beam)
+    assert err[:3].max() < 5e-3 and err[3] < 7e-3, (f, beam)
 
 
 def test_a_distributing_part_carries_its_mass_into_the_effective_masses():

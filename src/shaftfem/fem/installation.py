@@ -33,6 +33,7 @@ from shaftfem.fem.supports import (
     ring_stiffness,
     seat_restraints,
     slice_nodes,
+    slice_weights,
     surface_weights,
     tie_rows,
 )
@@ -88,7 +89,7 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     mesh, for the bands' surface."""
     if n_bodies(K) != 1:
         raise SolverError("the mesh has disconnected parts; a shaft must be one piece")
-    seats = _seats(scene, nodes, skmesh, order)
+    seats = _seats(scene, nodes, skmesh, order, M.diagonal()[::3])
     K_s = restraint_stiffness(seats.restraints, K.shape[0])
     M_c = carried_mass(seats.carried, M.shape[0]) if seats.carried else None
     M_full = M if M_c is None else M + M_c
@@ -111,8 +112,10 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                      carried=tuple(seats.carried), M_carried=M_c)
 
 
-def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int) -> _Seats:
-    """Each seat's band and what holds it; each part's band and centre."""
+def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int,
+           mass_diagonal: np.ndarray) -> _Seats:
+    """Each seat's band and what holds it; each part's slice or band and centre
+    (`mass_diagonal`: the scalar mass matrix's diagonal, the slices' weights)."""
     radius = scene.shaft.radius
     out = _Seats([], [], [], np.zeros(0, np.int64), [], [], [])
     held_bands: list[np.ndarray] = []
@@ -135,7 +138,7 @@ def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int) -> _Seats:
         if idx.size == 0:
             raise SolverError(f"{a.name}: no mesh node on its seat band")
         if a.joint == "distributing":
-            out.carried.append(carried(a, nodes, surface_weights(skmesh, order, radius, a.seat)))
+            out.carried.append(carried(a, nodes, slice_weights(nodes, a.seat, mass_diagonal)))
             continue
         out.parts.append(a)
         out.tied.append((slice_nodes(nodes, a.seat), np.array([0.0, 0.0, a.position])))

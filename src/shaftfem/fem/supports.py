@@ -26,10 +26,11 @@ tilting stiffness is given.
   ties the shaft's slice under its hub, inside and on the surface, to its centre c
   on the axis, u_i = U + Theta x (x_i - c), and adds its mass and inertias there:
   the rigid segment of a beam model.
-* A part on a "distributing" joint (a slip or keyed fit) moves as its band's means,
-  (U, Theta) = C u: the translations and the turn as a bearing's, the tilts from the
-  band's axial displacements (the sections' rotation). It adds C^T M_part C to the
-  mass and no stiffness.
+* A part on a "distributing" joint (a slip or keyed fit) moves as the mass-weighted
+  means of the shaft's slice under its hub, (U, Theta) = C u (a beam's w and psi):
+  the translations and the turn as a bearing's, the tilts from the axial
+  displacements (the sections' rotation). It adds C^T M_part C to the mass and no
+  stiffness.
 """
 
 from __future__ import annotations
@@ -86,6 +87,16 @@ def slice_nodes(nodes: np.ndarray, seat: tuple[float, float]) -> np.ndarray:
     on the surface: what a rigid hub holds rigid."""
     z = nodes[:, 2]
     return np.flatnonzero((z > seat[0] - ON_SURFACE) & (z < seat[1] + ON_SURFACE))
+
+
+def slice_weights(nodes: np.ndarray, seat: tuple[float, float], mass_diagonal: np.ndarray
+                  ) -> np.ndarray:
+    """The slice's mass lumped to its nodes (the mass matrix's diagonal), as fractions
+    summing to 1 (zero off the slice)."""
+    idx = slice_nodes(nodes, seat)
+    w = np.zeros(nodes.shape[0])
+    w[idx] = mass_diagonal[idx]
+    return w / w.sum()
 
 
 def surface_weights(skmesh, order: int, radius: float, seat: tuple[float, float]
@@ -177,11 +188,11 @@ class Carried:
 
 
 def carried(part: Attachment, nodes: np.ndarray, weights: np.ndarray) -> Carried:
-    """The part's joint to its band: its (U, Theta) are the band's means, as a bearing's
-    (seat_restraints): the translations, the tilts from the lateral displacements'
-    slope along the band (where a hub bore bears), the turn from the tangential ones;
-    each reads exactly its own rigid motion of the band. `weights` from
-    `surface_weights`."""
+    """The part's joint to the shaft's slice under its hub: its (U, Theta) are the
+    slice's mass-weighted means, the beam's w and psi: the translations and the turn as
+    a bearing's means (seat_restraints), the tilts from the axial displacements (the
+    sections' rotation); each reads exactly its own rigid motion. `weights` from
+    `slice_weights`."""
     on = np.flatnonzero(weights > 1e-12 * weights.max())  # nodes off the band get ~1e-33
     x, y, z = nodes[on].T
     w = weights[on]
