@@ -49,10 +49,10 @@ def _compare(k, hub, joint, mesh_mm=None):
     return _bending_pairs(r), _beam(scene, k, hub, joint)
 
 
-@pytest.mark.parametrize("joint", ["rigid", "distributing"])
-def test_a_gear_on_its_hub_matches_the_beam(joint):
-    """Bearings of 1e5 N/mm, 30 mm hub: f1-f4 within 0.5 % of the beam."""
-    f, beam = _compare(1e5, 30.0, joint)
+def test_a_gear_on_its_hub_matches_the_beam():
+    """Bearings of 1e5 N/mm, a distributing joint on a 30 mm hub: f1-f4 within 0.5 % of
+    the beam (every stiffness, both joints and both hubs: the slow cases below)."""
+    f, beam = _compare(1e5, 30.0, "distributing")
     assert np.max(np.abs(f / beam - 1)) < 5e-3, (f, beam)
 
 
@@ -80,7 +80,7 @@ def test_a_distributing_part_carries_its_mass_into_the_effective_masses():
     is the shaft's mass plus the gear's, and the modes with the rigid share add up to it."""
     from shaftfem.fem.response import influence, modal_basis, participation
 
-    r = run_modes(with_modes(_scene(1e5, 30.0, "distributing"), count=30))
+    r = run_modes(with_modes(with_mesh(_scene(1e5, 30.0, "distributing"), 16.0), count=20))
     shaft_x = influence(r.system.nodes, 0, "x")[0]
     shaft = float(shaft_x @ (r.system.M @ shaft_x))
     p = participation(modal_basis(r))
