@@ -49,6 +49,7 @@ def _compare(k, hub, joint, mesh_mm=None):
     return _bending_pairs(r), _beam(scene, k, hub, joint)
 
 
+@pytest.mark.slow
 def test_a_gear_on_its_hub_matches_the_beam():
     """Bearings of 1e5 N/mm, a distributing joint on a 30 mm hub: f1-f4 within 0.5 % of
     the beam (every stiffness, both joints and both hubs: the slow cases below)."""
