@@ -262,9 +262,9 @@ def point_values(cells: np.ndarray, basis, n_points: int) -> sp.csr_matrix:
     """(n_points, n_nodes): the scalar field at every point of the mesh (the vertices and
     edge nodes of its 10-node cells, in `cells`' local order) from the basis' DOFs."""
     from shaftfem.cad.mesh import EDGES
+    from shaftfem.fem.elements import VERTICES
 
-    corners = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
-    ref = np.vstack([corners] + [(corners[a] + corners[b]) / 2 for a, b in EDGES])
+    ref = np.vstack([VERTICES] + [(VERTICES[a] + VERTICES[b]) / 2 for a, b in EDGES])
     E = np.stack([basis.elem.lbasis(ref.T, i)[0] for i in range(basis.Nbfun)], axis=-1)
     # each point from the first element that has it
     points, first = np.unique(cells.ravel(), return_index=True)

@@ -103,10 +103,6 @@ class EigenSolution:
     def eigenvalues(self) -> np.ndarray:
         return self.pairs.lam
 
-    @property
-    def vectors(self) -> np.ndarray:
-        return self.pairs.X
-
 
 @dataclass(frozen=True)
 class Problem:

@@ -139,17 +139,22 @@ def seat_restraints(support: Support, nodes: np.ndarray, weights: np.ndarray
     """The band's mean translations and tilts with the bearing's stiffness on each
     (zero-stiffness ones left out); `weights` from `surface_weights`."""
     on = np.flatnonzero(weights > 1e-12 * weights.max())  # nodes off the band get ~1e-33
-    x, y, z = nodes[on].T
     w = weights[on]
-    d = z - w @ z                          # from the band's centre
+    seen = _seen(nodes[on], w @ nodes[on, 2])   # about the band's centre
     radial, _, axial, tilting, _, _ = ring_stiffness(support)
-    # What each rigid motion moves along x, y, z at the band's nodes: (translation,
-    # tilt, turn about the axis). A mean reads its own motion and none of the other two.
-    seen = {0: (np.ones_like(d), d, -y), 1: (np.ones_like(d), -d, x), 2: (np.ones_like(d), y, -x)}
     means = [("x", 0, 0, radial), ("y", 1, 0, radial), ("z", 2, 0, axial),
              ("tilt about x", 1, 1, tilting), ("tilt about y", 0, 1, tilting)]
     return [Restraint(f"{support.name}: {what}", 3 * on + c, weighted_mean(w, seen[c], own), k)
             for what, c, own, k in means if k > 0]
+
+
+def _seen(nodes: np.ndarray, z0: float) -> dict[int, tuple[np.ndarray, ...]]:
+    """What each rigid motion about (0, 0, z0) moves along x, y, z (component 0, 1, 2) at
+    `nodes`: (translation, tilt, turn about the axis). A mean fitted to these reads its
+    own motion and none of the other two."""
+    x, y, z = nodes.T
+    d = z - z0
+    return {0: (np.ones_like(d), d, -y), 1: (np.ones_like(d), -d, x), 2: (np.ones_like(d), y, -x)}
 
 
 def weighted_mean(w: np.ndarray, motions: tuple[np.ndarray, ...], own: int) -> np.ndarray:
@@ -166,13 +171,17 @@ def weighted_mean(w: np.ndarray, motions: tuple[np.ndarray, ...], own: int) -> n
 
 def restraint_stiffness(restraints: list[Restraint], n_dofs: int) -> sp.csr_matrix:
     """K_s = sum k c c^T over the restraints with a finite stiffness (N/m)."""
+    return dense_blocks([(r.dofs, r.stiffness * np.outer(r.coeffs, r.coeffs))
+                         for r in restraints if not r.held], n_dofs)
+
+
+def dense_blocks(blocks: list[tuple[np.ndarray, np.ndarray]], n_dofs: int) -> sp.csr_matrix:
+    """The (n_dofs, n_dofs) sum of dense blocks B over their DOFs: [(dofs, B), ...]."""
     rows, cols, vals = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)], [np.zeros(0)]
-    for r in restraints:
-        if r.held:
-            continue
-        rows.append(np.repeat(r.dofs, r.dofs.size))
-        cols.append(np.tile(r.dofs, r.dofs.size))
-        vals.append(r.stiffness * np.outer(r.coeffs, r.coeffs).ravel())
+    for dofs, B in blocks:
+        rows.append(np.repeat(dofs, dofs.size))
+        cols.append(np.tile(dofs, dofs.size))
+        vals.append(B.ravel())
     return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                          shape=(n_dofs, n_dofs))
 
@@ -193,11 +202,9 @@ def carried(part: Attachment, nodes: np.ndarray, weights: np.ndarray) -> Carried
     a bearing's means (seat_restraints), the tilts from the axial displacements (the
     sections' rotation); each reads exactly its own rigid motion. `weights` from
     `slice_weights`."""
-    on = np.flatnonzero(weights > 1e-12 * weights.max())  # nodes off the band get ~1e-33
-    x, y, z = nodes[on].T
+    on = np.flatnonzero(weights)            # the slice's nodes
     w = weights[on]
-    d = z - part.position                  # (U, Theta) at the part's centre
-    seen = {0: (np.ones_like(d), d, -y), 1: (np.ones_like(d), -d, x), 2: (np.ones_like(d), y, -x)}
+    seen = _seen(nodes[on], part.position)   # (U, Theta) at the part's centre
     C = np.zeros((6, 3 * on.size))
     for row, c, own, share in ((0, 0, 0, 1.0), (1, 1, 0, 1.0), (2, 2, 0, 1.0), (3, 2, 1, 1.0),
                                (4, 2, 2, 1.0), (5, 0, 2, 0.5), (5, 1, 2, 0.5)):
@@ -208,13 +215,7 @@ def carried(part: Attachment, nodes: np.ndarray, weights: np.ndarray) -> Carried
 def carried_mass(parts: list[Carried], n_dofs: int) -> sp.csr_matrix:
     """sum C^T M_p C over the parts on distributing joints: their kinetic energy in the
     shaft's DOFs (kg)."""
-    rows, cols, vals = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)], [np.zeros(0)]
-    for c in parts:
-        rows.append(np.repeat(c.dofs, c.dofs.size))
-        cols.append(np.tile(c.dofs, c.dofs.size))
-        vals.append((c.C.T @ part_mass(c.part) @ c.C).ravel())
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(n_dofs, n_dofs))
+    return dense_blocks([(c.dofs, c.C.T @ part_mass(c.part) @ c.C) for c in parts], n_dofs)
 
 
 def part_mass(part: Attachment) -> np.ndarray:
