@@ -104,12 +104,19 @@ def _size_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> None:
 
 def _cut_at(gmsh, cuts: tuple[float, ...], radius: float) -> None:
     """Split the solid by the planes z = cuts, so that the mesh has faces there and a
-    seat band (shaftfem.fem.supports) is exactly a set of boundary faces."""
+    seat band (shaftfem.fem.supports) is exactly a set of boundary faces.
+
+    Each volume is cut by its own planes alone: seats sit on the plain stretches, and
+    a fragment of the whole grooved solid would intersect every helical face anew."""
     if not cuts:
         return
     occ = gmsh.model.occ
-    disks = [(2, occ.addDisk(0, 0, z, 2 * radius, 2 * radius)) for z in cuts]
-    occ.fragment(occ.getEntities(3), disks)
+    for _, v in gmsh.model.getEntities(3):
+        z0, z1 = occ.getBoundingBox(3, v)[2::3]
+        inside = [z for z in cuts if z0 + 1e-9 < z < z1 - 1e-9]
+        if inside:
+            disks = [(2, occ.addDisk(0, 0, z, 2 * radius, 2 * radius)) for z in inside]
+            occ.fragment([(3, v)], disks)
     occ.synchronize()
     # the disks' parts outside the shaft bound no volume
     stray = [(2, t) for _, t in gmsh.model.getEntities(2)

@@ -23,13 +23,12 @@ import scipy.sparse as sp
 from shaftfem.errors import SolverError
 
 FACTORISERS = ("pardiso", "cholmod", "superlu")
-# 'auto' takes SuperLU below this many DOFs: there its solves give residuals of
-# 1e-10..1e-12 and the factorisation is a small part of the time. Above it
-# factorisation dominates and PARDISO is 7x faster (benchmarks/). A denser matrix
-# (P3: 132 nonzeros a row against P2's 75) makes SuperLU slow sooner: above
-# DENSE_ROW nonzeros a row, 'auto' is always the fastest installed (PARDISO solved
-# the cylinder's 29k P3 DOFs in 0.8 s, SuperLU in 3.9 s).
-AUTO_SUPERLU_BELOW = 60_000
+# 'auto' takes SuperLU below this many DOFs, where it is as fast as PARDISO (3k DOFs:
+# 0.15-0.19 s against 0.11-0.21 s); from 6.7k DOFs on PARDISO is faster, and 3.6x
+# at 49k (the bound's coarser mesh of the paper's shaft: 2.3-3.1 s against 10 s).
+# A denser matrix (P3: 132 nonzeros a row against P2's 75) makes SuperLU slow
+# sooner: above DENSE_ROW nonzeros a row, 'auto' is always the fastest installed.
+AUTO_SUPERLU_BELOW = 5_000
 DENSE_ROW = 100
 
 # PARDISO's settings (iparm, 1-based as in MKL's manual): our own values, parallel METIS
