@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from shaftfem.errors import SceneError
-from shaftfem.fem.supports import Carried, Restraint, ring_stiffness
+from shaftfem.fem.supports import Restraint, ring_stiffness
 from shaftfem.scene.model import Attachment, Support
 from shaftfem.store import write_text
 
@@ -33,6 +33,9 @@ def calculix_deck(result: ModalResult, n_eigen: int = 16) -> str:
     import meshio
 
     mesh, mat = result.mesh, result.scene.material
+    if result.installed is not None and result.installed.carried:
+        raise SceneError("the CalculiX deck has no distributing joint for a part yet: give "
+                         "the parts joint = \"rigid\" to export the deck")
     if mesh.order != 2:
         raise SceneError(f"the CalculiX deck is of C3D10 (order 2) elements; this run is of "
                          f"order {mesh.order}: export it with --order 2")
@@ -102,8 +105,6 @@ def _installation_cards(result: ModalResult) -> str:
         out += _restraint_cards(r, node_of, system.nodes, ids)
     for k, (idx, part) in enumerate(zip(inst.tied, inst.parts)):
         out += _part_cards(k, part, node_of[idx], ids)
-    for c in inst.carried:
-        out += _carried_cards(c, node_of, ids)
     rings = [s for s in result.scene.held if s.coupling == "rigid"]  # as install() took them
     for j, (idx, s) in enumerate(zip(inst.rings, rings)):
         out += _ring_cards(j, s, node_of[idx], ids)
@@ -160,32 +161,6 @@ def _part_cards(k: int, part: Attachment, band: np.ndarray, ids: _Ids) -> list[s
                 f"*MASS, ELSET=EM{ids.element}", f"{m:.12e}"]
         ids.element += 1
     ids.node += 2 + len(masses)
-    return out
-
-
-def _carried_cards(c: Carried, node_of: np.ndarray, ids: _Ids) -> list[str]:
-    """A part on a distributing joint: six point masses with its inertias, each moved by
-    *EQUATIONs as the part's rigid motion from the slice's means, u_i = U + Theta x p_i
-    with (U, Theta) = C u (fem.supports.carried): the same kinetic energy C^T M_p C."""
-    part = c.part
-    masses = part_point_masses(part.mass, part.polar_inertia, part.diametral_inertia)
-    nodes, dofs = node_of[c.dofs // 3], c.dofs % 3 + 1
-    out = [f"** {part.name}: a distributing joint", "*NODE"]
-    first = ids.node
-    out += [f"{first + i}, {p[0]:.12e}, {p[1]:.12e}, {part.position + p[2]:.12e}"
-            for i, (_, p) in enumerate(masses)]
-    for i, (m, p) in enumerate(masses):
-        n = first + i
-        cross = np.array([[0.0, -p[2], p[1]], [p[2], 0.0, -p[0]], [-p[1], p[0], 0.0]])
-        rows = np.hstack([np.eye(3), -cross]) @ c.C       # u_i = U - [p]x Theta
-        for j in range(3):
-            on = np.flatnonzero(rows[j])
-            out += ["*EQUATION", str(on.size + 1)]
-            out += _terms(np.r_[n, nodes[on]], np.r_[j + 1, dofs[on]], np.r_[-1.0, rows[j, on]])
-        out += [f"*ELEMENT, TYPE=MASS, ELSET=EM{ids.element}", f"{ids.element}, {n}",
-                f"*MASS, ELSET=EM{ids.element}", f"{m:.12e}"]
-        ids.element += 1
-    ids.node += len(masses)
     return out
 
 
