@@ -67,13 +67,17 @@ def test_exact_mass_difference_shrinks_with_the_mesh(tmp_path):
     assert diffs[1] < diffs[0]
 
 
-@pytest.mark.parametrize("coupling", ["distributing", "rigid"])
-def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling):
-    """A rigid locating bearing, a spring bearing (radial, axial and tilting) and a gear
-    on a rigid joint (the shaft's slice under its hub held rigid): CalculiX's *EQUATION,
-    SPRING1 and *RIGID BODY cards against our elimination, with the same 4-point mass;
-    the bearings distributing (mean motion) or rigid rings (*RIGID BODY with springs and
-    holds on its nodes)."""
+@pytest.mark.parametrize("coupling,joint", [("distributing", "rigid"), ("rigid", "rigid"),
+                                           ("distributing", "distributing")])
+def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling, joint):
+    """A rigid locating bearing, a spring bearing (radial, axial and tilting) and a gear:
+    CalculiX's *EQUATION, SPRING1 and *RIGID BODY cards against our elimination, with the
+    same 4-point mass; the bearings distributing (mean motion) or rigid rings (*RIGID
+    BODY with springs and holds on its nodes); the gear on a rigid joint (the shaft's
+    slice under its hub held rigid) or a distributing one (six point masses that
+    *EQUATIONs move with the slice's mean motion)."""
+    from dataclasses import replace
+
     from shaftfem.fem.installation import install
     from shaftfem.scene.load import scene_from_dict
 
@@ -85,20 +89,21 @@ def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling):
                         dict(position_mm=310, width_mm=10, kind="springs",
                              radial_stiffness_n_per_mm=1e4, axial_stiffness_n_per_mm=1e3,
                              tilting_stiffness_nmm_per_rad=1e5, coupling=coupling)],
-            "attachment": [dict(position_mm=160, width_mm=6, mass_kg=2.0,
+            "attachment": [dict(position_mm=160, width_mm=6, mass_kg=2.0, joint=joint,
                                 polar_inertia_kg_m2=6e-4, diametral_inertia_kg_m2=4e-4)]}
     exact = run_modes(scene_from_dict(data, "installed.toml"))
     assert exact.modes.n_rigid == 1
     s = assemble(exact.mesh, exact.scene.material, mass_intorder=2)
     inst = install(exact.scene, s.K, s.M, s.nodes, exact.mesh.to_skfem(), 2)
     four = modal_analysis(s, installed=inst)
-    write_calculix(exact, tmp_path / "shaft.inp")
+    # a distributing joint's means are weighted by the mass: the 4-point mass's here
+    write_calculix(replace(exact, installed=inst), tmp_path / "shaft.inp")
     p = subprocess.run(["ccx", "-i", "shaft"], cwd=tmp_path, capture_output=True, text=True,
                        timeout=600)
     assert p.returncode == 0, p.stdout[-2000:]
     ccx = read_calculix_eig(tmp_path / "shaft.eig")[1:11]
     d = np.max(np.abs(four.frequencies / ccx - 1))
     with capsys.disabled():
-        print(f"\n  CalculiX vs shaftfem, installed cylinder, {coupling} bearings "
+        print(f"\n  CalculiX vs shaftfem, installed cylinder, {coupling} bearings, {joint} gear "
               f"({four.n_dofs} DOFs): {d:.1e}")
     assert d < 1e-6

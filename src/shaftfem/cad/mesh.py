@@ -128,9 +128,10 @@ def check_budget(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
 
 
 def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-             settings: MeshSettings, cuts: tuple[float, ...] = ()) -> str:
+             settings: MeshSettings, cuts: tuple[float, ...] = (),
+             hubs: tuple[tuple[float, float], ...] = ()) -> str:
     """A hash of everything the mesh depends on."""
-    from shaftfem.cad.mesher import EDGE_GRADING
+    from shaftfem.cad.mesher import EDGE_GRADING, HUB_SIZE
     from shaftfem.cad.session import gmsh_version
 
     payload = {
@@ -138,24 +139,26 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
         "settings": asdict(settings), **({"cuts": list(cuts)} if cuts else {}),
+        **({"hubs": [list(h) for h in hubs], "hub_size": HUB_SIZE} if hubs else {}),
     }
     return content_key(payload, files=() if shape.brep is None else (shape.brep,))
 
 
 def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
                settings: MeshSettings, use_cache: bool = True,
-               cuts: tuple[float, ...] = ()) -> ShaftMesh:
+               cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = ()
+               ) -> ShaftMesh:
     """Mesh the solid (or fetch the same mesh from the cache; without `use_cache` the
     cache is neither read nor written); `cuts`: z (m) where the mesh must have faces
-    (the edges of seat bands)."""
-    key = mesh_key(shape, shaft, grooves, settings, cuts)
+    (the edges of seat bands); `hubs`: the parts' seats (z0, z1), meshed finer."""
+    key = mesh_key(shape, shaft, grooves, settings, cuts, hubs)
     path = cache_dir() / "meshes" / f"{key}.npz"
     if use_cache and path.exists():
         fields, why = load_arrays(path, MESH_ARRAYS)
         if fields is not None:
             return mesh_from_arrays(fields)
         discard(f"mesh {key}", why, path)
-    mesh = _generate(shape, shaft, grooves, settings, cuts=cuts)
+    mesh = _generate(shape, shaft, grooves, settings, cuts=cuts, hubs=hubs)
     if use_cache:
         save_arrays(path, mesh_arrays(mesh))
     return mesh
@@ -188,10 +191,11 @@ def remesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None, settings: M
 
 
 def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-              settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = ()) -> ShaftMesh:
+              settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = (),
+              hubs: tuple[tuple[float, float], ...] = ()) -> ShaftMesh:
     from shaftfem.cad.mesher import mesh_solid
 
-    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts)
+    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts, hubs)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)

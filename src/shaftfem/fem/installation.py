@@ -32,8 +32,8 @@ from shaftfem.fem.supports import (
     rigid_body_modes,
     ring_stiffness,
     seat_restraints,
+    section_weights,
     slice_nodes,
-    slice_weights,
     surface_weights,
     tie_rows,
 )
@@ -138,7 +138,7 @@ def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int,
         if idx.size == 0:
             raise SolverError(f"{a.name}: no mesh node on its seat band")
         if a.joint == "distributing":
-            out.carried.append(carried(a, nodes, slice_weights(nodes, a.seat, mass_diagonal)))
+            out.carried.append(carried(a, nodes, section_weights(nodes, a.position, mass_diagonal)))
             continue
         out.parts.append(a)
         out.tied.append((slice_nodes(nodes, a.seat), np.array([0.0, 0.0, a.position])))

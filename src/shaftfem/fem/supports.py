@@ -89,11 +89,13 @@ def slice_nodes(nodes: np.ndarray, seat: tuple[float, float]) -> np.ndarray:
     return np.flatnonzero((z > seat[0] - ON_SURFACE) & (z < seat[1] + ON_SURFACE))
 
 
-def slice_weights(nodes: np.ndarray, seat: tuple[float, float], mass_diagonal: np.ndarray
-                  ) -> np.ndarray:
-    """The slice's mass lumped to its nodes (the mass matrix's diagonal), as fractions
-    summing to 1 (zero off the slice)."""
-    idx = slice_nodes(nodes, seat)
+def section_weights(nodes: np.ndarray, z0: float, mass_diagonal: np.ndarray) -> np.ndarray:
+    """The shaft's cross-section at z0 (its nodes on the plane, which the mesh follows),
+    weighted by the mass lumped to them (the mass matrix's diagonal), as fractions
+    summing to 1 (zero off the section)."""
+    idx = np.flatnonzero(np.abs(nodes[:, 2] - z0) < ON_SURFACE)
+    if idx.size == 0:
+        raise SolverError(f"no mesh node on the cross-section at {z0 * 1e3:g} mm")
     w = np.zeros(nodes.shape[0])
     w[idx] = mass_diagonal[idx]
     return w / w.sum()
@@ -197,17 +199,22 @@ class Carried:
 
 
 def carried(part: Attachment, nodes: np.ndarray, weights: np.ndarray) -> Carried:
-    """The part's joint to the shaft's slice under its hub: its (U, Theta) are the
-    slice's mass-weighted means, the beam's w and psi: the translations and the turn as
-    a bearing's means (seat_restraints), the tilts from the axial displacements (the
-    sections' rotation); each reads exactly its own rigid motion. `weights` from
-    `slice_weights`."""
-    on = np.flatnonzero(weights)            # the slice's nodes
+    """The part's joint to the shaft's cross-section at its centre: its (U, Theta) are
+    the section's mass-weighted means, the beam's w and psi there: the translations and
+    the turn as a bearing's means (seat_restraints), the tilts from the axial
+    displacements (the section's rotation); each reads exactly its own rigid motion.
+    `weights` from `section_weights`. A section, not the slice under the hub: the
+    means couple every node they read with every other (C^T M_p C is dense), and a
+    slice holds 10-20 times as many nodes."""
+    on = np.flatnonzero(weights)            # the section's nodes
     w = weights[on]
     seen = _seen(nodes[on], part.position)   # (U, Theta) at the part's centre
+    # in its own plane a section does not see the tilts: x and y read the translation
+    # and the turn only
+    seen = {0: seen[0][::2], 1: seen[1][::2], 2: seen[2]}
     C = np.zeros((6, 3 * on.size))
     for row, c, own, share in ((0, 0, 0, 1.0), (1, 1, 0, 1.0), (2, 2, 0, 1.0), (3, 2, 1, 1.0),
-                               (4, 2, 2, 1.0), (5, 0, 2, 0.5), (5, 1, 2, 0.5)):
+                               (4, 2, 2, 1.0), (5, 0, 1, 0.5), (5, 1, 1, 0.5)):
         C[row, c::3] += share * weighted_mean(w, seen[c], own)
     return Carried(part, (3 * on[:, None] + np.arange(3)).ravel(), C)
 

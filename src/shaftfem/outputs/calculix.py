@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from shaftfem.errors import SceneError
-from shaftfem.fem.supports import Restraint, ring_stiffness
+from shaftfem.fem.supports import Carried, Restraint, ring_stiffness
 from shaftfem.scene.model import Attachment, Support
 from shaftfem.store import write_text
 
@@ -33,9 +33,6 @@ def calculix_deck(result: ModalResult, n_eigen: int = 16) -> str:
     import meshio
 
     mesh, mat = result.mesh, result.scene.material
-    if result.installed is not None and result.installed.carried:
-        raise SceneError("the CalculiX deck has no distributing joint for a part yet: give "
-                         "the parts joint = \"rigid\" to export the deck")
     if mesh.order != 2:
         raise SceneError(f"the CalculiX deck is of C3D10 (order 2) elements; this run is of "
                          f"order {mesh.order}: export it with --order 2")
@@ -105,6 +102,8 @@ def _installation_cards(result: ModalResult) -> str:
         out += _restraint_cards(r, node_of, system.nodes, ids)
     for k, (idx, part) in enumerate(zip(inst.tied, inst.parts)):
         out += _part_cards(k, part, node_of[idx], ids)
+    for c in inst.carried:
+        out += _carried_cards(c, node_of, ids)
     rings = [s for s in result.scene.held if s.coupling == "rigid"]  # as install() took them
     for j, (idx, s) in enumerate(zip(inst.rings, rings)):
         out += _ring_cards(j, s, node_of[idx], ids)
@@ -161,6 +160,41 @@ def _part_cards(k: int, part: Attachment, band: np.ndarray, ids: _Ids) -> list[s
                 f"*MASS, ELSET=EM{ids.element}", f"{m:.12e}"]
         ids.element += 1
     ids.node += 2 + len(masses)
+    return out
+
+
+def _carried_cards(c: Carried, node_of: np.ndarray, ids: _Ids) -> list[str]:
+    """A part on a distributing joint: its (U, Theta) = C u as the DOFs of two nodes of
+    its own, tied to the slice by six *EQUATIONs; each is solved for one slice DOF
+    (pivots by QR with column pivoting), so that the part's mass and inertia sit on
+    independent DOFs (CalculiX holds no DOF of a mass node): the same kinetic energy
+    C^T M_p C. Node 1 carries U and the mass m; node 2 carries (Theta_x, Theta_y,
+    a Theta_z) and the diametral inertia I_d, with a^2 I_d = I_p."""
+    from scipy.linalg import qr
+
+    part = c.part
+    _, _, piv = qr(c.C, pivoting=True, mode="economic")
+    pivots, rest = piv[:6], np.sort(piv[6:])
+    A_inv = np.linalg.inv(c.C[:, pivots])
+    coupled = A_inv @ c.C[:, rest]                 # u_P = A^-1 q - A^-1 C_R u_R
+    a = math.sqrt(part.polar_inertia / part.diametral_inertia) if part.diametral_inertia else 1.0
+    per_dof = np.array([1, 1, 1, 1, 1, 1 / a])     # q in the two nodes' DOFs
+    nodes, dofs = node_of[c.dofs // 3], c.dofs % 3 + 1
+    n = ids.node
+    out = [f"** {part.name}: a distributing joint", "*NODE",
+           f"{n}, 0.0, 0.0, {part.position:.12e}", f"{n + 1}, 0.0, 0.0, {part.position:.12e}"]
+    q_nodes, q_dofs = np.array([n, n, n, n + 1, n + 1, n + 1]), np.array([1, 2, 3, 1, 2, 3])
+    for k in range(6):
+        out += ["*EQUATION", str(7 + rest.size)] + _terms(
+            np.r_[nodes[pivots[k]], q_nodes, nodes[rest]],
+            np.r_[dofs[pivots[k]], q_dofs, dofs[rest]],
+            np.r_[1.0, -A_inv[k] * per_dof, coupled[k]])
+    for node, mass in ((n, part.mass), (n + 1, part.diametral_inertia)):
+        if mass > 0:
+            out += [f"*ELEMENT, TYPE=MASS, ELSET=EM{ids.element}", f"{ids.element}, {node}",
+                    f"*MASS, ELSET=EM{ids.element}", f"{mass:.12e}"]
+            ids.element += 1
+    ids.node += 2
     return out
 
 

@@ -182,9 +182,16 @@ class Scene:
         return bool(self.held or self.attachments)
 
     def seat_cuts(self) -> tuple[float, ...]:
-        """The axial positions (m) where a seat band begins or ends: the mesh follows them."""
+        """The axial positions (m) where a seat band begins or ends, and the centres of
+        parts on distributing joints (they act on that cross-section): the mesh follows
+        them."""
         zs = {z for part in self.supports + self.attachments for z in part.seat}
+        zs |= {a.position for a in self.attachments if a.joint == "distributing"}
         return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))
+
+    def hubs(self) -> tuple[tuple[float, float], ...]:
+        """The attached parts' seats (z0, z1 in m): the mesher refines the shaft there."""
+        return tuple(sorted(part.seat for part in self.attachments))
 
     def free(self) -> Scene:
         """The same shaft hanging free, on the same mesh: its supports left off (the

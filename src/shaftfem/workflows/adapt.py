@@ -126,7 +126,8 @@ def size_field(mesh: ShaftMesh, shares: np.ndarray, target: float, largest: floa
 def adapt_key(scene: Scene, shape: ShaftShape, target: float, max_dofs: int) -> str:
     """A hash of everything the adapted mesh depends on."""
     payload = {"version": ADAPT_VERSION, "mesh": mesh_key(shape, scene.shaft, scene.grooves,
-                                                           scene.mesh, scene.seat_cuts()),
+                                                           scene.mesh, scene.seat_cuts(),
+                                                           scene.hubs()),
                "target": target, "max_dofs": max_dofs, "modes": scene.modes.count,
                "max_frequency": scene.modes.max_frequency,
                "material": [scene.material.youngs_modulus, scene.material.poisson_ratio,
@@ -178,7 +179,8 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int,
             return cached
     with watch.lap("mesh"):
         mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
-                          use_cache=options.use_cache, cuts=scene.seat_cuts())
+                          use_cache=options.use_cache, cuts=scene.seat_cuts(),
+                          hubs=scene.hubs())
     return _adapt(scene, shape, mesh, target, max_dofs, options, watch, path)
 
 

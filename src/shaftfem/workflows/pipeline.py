@@ -92,7 +92,8 @@ def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
     options.say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
     with watch.lap("mesh"):
         mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
-                          use_cache=options.use_cache, cuts=scene.seat_cuts())
+                          use_cache=options.use_cache, cuts=scene.seat_cuts(),
+                          hubs=scene.hubs())
     options.say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
                 "assembling K and M")
     return solve_mesh(scene, shape, mesh, options, watch)
