@@ -40,28 +40,36 @@ _SYMMETRIC_INDEFINITE = -2
 
 
 def available_factorisers() -> list[str]:
-    """The factorisation back-ends importable here, fastest first (SuperLU always)."""
+    """The factorisation back-ends usable here, fastest first (SuperLU always): PARDISO
+    where MKL's library loads, CHOLMOD where cholespy imports."""
     import importlib.util
 
-    out = [name for name, mod in (("pardiso", "pypardiso"), ("cholmod", "cholespy"))
-           if importlib.util.find_spec(mod) is not None]
+    out = ["pardiso"] if _mkl_pardiso() is not None else []
+    if importlib.util.find_spec("cholespy") is not None:
+        out.append("cholmod")
     return out + ["superlu"]
 
 
 @functools.cache
 def _mkl_pardiso():
-    """MKL's `pardiso` entry point: from the environment's lib folder, where pip's
-    `mkl` puts it, else from wherever pypardiso finds it (a slower search)."""
+    """MKL's `pardiso` entry point, or None where MKL is not found: from the lib folder
+    of this environment or of one whose site-packages is on the path (where pip's
+    `mkl` puts it), else from wherever pypardiso finds it (a slower search)."""
     import sys
     from pathlib import Path
 
-    found = sorted(Path(sys.prefix, "lib").glob("libmkl_rt.so*"))
-    if found:
-        lib = ctypes.CDLL(str(found[0]))
-    else:
-        import pypardiso
+    prefixes = [Path(sys.prefix)] + [Path(p).parents[2] for p in sys.path
+                                     if p.endswith("site-packages") and len(Path(p).parts) > 3]
+    found = [lib for prefix in prefixes for lib in sorted(prefix.glob("lib/libmkl_rt.so*"))]
+    try:
+        if found:
+            lib = ctypes.CDLL(str(found[0]))
+        else:
+            import pypardiso
 
-        lib = pypardiso.PyPardisoSolver().libmkl
+            lib = pypardiso.PyPardisoSolver().libmkl
+    except (ImportError, OSError):  # pypardiso without MKL's library
+        return None
     fn = lib.pardiso
     i32 = ctypes.POINTER(ctypes.c_int32)
     fn.argtypes = [ctypes.POINTER(ctypes.c_int64), i32, i32, i32, i32, i32, ctypes.c_void_p,
@@ -134,7 +142,11 @@ class Pardiso:
         `factorise` is False, factorise it; the analysis looks at no values."""
         if np.any(np.diff(upper.indptr) == 0):
             raise SolverError("the matrix has an empty row: a DOF no element touches")
-        self._call = _mkl_pardiso()
+        call = _mkl_pardiso()
+        if call is None:
+            raise SolverError("PARDISO asked for, but MKL's library (libmkl_rt) is not found: "
+                              "install the mkl package, or choose another factoriser")
+        self._call = call
         self.n = upper.shape[0]
         self._pt = np.zeros(64, dtype=np.int64)
         self._iparm = np.zeros(64, dtype=np.int32)
