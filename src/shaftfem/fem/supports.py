@@ -27,10 +27,10 @@ tilting stiffness is given.
   on the axis, u_i = U + Theta x (x_i - c), and adds its mass and inertias there:
   the rigid segment of a beam model.
 * A part on a "distributing" joint (a slip or keyed fit) moves as the mass-weighted
-  means of the shaft's slice under its hub, (U, Theta) = C u (a beam's w and psi):
-  the translations and the turn as a bearing's, the tilts from the axial
-  displacements (the sections' rotation). It adds C^T M_part C to the mass and no
-  stiffness.
+  means of the shaft's cross-section at its hub's centre, (U, Theta) = C u (a beam's
+  w and psi there, where a beam model puts its disk): the translations and the turn
+  as a bearing's, the tilts from the axial displacements (the section's rotation).
+  It adds C^T M_part C to the mass and no stiffness.
 """
 
 from __future__ import annotations
@@ -190,11 +190,12 @@ def dense_blocks(blocks: list[tuple[np.ndarray, np.ndarray]], n_dofs: int) -> sp
 
 @dataclass(frozen=True)
 class Carried:
-    """A part on a distributing joint: its (U, Theta) at its centre is the band's mean
-    rigid motion, q = C u over the band's DOFs, and it adds no stiffness."""
+    """A part on a distributing joint: its (U, Theta) at its centre is the mean rigid
+    motion of the cross-section there, q = C u over the section's DOFs, and it adds no
+    stiffness."""
 
     part: Attachment
-    dofs: np.ndarray      # (3 m,) the band's DOFs, node by node
+    dofs: np.ndarray      # (3 m,) the section's DOFs, node by node
     C: np.ndarray         # (6, 3 m)
 
 

@@ -138,7 +138,8 @@ class Attachment:
     mass: float
     polar_inertia: float
     diametral_inertia: float
-    joint: str = "rigid"   # or "distributing": on the band's mean motion, no stiffness
+    joint: str = "rigid"   # or "distributing": on the mean motion of the section at its
+                           # centre, no stiffness
 
     @property
     def seat(self) -> tuple[float, float]:

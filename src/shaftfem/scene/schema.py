@@ -153,8 +153,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "how the part is joined to its seat: \"rigid\" (default: a shrink or press fit, "
             "the hub much stiffer than the shaft: the shaft's slice under it moves with the "
             "part as one rigid body) or \"distributing\" (a slip or keyed fit: the part's "
-            "mass and inertia act on the mean motion of the shaft's slice under the hub and add "
-            "no stiffness)", "rigid"),
+            "mass and inertia act on the mean motion of the shaft's cross-section at the hub's "
+            "centre, as a beam model's disk, and add no stiffness)", "rigid"),
     },
     "response": {  # base excitation at the supports (shaftfem.fem.response)
         "damping_ratio_percent": Key(
