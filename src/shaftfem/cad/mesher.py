@@ -23,9 +23,9 @@ from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 
 # Under an attached part's hub, and one shaft radius beyond each end, elements are
 # HUB_SIZE times the size away from the grooves, graded back over one diameter: the
-# part's inertia acts on the shaft there, and a gear's tilting mode came 0.60 % from
-# a beam's at the default 8 mm, 0.41 % with 4 mm there (tests/test_parts.py), at
-# 1.4 times the DOFs.
+# part's inertia acts on the shaft there: a gear's tilting mode (the cylinder of
+# tests/test_parts.py, the joint then on the slice under the hub) came 0.60 % from a
+# beam's at the default 8 mm, 0.41 % with 4 mm there, at 1.4 times the DOFs.
 HUB_SIZE = 0.5
 
 # Distance (in units of the size jump) over which the element size grows from the

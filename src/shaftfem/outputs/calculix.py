@@ -85,10 +85,12 @@ def part_point_masses(mass: float, polar: float, diametral: float
 def _installation_cards(result: ModalResult) -> str:
     """Seats and parts as CalculiX cards, the same constraints shaftfem eliminates: a
     held mean motion is an *EQUATION over its band; a spring acts on a node of its
-    own that the *EQUATION makes the mean, through a SPRING1; a part is a *RIGID BODY
-    of the shaft's slice under its hub with six point masses carrying its mass and inertias; a rigid-coupled
-    seat is a *RIGID BODY of its band, its springs SPRING1s on the reference and
-    rotation nodes, its holds *BOUNDARY cards there."""
+    own that the *EQUATION makes the mean, through a SPRING1; a part on a rigid joint
+    is a *RIGID BODY of the shaft's slice under its hub with six point masses carrying
+    its mass and inertias, one on a distributing joint two mass nodes that six
+    *EQUATIONs tie to the section at its centre; a rigid-coupled seat is a *RIGID
+    BODY of its band, its springs SPRING1s on the reference and rotation nodes, its
+    holds *BOUNDARY cards there."""
     inst, system, mesh = result.installed, result.system, result.mesh
     assert inst is not None  # called for installed shafts only
     node_of = np.empty(system.nodes.shape[0], dtype=np.int64)
