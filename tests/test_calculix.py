@@ -74,8 +74,8 @@ def test_installed_shaft_same_mesh_same_frequencies(tmp_path, capsys, coupling, 
     CalculiX's *EQUATION, SPRING1 and *RIGID BODY cards against our elimination, with the
     same 4-point mass; the bearings distributing (mean motion) or rigid rings (*RIGID
     BODY with springs and holds on its nodes); the gear on a rigid joint (the shaft's
-    slice under its hub held rigid) or a distributing one (six point masses that
-    *EQUATIONs move with the slice's mean motion)."""
+    slice under its hub held rigid) or a distributing one (two mass nodes that six
+    *EQUATIONs tie to the mean motion of the section at its centre)."""
     from dataclasses import replace
 
     from shaftfem.fem.installation import install

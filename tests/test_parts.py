@@ -53,14 +53,6 @@ def _compare(k, hub, joint, mesh_mm=None):
 
 
 @pytest.mark.slow
-def test_a_gear_on_its_hub_matches_the_beam():
-    """Bearings of 1e5 N/mm, a distributing joint on a 30 mm hub: f1-f4 within 0.5 % of
-    the beam (every stiffness, both joints and both hubs: the slow cases below)."""
-    f, beam = _compare(1e5, 30.0, "distributing")
-    assert np.max(np.abs(f / beam - 1)) < 5e-3, (f, beam)
-
-
-@pytest.mark.slow
 @pytest.mark.parametrize("hub", [16.0, 30.0])
 @pytest.mark.parametrize("k", [1e4, 1e5, 1e6, math.inf])
 def test_a_rigid_joint_matches_a_rigid_segment_at_every_stiffness(hub, k):

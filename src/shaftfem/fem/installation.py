@@ -114,8 +114,9 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
 
 def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int,
            mass_diagonal: np.ndarray) -> _Seats:
-    """Each seat's band and what holds it; each part's slice or band and centre
-    (`mass_diagonal`: the scalar mass matrix's diagonal, the slices' weights)."""
+    """Each seat's band and what holds it; each part's slice (rigid joint) or section
+    (distributing) and centre (`mass_diagonal`: the scalar mass matrix's diagonal, the
+    sections' weights)."""
     radius = scene.shaft.radius
     out = _Seats([], [], [], np.zeros(0, np.int64), [], [], [])
     held_bands: list[np.ndarray] = []

@@ -167,7 +167,7 @@ def _part_cards(k: int, part: Attachment, band: np.ndarray, ids: _Ids) -> list[s
 
 def _carried_cards(c: Carried, node_of: np.ndarray, ids: _Ids) -> list[str]:
     """A part on a distributing joint: its (U, Theta) = C u as the DOFs of two nodes of
-    its own, tied to the slice by six *EQUATIONs; each is solved for one slice DOF
+    its own, tied to the section by six *EQUATIONs; each is solved for one section DOF
     (pivots by QR with column pivoting), so that the part's mass and inertia sit on
     independent DOFs (CalculiX holds no DOF of a mass node): the same kinetic energy
     C^T M_p C. Node 1 carries U and the mass m; node 2 carries (Theta_x, Theta_y,
