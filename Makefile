@@ -6,7 +6,9 @@
 #   make lint         ruff and mypy, as CI runs them
 #   make lock         upgrade the lock to the newest versions the ranges admit, then test
 #   make test-latest  the tests against the newest versions, in .venv-latest, lock untouched
-.PHONY: run test lint lock test-latest
+#   make docs         regenerate the pages made from the code, then build the docs site
+#                     strictly (warnings are errors) into out/docs
+.PHONY: run test lint lock test-latest docs
 run:
 	bash scripts/setup.sh run
 	.venv/bin/shaftfem design
@@ -15,7 +17,7 @@ test:
 	.venv/bin/python -m pytest -q
 lint:
 	bash scripts/setup.sh test
-	.venv/bin/ruff check src tests benchmarks scripts
+	.venv/bin/ruff check src tests benchmarks scripts examples docs
 	.venv/bin/mypy
 lock:
 	bash scripts/setup.sh test
@@ -24,3 +26,8 @@ lock:
 test-latest:
 	bash scripts/setup.sh test
 	bash scripts/test_latest.sh
+docs:
+	bash scripts/setup.sh test
+	.venv/bin/python scripts/write_docs.py
+	.venv/bin/sphinx-build -W --keep-going -q -b html docs out/docs
+	@echo "docs: out/docs/index.html"

@@ -7,7 +7,7 @@ adaptive round); the adaptive runs are then repeated warm (adapted mesh cached).
 True errors are against an independent reference: NGSolve, H1 order 3 on netgen's
 own curved mesh of the exported STEP, 1.06M DOFs (benchmarks/ngsolve_reference.py;
 its order 2 -> 3 change was 0.08-0.16 %, so it may itself be some 0.05 % high).
-Writes docs/adaptive.png and prints a Markdown table.
+Writes docs/images/adaptive.png and prints a Markdown table.
 """
 
 import sys
@@ -100,7 +100,7 @@ def main() -> None:
         ax.legend()
     fig.suptitle("paper's shaft: error against an NGSolve order-3 reference")
     fig.tight_layout()
-    out = Path(__file__).parent.parent / "docs" / "adaptive.png"
+    out = Path(__file__).parent.parent / "docs" / "images" / "adaptive.png"
     fig.savefig(out, dpi=100)
     print(f"\nwrote {out}")
 

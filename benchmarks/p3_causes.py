@@ -5,7 +5,7 @@ NGSolve's order 3 at the same DOFs: one candidate cause at a time.
 
 Each row changes one thing against the shipped P3 run (8 / 4 / 4 mm, quadrature
 of order 4 for K and 6 for M) and prints the largest error over the ten modes
-against the README's NGSolve order-3 reference (itself perhaps 0.05 % high).
+against the NGSolve order-3 reference of docs/verification.md (itself perhaps 0.05 % high).
 Rows run in fresh processes (about 4-5 GB each).
 """
 

@@ -1,5 +1,6 @@
-"""The README's module map is the package: every module it lists exists where it says,
-every module of src/shaftfem is listed, and each imports only modules listed above it."""
+"""The module map in the docs (docs/contributing.md, Layout) is the package: every module
+it lists exists where it says, every module of src/shaftfem is listed, and each imports
+only modules listed above it."""
 
 import ast
 import re
@@ -10,8 +11,8 @@ SRC = ROOT / "src" / "shaftfem"
 
 
 def _readme_modules() -> list[str]:
-    """The modules of the README's Layout, in its order, as paths below src/shaftfem."""
-    text = (ROOT / "README.md").read_text()
+    """The modules of the docs' Layout, in its order, as paths below src/shaftfem."""
+    text = (ROOT / "docs" / "contributing.md").read_text()
     block = text[text.index("## Layout"):]
     block = block[block.index("```") + 3:]
     block = block[:block.index("```")]
@@ -42,15 +43,15 @@ def _module(path: str) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def test_the_readme_layout_lists_every_module_where_it_is():
+def test_the_docs_layout_lists_every_module_where_it_is():
     actual = {str(p.relative_to(SRC)) for p in SRC.rglob("*.py")
               if p.name != "__init__.py" or p.parent.name == "cli" or p.parent == SRC}
     actual.discard("__main__.py")
     listed = _readme_modules()
     assert len(listed) == len(set(listed))
-    assert set(listed) == actual, (f"in the README, not in the tree: "
+    assert set(listed) == actual, (f"in the docs' layout, not in the tree: "
                                    f"{sorted(set(listed) - actual)}; in the tree, not in the "
-                                   f"README: {sorted(actual - set(listed))}")
+                                   f"layout: {sorted(actual - set(listed))}")
 
 
 def test_every_module_imports_only_what_the_layout_lists_above_it():

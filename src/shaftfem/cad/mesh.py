@@ -79,7 +79,7 @@ class ShaftMesh:
 # (within 40 %, enough to refuse a size that is off by orders of magnitude).
 ELEMENTS_PER_H3 = 6.0
 DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0}
-BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (README, "Speed and memory")
+BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (docs/performance.md)
 
 
 def _graded(h0: float, h1: float, d0: float, d1: float, measure) -> float:

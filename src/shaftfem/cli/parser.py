@@ -157,7 +157,7 @@ def _dask_command(sub, name: str, help: str, file_help: str, func) -> argparse.A
     c.add_argument("--scheduler", metavar="ADDRESS",
                    help="an existing Dask scheduler, e.g. tcp://host:8786, instead of local "
                    "workers")
-    c.add_argument("-q", "--quiet", action="store_true")
+    c.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
     c.set_defaults(func=func)
     return c
 
@@ -169,6 +169,7 @@ def _study_command(sub) -> None:
                     help="P2 element sizes, mm (geometric; the three finest make the reference)")
     st.add_argument("--p1", type=_sizes, default=[8.0, 6.0, 4.5], help="P1 element sizes, mm")
     st.add_argument("--out", default="out/study", help="output folder (default: out/study)")
-    st.add_argument("--solver", choices=SOLVERS, default="auto")
-    st.add_argument("-q", "--quiet", action="store_true")
+    st.add_argument("--solver", choices=SOLVERS, default="auto",
+                    help="sparse factorisation behind shift-invert (default: auto)")
+    st.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
     st.set_defaults(func=cmd.cmd_study)

@@ -27,12 +27,24 @@ DEFAULT_DAMPING_PERCENT = 2.0
 
 @dataclass(frozen=True)
 class Key:
+    """One scene key: its type, what it means (with its unit), and what it must satisfy."""
+
     kind: type | tuple  # float, int, str, or ("list", str)
     doc: str
     check: Callable[[Any], bool] | None = None
     allowed: str = ""
     default: Any = None
     required: bool = True
+
+
+@dataclass(frozen=True)
+class Table:
+    """One table of the scene file: what it describes, and whether a scene needs it
+    (`required`) or may repeat it as an array of tables, [[name]] (`repeated`)."""
+
+    doc: str
+    required: bool = False
+    repeated: bool = False
 
 
 def coupling(why: str, default: str) -> Key:
@@ -240,4 +252,38 @@ SCHEMA: dict[str, dict[str, Key]] = {
                         lambda v: 1000 <= v <= MAX_DOFS_LIMIT,
                         f"1000 to {MAX_DOFS_LIMIT}", default=DEFAULT_MAX_DOFS, required=False),
     },
+}
+
+
+# What each table is for; the scene file reference (docs/scene-file.md) is generated
+# from these and SCHEMA, and a test fails when the page and the schema disagree.
+TABLES: dict[str, Table] = {
+    "": Table("Keys at the top of the file, before any table."),
+    "shaft": Table("The shaft's outer cylinder.", required=True),
+    "material": Table("An isotropic, linear elastic material.", required=True),
+    "grooves": Table(
+        "Helical grooves cut into the shaft, one or two hands of the same pitch, profile "
+        "given in the axial section (as screw threads are). Leave the table out for a plain "
+        "shaft."),
+    "excitation": Table(
+        "A source that shakes the shaft at its speed and harmonics (an engine, the shaft's "
+        "own speed); the resonance check compares every mode with every harmonic. Without "
+        "any, a design run reports \"not checked\" and `shaftfem check` refuses the scene.",
+        repeated=True),
+    "support": Table(
+        "A bearing seat: the band of shaft surface the bearing sits on. With supports the "
+        "shaft is solved as installed; without, it hangs free.", repeated=True),
+    "attachment": Table(
+        "A part keyed or shrunk on the shaft (gear, sprocket, pulley), modelled by its mass "
+        "and inertias on a joint to the band under its hub.", repeated=True),
+    "response": Table(
+        "Response to harmonic base motion through the supports (installed shafts)."),
+    "sizing": Table(
+        "Inputs of the paper's screw sizing, equations (1)-(9): `shaftfem size` and the "
+        "design report. Leave it out if you do not size a screw shaft."),
+    "resonance": Table("How far every mode must stay from every excitation harmonic."),
+    "modes": Table("Which elastic modes to compute: a count, or all below a frequency."),
+    "mesh": Table(
+        "The finite-element mesh and elements. `--mesh-size` on the command line scales all "
+        "sizes alike; `--accuracy` asks for an adapted mesh instead.", required=True),
 }

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from shaftfem.errors import SceneError
-from shaftfem.scene.schema import SCHEMA, Key
+from shaftfem.scene.schema import SCHEMA, TABLES, Key
 
 
 def where(source: str, table: str, key: str) -> str:
@@ -101,7 +101,7 @@ def number(source: str, key: str, value: object, low: float, high: float) -> flo
 
 
 # Tables a scene may repeat ([[support]]): a parameter names one entry by its index.
-ARRAY_TABLES = ("excitation", "support", "attachment")
+ARRAY_TABLES = tuple(name for name, table in TABLES.items() if table.repeated)
 
 
 def split_parameter(name: str) -> tuple[str, int | None, str] | None:

@@ -1,0 +1,19 @@
+"""Sphinx configuration of the shaftfem docs: Markdown pages (MyST), the furo theme, and
+the API pages from the docstrings (autodoc). Build: make docs (strict: warnings fail)."""
+
+project = "shaftfem"
+author = "the shaftfem developers"
+copyright = "2026, the shaftfem developers"
+
+extensions = ["myst_parser", "sphinx.ext.autodoc"]
+source_suffix = {".md": "markdown"}
+exclude_patterns = ["_build"]
+myst_heading_anchors = 3          # links to a page's sections: page.md#a-heading
+myst_enable_extensions = ["dollarmath"]
+
+html_theme = "furo"
+html_title = "shaftfem"
+html_static_path: list[str] = []
+
+autodoc_member_order = "bysource"
+autodoc_typehints = "signature"

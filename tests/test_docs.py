@@ -1,0 +1,80 @@
+"""The docs: the pages made from the code are current, the site builds with warnings as
+errors (a broken link, a missing page or image fails), and the README stays short."""
+
+import re
+import subprocess
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from shaftfem.cli.reference import command_reference
+from shaftfem.scene import reference, schema
+from shaftfem.scene.reference import scene_reference
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+
+
+def test_the_scene_file_reference_is_what_the_schema_gives():
+    assert (DOCS / "scene-file.md").read_text() == scene_reference(), (
+        "docs/scene-file.md is not what the schema gives: run python scripts/write_docs.py")
+
+
+def test_the_command_reference_is_what_the_parser_gives():
+    assert (DOCS / "commands.md").read_text() == command_reference(), (
+        "docs/commands.md is not what the parser gives: run python scripts/write_docs.py")
+
+
+def test_every_scene_key_is_on_the_reference_page_with_its_unit():
+    page = (DOCS / "scene-file.md").read_text()
+    for table, keys in schema.SCHEMA.items():
+        for key in keys:
+            row = next((line for line in page.splitlines() if line.startswith(f"| `{key}` |")),
+                       None)
+            assert row is not None, (table, key)
+            assert f"| {reference.unit(key)} |" in row, (table, key, row)
+
+
+def test_a_key_added_to_the_schema_without_its_page_fails(monkeypatch):
+    grooves = dict(schema.SCHEMA["grooves"])
+    grooves["lead_error_mm"] = schema.Key(float, "helix lead error, mm", required=False)
+    monkeypatch.setitem(schema.SCHEMA, "grooves", grooves)
+    assert (DOCS / "scene-file.md").read_text() != scene_reference()
+    assert "| `lead_error_mm` | mm |" in scene_reference()
+
+
+def test_a_key_or_table_without_a_description_is_refused(monkeypatch):
+    shaft = dict(schema.SCHEMA["shaft"])
+    shaft["taper_deg"] = schema.Key(float, " ", required=False)
+    monkeypatch.setitem(schema.SCHEMA, "shaft", shaft)
+    with pytest.raises(ValueError, match="shaft.taper_deg has no description"):
+        scene_reference()
+    monkeypatch.setitem(schema.SCHEMA, "shaft", dict(schema.SCHEMA["material"]))
+    monkeypatch.setitem(schema.TABLES, "shaft", replace(schema.TABLES["shaft"], doc=""))
+    with pytest.raises(ValueError, match=r"table \[shaft\] has no description"):
+        scene_reference()
+
+
+def test_the_site_builds_with_warnings_as_errors(tmp_path):
+    out = tmp_path / "html"
+    run = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b",
+                          "html", str(DOCS), str(out)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr[-3000:]
+    pages = {p.stem for p in DOCS.glob("*.md")}
+    assert pages <= {p.stem for p in out.glob("*.html")}
+    scene = (out / "scene-file.html").read_text()
+    assert "youngs_modulus_mpa" in scene and "tilting_stiffness_nmm_per_rad" in scene
+    api = (out / "api.html").read_text()
+    assert "run_bounded" in api and "ErrorEstimate" in api  # autodoc found the docstrings
+
+
+def test_the_readme_is_short_and_its_links_resolve():
+    text = (ROOT / "README.md").read_text()
+    assert len(text.splitlines()) <= 150
+    targets = re.findall(r"\]\(([^)#\s]+)(?:#[^)]*)?\)", text)
+    local = [t for t in targets if "://" not in t]
+    assert local, "the README links into the docs"
+    missing = [t for t in local if not (ROOT / t).exists()]
+    assert not missing, missing

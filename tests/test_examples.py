@@ -1,0 +1,89 @@
+"""Every script in examples/ runs as a user would run it (a fresh process, its own working
+folder), and what it prints is checked against physics, not against its own output."""
+
+import math
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+from references import timoshenko_free_free_hz, torsion_hz
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def run_example(name: str, cwd: Path, *args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(EXAMPLES / name), *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=600,
+                          env={**os.environ, "SHAFTFEM_CACHE": os.environ["SHAFTFEM_CACHE"]})
+
+
+def test_every_example_is_tested():
+    tested = {"modes_of_my_shaft.py", "check_in_ci.py", "installed_response.py", "sweep.py",
+              "calibrate_from_measurements.py"}
+    assert {p.name for p in EXAMPLES.glob("*.py")} == tested
+
+
+def test_modes_of_my_shaft(tmp_path):
+    run = run_example("modes_of_my_shaft.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    rows = re.findall(r"mode +(\d+) +([\d.]+) Hz +(\w+) +\+- ([\d.e-]+) %", run.stdout)
+    assert [int(r[0]) for r in rows] == list(range(1, 11))
+    f = [float(r[1]) for r in rows]
+    assert f == sorted(f)
+    assert all(0 < float(r[3]) < 2 for r in rows)  # every frequency carries its bound
+    # the groove (3 of 20 mm deep, over half the length) softens torsion a little:
+    # below the plain shaft's c_t / 2L, and not far below
+    torsion = [fi for fi, r in zip(f, rows) if r[2] == "torsion"]
+    c_t_2l = torsion_hz(1, 0.6, 210e9, 0.3, 7850.0)
+    assert torsion and 0.85 * c_t_2l < torsion[0] < c_t_2l
+
+
+def test_check_in_ci_passes_and_fails_with_the_exit_status(tmp_path):
+    ok = run_example("check_in_ci.py", tmp_path)
+    assert ok.returncode == 0, ok.stderr[-2000:]
+    assert "VERDICT: PASS" in ok.stdout
+    # a motor whose 4th harmonic lands on the first bending pair (about 485 Hz)
+    scene = (EXAMPLES / "my_shaft.toml").read_text().replace("speed_rpm = 1500.0",
+                                                              "speed_rpm = 7280.0")
+    (tmp_path / "too_fast.toml").write_text(scene)
+    bad = run_example("check_in_ci.py", tmp_path, "too_fast.toml")
+    assert bad.returncode == 1, bad.stderr[-2000:]
+    assert "VERDICT: FAIL" in bad.stdout
+
+
+def test_installed_response(tmp_path):
+    run = run_example("installed_response.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    shares = [float(s) for s in re.findall(r"Hz +\w+ +([\d.]+) %", run.stdout)]
+    assert len(shares) == 10 and 50 < sum(shares) <= 100
+    t = dict((float(f), float(v)) for f, v in
+             re.findall(r"at +([\d.]+) Hz: ([\d.]+)", run.stdout))
+    # below the first mode (about 225 Hz) the shaft follows its bearings, a little more
+    # at the higher harmonic: 1 < T(60 Hz) < T(120 Hz) < 1 / (1 - (120 / 200)^2)
+    assert 1 < t[60.0] < t[120.0] < 1 / (1 - (120 / 200) ** 2)
+
+
+def test_sweep(tmp_path):
+    run = run_example("sweep.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    rows = re.findall(r"^ +(\d+) +(\d+) +([\d.]+) +ok$", run.stdout, flags=re.M)
+    assert len(rows) == 6
+    f1 = {(int(L), int(d)): float(f) for L, d, f in rows}
+    # a slender free-free beam: f1 ~ d / L^2 (Timoshenko's shear and rotary inertia move it
+    # by well under 1 % at L / d = 16-20)
+    assert math.isclose(f1[500, 32] / f1[600, 32], (600 / 500) ** 2, rel_tol=0.01)
+    assert math.isclose(f1[550, 32] / f1[550, 30], 32 / 30, rel_tol=0.01)
+    assert (tmp_path / "out" / "length_sweep" / "results.csv").exists()
+
+
+def test_calibrate_from_measurements(tmp_path):
+    run = run_example("calibrate_from_measurements.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    found = re.search(r"the bar is ([\d.]+) \+- ([\d.]+) mm long", run.stdout)
+    assert found
+    # the targets are a 520 mm bar's first two bending pairs (Timoshenko, free-free)
+    assert [round(f, 1) for f in timoshenko_free_free_hz(2, 0.52, 0.016, 211e9, 0.277, 7870.0)] \
+        == [540.1, 1462.8]
+    assert abs(float(found.group(1)) - 520.0) < 0.01 * 520.0
