@@ -17,3 +17,5 @@ html_static_path: list[str] = []
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "signature"
+autodoc_class_signature = "separated"   # a dataclass's long field list stays out of its title
+autodoc_default_options = {"exclude-members": "__init__, __new__"}

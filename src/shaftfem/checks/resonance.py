@@ -52,6 +52,10 @@ class Approach:
 
 @dataclass
 class ResonanceVerdict:
+    """Every pair of an elastic mode and an excitation harmonic with its separation
+    margin abs(f - k f_exc) / (k f_exc) (a fraction), closest first; `ok` when every
+    margin is at least its required one."""
+
     approaches: list[Approach]   # every pair, closest first
     required: float
 

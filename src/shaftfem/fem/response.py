@@ -118,7 +118,9 @@ def modal_basis(result: ModalResult) -> ModalBasis:
 
 
 def participation(basis: ModalBasis) -> Participation:
-    """Participation factors and effective masses for the four base-motion directions."""
+    """Participation factors and effective masses (kg; kg m^2 for the turn about the
+    axis) of every elastic mode for base motion along x, y, z and the turn, with the
+    totals they add up to; `participation(modal_basis(result))`."""
     G = basis.X.T @ basis.loads
     rigid = np.sum((basis.rigid.T @ basis.loads) ** 2, axis=0) if basis.rigid.size else (
         np.zeros(len(DIRECTIONS)))
@@ -154,8 +156,10 @@ def modal_coordinates(basis: ModalBasis, direction: str, omega: np.ndarray,
 def base_response(result: ModalResult, frequencies: np.ndarray, direction: str = "x",
                   point: float | None = None, zeta: float | None = None,
                   basis: ModalBasis | None = None) -> FrequencyResponse:
-    """The response at the node nearest the axis at z = point (m; default the scene's
-    response point, else mid-span) to base motion along `direction`."""
+    """The transmissibility, amplitude of u over u_base, at the node nearest the axis at z = point (m;
+    default the scene's response point, else mid-span) for harmonic base motion along
+    `direction` ('x', 'y', 'z') at `frequencies` (Hz), with modal damping ratio `zeta`
+    (a fraction; default the scene's)."""
     scene = result.scene
     basis = basis or modal_basis(result)
     zeta = scene.damping_ratio if zeta is None else zeta

@@ -36,6 +36,10 @@ class Timings:
 
 @dataclass(frozen=True)
 class ModalResult:
+    """One modal run and what it made: the scene, the solid (`shape`), the mesh, K and M
+    (`system`), the `modes`, the time of each step (`timings`, s), warnings about the
+    run, and the seats and parts (`installed`; None for a free shaft)."""
+
     scene: Scene
     shape: ShaftShape
     mesh: ShaftMesh

@@ -81,9 +81,10 @@ def read_scene_text(scene: str | Path | SceneText | None = None) -> SceneText:
 
 def load_scene(scene: str | Path | SceneText | None = None,
                overrides: dict | None = None) -> Scene:
-    """Read and check a scene (a file, a shipped scene's name, or a SceneText);
-    `overrides` maps 'table.key' (or 'table[i].key' for entry i of a repeated table) to
-    a value in file units."""
+    """Read and check a scene (a file, a shipped scene's name, or a SceneText) and
+    return it in SI. `overrides` maps 'table.key' (or 'table[i].key' for entry i of a
+    repeated table) to a value in file units. A bad value raises SceneError naming the
+    file, the key, the value and what is allowed."""
     if isinstance(scene, SceneText):
         data, source = tomllib.loads(scene.text), scene.source
     else:

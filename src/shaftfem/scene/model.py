@@ -148,6 +148,11 @@ class Attachment:
 
 @dataclass(frozen=True)
 class Scene:
+    """A checked scene, in SI: lengths in m, E in Pa, density in kg/m^3, stiffnesses in
+    N/m and N m/rad, masses in kg, inertias in kg m^2, excitation and mode frequencies
+    in Hz, margins and damping as fractions. Made by `load_scene`; frozen, so a changed
+    copy comes from `with_mesh`, `with_modes`, `with_accuracy` or `free()`."""
+
     name: str
     source: str
     shaft: Shaft

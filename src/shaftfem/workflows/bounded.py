@@ -34,8 +34,9 @@ class Bounded:
 
 def run_bounded(scene: Scene, estimate: bool = True,
                 options: RunOptions = RunOptions()) -> Bounded:
-    """The modes with their error bounds: on a mesh adapted to the scene's target_error
-    when it has one, else on its fixed mesh (bounded when `estimate`)."""
+    """The modes with their error bounds (`Bounded.estimate.relative_error`, fractions
+    of each frequency): on a mesh adapted to the scene's target_error when it has one,
+    else on its fixed mesh (bounded when `estimate`)."""
     if scene.target_error is not None:
         from shaftfem.workflows.adapt import run_adaptive
 
@@ -72,8 +73,8 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
 
 def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | None = None,
                   fixed: bool = False) -> Scene:
-    """The scene asking for another bound (percent) and DOF budget; `fixed`: on its
-    fixed mesh (the target is dropped unless one is given here)."""
+    """The scene asking for another bound (`percent`, %) and DOF budget; `fixed`: on
+    its fixed mesh (the target is dropped unless one is given here)."""
     target = scene.target_error
     if fixed:
         target = None

@@ -136,8 +136,9 @@ def grid_points(cal: Calibration) -> list[dict]:
 def calibrate(cal: Calibration, workdir: str | Path, workers: int = 2,
               scheduler: str | None = None,
               options: RunOptions = RunOptions()) -> CalibrationResult:
-    """Grid on the sweep engine (local workers, or the cluster at `scheduler`), then a
-    local bounded least-squares fit."""
+    """The unknowns' best values and standard deviations (file units) for the targets:
+    a grid on the sweep engine (local workers, or the cluster at `scheduler`; resumable
+    in `workdir`), then a local bounded least-squares fit."""
     from scipy.optimize import least_squares
 
     names = list(cal.unknowns)

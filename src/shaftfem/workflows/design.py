@@ -32,6 +32,11 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class DesignResult:
+    """A design run: the sizing (None without a [sizing] table), the modal result and
+    its bounds, the resonance verdict (None without excitations), the files and pictures
+    written, the report's path, and for an installed shaft the effective masses. `ok`
+    is False when a mode is too close to an excitation harmonic."""
+
     sizing: SizingResult | None
     result: ModalResult
     estimate: ErrorEstimate | None
@@ -50,8 +55,9 @@ class DesignResult:
 
 def run_design(scene: Scene, out: str | Path, margin: float | None = None,
                estimate: bool = True, options: RunOptions = RunOptions()) -> DesignResult:
-    """Everything a designer signs off, written to `out`. `margin`: required separation
-    (fraction), default the scene's."""
+    """Everything a designer signs off: sizing, modes with bounds, resonance verdict,
+    files, pictures and report.md, published together into the folder `out`.
+    `margin`: required separation (fraction), default the scene's."""
     from shaftfem.checks.resonance import check_result
     from shaftfem.checks.sizing import size_from_scene
     from shaftfem.outputs.export import write_mode_files

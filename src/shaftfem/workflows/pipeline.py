@@ -44,7 +44,8 @@ class Stopwatch:
 
 
 def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None) -> Scene:
-    """The scene with another element size (all sizes scaled alike) and/or order."""
+    """The scene with another element size away from the grooves, mm (the groove sizes
+    scaled alike), and/or element order (1, 2 or 3)."""
     m = scene.mesh
     if size_mm is not None:
         if not 0 < size_mm <= scene.shaft.length * 1e3:  # also refuses nan and inf
@@ -79,7 +80,9 @@ def with_modes(scene: Scene, count: int | None = None,
 
 
 def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
-    """Build, mesh, assemble and solve `scene`; return every intermediate result."""
+    """Build, mesh, assemble and solve `scene`: the modes without a bound, with every
+    intermediate result. Raises GeometryError, MeshError or SolverError, each naming
+    what failed."""
     from shaftfem.cad.mesh import check_budget, mesh_shape
     from shaftfem.cad.solid import build_shape
 

@@ -181,7 +181,9 @@ def _owned(folder: Path):
 def run_sweep(sweep: Sweep, results: str | Path, workers: int = 2,
               scheduler: str | None = None, estimate: bool = False,
               options: RunOptions = RunOptions()) -> list[dict]:
-    """Run every variant not yet in `results` on Dask; append each row as it finishes.
+    """Run every variant not yet in `results` (a CSV file) on Dask; append each row as
+    it finishes, and return all rows: the variant's values (file units), f1_hz, kind1,
+    ... per mode, the smallest margin, DOFs, status ('ok' or 'failed') and error.
     `results` must be new, or hold rows of this same sweep (its key file says so).
     The workers solve with `options`' cache use and factoriser, one thread each on a
     local cluster."""
