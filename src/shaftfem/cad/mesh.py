@@ -78,7 +78,7 @@ class ShaftMesh:
 # are less regular), and DOFs per element of a P2 / P1 mesh; fitted on the shipped scenes
 # (within 40 %, enough to refuse a size that is off by orders of magnitude).
 ELEMENTS_PER_H3 = 6.0
-DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0}
+DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0, 4: 40.0}
 BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (docs/performance.md)
 
 

@@ -102,8 +102,9 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
     c.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
     c.add_argument("--mesh-size", type=_size_mm, metavar="MM",
                    help="element size away from the grooves, mm (groove sizes scale with it)")
-    c.add_argument("--order", type=int, choices=(1, 2, 3),
-                   help="element order: 1, 2 or 3 (cubic; free shafts) (default: scene)")
+    c.add_argument("--order", type=int, choices=(1, 2, 3, 4),
+                   help="element order: 1, 2, 3 or 4 (3, 4: hierarchical; free shafts) "
+                   "(default: scene)")
     c.add_argument("--modes", type=_count, metavar="N",
                    help="number of elastic modes (default: the scene's [modes] count, else 10)")
     c.add_argument("--max-frequency", type=_hz, metavar="HZ",

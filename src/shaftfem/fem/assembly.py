@@ -33,9 +33,12 @@ from shaftfem.runtime import assembly_threads
 from shaftfem.scene.model import Material
 
 # Quadrature orders: 2 integrates P2 stiffness exactly on straight tets (4 points,
-# as CalculiX's C3D10 does); 4 integrates the P2 mass exactly; likewise 4 and 6 for P3.
-STIFFNESS_INTORDER = {1: 1, 2: 2, 3: 4}
-MASS_INTORDER = {1: 2, 2: 4, 3: 6}
+# as CalculiX's C3D10 does); 4 integrates the P2 mass exactly; likewise 4 and 6 for order
+# 3. Order 4 takes 7 (24 points) for its stiffness, not the exact 6: that rule has 15
+# points, too few for a 35-function element's 99 strain modes (on the 16 mm cylinder
+# it left three spurious zero-energy modes).
+STIFFNESS_INTORDER = {1: 1, 2: 2, 3: 4, 4: 7}
+MASS_INTORDER = {1: 2, 2: 4, 3: 6, 4: 8}
 # Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
 # element) stay in cache-sized arrays, and the chunks spread over the threads.
 CHUNK = 4096
@@ -53,11 +56,16 @@ class System:
     K: sp.csr_matrix
     M: sp.csr_matrix
     mass_scalar: sp.csr_matrix  # scalar consistent mass, kg (for energy splits)
-    nodes: np.ndarray           # (n_nodes, 3) positions of the scalar DOFs, m
+    # (n_nodes, 3): the coefficients of the coordinate field x, m; for P1 and P2 the
+    # positions of the scalar DOF nodes
+    nodes: np.ndarray
     point_dofs: np.ndarray      # (n_points,) scalar node of each mesh point (P1, P2)
     order: int
-    # P3: the values at the mesh's points from the scalar DOFs, (n_points, n_nodes)
+    # orders 3, 4: the values at the mesh's points from the scalar DOFs, (n_points, n_nodes)
     point_values: sp.csr_matrix | None = None
+    # orders 3, 4: the coefficients of the constant field 1 (n_nodes,): 1 on the vertex
+    # functions, 0 on the rest (None: 1 everywhere, as for Lagrange elements)
+    constant: np.ndarray | None = None
 
     @property
     def n_dofs(self) -> int:
@@ -236,12 +244,17 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
     Ms = material.density * pattern.matrix(_sum_over_chunks(
         lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, n_threads), 1)
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
-    nodes = np.ascontiguousarray(k_basis.doflocs.T)
-    _check_translations(K, nodes)
-    if order == 3:  # the mesh's points are no DOF nodes: values there come from the basis
+    if order >= 3:  # hierarchical: values at the mesh's points come from the basis
+        from shaftfem.fem.elements import hierarchical_coordinates
+
+        constant, nodes = hierarchical_coordinates(k_basis.mesh, k_basis)
+        _check_translations(K, nodes, constant)
         return System(K=K, M=M, mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
                       order=order, point_values=point_values(mesh.element_cells, k_basis,
-                                                             mesh.points.shape[0]))
+                                                             mesh.points.shape[0]),
+                      constant=constant)
+    nodes = np.ascontiguousarray(k_basis.doflocs.T)
+    _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
                   point_dofs=point_dofs(mesh.cells, k_basis.element_dofs, nodes, mesh.points),
                   order=order)
@@ -277,12 +290,15 @@ def point_values(cells: np.ndarray, basis, n_points: int) -> sp.csr_matrix:
     return P
 
 
-def _check_translations(K: sp.csr_matrix, nodes: np.ndarray) -> None:
-    """A rigid translation must cost no strain energy: K t = 0 to round-off."""
-    scale = np.abs(K.data).max() * np.sqrt(nodes.shape[0])
+def _check_translations(K: sp.csr_matrix, nodes: np.ndarray,
+                        constant: np.ndarray | None = None) -> None:
+    """A rigid translation must cost no strain energy: K t = 0 to round-off. `constant`:
+    the coefficients of the constant field (None: 1 on every DOF)."""
+    one = np.ones(nodes.shape[0]) if constant is None else constant
+    scale = np.abs(K.data).max() * np.linalg.norm(one)
     for c in range(3):
         t = np.zeros(K.shape[0])
-        t[c::3] = 1.0
+        t[c::3] = one
         ratio = np.linalg.norm(K @ t) / scale
         if ratio > 1e-9:
             raise AssemblyError(

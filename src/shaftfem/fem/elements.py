@@ -1,4 +1,5 @@
-"""The scalar elements, by order: scikit-fem's P1 and P2 tetrahedra, and a cubic one.
+"""The scalar elements, by order: scikit-fem's P1 and P2 tetrahedra, a cubic Lagrange
+one, and a hierarchical family of any order p >= 2.
 
 The cubic Lagrange tetrahedron (20 nodes: the vertices, two points on each edge at
 its thirds, the centre of each face) in barycentric coordinates l_i:
@@ -11,6 +12,19 @@ An edge's two nodes are told apart by the edge's direction, from its local verte
 i to j. Neighbours agree on it when every element lists its vertices in ascending
 global order (cad.mesh.sorted_cells): then each edge runs from its lower global vertex to
 its higher in every element that shares it.
+
+The hierarchical tetrahedron of order p spans the same polynomials; its functions are
+products of barycentric bubbles and Legendre polynomials P_n, so order p's functions are
+order p - 1's and a few more (nested spaces: the frequencies fall as p rises):
+
+    vertex i:                       l_i
+    edge (a, b), k = 2..p:          l_a l_b P_(k-2)(l_b - l_a)
+    face (a, b, c), i + j <= p - 3: l_a l_b l_c P_i(l_b - l_a) P_j(2 l_c - 1)
+    interior, i + j + k <= p - 4:   l_0 l_1 l_2 l_3 P_i(l_1 - l_0) P_j(2 l_2 - 1) P_k(2 l_3 - 1)
+
+On ascending-vertex cells (a < b < c in global numbering too) an edge's or a face's
+functions depend only on its own barycentrics, in the same order from either side, so
+neighbours agree without sign flips.
 """
 
 from __future__ import annotations
@@ -26,7 +40,8 @@ VERTICES = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.
 GRAD_L = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
 
 
-def _cubic_element():
+def lagrange_cubic():
+    """The cubic Lagrange tetrahedron (the class), for ascending-vertex cells."""
     from skfem import ElementH1
     from skfem.refdom import RefTet
 
@@ -55,6 +70,10 @@ def _cubic_element():
     return ElementTetP3
 
 
+# the highest element order a scene may ask for
+MAX_ORDER = 4
+
+
 def _cubic(lam: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
     """Basis function i of the cubic tetrahedron at barycentric points `lam` (4, ...), and
     its derivatives with respect to the four l's."""
@@ -75,10 +94,133 @@ def _cubic(lam: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
     return 27 * lam[a] * lam[b] * lam[c], dl
 
 
+def _legendre(n: int, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """P_n(s) and P_n'(s)."""
+    from numpy.polynomial import legendre
+
+    c = np.zeros(n + 1)
+    c[n] = 1.0
+    return legendre.legval(s, c), legendre.legval(s, legendre.legder(c))
+
+
+def _pairs(n: int) -> list[tuple[int, int]]:
+    """(i, j) with i + j <= n, by total degree: order p's face functions come first."""
+    return [(i, d - i) for d in range(n + 1) for i in range(d, -1, -1)]
+
+
+def _triples(n: int) -> list[tuple[int, int, int]]:
+    return [(i, j, d - i - j) for d in range(n + 1) for i in range(d, -1, -1)
+            for j in range(d - i, -1, -1)]
+
+
+def hierarchical_counts(p: int) -> tuple[int, int, int]:
+    """Functions per edge, per face and inside an element of order p."""
+    return p - 1, (p - 1) * (p - 2) // 2, (p - 1) * (p - 2) * (p - 3) // 6
+
+
+def _hierarchical(lam: np.ndarray, i: int, p: int) -> tuple[np.ndarray, np.ndarray]:
+    """Hierarchical basis function i of order p at barycentric points `lam` (4, ...), and
+    its derivatives with respect to the four l's (see the module)."""
+    ne, nf, _ = hierarchical_counts(p)
+    dl = np.zeros_like(lam)
+    if i < 4:
+        dl[i] = 1.0
+        return lam[i].copy(), dl
+    i -= 4
+    if i < 6 * ne:
+        e, n = divmod(i, ne)
+        a, b = EDGES[e]
+        la, lb = lam[a], lam[b]
+        P, dP = _legendre(n, lb - la)
+        dl[a] = lb * P - la * lb * dP
+        dl[b] = la * P + la * lb * dP
+        return la * lb * P, dl
+    i -= 6 * ne
+    if i < 4 * nf:
+        f, n = divmod(i, nf)
+        a, b, c = FACES[f]
+        la, lb, lc = lam[a], lam[b], lam[c]
+        ii, jj = _pairs(p - 3)[n]
+        Pi, dPi = _legendre(ii, lb - la)
+        Pj, dPj = _legendre(jj, 2 * lc - 1)
+        bub = la * lb * lc
+        dl[a] = lb * lc * Pi * Pj - bub * dPi * Pj
+        dl[b] = la * lc * Pi * Pj + bub * dPi * Pj
+        dl[c] = la * lb * Pi * Pj + 2 * bub * Pi * dPj
+        return bub * Pi * Pj, dl
+    i -= 4 * nf
+    ii, jj, kk = _triples(p - 4)[i]
+    Pi, dPi = _legendre(ii, lam[1] - lam[0])
+    Pj, dPj = _legendre(jj, 2 * lam[2] - 1)
+    Pk, dPk = _legendre(kk, 2 * lam[3] - 1)
+    bub, Q = lam[0] * lam[1] * lam[2] * lam[3], Pi * Pj * Pk
+    dl[0] = lam[1] * lam[2] * lam[3] * Q - bub * dPi * Pj * Pk
+    dl[1] = lam[0] * lam[2] * lam[3] * Q + bub * dPi * Pj * Pk
+    dl[2] = lam[0] * lam[1] * lam[3] * Q + 2 * bub * Pi * dPj * Pk
+    dl[3] = lam[0] * lam[1] * lam[2] * Q + 2 * bub * Pi * Pj * dPk
+    return bub * Q, dl
+
+
+def hierarchical(p: int):
+    """The hierarchical tetrahedron of order p >= 2, for ascending-vertex cells."""
+    from skfem import ElementH1
+    from skfem.refdom import RefTet
+
+    ne, nf, ni = hierarchical_counts(p)
+
+    class ElementTetHierarchical(ElementH1):
+        """Hierarchical H1 tetrahedron of one order (see the module)."""
+
+        nodal_dofs = 1
+        edge_dofs = ne
+        facet_dofs = nf
+        interior_dofs = ni
+        maxdeg = p
+        dofnames = ["u"] * (1 + ne + nf + ni)
+        # where each function "lives" (its vertex, or its edge's, face's or cell's centre);
+        # no function is a value there except the vertices'
+        doflocs = np.vstack(
+            [VERTICES]
+            + [np.repeat(((VERTICES[a] + VERTICES[b]) / 2)[None], ne, axis=0) for a, b in EDGES]
+            + [np.repeat(VERTICES[list(f)].mean(axis=0)[None], nf, axis=0) for f in FACES]
+            + [np.repeat(VERTICES.mean(axis=0)[None], ni, axis=0)])
+        refdom = RefTet
+
+        def lbasis(self, X, i):
+            lam = np.array([1.0 - X[0] - X[1] - X[2], X[0], X[1], X[2]])
+            phi, dl = _hierarchical(lam, i, p)
+            return phi, np.einsum("k...,kd->d...", dl, GRAD_L)
+
+    return ElementTetHierarchical()
+
+
+def hierarchical_coordinates(mesh, basis) -> tuple[np.ndarray, np.ndarray]:
+    """The coefficients, in a hierarchical `basis` on the quadratic `mesh` (MeshTet2), of
+    the constant field 1 (n,) and of the coordinates x (n, 3): the fields rigid motions
+    are made of. The P2 geometry x = sum_v x_v l_v + sum_edges (4 x_m - 2 x_a - 2 x_b)
+    l_a l_b (with l_v (2 l_v - 1) = l_v - 2 sum_(k != v) l_v l_k), so only the vertex
+    and the first edge functions carry them."""
+    from skfem import Basis, ElementTetP2
+
+    ne = basis.elem.edge_dofs
+    n = basis.N
+    one, x = np.zeros(n), np.zeros((n, 3))
+    dofs = basis.element_dofs                      # (n_local, n_elements)
+    p2 = Basis(mesh, ElementTetP2(), intorder=1)
+    nodes = p2.doflocs[:, p2.element_dofs]          # (3, 10, n_elements)
+    one[dofs[:4].ravel()] = 1.0
+    x[dofs[:4].ravel()] = nodes[:, :4].reshape(3, -1).T
+    for e, (a, b) in enumerate(EDGES):
+        coeff = 4 * nodes[:, 4 + e] - 2 * (nodes[:, a] + nodes[:, b])
+        x[dofs[4 + e * ne]] = coeff.T
+    return one, x
+
+
 def element(order: int):
-    """scikit-fem's scalar element of that order (1, 2 or 3) on tetrahedra."""
+    """The scalar element of that order on tetrahedra: scikit-fem's P1 and P2, and the
+    hierarchical one for 3 and 4 (its spaces nested: order 4 contains order 3)."""
     from skfem import ElementTetP1, ElementTetP2
 
-    if order == 3:
-        return _cubic_element()()
+    if order >= 3:
+        return hierarchical(order)
     return ElementTetP2() if order == 2 else ElementTetP1()

@@ -96,7 +96,7 @@ def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
     # M-normalise explicitly (the Ritz vectors are, up to round-off)
     elastic = elastic.scaled(1 / np.sqrt(np.einsum("ij,ij->j", elastic.X, elastic.MX)))
     shapes = elastic.X if installed is None else installed.expand(elastic.X)
-    energy = energy_split(shapes, system.nodes, system.mass_scalar)
+    energy = energy_split(shapes, system.nodes, system.mass_scalar, system.constant)
     return Modes(frequencies=np.sqrt(elastic.lam) / (2 * math.pi), shapes=shapes,
                  residuals=elastic.relative_residuals(),
                  backward_errors=backward_errors(K, M, elastic),
@@ -121,7 +121,7 @@ def _pencil(system: System, installed: Installed | None
         raise SolverError(
             f"the mesh has {bodies} disconnected parts; a free body must be one piece "
             f"(it would have {RIGID_BODY_MODES * bodies} rigid-body modes)")
-    return (system.K, system.M, rigid_body_modes(system.nodes),
+    return (system.K, system.M, rigid_body_modes(system.nodes, constant=system.constant),
             f"one free body has {RIGID_BODY_MODES} rigid-body modes")
 
 
@@ -150,12 +150,19 @@ def backward_errors(K: sp.csr_matrix, M: sp.csr_matrix, pairs: Ritz) -> np.ndarr
     return r / ((spnorm(K, 1) + pairs.lam * spnorm(M, 1)) * np.linalg.norm(pairs.X, axis=0))
 
 
-def energy_split(X: np.ndarray, nodes: np.ndarray, mass_scalar: sp.csr_matrix) -> np.ndarray:
+def energy_split(X: np.ndarray, nodes: np.ndarray, mass_scalar: sp.csr_matrix,
+                 constant: np.ndarray | None = None) -> np.ndarray:
     """Kinetic-energy fractions of each mode in axial, radial and tangential motion.
 
     The shaft axis is z. Bending moves sections sideways (radial and tangential
-    alike), torsion turns them (tangential only), axial modes stretch (z only).
+    alike), torsion turns them (tangential only), axial modes stretch (z only). With a
+    hierarchical basis (`constant` given) only the vertex functions are values at
+    positions: the split is that of the modes' linear part, enough to tell the kinds.
     """
+    if constant is not None:
+        v = np.flatnonzero(constant > 0)
+        dofs = (3 * v[:, None] + np.arange(3)).ravel()
+        return energy_split(X[dofs], nodes[v], mass_scalar[v][:, v])
     r = np.hypot(nodes[:, 0], nodes[:, 1])
     safe = np.where(r > 0, r, 1.0)
     c, s = nodes[:, 0] / safe, nodes[:, 1] / safe

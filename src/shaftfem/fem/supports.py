@@ -52,14 +52,19 @@ ON_SURFACE = 1e-7
 FREE_MOTION = 1e-10
 
 
-def rigid_body_modes(nodes: np.ndarray, centre: np.ndarray | None = None) -> np.ndarray:
+def rigid_body_modes(nodes: np.ndarray, centre: np.ndarray | None = None,
+                     constant: np.ndarray | None = None) -> np.ndarray:
     """The six rigid motions of a body whose DOF 3 n + c moves node n along axis c:
     three translations and three rotations about `centre` (default its centroid),
-    (3 n_nodes, 6)."""
-    x = nodes - (nodes.mean(axis=0) if centre is None else centre)
+    (3 n_nodes, 6). For a hierarchical basis `nodes` are the coefficients of the
+    coordinate field and `constant` those of the field 1 (None: 1 everywhere)."""
+    one = np.ones(nodes.shape[0]) if constant is None else constant
+    if centre is None:
+        centre = nodes[one > 0].mean(axis=0)
+    x = nodes - one[:, None] * centre
     R = np.zeros((nodes.shape[0], 3, 6))
     for c in range(3):
-        R[:, c, c] = 1.0
+        R[:, c, c] = one
         e = np.zeros(3)
         e[c] = 1.0
         R[:, :, 3 + c] = np.cross(e, x)

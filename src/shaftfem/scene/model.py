@@ -77,8 +77,8 @@ def cell_type(order: int) -> str:
 
 @dataclass(frozen=True)
 class MeshSettings:
-    """Element sizes in m; `order` 1 (P1, linear), 2 (P2, quadratic) or 3 (P3, cubic, on
-    the same curved quadratic geometry as P2)."""
+    """Element sizes in m; `order` 1 (P1, linear), 2 (P2, quadratic), or 3 and 4
+    (hierarchical cubic and quartic, on the same curved quadratic geometry as P2)."""
 
     size: float
     groove_size: float

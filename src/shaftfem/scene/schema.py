@@ -241,8 +241,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "(default: the root radius, or groove size / 3 for sharp corners)",
             *upto(20_000, "at most element_size_mm"), required=False,
         ),
-        "order": Key(int, "element order: 1 (P1), 2 (P2) or 3 (P3, cubic; free shafts)",
-                     lambda v: v in (1, 2, 3), "1, 2 or 3",
+        "order": Key(int, "element order: 1 (P1), 2 (P2), or 3 and 4 (hierarchical cubic "
+                     "and quartic; free shafts)", lambda v: v in (1, 2, 3, 4), "1, 2, 3 or 4",
                      default=2, required=False),
         "target_error_percent": Key(
             float, "bound wanted on every frequency's discretisation error, %: the mesh is "

@@ -45,7 +45,7 @@ class Stopwatch:
 
 def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None) -> Scene:
     """The scene with another element size away from the grooves, mm (the groove sizes
-    scaled alike), and/or element order (1, 2 or 3)."""
+    scaled alike), and/or element order (1 to 4)."""
     m = scene.mesh
     if size_mm is not None:
         if not 0 < size_mm <= scene.shaft.length * 1e3:  # also refuses nan and inf

@@ -1,0 +1,106 @@
+"""Hierarchical elements of orders 3 and 4: the same space as the Lagrange cubic, conforming
+on any vertex order, nested (frequencies fall with the order), free of strain under rigid
+motions, and converging towards the closed form."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+import scipy.sparse.linalg as sla
+
+from references import torsion_hz
+
+
+@pytest.fixture(scope="module")
+def runs(cylinder):
+    """The 32 x 550 mm cylinder on one 16 mm mesh at orders 2, 3 and 4."""
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
+
+    return {p: run_modes(with_mesh(cylinder.scene, 16.0, order=p)) for p in (2, 3, 4)}
+
+
+def _elastic_hz(K, M, n=10):
+    """The first n elastic frequencies of a free body, Hz (six rigid modes skipped)."""
+    sigma = -1e-8 * np.median(K.diagonal() / M.diagonal())
+    w = sla.eigsh(K, n + 6, M, sigma=sigma, which="LM", tol=1e-13, return_eigenvectors=False)
+    return np.sqrt(np.sort(w)[6:]) / (2 * np.pi)
+
+
+def test_order_3_is_the_lagrange_cubic_space(runs, cylinder):
+    """The cubic Lagrange element, assembled by scikit-fem's own forms on the same mesh and
+    quadrature, gives the hierarchical order-3 frequencies to 1e-10: one space, two bases."""
+    from skfem import Basis, BilinearForm
+
+    from shaftfem.fem.assembly import MASS_INTORDER, STIFFNESS_INTORDER
+    from shaftfem.fem.elements import lagrange_cubic
+
+    mesh = runs[3].mesh.to_skfem()
+    m = cylinder.scene.material
+    lam, mu = m.lame
+    kb = Basis(mesh, lagrange_cubic()(), intorder=STIFFNESS_INTORDER[3])
+    blocks = [[None] * 3 for _ in range(3)]
+    for c in range(3):
+        for d in range(3):
+            def form(u, v, _, c=c, d=d):  # test component c, trial component d
+                val = lam * u.grad[d] * v.grad[c] + mu * u.grad[c] * v.grad[d]
+                return val + mu * sum(u.grad[k] * v.grad[k] for k in range(3)) * (c == d)
+            blocks[c][d] = BilinearForm(form).assemble(kb)
+    mb = Basis(mesh, lagrange_cubic()(), intorder=MASS_INTORDER[3])
+    Ms = BilinearForm(lambda u, v, _: m.density * u * v).assemble(mb)
+    f = _elastic_hz(sp.bmat(blocks).tocsr(), sp.block_diag([Ms] * 3).tocsr())
+    assert np.max(np.abs(runs[3].modes.frequencies / f - 1)) < 1e-10
+
+
+def test_hierarchical_elements_are_conforming_for_any_vertex_order():
+    """A quartic field lies in the order-4 space of a mesh whose cells list their vertices
+    in any order (sorted as the elements need them): its L2 projection is itself, and its
+    energy int |grad u|^2 over the unit cube is exact. A function whose edge or face
+    coefficients neighbours read in different orders would miss it."""
+    from skfem import Basis, BilinearForm, LinearForm, MeshTet1
+    from skfem.helpers import dot, grad
+
+    from shaftfem.cad.mesh import sorted_cells
+    from shaftfem.fem.elements import hierarchical
+
+    m = MeshTet1().refined(1)
+    t = m.t.T.copy()
+    rng = np.random.default_rng(2)
+    for row in t:
+        rng.shuffle(row)
+    mesh = MeshTet1(m.p, sorted_cells(t).T)
+    basis = Basis(mesh, hierarchical(4), intorder=8)
+    M = BilinearForm(lambda u, v, _: u * v).assemble(basis)
+    K = BilinearForm(lambda u, v, _: dot(grad(u), grad(v))).assemble(basis)
+    b = LinearForm(lambda v, w: (w.x[0] ** 4 + w.x[0] * w.x[1] * w.x[2] ** 2) * v).assemble(basis)
+    c = sla.spsolve(M.tocsc(), b)
+    # int (4x^3 + y z^2)^2 + (x z^2)^2 + (2 x y z)^2 over the unit cube
+    exact = (16 / 7 + 8 / 24 + 1 / 15) + 1 / 15 + 4 / 27
+    assert abs(c @ K @ c - exact) < 1e-10
+
+
+def test_frequencies_fall_with_the_order(runs):
+    """Nested spaces on one mesh: every frequency at order p + 1 at or below order p's."""
+    f = [runs[p].modes.frequencies for p in (2, 3, 4)]
+    assert np.all(f[1] <= f[0] * (1 + 1e-12)) and np.all(f[2] <= f[1] * (1 + 1e-12))
+    assert runs[4].modes.n_dofs > 2 * runs[3].modes.n_dofs > 6 * runs[2].modes.n_dofs
+
+
+def test_rigid_motions_cost_no_strain_at_every_order(runs):
+    from shaftfem.fem.supports import rigid_body_modes
+
+    for p in (3, 4):
+        s = runs[p].system
+        R = rigid_body_modes(s.nodes, constant=s.constant)
+        KR = s.K @ R
+        assert np.max(np.linalg.norm(KR, axis=0)
+                      / (abs(s.K).max() * np.linalg.norm(R, axis=0))) < 1e-12, p
+        assert runs[p].modes.n_rigid == 6 and runs[p].modes.residuals.max() < 1e-8, p
+        assert runs[p].modes.kinds == runs[2].modes.kinds, p
+
+
+def test_torsion_converges_with_the_order_towards_ct_over_2l(runs, cylinder):
+    m, L = cylinder.scene.material, cylinder.scene.shaft.length
+    ct = torsion_hz(1, L, m.youngs_modulus, m.poisson_ratio, m.density)
+    err = [runs[p].modes.frequencies[runs[p].modes.kinds.index("torsion")] / ct - 1
+           for p in (2, 3, 4)]
+    assert 0 < err[2] < err[1] < err[0], err
+    assert err[1] < 2e-5 < 1e-4 < err[0], err
