@@ -1,0 +1,192 @@
+"""Quadratic against cubic geometry: the paper's shaft on coarse meshes whose elements
+are curved to order 2 (as shaftfem meshes) or to order 3 (gmsh's 20-node tetrahedra),
+with hierarchical elements of order 3 and 4 on each.
+
+    .venv/bin/python benchmarks/cubic_geometry.py [SIZES ...]
+
+SIZES is away/grooves/floor edges in mm (default 16/8/8 12/6/6 16/4/4). For each mesh:
+the volume the elements hold against the solid's, and the largest and smallest true error
+of the ten frequencies (against the NGSolve order-3 reference of docs/verification.md)
+at orders 3 and 4, on both geometries. Every row is a fresh process.
+"""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+from _common import in_fresh_process, machine, peak_mb  # noqa: E402, I001  (before NumPy)
+
+import numpy as np  # noqa: E402
+
+REFERENCE_HZ = np.array([432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
+                         3814.81, 3883.84, 4448.27])
+
+
+def _cubic_mesh(scene, shape):
+    """gmsh's mesh of the solid with the scene's size fields, curved to order 3, as a
+    scikit-fem mesh whose geometry is the Lagrange cubic on ascending-vertex cells."""
+    from dataclasses import dataclass
+
+    from skfem import MeshTet1
+
+    from shaftfem.cad import mesher
+    from shaftfem.cad.session import session
+    from shaftfem.fem.elements import lagrange_cubic
+
+    cubic = lagrange_cubic()
+
+    @dataclass(repr=False)
+    class MeshTet3(MeshTet1):
+        elem: type = cubic
+        affine: bool = False
+        sort_t: bool = False
+
+    s_ = scene.mesh
+    with session("mesh") as s:
+        gmsh = s.gmsh
+        gmsh.model.occ.importShapes(str(shape.brep))
+        gmsh.model.occ.synchronize()
+        mesher._background(gmsh, mesher._groove_fields(gmsh, scene.shaft, scene.grooves, s_))
+        s.option("Mesh.MeshSizeMax", s_.size)
+        s.option("Mesh.MeshSizeMin", min(s_.edge_size, s_.size) * 0.5)
+        s.option("Mesh.MeshSizeFromPoints", 0)
+        s.option("Mesh.MeshSizeFromCurvature", 0)
+        s.option("Mesh.MeshSizeExtendFromBoundary", 0)
+        s.option("Mesh.Optimize", 1)
+        gmsh.model.mesh.generate(3)
+        gmsh.model.mesh.setOrder(3)
+        etype = gmsh.model.mesh.getElementType("tetrahedron", 3)
+        local = np.array(gmsh.model.mesh.getElementProperties(etype)[4]).reshape(-1, 3)
+        _, enodes = gmsh.model.mesh.getElementsByType(etype)
+        ntags, coords, _ = gmsh.model.mesh.getNodes()
+    index = np.full(int(ntags.max()) + 1, -1)
+    index[ntags.astype(np.int64)] = np.arange(ntags.size)
+    cells = index[np.asarray(enodes, dtype=np.int64)].reshape(-1, 20)
+    points = coords.reshape(-1, 3)
+    # gmsh's local nodes by barycentric coordinates; ours likewise, for each vertex order
+    bary = lambda X: np.column_stack([1 - X.sum(axis=1), X])  # noqa: E731
+    theirs, ours = bary(local), bary(cubic.doflocs)
+    perm = np.argsort(cells[:, :4], axis=1)
+    t = np.empty_like(cells)
+    for key in {tuple(p) for p in perm}:
+        rows = np.all(perm == key, axis=1)
+        # our node k of the sorted cell has barycentrics ours[k] over the sorted vertices,
+        # that is ours[k][inverse] over gmsh's vertex order
+        inverse = np.argsort(key)
+        mapped = ours[:, inverse]
+        pick = [int(np.argmin(np.abs(theirs - m).sum(axis=1))) for m in mapped]
+        assert len(set(pick)) == 20
+        t[rows] = cells[rows][:, pick]
+    # Curving can invert elements, as with quadratic geometry: their edge and face nodes
+    # go back to straight positions (shared nodes too), until every Jacobian keeps its sign
+    from skfem import Basis
+
+    lam = bary(cubic.doflocs)                                   # (20, 4)
+    for _ in range(10):
+        mesh = MeshTet3(np.ascontiguousarray(points.T), np.ascontiguousarray(t.T))
+        det = Basis(mesh, cubic(), intorder=6).mapping.detDF(
+            Basis(mesh, cubic(), intorder=6).X)
+        bad = np.flatnonzero(np.sign(det).min(axis=1) != np.sign(det).max(axis=1))
+        if bad.size == 0:
+            return mesh
+        vertices = points[t[bad, :4]]                           # (n_bad, 4, 3)
+        points[t[bad, 4:]] = np.einsum("nk,ekd->end", lam[4:], vertices)
+    raise RuntimeError("curved elements stay inverted")
+
+
+def _frequencies(mesh, p: int, material) -> tuple[int, np.ndarray, float]:
+    """(DOFs, ten elastic frequencies in Hz, smallest det J) at order p on `mesh`."""
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as sla
+    from skfem import Basis, BilinearForm, LinearForm
+
+    from shaftfem.fem.assembly import (
+        MASS_INTORDER,
+        STIFFNESS_INTORDER,
+        Pattern,
+        _gradients,
+        _reference_values,
+        _sum_over_chunks,
+        elasticity_blocks,
+        mass_blocks,
+    )
+    from shaftfem.fem.eigen import solve_modes
+    from shaftfem.fem.elements import element
+    from shaftfem.fem.supports import rigid_body_modes
+    from shaftfem.scene.model import ModeRequest
+
+    lam, mu = material.lame
+    basis = Basis(mesh, element(p), intorder=STIFFNESS_INTORDER[p])
+    pattern = Pattern.of(basis.element_dofs, basis.N)
+    grad = _gradients(basis)
+    phi, m_dx = _reference_values(basis, MASS_INTORDER[p])
+    n_el, nb = grad.shape[0], grad.shape[2]
+    K = pattern.matrix(_sum_over_chunks(
+        lambda c: elasticity_blocks(grad[c], basis.dx[c], lam, mu).reshape(
+            c.stop - c.start, nb, nb, 9), n_el, pattern, 2), 3)
+    Ms = pattern.matrix(_sum_over_chunks(
+        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, 2), 1)
+    M = material.density * sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
+    # the coordinate field lies in the space (order >= 3): its coefficients by an L2
+    # projection (mass and load on one quadrature, so a field of the space is kept exactly)
+    mb = Basis(mesh, element(p), intorder=MASS_INTORDER[p])
+    b = np.column_stack([LinearForm(lambda v, w, c=c: w.x[c] * v).assemble(mb)
+                         for c in range(3)])
+    x = sla.splu(BilinearForm(lambda u, v, _: u * v).assemble(mb).tocsc()).solve(b)
+    one = np.zeros(basis.N)
+    one[basis.element_dofs[:4].ravel()] = 1.0
+    sol = solve_modes(K.tocsr(), M.tocsr(), ModeRequest(10),
+                      rigid=rigid_body_modes(x, constant=one))
+    det = float(basis.mapping.detDF(basis.X).min())
+    return 3 * basis.N, np.sqrt(sol.eigenvalues[6:16]) / (2 * np.pi), det
+
+
+def one(sizes_mm: tuple, geometry: int, orders: tuple) -> dict:
+    from dataclasses import replace
+
+    from skfem import Basis
+
+    from shaftfem.cad.mesh import mesh_shape
+    from shaftfem.cad.solid import build_shape
+    from shaftfem.fem.elements import element
+    from shaftfem.scene.load import load_scene
+
+    s, g, e = (x * 1e-3 for x in sizes_mm)
+    scene = load_scene("paper2018")
+    scene = replace(scene, max_dofs=5_000_000,
+                    mesh=replace(scene.mesh, size=s, groove_size=g, edge_size=e, order=3))
+    shape = build_shape(scene.shaft, scene.grooves)
+    if geometry == 3:
+        mesh = _cubic_mesh(scene, shape)
+    else:
+        mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh).to_skfem()
+    volume = float(Basis(mesh, element(3), intorder=6).dx.sum() / shape.volume - 1)
+    out = {"elements": mesh.t.shape[1], "volume": volume, "rows": []}
+    for p in orders:
+        dofs, f, det = _frequencies(mesh, p, scene.material)
+        err = np.abs(f / REFERENCE_HZ - 1)
+        out["rows"].append({"order": p, "dofs": dofs, "max": float(err.max()),
+                            "min": float(err.min()), "f": f.tolist(), "min_det": det})
+    out["peak"] = peak_mb()
+    return out
+
+
+def main(args: list[str]) -> None:
+    print(f"machine: {machine()}; paper2018, hierarchical elements on quadratic and cubic "
+          "geometry\n")
+    print("| sizes (mm) | geometry | elements | volume, mesh / solid - 1 | order | DOFs "
+          "| largest true error | smallest true error | smallest det J |\n"
+          "|---|---|---|---|---|---|---|---|---|")
+    for spec in args or ["16/8/8", "12/6/6", "16/4/4"]:
+        mm = tuple(float(x) for x in spec.split("/"))
+        for geometry in (2, 3):
+            r = in_fresh_process(one, mm, geometry, (3, 4))
+            for row in r["rows"]:
+                print(f"| {spec} | {'quadratic' if geometry == 2 else 'cubic'} | "
+                      f"{r['elements']} | {r['volume']:+.1e} | {row['order']} | {row['dofs']} | "
+                      f"{100 * row['max']:.3f} % | {100 * row['min']:.3f} % | {row['min_det']:.1e} |",
+                      flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
