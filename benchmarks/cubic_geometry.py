@@ -84,8 +84,8 @@ def _cubic_mesh(scene, shape):
     lam = bary(cubic.doflocs)                                   # (20, 4)
     for _ in range(10):
         mesh = MeshTet3(np.ascontiguousarray(points.T), np.ascontiguousarray(t.T))
-        det = Basis(mesh, cubic(), intorder=6).mapping.detDF(
-            Basis(mesh, cubic(), intorder=6).X)
+        check = Basis(mesh, cubic(), intorder=6)
+        det = check.mapping.detDF(check.X)
         bad = np.flatnonzero(np.sign(det).min(axis=1) != np.sign(det).max(axis=1))
         if bad.size == 0:
             return mesh
@@ -100,33 +100,16 @@ def _frequencies(mesh, p: int, material) -> tuple[int, np.ndarray, float]:
     import scipy.sparse.linalg as sla
     from skfem import Basis, BilinearForm, LinearForm
 
-    from shaftfem.fem.assembly import (
-        MASS_INTORDER,
-        STIFFNESS_INTORDER,
-        Pattern,
-        _gradients,
-        _reference_values,
-        _sum_over_chunks,
-        elasticity_blocks,
-        mass_blocks,
-    )
+    from shaftfem.fem.assembly import MASS_INTORDER, STIFFNESS_INTORDER, Pattern, stiffness_and_mass
     from shaftfem.fem.eigen import solve_modes
     from shaftfem.fem.elements import element
     from shaftfem.fem.supports import rigid_body_modes
     from shaftfem.scene.model import ModeRequest
 
-    lam, mu = material.lame
     basis = Basis(mesh, element(p), intorder=STIFFNESS_INTORDER[p])
-    pattern = Pattern.of(basis.element_dofs, basis.N)
-    grad = _gradients(basis)
-    phi, m_dx = _reference_values(basis, MASS_INTORDER[p])
-    n_el, nb = grad.shape[0], grad.shape[2]
-    K = pattern.matrix(_sum_over_chunks(
-        lambda c: elasticity_blocks(grad[c], basis.dx[c], lam, mu).reshape(
-            c.stop - c.start, nb, nb, 9), n_el, pattern, 2), 3)
-    Ms = pattern.matrix(_sum_over_chunks(
-        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, 2), 1)
-    M = material.density * sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
+    K, Ms = stiffness_and_mass(basis, Pattern.of(basis.element_dofs, basis.N), material,
+                               MASS_INTORDER[p], 2)
+    M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
     # the coordinate field lies in the space (order >= 3): its coefficients by an L2
     # projection (mass and load on one quadrature, so a field of the space is kept exactly)
     mb = Basis(mesh, element(p), intorder=MASS_INTORDER[p])

@@ -109,14 +109,7 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
     from skfem import Basis
 
     from shaftfem.cad.mesh import skfem_mesh
-    from shaftfem.fem.assembly import (
-        Pattern,
-        _gradients,
-        _reference_values,
-        _sum_over_chunks,
-        elasticity_blocks,
-        mass_blocks,
-    )
+    from shaftfem.fem.assembly import Pattern, stiffness_and_mass
     from shaftfem.fem.eigen import solve_modes
     from shaftfem.fem.estimate import recovery_estimate
     from shaftfem.fem.supports import rigid_body_modes
@@ -140,16 +133,9 @@ def one(sizes_mm: str, shares: list[float], root_radius_mm: float | None) -> dic
 
     skmesh = skfem_mesh(r.mesh.points, sorted_cells(r.mesh.cells))
     basis = Basis(skmesh, cubic_element(), intorder=4)
-    pattern = Pattern.of(basis.element_dofs, basis.N)
-    lam, mu = scene.material.lame
-    grad = _gradients(basis)
-    phi, m_dx = _reference_values(basis, 6)
-    n_el, nb = grad.shape[0], grad.shape[2]
-    K = pattern.matrix(_sum_over_chunks(
-        lambda c: elasticity_blocks(grad[c], basis.dx[c], lam, mu).reshape(
-            c.stop - c.start, nb, nb, 9), n_el, pattern, 2), 3)
-    Ms = scene.material.density * pattern.matrix(_sum_over_chunks(
-        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, 2), 1)
+    K, Ms = stiffness_and_mass(basis, Pattern.of(basis.element_dofs, basis.N), scene.material,
+                               6, 2)
+    n_el = basis.nelems
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
 
     dofs = basis.dofs

@@ -225,29 +225,36 @@ def discretise(mesh) -> Discretisation:
                           pattern=Pattern.of(basis.element_dofs, basis.N), order=mesh.order)
 
 
+def stiffness_and_mass(basis, pattern: Pattern, material: Material, mass_intorder: int,
+                       threads: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """K (N/m, 3x3 blocks) and the scalar consistent mass (kg) on a scalar basis, its
+    element kernels summed over chunks on `threads` threads."""
+    lam, mu = material.lame
+    grad = _gradients(basis)
+    phi, m_dx = _reference_values(basis, mass_intorder)
+    n_el, nb = grad.shape[0], grad.shape[2]
+    K = pattern.matrix(_sum_over_chunks(
+        lambda c: elasticity_blocks(grad[c], basis.dx[c], lam, mu).reshape(
+            c.stop - c.start, nb, nb, 9), n_el, pattern, threads), 3)
+    Ms = material.density * pattern.matrix(_sum_over_chunks(
+        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, threads), 1)
+    return K, Ms
+
+
 def assemble(mesh, material: Material, mass_intorder: int | None = None,
              threads: int | None = None, discretisation: Discretisation | None = None
              ) -> System:
     """K and M of a mesh.ShaftMesh with P1/P2 elements (its order), on `threads`
     threads (default: one per core); `discretisation`: the mesh's, if made already."""
     d = discretisation or discretise(mesh)
-    order, k_basis, pattern = d.order, d.basis, d.pattern
-    lam, mu = material.lame
-    n_threads = assembly_threads(threads)
-    grad = _gradients(k_basis)
-    phi, m_dx = _reference_values(k_basis, mass_intorder or MASS_INTORDER[order])
-    n_el = grad.shape[0]
-    K = pattern.matrix(_sum_over_chunks(
-        lambda c: elasticity_blocks(grad[c], k_basis.dx[c], lam, mu).reshape(
-            c.stop - c.start, grad.shape[2], grad.shape[2], 9),
-        n_el, pattern, n_threads), 3)
-    Ms = material.density * pattern.matrix(_sum_over_chunks(
-        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, n_threads), 1)
+    order, k_basis = d.order, d.basis
+    K, Ms = stiffness_and_mass(k_basis, d.pattern, material,
+                               mass_intorder or MASS_INTORDER[order], assembly_threads(threads))
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
     if order >= 3:  # hierarchical: values at the mesh's points come from the basis
         from shaftfem.fem.elements import hierarchical_coordinates
 
-        constant, nodes = hierarchical_coordinates(k_basis.mesh, k_basis)
+        constant, nodes = hierarchical_coordinates(k_basis)
         _check_translations(K, nodes, constant)
         return System(K=K, M=M, mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
                       order=order, point_values=point_values(mesh.element_cells, k_basis,

@@ -194,8 +194,8 @@ def hierarchical(p: int):
     return ElementTetHierarchical()
 
 
-def hierarchical_coordinates(mesh, basis) -> tuple[np.ndarray, np.ndarray]:
-    """The coefficients, in a hierarchical `basis` on the quadratic `mesh` (MeshTet2), of
+def hierarchical_coordinates(basis) -> tuple[np.ndarray, np.ndarray]:
+    """The coefficients, in a hierarchical `basis` on a quadratic mesh (MeshTet2), of
     the constant field 1 (n,) and of the coordinates x (n, 3): the fields rigid motions
     are made of. The P2 geometry x = sum_v x_v l_v + sum_edges (4 x_m - 2 x_a - 2 x_b)
     l_a l_b (with l_v (2 l_v - 1) = l_v - 2 sum_(k != v) l_v l_k), so only the vertex
@@ -206,7 +206,7 @@ def hierarchical_coordinates(mesh, basis) -> tuple[np.ndarray, np.ndarray]:
     n = basis.N
     one, x = np.zeros(n), np.zeros((n, 3))
     dofs = basis.element_dofs                      # (n_local, n_elements)
-    p2 = Basis(mesh, ElementTetP2(), intorder=1)
+    p2 = Basis(basis.mesh, ElementTetP2(), intorder=1)
     nodes = p2.doflocs[:, p2.element_dofs]          # (3, 10, n_elements)
     one[dofs[:4].ravel()] = 1.0
     x[dofs[:4].ravel()] = nodes[:, :4].reshape(3, -1).T
