@@ -232,6 +232,16 @@ def _compact(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndar
 
 # Edges of a 10-node tetrahedron in VTK/meshio order: node 4 + k sits on EDGES[k].
 EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
+# scikit-fem's reference tetrahedron: its vertices and its faces in local order
+VERTICES = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
+# The 20 nodes of a cubic tetrahedron, reference coordinates: the vertices, two points on
+# each edge at its thirds (the one near the edge's first vertex first), each face's centre.
+CUBIC_NODES = np.vstack(
+    [VERTICES]
+    + [np.array([(2 * VERTICES[i] + VERTICES[j]) / 3, (VERTICES[i] + 2 * VERTICES[j]) / 3])
+       for i, j in EDGES]
+    + [VERTICES[list(f)].mean(axis=0)[None] for f in FACES])
 
 
 def straighten_bad_elements(points: np.ndarray, cells: np.ndarray,
@@ -278,19 +288,23 @@ def jacobian_ratio(points: np.ndarray, cells: np.ndarray) -> float:
 def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     """Per element min(det J) / max |det J|, sampled at nodes and inside.
 
-    Negative means an inverted element; the determinant is evaluated with
+    Negative means an element inverted against its straight-sided self; the
+    determinant is evaluated with
     scikit-fem's isoparametric mapping, the one the assembly integrates with.
     """
     mapping = skfem_mesh(points, cells)._mapping()
     # vertices, edge midpoints, face centroids and the centroid of the reference tet
-    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    v = VERTICES
     pts = list(v)
     pts += [(v[i] + v[j]) / 2 for i in range(4) for j in range(i + 1, 4)]
-    pts += [(v[i] + v[j] + v[k]) / 3 for i, j, k in ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))]
+    pts += [(v[i] + v[j] + v[k]) / 3 for i, j, k in FACES]
     pts.append(v.mean(axis=0))
     det = mapping.detDF(np.array(pts).T)
-    sign = np.sign(np.median(det))
-    det = sign * det
+    # each element against its straight-sided self (ascending-vertex cells mix orientations)
+    v = points[cells[:, :4]]
+    straight = np.einsum("ed,ed->e", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]),
+                         v[:, 3] - v[:, 0])
+    det = np.sign(straight)[:, None] * det
     return det.min(axis=1) / np.abs(det).max(axis=1)
 
 

@@ -31,11 +31,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaftfem.cad.mesh import EDGES  # scikit-fem's (and meshio's) local edge order
+from shaftfem.cad.mesh import CUBIC_NODES, EDGES, FACES, VERTICES  # the reference tetrahedron
 
-# scikit-fem's reference tetrahedron: its faces in local order, its vertices
-FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
-VERTICES = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
 # d l_i / d X on the reference element (l_0 = 1 - x - y - z)
 GRAD_L = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
 
@@ -52,12 +49,8 @@ def lagrange_cubic():
         edge_dofs = 2
         facet_dofs = 1
         maxdeg = 3
-        dofnames = ["u", "u", "u"]
-        doflocs = np.vstack(
-            [VERTICES]
-            + [np.array([(2 * VERTICES[i] + VERTICES[j]) / 3, (VERTICES[i] + 2 * VERTICES[j]) / 3])
-               for i, j in EDGES]
-            + [VERTICES[list(f)].mean(axis=0)[None] for f in FACES])
+        dofnames = ["u"] * 4      # one per DOF of a vertex, an edge (2) and a face
+        doflocs = CUBIC_NODES
         refdom = RefTet
 
         def lbasis(self, X, i):
@@ -194,25 +187,36 @@ def hierarchical(p: int):
     return ElementTetHierarchical()
 
 
-def hierarchical_coordinates(basis) -> tuple[np.ndarray, np.ndarray]:
-    """The coefficients, in a hierarchical `basis` on a quadratic mesh (MeshTet2), of
-    the constant field 1 (n,) and of the coordinates x (n, 3): the fields rigid motions
-    are made of. The P2 geometry x = sum_v x_v l_v + sum_edges (4 x_m - 2 x_a - 2 x_b)
-    l_a l_b (with l_v (2 l_v - 1) = l_v - 2 sum_(k != v) l_v l_k), so only the vertex
-    and the first edge functions carry them."""
-    from skfem import Basis, ElementTetP2
+def hierarchical_degrees(p: int) -> np.ndarray:
+    """The polynomial degree of each local function of the order-p hierarchical
+    tetrahedron: the functions of degree <= q span order q's space (q = 1 .. p)."""
+    ne, nf, ni = hierarchical_counts(p)
+    edge = list(range(2, p + 1))
+    face = [3 + i + j for i, j in _pairs(p - 3)]
+    interior = [4 + sum(t) for t in _triples(p - 4)] if ni else []
+    return np.array([1] * 4 + edge * 6 + face * 4 + interior, dtype=np.int64)
 
-    ne = basis.elem.edge_dofs
+
+def hierarchical_coordinates(basis) -> tuple[np.ndarray, np.ndarray]:
+    """The coefficients, in a hierarchical `basis`, of the constant field 1 (n,) and of the
+    coordinates x (n, 3): the fields rigid motions are made of. The geometry is a
+    Lagrange map of degree g <= p (its nodes on the mesh), so x lies in the space: its
+    coefficients on the functions of degree <= g interpolate the nodes, element by
+    element (neighbours agree, as both sides interpolate the same shared nodes)."""
+    from skfem import Basis
+
+    mesh = basis.mesh
+    geometry = Basis(mesh, mesh.elem(), intorder=1)
+    nodes = geometry.doflocs[:, geometry.element_dofs]            # (3, n_geo, E)
+    local = np.flatnonzero(hierarchical_degrees(basis.elem.maxdeg) <= mesh.elem.maxdeg)
+    ref = mesh.elem.doflocs.T                                    # (3, n_geo)
+    V = np.column_stack([basis.elem.lbasis(ref, int(i))[0] for i in local])  # (n_geo, n_geo)
+    coeff = np.einsum("ij,cje->cie", np.linalg.inv(V), nodes)   # (3, n_geo, E)
     n = basis.N
     one, x = np.zeros(n), np.zeros((n, 3))
-    dofs = basis.element_dofs                      # (n_local, n_elements)
-    p2 = Basis(basis.mesh, ElementTetP2(), intorder=1)
-    nodes = p2.doflocs[:, p2.element_dofs]          # (3, 10, n_elements)
-    one[dofs[:4].ravel()] = 1.0
-    x[dofs[:4].ravel()] = nodes[:, :4].reshape(3, -1).T
-    for e, (a, b) in enumerate(EDGES):
-        coeff = 4 * nodes[:, 4 + e] - 2 * (nodes[:, a] + nodes[:, b])
-        x[dofs[4 + e * ne]] = coeff.T
+    dofs = basis.element_dofs[local]                              # (n_geo, E)
+    one[basis.element_dofs[:4].ravel()] = 1.0
+    x[dofs.ravel()] = coeff.reshape(3, -1).T
     return one, x
 
 
