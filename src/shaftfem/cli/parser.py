@@ -82,8 +82,8 @@ def build_parser() -> argparse.ArgumentParser:
     sw = _dask_command(sub, "sweep", "run many variants of a scene on Dask (resumable)",
                        "sweep file (TOML): base scene and parameter axes or points", cmd.cmd_sweep)
     sw.add_argument("--estimate", action="store_true",
-                    help="also bound each frequency's error (one more solve per variant, "
-                    "on a coarser mesh)")
+                    help="also bound each frequency's error (one more solve per variant: "
+                    "on a coarser mesh, or of the lower orders at orders 3 and 4)")
     _dask_command(sub, "calibrate", "find unknown scene values that reproduce target "
                   "frequencies (grid on Dask, then least squares)",
                   "calibration file (TOML): base, unknowns, targets", cmd.cmd_calibrate)
@@ -123,7 +123,8 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
                        help="required separation margin, %% (default: scene, else 15)")
     if estimate:
         c.add_argument("--no-estimate", action="store_true",
-                       help="skip the error bound (one more solve on a coarser mesh)")
+                       help="skip the error bound (one more solve: on a coarser mesh, or "
+                       "of the lower orders at orders 3 and 4)")
     _accuracy_arguments(c)
     c.add_argument("--free", action="store_true",
                    help="free-free: leave the scene's [[support]] bearings off (the shaft "

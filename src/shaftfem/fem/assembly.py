@@ -33,12 +33,17 @@ from shaftfem.runtime import assembly_threads
 from shaftfem.scene.model import Material
 
 # Quadrature orders: 2 integrates P2 stiffness exactly on straight tets (4 points,
-# as CalculiX's C3D10 does); 4 integrates the P2 mass exactly; likewise 4 and 6 for order
-# 3. Order 4 takes 7 (24 points) for its stiffness, not the exact 6: that rule has 15
-# points, too few for a 35-function element's 99 strain modes (on the 16 mm cylinder
-# it left three spurious zero-energy modes).
-STIFFNESS_INTORDER = {1: 1, 2: 2, 3: 4, 4: 7}
+# as CalculiX's C3D10 does); 4 integrates the P2 mass exactly; likewise 6 for order 3's
+# mass. Order 3's stiffness takes 5 (14 points), not the exact 4: that rule has a
+# negative weight, which can make an element's stiffness indefinite. Order 4 takes 7 (24
+# points) for its stiffness, not the exact 6: that rule has 15 points, too few for a
+# 35-function element's 99 strain modes (on the 16 mm cylinder it left three spurious
+# zero-energy modes).
+STIFFNESS_INTORDER = {1: 1, 2: 2, 3: 5, 4: 7}
 MASS_INTORDER = {1: 2, 2: 4, 3: 6, 4: 8}
+# Where an integral must stay a sum of positive terms (energies, L2 projections): rules
+# with positive weights only (scikit-fem's rules 3, 4, 8 and 9 have negative ones).
+POSITIVE_INTORDER = {1: 2, 2: 4, 3: 6, 4: 7}
 # Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
 # element) stay in cache-sized arrays, and the chunks spread over the threads.
 CHUNK = 4096
@@ -66,6 +71,8 @@ class System:
     # orders 3, 4: the coefficients of the constant field 1 (n_nodes,): 1 on the vertex
     # functions, 0 on the rest (None: 1 everywhere, as for Lagrange elements)
     constant: np.ndarray | None = None
+    # orders 3, 4: the polynomial degree of each scalar DOF's function (n_nodes,)
+    degrees: np.ndarray | None = None
 
     @property
     def n_dofs(self) -> int:
@@ -252,14 +259,16 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
                                mass_intorder or MASS_INTORDER[order], assembly_threads(threads))
     M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
     if order >= 3:  # hierarchical: values at the mesh's points come from the basis
-        from shaftfem.fem.elements import hierarchical_coordinates
+        from shaftfem.fem.elements import hierarchical_coordinates, hierarchical_degrees
 
         constant, nodes = hierarchical_coordinates(k_basis)
         _check_translations(K, nodes, constant)
+        degrees = np.zeros(k_basis.N, dtype=np.int64)
+        degrees[k_basis.element_dofs] = hierarchical_degrees(order)[:, None]
         return System(K=K, M=M, mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
                       order=order, point_values=point_values(mesh.element_cells, k_basis,
                                                              mesh.points.shape[0]),
-                      constant=constant)
+                      constant=constant, degrees=degrees)
     nodes = np.ascontiguousarray(k_basis.doflocs.T)
     _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,

@@ -56,6 +56,8 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     from shaftfem.fem.estimate import combine, matched, recovery_estimate, volume_difference
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
 
+    if result.system.degrees is not None:
+        return hierarchy_errors(result, options)
     scene, m = result.scene, result.modes
     size_mm = scene.mesh.size * 1e3 * ratio
     options.say(f"error estimate: recovery on this mesh, and a coarser mesh ({size_mm:.3g} mm)")
@@ -69,6 +71,52 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
                    matched(m.kinds, coarse.modes.kinds, ceta), coarse.modes.n_dofs,
                    method=f"recovery, confirmed on a {ratio:g}x coarser mesh",
                    geometry=volume_difference(fine.volume, result.shape, scene.shaft))
+
+
+def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
+    """The bound of a hierarchical (order p >= 3) run's frequencies from the lower orders
+    inside the same space (fem.hierarchy), whose frequencies are never below order p's:
+    orders p - 1 and p - 2 measure the rate of convergence (fem.estimate.hierarchy_estimate);
+    order 3 has only order 2 below it on its quadratic geometry (order 1 cannot move it
+    rigidly), so order 2's recovery estimate gives the ratio of the errors (combine)."""
+    from shaftfem.fem.estimate import (
+        combine,
+        hierarchy_estimate,
+        matched,
+        recovery_estimate,
+        volume_difference,
+    )
+    from shaftfem.fem.hierarchy import lower_order, raised
+
+    scene, m, system = result.scene, result.modes, result.system
+    p = system.order
+    below = 2 if p >= 4 else 1
+    options.say(f"error estimate: order{'s' if below > 1 else ''} "
+                f"{', '.join(str(p - k) for k in range(below, 0, -1))} inside order {p}'s space")
+    fine = recovery_estimate(result.mesh, scene.material, m)
+    geometry = volume_difference(fine.volume, result.shape, scene.shaft)
+    lower, keep = lower_order(system)
+    first = _solve_lower(lower, result, options)
+    f1 = matched(m.kinds, first.kinds, first.frequencies)
+    if below == 2:
+        second = _solve_lower(lower_order(lower)[0], result, options)
+        f2 = matched(m.kinds, second.kinds, second.frequencies)
+        return hierarchy_estimate((f2, f1, m.frequencies), (second.n_dofs, first.n_dofs, m.n_dofs),
+                                  fine.relative, geometry)
+    low = replace(first, shapes=raised(first.shapes, keep, system.nodes.shape[0]))
+    ceta = recovery_estimate(result.mesh, scene.material, low).relative
+    return combine(m.frequencies, fine.relative, f1, matched(m.kinds, first.kinds, ceta),
+                   first.n_dofs, method=f"recovery, confirmed by order {p - 1} in the same space",
+                   geometry=geometry)
+
+
+def _solve_lower(system, result: ModalResult, options: RunOptions):
+    """The modes of a lower order's system, as many as the run's."""
+    from shaftfem.fem.eigen import SolverSettings
+    from shaftfem.fem.modes import modal_analysis
+
+    request = replace(result.scene.modes, count=result.modes.count, max_frequency=None)
+    return modal_analysis(system, request, SolverSettings(options.factoriser))
 
 
 def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | None = None,
