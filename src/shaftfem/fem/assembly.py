@@ -73,6 +73,8 @@ class System:
     constant: np.ndarray | None = None
     # orders 3, 4: the polynomial degree of each scalar DOF's function (n_nodes,)
     degrees: np.ndarray | None = None
+    # orders 3, 4: the scalar DOF of each element's local function (n_local, n_elements)
+    element_dofs: np.ndarray | None = None
 
     @property
     def n_dofs(self) -> int:
@@ -268,7 +270,7 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
         return System(K=K, M=M, mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
                       order=order, point_values=point_values(mesh.element_cells, k_basis,
                                                              mesh.points.shape[0]),
-                      constant=constant, degrees=degrees)
+                      constant=constant, degrees=degrees, element_dofs=k_basis.element_dofs)
     nodes = np.ascontiguousarray(k_basis.doflocs.T)
     _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,

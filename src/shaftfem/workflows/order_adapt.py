@@ -1,0 +1,265 @@
+"""Element orders adapted to a requested accuracy on one mesh (p-adaptivity): raise the
+order where the modes' error is, until every frequency's bound is below the target or
+the DOF budget is spent.
+
+The mesh's hierarchical space of the scene's order (3 or 4) is assembled once; every
+round solves a space inside it (fem.hierarchy): first order 2 everywhere, then, each
+round, the elements whose next order's functions would lower the frequencies most
+(fem.hierarchy.raise_indicators), chosen until they hold THETA of the total (Doerfler's
+marking). The spaces are nested, so each round's frequencies are at or below the
+last's. The second round is bounded by its recovery estimate confirmed by the first
+(fem.estimate.combine); from the third on, the drops from the first round to a middle
+one and on to the last measure the run's own rate of convergence per mode
+(fem.estimate.hierarchy_estimate).
+
+The final orders and what their bound needs from the rounds before are cached, keyed
+like an adapted mesh (workflows.adapt.adapt_key) and the order: a warm re-run
+assembles and solves once.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.fem.estimate import combine, hierarchy_estimate, matched, recovery_estimate
+from shaftfem.runtime import RunOptions
+from shaftfem.workflows.adapt import Adapted, Round, adapt_key
+
+if TYPE_CHECKING:
+    from shaftfem.cad.mesh import ShaftMesh
+    from shaftfem.cad.solid import ShaftShape
+    from shaftfem.fem.assembly import System
+    from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.modes import Modes
+    from shaftfem.fem.result import ModalResult
+    from shaftfem.scene.model import Scene
+
+THETA = 0.6           # Doerfler: raise the elements holding this share of the gain
+MAX_ROUNDS = 8
+HISTORY = ("orders", "f", "kinds", "dofs", "eta", "round_bound", "round_seconds", "reached",
+           "why")
+
+
+@dataclass(frozen=True)
+class Space:
+    """One round's space: its DOFs, frequencies (Hz) and their kinds, recovery
+    estimates (fraction) and the mesh's volume."""
+
+    dofs: int
+    frequencies: np.ndarray
+    kinds: list[str]
+    recovery: np.ndarray
+    volume: float        # the mesh's volume, m^3
+
+
+def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
+                       options: RunOptions = RunOptions()) -> Adapted:
+    """Solve `scene` (order 3 or 4) with element orders raised until every frequency's
+    bound is below `target` (fraction) or the next space would exceed `max_dofs`."""
+    from shaftfem.cad.mesh import check_budget, mesh_shape
+    from shaftfem.cad.solid import build_shape
+    from shaftfem.store import cache_dir
+    from shaftfem.workflows.pipeline import Stopwatch, check_order
+
+    watch = Stopwatch()
+    check_order(scene)
+    check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
+    with watch.lap("cad"):
+        shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)
+    with watch.lap("mesh"):
+        mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
+                          use_cache=options.use_cache)
+    options.say(f"mesh: {mesh.n_elements} elements; assembling order {scene.mesh.order}")
+    with watch.lap("assembly"):
+        from shaftfem.fem.assembly import assemble
+
+        system = assemble(mesh, scene.material, threads=options.threads)
+    path = (cache_dir() / "adapted"
+            / f"orders-{adapt_key(scene, shape, target, max_dofs)}.npz")
+    if options.use_cache and path.exists():
+        cached = _cached(path, scene, shape, mesh, system, target, max_dofs, options, watch)
+        if cached is not None:
+            return cached
+    return _adapt(scene, shape, mesh, system, target, max_dofs, options, watch, path)
+
+
+def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, target: float,
+           max_dofs: int, options: RunOptions, watch, path) -> Adapted:
+    from shaftfem.fem.hierarchy import spanned
+
+    top = system.order
+    orders = np.full(_n_elements(system), 2, dtype=np.int64)
+    spaces: list[Space] = []
+    rounds: list[Round] = []
+    while True:
+        t = time.perf_counter()
+        keep = spanned(system, orders)
+        options.say(f"order round {len(rounds) + 1}: {3 * keep.size} DOFs "
+                    f"({np.mean(orders == top):.0%} of the elements at order {top}); solving")
+        sub, modes, space = _solve(scene, mesh, system, orders, keep, options, watch)
+        if not spaces:  # the first round's modes are the ones followed
+            scene = replace(scene, modes=replace(scene.modes, count=modes.count,
+                                                 max_frequency=None))
+        spaces.append(space)
+        est = _bound(spaces, shape, scene)
+        bound = est.relative_error if est is not None else 1.5 * space.recovery
+        rounds.append(Round(space.dofs, float(np.max(bound)), time.perf_counter() - t))
+        options.say(f"order round {len(rounds)}: {space.dofs} DOFs, largest bound "
+                    f"{100 * np.max(bound):.2g} %")
+        reached = est is not None and float(np.max(bound)) <= target
+        if reached:
+            why = ""
+            break
+        new, why = _next(system, orders, keep, modes, max_dofs, len(rounds), bound)
+        if new is None:
+            break
+        orders = new
+    if est is None:
+        raise AssertionError("an order-adaptive run ends with a bounded round")
+    result = _result(scene, shape, mesh, sub, modes, watch)
+    if options.use_cache:
+        _save(path, orders, spaces[:-1], rounds, reached, why)
+    return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
+                   rounds=tuple(rounds), reached=reached, why=why, from_cache=False,
+                   what=f"orders (up to {top})")
+
+
+def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, max_dofs: int,
+          n_rounds: int, bound: np.ndarray) -> tuple[np.ndarray | None, str]:
+    """The next round's element orders, or None and why there is none."""
+    from shaftfem.fem.hierarchy import raise_indicators, spanned
+
+    top = system.order
+    worst = f"{100 * np.max(bound):.2g} %"
+    if n_rounds >= MAX_ROUNDS:
+        return None, f"stopped after {MAX_ROUNDS} rounds with a largest bound of {worst}"
+    if np.all(orders >= top):
+        return None, (f"every element is at order {top}, with a largest bound of {worst}: "
+                      "a finer mesh (--mesh-size) or a higher order goes further")
+    gain = raise_indicators(system, keep, orders, modes.shapes,
+                            (2 * np.pi * modes.frequencies) ** 2)
+    gain[orders >= top] = 0.0
+    ranked = np.argsort(gain)[::-1]
+    share = np.cumsum(gain[ranked]) / max(gain.sum(), 1e-300)
+    n = int(np.searchsorted(share, THETA)) + 1
+    # the largest marked set (by rank) that fits the budget
+    lo, hi = 0, n
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        trial = orders.copy()
+        trial[ranked[:mid]] += 1
+        lo, hi = (mid, hi) if 3 * spanned(system, trial).size <= max_dofs else (lo, mid - 1)
+    if lo == 0:
+        return None, (f"raising any element's order would exceed the budget of {max_dofs} "
+                      f"DOFs (--max-dofs); the bounds shown are those reached at "
+                      f"{3 * keep.size} DOFs")
+    new = orders.copy()
+    new[ranked[:lo]] += 1
+    return new, ""
+
+
+def _solve(scene: Scene, mesh: ShaftMesh, system: System, orders: np.ndarray,
+           keep: np.ndarray, options: RunOptions, watch) -> tuple[System, Modes, Space]:
+    """The system and modes of the space `orders` (functions `keep`), and its summary."""
+    from shaftfem.fem.eigen import SolverSettings
+    from shaftfem.fem.hierarchy import raised, restricted
+    from shaftfem.fem.modes import modal_analysis
+
+    sub = restricted(system, keep, int(orders.max()))
+    with watch.lap("solve"):
+        modes = modal_analysis(sub, scene.modes, SolverSettings(options.factoriser))
+    full = replace(modes, shapes=raised(modes.shapes, keep, system.nodes.shape[0]))
+    rec = recovery_estimate(mesh, scene.material, full)
+    return sub, modes, Space(dofs=modes.n_dofs, frequencies=modes.frequencies,
+                             kinds=list(modes.kinds), recovery=rec.relative, volume=rec.volume)
+
+
+def _bound(spaces: list[Space], shape: ShaftShape, scene: Scene) -> ErrorEstimate | None:
+    """The last round's bound: from the round before (second round) or the last three's
+    measured rate (after); None on the first. Earlier rounds' modes are matched to the
+    last's by kind."""
+    from shaftfem.fem.estimate import volume_difference
+
+    if len(spaces) < 2:
+        return None
+    last = spaces[-1]
+    geometry = volume_difference(last.volume, shape, scene.shaft)
+
+    def f(s: Space) -> np.ndarray:
+        return matched(last.kinds, s.kinds, s.frequencies)
+
+    if len(spaces) == 2:
+        first = spaces[0]
+        return combine(last.frequencies, last.recovery, f(first),
+                       matched(last.kinds, first.kinds, first.recovery), first.dofs,
+                       method="recovery, confirmed by the order-2 round", geometry=geometry)
+    # the rate over the whole run: the first round, the last, and the round between
+    # them nearest their geometric mean in DOFs (two close rounds measure no rate)
+    a = spaces[0]
+    mid = np.log(a.dofs * last.dofs) / 2
+    b = min(spaces[1:-1], key=lambda s: abs(np.log(s.dofs) - mid))
+    return replace(hierarchy_estimate((f(a), f(b), last.frequencies), (a.dofs, b.dofs, last.dofs),
+                                      last.recovery, geometry),
+                   method="three nested spaces of this run (first, middle, last round), "
+                          "their measured rate")
+
+
+def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, modes: Modes,
+            watch) -> ModalResult:
+    from shaftfem.fem.result import ModalResult
+    from shaftfem.workflows.pipeline import scene_warnings
+
+    return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
+                       timings=watch.timings(), warnings=scene_warnings(scene, modes))
+
+
+def _save(path, orders: np.ndarray, before: list[Space], rounds: list[Round], reached: bool,
+          why: str) -> None:
+    from shaftfem.store import save_arrays
+
+    save_arrays(path, dict(orders=orders.astype(np.int8),
+                           f=np.array([s.frequencies for s in before]),
+                           kinds=np.array([s.kinds for s in before]),
+                           dofs=np.array([s.dofs for s in before]),
+                           eta=np.array([s.recovery for s in before]),
+                           round_bound=np.array([r.max_bound for r in rounds]),
+                           round_seconds=np.array([r.seconds for r in rounds]),
+                           reached=np.bool_(reached), why=np.str_(why)))
+
+
+def _cached(path, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System,
+            target: float, max_dofs: int, options: RunOptions, watch) -> Adapted | None:
+    """The cached orders solved once, bounded with the rounds before kept beside them;
+    None (and the entry discarded) where the entry is damaged or does not fit the mesh."""
+    from shaftfem.fem.hierarchy import spanned
+    from shaftfem.store import discard, load_arrays
+
+    z, why = load_arrays(path, HISTORY)
+    if z is None or z["orders"].shape != (_n_elements(system),):
+        discard(f"adapted orders {path.stem}", why or "another mesh's orders", path)
+        return None
+    options.say("adapted orders from cache; solving")
+    orders = z["orders"].astype(np.int64)
+    before = [Space(int(d), f, [str(k) for k in kinds], eta, 0.0)
+              for f, kinds, d, eta in zip(z["f"], z["kinds"], z["dofs"], z["eta"])]
+    sub, modes, last = _solve(scene, mesh, system, orders, spanned(system, orders), options,
+                              watch)
+    est = _bound(before + [last], shape, scene)
+    if est is None:
+        return None
+    rounds = [Round(int(d), float(b), float(s)) for d, b, s in
+              zip([s.dofs for s in before] + [last.dofs], z["round_bound"], z["round_seconds"])]
+    return Adapted(result=_result(scene, shape, mesh, sub, modes, watch), estimate=est,
+                   target=target, max_dofs=max_dofs, rounds=tuple(rounds),
+                   reached=bool(z["reached"]), why=str(z["why"]), from_cache=True,
+                   what=f"orders (up to {system.order})")
+
+
+def _n_elements(system: System) -> int:
+    if system.element_dofs is None:
+        raise ValueError("adapting the orders needs a whole hierarchical system")
+    return int(system.element_dofs.shape[1])

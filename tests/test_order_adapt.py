@@ -1,0 +1,81 @@
+"""Element orders adapted on one mesh: every round's space lies between uniform order 2
+and the full order (so its frequencies do too), it is conforming and free of strain under
+rigid motions, the run stays within its budget, its torsion frequency lies inside its
+bound of c_t/2L, and a warm run takes the cached orders."""
+
+import numpy as np
+import pytest
+
+from references import torsion_hz
+
+SIZE_MM = 16.0
+
+
+@pytest.fixture(scope="module")
+def adapted(cylinder):
+    from shaftfem.runtime import RunOptions
+    from shaftfem.workflows.order_adapt import run_order_adaptive
+    from shaftfem.workflows.pipeline import with_mesh
+
+    scene = with_mesh(cylinder.scene, SIZE_MM, order=3)
+    # a target below the 16 mm circle's geometric floor: the run ends on its budget
+    cold = run_order_adaptive(scene, 1e-5, 20_000, RunOptions(use_cache=True))
+    warm = run_order_adaptive(scene, 1e-5, 20_000, RunOptions(use_cache=True))
+    return scene, cold, warm
+
+
+@pytest.fixture(scope="module")
+def uniform(cylinder):
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
+
+    return {p: run_modes(with_mesh(cylinder.scene, SIZE_MM, order=p)) for p in (2, 3)}
+
+
+def test_adapted_space_lies_between_uniform_orders(adapted, uniform):
+    """Nested spaces: f(order 2) >= f(adapted) >= f(order 3) mode by mode, and the
+    adapted space is strictly larger than order 2 and smaller than order 3."""
+    from shaftfem.fem.estimate import matched
+
+    _, cold, _ = adapted
+    m = cold.result.modes
+    f2 = matched(m.kinds, uniform[2].modes.kinds, uniform[2].modes.frequencies)
+    f3 = matched(m.kinds, uniform[3].modes.kinds, uniform[3].modes.frequencies)
+    assert np.all(f2 >= m.frequencies * (1 - 1e-9))
+    assert np.all(m.frequencies >= f3 * (1 - 1e-9))
+    assert uniform[2].modes.n_dofs < m.n_dofs < uniform[3].modes.n_dofs
+    assert len(cold.rounds) >= 3
+    assert all(a.dofs < b.dofs for a, b in zip(cold.rounds, cold.rounds[1:]))
+
+
+def test_adapted_space_is_conforming_and_rigid_free(adapted):
+    """K t = 0 for the three translations of the adapted space (its constant field), and
+    the solver found exactly six rigid modes."""
+    _, cold, _ = adapted
+    s = cold.result.system
+    for c in range(3):
+        t = np.zeros(s.n_dofs)
+        t[c::3] = s.constant
+        assert np.linalg.norm(s.K @ t) < 1e-9 * abs(s.K).max() * np.linalg.norm(t)
+    assert cold.result.modes.n_rigid == 6
+
+
+def test_budget_and_torsion_bound(adapted, cylinder):
+    """The run ends within its DOF budget, saying why, and its first torsion frequency
+    lies inside its bound of c_t/2L."""
+    scene, cold, _ = adapted
+    assert not cold.reached and "budget" in cold.why
+    assert cold.result.modes.n_dofs <= 20_000
+    m, mat = cold.result.modes, scene.material
+    i = m.kinds.index("torsion")
+    exact = torsion_hz(1, scene.shaft.length, mat.youngs_modulus, mat.poisson_ratio, mat.density)
+    assert abs(m.frequencies[i] / exact - 1) <= cold.estimate.relative_error[i]
+
+
+def test_warm_run_takes_the_cached_orders(adapted):
+    """The second run solves the cached space once: same DOFs, frequencies and bound."""
+    _, cold, warm = adapted
+    assert warm.from_cache and not cold.from_cache
+    assert warm.result.modes.n_dofs == cold.result.modes.n_dofs
+    assert np.allclose(warm.result.modes.frequencies, cold.result.modes.frequencies, rtol=1e-9)
+    assert np.allclose(warm.estimate.relative_error, cold.estimate.relative_error, rtol=1e-6)
+    assert [r.dofs for r in warm.rounds] == [r.dofs for r in cold.rounds]
