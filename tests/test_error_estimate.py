@@ -2,12 +2,20 @@
 the bound holds against closed forms."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from references import axial_love_hz, torsion_hz
-from shaftfem.fem.estimate import SAFETY, combine, matched
+from shaftfem.fem.estimate import (
+    HIERARCHY_SAFETY,
+    SAFETY,
+    carried_estimate,
+    combine,
+    contraction_estimate,
+    matched,
+)
 from shaftfem.workflows.bounded import estimate_errors
 
 
@@ -45,6 +53,33 @@ def test_a_close_pair_shares_one_bound():
     est = combine(np.array([100.0, 100.01, 300.0]), np.array([0.001, 0.004, 0.002]),
                   np.array([101.0, 101.01, 303.0]), np.array([0.01, 0.02, 0.02]), 1000, "test")
     assert est.relative_error[0] == est.relative_error[1] > est.relative_error[2]
+
+
+def test_a_contracting_series_gives_the_error_left():
+    """Rounds whose error falls by the same factor q each time (f_n = f (1 + e q^n)):
+    the contraction estimate is the last round's true error; a series that does not
+    contract leaves the recovery estimate, and says so."""
+    truth, e0 = 100.0, 0.02
+    for q in (0.2, 0.5, 0.8):
+        f = [np.array([truth * (1 + e0 * q**n)]) for n in range(3)]
+        est = contraction_estimate((f[0], f[1], f[2]), 1000, np.array([0.5]))
+        assert est.two_mesh[0] == pytest.approx((f[2][0] - truth) / f[2][0], rel=1e-9)
+        assert est.relative_error[0] == pytest.approx(HIERARCHY_SAFETY * est.two_mesh[0])
+    flat = contraction_estimate((np.array([101.0]), np.array([100.5]), np.array([100.0])),
+                                1000, np.array([0.004]))
+    assert not flat.reliable[0] and flat.relative_error[0] == pytest.approx(SAFETY * 0.004)
+    assert flat.notes
+
+
+def test_a_larger_space_carries_the_bound_less_the_drop():
+    """A space containing one bounded by B keeps B's absolute bound less the drop: with
+    B exact, the carried bound is exact too."""
+    truth = 100.0
+    fb, fc = np.array([101.0]), np.array([100.4])
+    before = combine(fb, np.array([0.01 / 1.01]), fb * 1.01, np.array([0.02]), 100, "test")
+    before = replace(before, relative_error=np.array([(fb[0] - truth) / fb[0]]))
+    est = carried_estimate(before, fb, fc, np.array([0.001]), 100)
+    assert est.relative_error[0] == pytest.approx((fc[0] - truth) / fc[0], rel=1e-12)
 
 
 def test_matched_pairs_kinds_in_order():

@@ -1,7 +1,8 @@
 """Element orders adapted on one mesh: every round's space lies between uniform order 2
 and the full order (so its frequencies do too), it is conforming and free of strain under
-rigid motions, the run stays within its budget, its torsion frequency lies inside its
-bound of c_t/2L, and a warm run takes the cached orders."""
+rigid motions, the run stays within its budget, its bounds fall round by round, its
+torsion frequency lies inside its bound of c_t/2L, and a warm run (an accuracy asked of
+an order-3 scene) takes the cached orders."""
 
 import numpy as np
 import pytest
@@ -14,14 +15,16 @@ SIZE_MM = 16.0
 @pytest.fixture(scope="module")
 def adapted(cylinder):
     from shaftfem.runtime import RunOptions
+    from shaftfem.workflows.bounded import run_bounded, with_accuracy
     from shaftfem.workflows.order_adapt import run_order_adaptive
     from shaftfem.workflows.pipeline import with_mesh
 
     scene = with_mesh(cylinder.scene, SIZE_MM, order=3)
     # a target below the 16 mm circle's geometric floor: the run ends on its budget
     cold = run_order_adaptive(scene, 1e-5, 20_000, RunOptions(use_cache=True))
-    warm = run_order_adaptive(scene, 1e-5, 20_000, RunOptions(use_cache=True))
-    return scene, cold, warm
+    # what the modal commands run for --accuracy 0.001 --order 3
+    warm = run_bounded(with_accuracy(scene, 1e-3, 20_000), options=RunOptions(use_cache=True))
+    return scene, cold, warm.adapted
 
 
 @pytest.fixture(scope="module")
@@ -57,6 +60,14 @@ def test_adapted_space_is_conforming_and_rigid_free(adapted):
         t[c::3] = s.constant
         assert np.linalg.norm(s.K @ t) < 1e-9 * abs(s.K).max() * np.linalg.norm(t)
     assert cold.result.modes.n_rigid == 6
+
+
+def test_bounds_fall_round_by_round(adapted):
+    """From the second round (the first bounded one) on, each round's largest bound is
+    below the last's."""
+    _, cold, _ = adapted
+    bounds = [r.max_bound for r in cold.rounds[1:]]
+    assert all(b < a for a, b in zip(bounds, bounds[1:])), bounds
 
 
 def test_budget_and_torsion_bound(adapted, cylinder):

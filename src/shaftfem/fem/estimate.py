@@ -235,23 +235,68 @@ def hierarchy_estimate(f: tuple[np.ndarray, np.ndarray, np.ndarray],
             b = measured_rate((float(dofs[0]), float(dofs[1]), float(dofs[2])), d1[i] / d2[i])
             if np.isfinite(b):
                 est[i] = d1[i] / ((dofs[2] / dofs[1]) ** b - 1)
+    return _rate_bound(top, est, recovery, geometry, int(dofs[1]),
+                       "three nested orders on one mesh, their measured rate",
+                       "the lower orders' frequencies do not fall towards this one at a "
+                       "measurable rate")
+
+
+def contraction_estimate(f: tuple[np.ndarray, np.ndarray, np.ndarray], dofs: int,
+                         recovery: np.ndarray, geometry: float = 0.0) -> ErrorEstimate:
+    """The bound of the last of three successive rounds of an adaptive run on nested
+    spaces, f = (f_(n-2), f_(n-1), f_n) (earlier rounds matched to the last's modes).
+
+    Each round marks the same share of the estimated gain (Doerfler), so each removes
+    about the same fraction of the error that is left: the drops' ratio
+    q = D_(n-1) / D_(n-2) measures it per mode, and what is left after round n is the
+    rest of that geometric series, D_(n-1) q / (1 - q). `dofs` is round n - 1's. The bound
+    is HIERARCHY_SAFETY times that plus the geometry allowance; a mode whose drops do
+    not fall keeps the recovery estimate, and is said to."""
+    a, b, top = (np.asarray(x, float) for x in f)
+    d2, d1 = (a - b) / top, (b - top) / top
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = d1 / d2
+        est = np.where((d2 > 0) & (d1 > 0) & (q < 1), d1 * q / (1 - q), np.nan)
+    return _rate_bound(top, est, recovery, geometry, dofs,
+                       "three successive rounds on nested spaces, their contraction",
+                       "the earlier rounds' frequencies do not fall towards this one by a "
+                       "contracting series")
+
+
+def carried_estimate(before: ErrorEstimate, f_before: np.ndarray, f: np.ndarray,
+                     recovery: np.ndarray, dofs: int) -> ErrorEstimate:
+    """The bound of a space that contains one already bounded (`before`, its frequencies
+    f_before matched to this one's modes f): its error is the earlier error less the drop
+    between them, so (B f_before - (f_before - f)) / f bounds it wherever B did. Used
+    where a round's step was cut short, and its drops measure no contraction."""
+    prev, f_before, top = (np.asarray(x, float) for x in (before.relative_error, f_before, f))
+    bound = (prev * f_before - (f_before - top)) / top
+    ok = np.isfinite(bound)
+    bound = np.where(ok, bound, SAFETY * np.asarray(recovery, float) + before.geometry)
+    for group in clusters(top):
+        bound[group] = bound[group].max()
+    return ErrorEstimate(relative_error=bound, recovery=np.asarray(recovery, float),
+                         two_mesh=np.full(top.size, np.nan), reliable=ok & before.reliable,
+                         coarse_dofs=dofs, method="the round before's bound, less the drop "
+                         "to this round", geometry=before.geometry, notes=before.notes)
+
+
+def _rate_bound(top: np.ndarray, est: np.ndarray, recovery: np.ndarray, geometry: float,
+                dofs: int, method: str, why: str) -> ErrorEstimate:
+    """HIERARCHY_SAFETY times a rate-based estimate (SAFETY times the recovery estimate
+    where it is nan) plus the geometry allowance, one bound per cluster of modes."""
     ok = np.isfinite(est)
     bound = np.where(ok, HIERARCHY_SAFETY * est, SAFETY * recovery) + abs(geometry)
     reliable = ok.copy()
     for group in clusters(top):
         bound[group] = bound[group].max()
         reliable[group] = reliable[group].all()
-    notes = []
     bad = [i + 1 for i in range(top.size) if not ok[i]]
-    if bad:
-        notes.append(
-            f"mode(s) {', '.join(map(str, bad))}: the lower orders' frequencies do not fall "
-            "towards this one at a measurable rate, so the bound rests on the recovery "
-            "estimate alone; refine the mesh to confirm it")
+    notes = (f"mode(s) {', '.join(map(str, bad))}: {why}, so the bound rests on the "
+             "recovery estimate alone; refine the mesh to confirm it",) if bad else ()
     return ErrorEstimate(relative_error=bound, recovery=np.asarray(recovery, float), two_mesh=est,
-                         reliable=reliable, coarse_dofs=int(dofs[1]),
-                         method="three nested orders on one mesh, their measured rate",
-                         geometry=abs(geometry), notes=tuple(notes))
+                         reliable=reliable, coarse_dofs=dofs, method=method,
+                         geometry=abs(geometry), notes=notes)
 
 
 def volume_difference(mesh_volume: float, shape: ShaftShape, shaft: Shaft) -> float:

@@ -1,7 +1,8 @@
 """Every modal command's entry point: the modes with an error bound for each frequency.
 
-A scene with a target error is solved on meshes adapted to it (workflows.adapt).
-Otherwise its fixed mesh is solved and, when asked, bounded by its recovery
+A scene with a target error is solved on meshes adapted to it (workflows.adapt) at
+order 2, or with element orders adapted on its mesh up to its order 3 or 4
+(workflows.order_adapt). Otherwise its fixed mesh is solved and, when asked, bounded by its recovery
 estimate confirmed on the same scene solved on a mesh COARSER times coarser
 (fem.estimate says how the two combine).
 """
@@ -35,12 +36,16 @@ class Bounded:
 def run_bounded(scene: Scene, estimate: bool = True,
                 options: RunOptions = RunOptions()) -> Bounded:
     """The modes with their error bounds (`Bounded.estimate.relative_error`, fractions
-    of each frequency): on a mesh adapted to the scene's target_error when it has one,
-    else on its fixed mesh (bounded when `estimate`)."""
+    of each frequency): adapted to the scene's target_error when it has one (the mesh at
+    order 2, the element orders up to the scene's order 3 or 4), else on its fixed mesh
+    (bounded when `estimate`)."""
     if scene.target_error is not None:
-        from shaftfem.workflows.adapt import run_adaptive
+        if scene.mesh.order >= 3:
+            from shaftfem.workflows.order_adapt import run_order_adaptive as run
+        else:
+            from shaftfem.workflows.adapt import run_adaptive as run
 
-        a = run_adaptive(scene, scene.target_error, scene.max_dofs, options)
+        a = run(scene, scene.target_error, scene.max_dofs, options)
         return Bounded(a.result, a.estimate, a)
     from shaftfem.workflows.pipeline import run_modes
 

@@ -8,9 +8,8 @@ round, the elements whose next order's functions would lower the frequencies mos
 (fem.hierarchy.raise_indicators), chosen until they hold THETA of the total (Doerfler's
 marking). The spaces are nested, so each round's frequencies are at or below the
 last's. The second round is bounded by its recovery estimate confirmed by the first
-(fem.estimate.combine); from the third on, the drops from the first round to a middle
-one and on to the last measure the run's own rate of convergence per mode
-(fem.estimate.hierarchy_estimate).
+(fem.estimate.combine); from the third on, the last three rounds' drops measure how much
+of the remaining error each round removes, per mode (fem.estimate.contraction_estimate).
 
 The final orders and what their bound needs from the rounds before are cached, keyed
 like an adapted mesh (workflows.adapt.adapt_key) and the order: a warm re-run
@@ -25,7 +24,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaftfem.fem.estimate import combine, hierarchy_estimate, matched, recovery_estimate
+from shaftfem.fem.estimate import (
+    carried_estimate,
+    combine,
+    contraction_estimate,
+    matched,
+    recovery_estimate,
+)
 from shaftfem.runtime import RunOptions
 from shaftfem.workflows.adapt import Adapted, Round, adapt_key
 
@@ -40,20 +45,22 @@ if TYPE_CHECKING:
 
 THETA = 0.6           # Doerfler: raise the elements holding this share of the gain
 MAX_ROUNDS = 8
-HISTORY = ("orders", "f", "kinds", "dofs", "eta", "round_bound", "round_seconds", "reached",
-           "why")
+HISTORY = ("orders", "f", "kinds", "dofs", "eta", "trimmed", "round_bound", "round_seconds",
+           "reached", "why")
 
 
 @dataclass(frozen=True)
 class Space:
     """One round's space: its DOFs, frequencies (Hz) and their kinds, recovery
-    estimates (fraction) and the mesh's volume."""
+    estimates (fraction), the mesh's volume, and whether the step to it was cut short
+    by the budget."""
 
     dofs: int
     frequencies: np.ndarray
     kinds: list[str]
     recovery: np.ndarray
     volume: float        # the mesh's volume, m^3
+    trimmed: bool = False
 
 
 def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
@@ -67,7 +74,8 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
 
     watch = Stopwatch()
     check_order(scene)
-    check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
+    # the budget is on the spaces solved: the first, order 2 everywhere, must fit it
+    check_budget(scene.shaft, scene.grooves, replace(scene.mesh, order=2), max_dofs)
     with watch.lap("cad"):
         shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)
     with watch.lap("mesh"):
@@ -93,6 +101,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
 
     top = system.order
     orders = np.full(_n_elements(system), 2, dtype=np.int64)
+    trimmed = False
     spaces: list[Space] = []
     rounds: list[Round] = []
     while True:
@@ -101,6 +110,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         options.say(f"order round {len(rounds) + 1}: {3 * keep.size} DOFs "
                     f"({np.mean(orders == top):.0%} of the elements at order {top}); solving")
         sub, modes, space = _solve(scene, mesh, system, orders, keep, options, watch)
+        space = replace(space, trimmed=trimmed)
         if not spaces:  # the first round's modes are the ones followed
             scene = replace(scene, modes=replace(scene.modes, count=modes.count,
                                                  max_frequency=None))
@@ -114,7 +124,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         if reached:
             why = ""
             break
-        new, why = _next(system, orders, keep, modes, max_dofs, len(rounds), bound)
+        new, why, trimmed = _next(system, orders, keep, modes, max_dofs, len(rounds), bound)
         if new is None:
             break
         orders = new
@@ -122,24 +132,25 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         raise AssertionError("an order-adaptive run ends with a bounded round")
     result = _result(scene, shape, mesh, sub, modes, watch)
     if options.use_cache:
-        _save(path, orders, spaces[:-1], rounds, reached, why)
+        _save(path, orders, spaces, rounds, reached, why)
     return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
                    rounds=tuple(rounds), reached=reached, why=why, from_cache=False,
                    what=f"orders (up to {top})")
 
 
 def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, max_dofs: int,
-          n_rounds: int, bound: np.ndarray) -> tuple[np.ndarray | None, str]:
-    """The next round's element orders, or None and why there is none."""
+          n_rounds: int, bound: np.ndarray) -> tuple[np.ndarray | None, str, bool]:
+    """The next round's element orders (or None and why there is none), and whether the
+    budget cut the marked set short."""
     from shaftfem.fem.hierarchy import raise_indicators, spanned
 
     top = system.order
     worst = f"{100 * np.max(bound):.2g} %"
     if n_rounds >= MAX_ROUNDS:
-        return None, f"stopped after {MAX_ROUNDS} rounds with a largest bound of {worst}"
+        return None, f"stopped after {MAX_ROUNDS} rounds with a largest bound of {worst}", False
     if np.all(orders >= top):
         return None, (f"every element is at order {top}, with a largest bound of {worst}: "
-                      "a finer mesh (--mesh-size) or a higher order goes further")
+                      "a finer mesh (--mesh-size) or a higher order goes further"), False
     gain = raise_indicators(system, keep, orders, modes.shapes,
                             (2 * np.pi * modes.frequencies) ** 2)
     gain[orders >= top] = 0.0
@@ -156,10 +167,10 @@ def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, ma
     if lo == 0:
         return None, (f"raising any element's order would exceed the budget of {max_dofs} "
                       f"DOFs (--max-dofs); the bounds shown are those reached at "
-                      f"{3 * keep.size} DOFs")
+                      f"{3 * keep.size} DOFs"), False
     new = orders.copy()
     new[ranked[:lo]] += 1
-    return new, ""
+    return new, "", lo < n
 
 
 def _solve(scene: Scene, mesh: ShaftMesh, system: System, orders: np.ndarray,
@@ -179,33 +190,37 @@ def _solve(scene: Scene, mesh: ShaftMesh, system: System, orders: np.ndarray,
 
 
 def _bound(spaces: list[Space], shape: ShaftShape, scene: Scene) -> ErrorEstimate | None:
-    """The last round's bound: from the round before (second round) or the last three's
-    measured rate (after); None on the first. Earlier rounds' modes are matched to the
-    last's by kind."""
+    """The last round's bound, None on the first. The second round's is its recovery
+    estimate confirmed by the first; after that, the last three rounds' contraction; a
+    round whose step the budget cut short carries the round before's bound less the drop
+    (its drops measure no contraction). Earlier rounds' modes are matched to the last's
+    by kind."""
     from shaftfem.fem.estimate import volume_difference
 
+    # every round is on the one mesh: its volume is the last round's
+    return _bound_with(spaces, volume_difference(spaces[-1].volume, shape, scene.shaft))
+
+
+def _bound_with(spaces: list[Space], geometry: float) -> ErrorEstimate | None:
     if len(spaces) < 2:
         return None
-    last = spaces[-1]
-    geometry = volume_difference(last.volume, shape, scene.shaft)
+    last, b = spaces[-1], spaces[-2]
 
     def f(s: Space) -> np.ndarray:
         return matched(last.kinds, s.kinds, s.frequencies)
 
+    if last.trimmed and len(spaces) > 2:
+        before = _bound_with(spaces[:-1], geometry)
+        if before is not None:
+            prev = replace(before, relative_error=matched(last.kinds, b.kinds,
+                                                          before.relative_error))
+            return carried_estimate(prev, f(b), last.frequencies, last.recovery, b.dofs)
     if len(spaces) == 2:
-        first = spaces[0]
-        return combine(last.frequencies, last.recovery, f(first),
-                       matched(last.kinds, first.kinds, first.recovery), first.dofs,
+        return combine(last.frequencies, last.recovery, f(b),
+                       matched(last.kinds, b.kinds, b.recovery), b.dofs,
                        method="recovery, confirmed by the order-2 round", geometry=geometry)
-    # the rate over the whole run: the first round, the last, and the round between
-    # them nearest their geometric mean in DOFs (two close rounds measure no rate)
-    a = spaces[0]
-    mid = np.log(a.dofs * last.dofs) / 2
-    b = min(spaces[1:-1], key=lambda s: abs(np.log(s.dofs) - mid))
-    return replace(hierarchy_estimate((f(a), f(b), last.frequencies), (a.dofs, b.dofs, last.dofs),
-                                      last.recovery, geometry),
-                   method="three nested spaces of this run (first, middle, last round), "
-                          "their measured rate")
+    return contraction_estimate((f(spaces[-3]), f(b), last.frequencies), b.dofs,
+                                last.recovery, geometry)
 
 
 def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, modes: Modes,
@@ -217,11 +232,15 @@ def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, mo
                        timings=watch.timings(), warnings=scene_warnings(scene, modes))
 
 
-def _save(path, orders: np.ndarray, before: list[Space], rounds: list[Round], reached: bool,
+def _save(path, orders: np.ndarray, spaces: list[Space], rounds: list[Round], reached: bool,
           why: str) -> None:
+    """The final orders, the rounds before the last (their bound's inputs) and whether
+    each round's step was cut short."""
     from shaftfem.store import save_arrays
 
+    before = spaces[:-1]
     save_arrays(path, dict(orders=orders.astype(np.int8),
+                           trimmed=np.array([s.trimmed for s in spaces]),
                            f=np.array([s.frequencies for s in before]),
                            kinds=np.array([s.kinds for s in before]),
                            dofs=np.array([s.dofs for s in before]),
@@ -244,10 +263,12 @@ def _cached(path, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: Syst
         return None
     options.say("adapted orders from cache; solving")
     orders = z["orders"].astype(np.int64)
-    before = [Space(int(d), f, [str(k) for k in kinds], eta, 0.0)
-              for f, kinds, d, eta in zip(z["f"], z["kinds"], z["dofs"], z["eta"])]
+    before = [Space(int(d), f, [str(k) for k in kinds], eta, 0.0, bool(t))
+              for f, kinds, d, eta, t in zip(z["f"], z["kinds"], z["dofs"], z["eta"],
+                                             z["trimmed"])]
     sub, modes, last = _solve(scene, mesh, system, orders, spanned(system, orders), options,
                               watch)
+    last = replace(last, trimmed=bool(z["trimmed"][-1]))
     est = _bound(before + [last], shape, scene)
     if est is None:
         return None
