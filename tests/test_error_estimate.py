@@ -56,17 +56,17 @@ def test_a_close_pair_shares_one_bound():
 
 
 def test_a_contracting_series_gives_the_error_left():
-    """Rounds whose error falls by the same factor q each time (f_n = f (1 + e q^n)):
-    the contraction estimate is the last round's true error; a series that does not
-    contract leaves the recovery estimate, and says so."""
+    """Rounds that double the DOFs and whose error falls as N^-b (f_n = f (1 + e q^n),
+    q = 2^-b): both readings of the drops give the last round's true error back; a
+    series that does not contract leaves the recovery estimate, and says so."""
     truth, e0 = 100.0, 0.02
     for q in (0.2, 0.5, 0.8):
         f = [np.array([truth * (1 + e0 * q**n)]) for n in range(3)]
-        est = contraction_estimate((f[0], f[1], f[2]), 1000, np.array([0.5]))
+        est = contraction_estimate((f[0], f[1], f[2]), (1000, 2000, 4000), np.array([0.5]))
         assert est.two_mesh[0] == pytest.approx((f[2][0] - truth) / f[2][0], rel=1e-9)
         assert est.relative_error[0] == pytest.approx(HIERARCHY_SAFETY * est.two_mesh[0])
     flat = contraction_estimate((np.array([101.0]), np.array([100.5]), np.array([100.0])),
-                                1000, np.array([0.004]))
+                                (1000, 2000, 4000), np.array([0.004]))
     assert not flat.reliable[0] and flat.relative_error[0] == pytest.approx(SAFETY * 0.004)
     assert flat.notes
 

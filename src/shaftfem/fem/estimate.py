@@ -241,24 +241,31 @@ def hierarchy_estimate(f: tuple[np.ndarray, np.ndarray, np.ndarray],
                        "measurable rate")
 
 
-def contraction_estimate(f: tuple[np.ndarray, np.ndarray, np.ndarray], dofs: int,
-                         recovery: np.ndarray, geometry: float = 0.0) -> ErrorEstimate:
+def contraction_estimate(f: tuple[np.ndarray, np.ndarray, np.ndarray],
+                         dofs: tuple[int, int, int], recovery: np.ndarray,
+                         geometry: float = 0.0) -> ErrorEstimate:
     """The bound of the last of three successive rounds of an adaptive run on nested
-    spaces, f = (f_(n-2), f_(n-1), f_n) (earlier rounds matched to the last's modes).
+    spaces, f = (f_(n-2), f_(n-1), f_n) (earlier rounds matched to the last's modes), of
+    `dofs` DOFs.
 
-    Each round marks the same share of the estimated gain (Doerfler), so each removes
-    about the same fraction of the error that is left: the drops' ratio
-    q = D_(n-1) / D_(n-2) measures it per mode, and what is left after round n is the
-    rest of that geometric series, D_(n-1) q / (1 - q). `dofs` is round n - 1's. The bound
-    is HIERARCHY_SAFETY times that plus the geometry allowance; a mode whose drops do
-    not fall keeps the recovery estimate, and is said to."""
+    The drops D_(n-2) and D_(n-1) measure how the rounds converge, per mode, read two
+    ways: each round removing the same fraction q = D_(n-1) / D_(n-2) of what is left (as
+    Doerfler marking does), which leaves D_(n-1) q / (1 - q); and e = C N^-b over the
+    rounds' DOFs, which leaves D_(n-1) / ((N_n / N_(n-1))^b - 1). The first follows
+    the rounds to the full space's frequencies, the second to the truth; the larger is
+    kept. The bound is HIERARCHY_SAFETY times that plus the geometry allowance; a mode
+    whose drops do not fall keeps the recovery estimate, and is said to."""
     a, b, top = (np.asarray(x, float) for x in f)
     d2, d1 = (a - b) / top, (b - top) / top
-    with np.errstate(divide="ignore", invalid="ignore"):
-        q = d1 / d2
-        est = np.where((d2 > 0) & (d1 > 0) & (q < 1), d1 * q / (1 - q), np.nan)
-    return _rate_bound(top, est, recovery, geometry, dofs,
-                       "three successive rounds on nested spaces, their contraction",
+    est = np.full(top.size, np.nan)
+    for i in range(top.size):
+        if d2[i] > 0 and 0 < d1[i] < d2[i]:
+            q = d1[i] / d2[i]
+            rate = measured_rate((float(dofs[0]), float(dofs[1]), float(dofs[2])), q)
+            per_dof = d1[i] / ((dofs[2] / dofs[1]) ** rate - 1) if np.isfinite(rate) else 0.0
+            est[i] = max(d1[i] * q / (1 - q), per_dof)
+    return _rate_bound(top, est, recovery, geometry, int(dofs[1]),
+                       "three successive rounds on nested spaces, their convergence",
                        "the earlier rounds' frequencies do not fall towards this one by a "
                        "contracting series")
 

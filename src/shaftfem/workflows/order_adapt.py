@@ -191,10 +191,11 @@ def _solve(scene: Scene, mesh: ShaftMesh, system: System, orders: np.ndarray,
 
 def _bound(spaces: list[Space], shape: ShaftShape, scene: Scene) -> ErrorEstimate | None:
     """The last round's bound, None on the first. The second round's is its recovery
-    estimate confirmed by the first; after that, the last three rounds' contraction; a
-    round whose step the budget cut short carries the round before's bound less the drop
-    (its drops measure no contraction). Earlier rounds' modes are matched to the last's
-    by kind."""
+    estimate confirmed by the first. After that each round carries the round before's
+    bound less the drop to it, or the last three rounds' convergence where that is
+    tighter; a round whose step the budget cut short takes the carried bound alone (its
+    drops measure no convergence). So the bound falls round by round. Earlier rounds'
+    modes are matched to the last's by kind."""
     from shaftfem.fem.estimate import volume_difference
 
     # every round is on the one mesh: its volume is the last round's
@@ -209,18 +210,23 @@ def _bound_with(spaces: list[Space], geometry: float) -> ErrorEstimate | None:
     def f(s: Space) -> np.ndarray:
         return matched(last.kinds, s.kinds, s.frequencies)
 
-    if last.trimmed and len(spaces) > 2:
-        before = _bound_with(spaces[:-1], geometry)
-        if before is not None:
-            prev = replace(before, relative_error=matched(last.kinds, b.kinds,
-                                                          before.relative_error))
-            return carried_estimate(prev, f(b), last.frequencies, last.recovery, b.dofs)
     if len(spaces) == 2:
         return combine(last.frequencies, last.recovery, f(b),
                        matched(last.kinds, b.kinds, b.recovery), b.dofs,
                        method="recovery, confirmed by the order-2 round", geometry=geometry)
-    return contraction_estimate((f(spaces[-3]), f(b), last.frequencies), b.dofs,
-                                last.recovery, geometry)
+    before = _bound_with(spaces[:-1], geometry)
+    assert before is not None
+    carried = carried_estimate(replace(before, relative_error=matched(
+        last.kinds, b.kinds, before.relative_error)), f(b), last.frequencies, last.recovery,
+        b.dofs)
+    if last.trimmed:
+        return carried
+    a = spaces[-3]
+    est = contraction_estimate((f(a), f(b), last.frequencies), (a.dofs, b.dofs, last.dofs),
+                               last.recovery, geometry)
+    tighter = carried.relative_error < est.relative_error
+    return replace(est, relative_error=np.where(tighter, carried.relative_error,
+                                                est.relative_error))
 
 
 def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, modes: Modes,
