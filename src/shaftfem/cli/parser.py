@@ -139,11 +139,11 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
 
 def _accuracy_arguments(c: argparse.ArgumentParser) -> None:
     c.add_argument("--accuracy", type=_accuracy, metavar="PERCENT",
-                   help="adapt the mesh until every frequency's error bound is below "
-                   "PERCENT (default: the scene's [mesh] target_error_percent, else the "
-                   "fixed mesh)")
+                   help="adapt the mesh (order 2) or the element orders (orders 3, 4) "
+                   "until every frequency's error bound is below PERCENT (default: the "
+                   "scene's [mesh] target_error_percent, else the fixed mesh)")
     c.add_argument("--max-dofs", type=_max_dofs, metavar="N",
-                   help="DOF budget of the adaptive mesh (default: the scene's, else "
+                   help="DOF budget of the adapted space (default: the scene's, else "
                    f"{DEFAULT_MAX_DOFS})")
     c.add_argument("--strict-accuracy", action="store_true",
                    help="exit 1 when the accuracy asked for is not reached in the budget")
