@@ -32,7 +32,7 @@ DEFAULT = ["paper:10/5/5:4", "paper:8/4/4:3", "paper:16/8/8:4", "sharp:8/4/4:3",
            "cylinder:16/16/16:4"]
 
 
-def _scene(shaft: str):
+def scene_of(shaft: str):
     from dataclasses import replace
 
     from shaftfem.scene.load import load_scene
@@ -51,7 +51,7 @@ def one(shaft: str, sizes_mm: tuple, order: int) -> dict:
     from shaftfem.workflows.bounded import run_bounded
 
     s, g, e = (x * 1e-3 for x in sizes_mm)
-    scene = _scene(shaft)
+    scene = scene_of(shaft)
     scene = replace(scene, max_dofs=5_000_000, target_error=None,
                     mesh=replace(scene.mesh, size=s, groove_size=g, edge_size=e, order=order))
     t = time.perf_counter()

@@ -45,6 +45,7 @@ if TYPE_CHECKING:
 
 THETA = 0.6           # Doerfler: raise the elements holding this share of the gain
 MAX_ROUNDS = 8
+MIN_GROWTH = 0.02     # a round cut short by the budget must add this share of DOFs
 HISTORY = ("orders", "f", "kinds", "dofs", "eta", "trimmed", "round_bound", "round_seconds",
            "reached", "why")
 
@@ -164,12 +165,13 @@ def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, ma
         trial = orders.copy()
         trial[ranked[:mid]] += 1
         lo, hi = (mid, hi) if 3 * spanned(system, trial).size <= max_dofs else (lo, mid - 1)
-    if lo == 0:
-        return None, (f"raising any element's order would exceed the budget of {max_dofs} "
-                      f"DOFs (--max-dofs); the bounds shown are those reached at "
-                      f"{3 * keep.size} DOFs"), False
     new = orders.copy()
     new[ranked[:lo]] += 1
+    # a round that the budget leaves almost empty costs a solve and gains nothing
+    if lo == 0 or (lo < n and spanned(system, new).size < (1 + MIN_GROWTH) * keep.size):
+        return None, (f"raising the orders further would exceed the budget of {max_dofs} "
+                      f"DOFs (--max-dofs); the bounds shown are those reached at "
+                      f"{3 * keep.size} DOFs"), False
     return new, "", lo < n
 
 
