@@ -58,6 +58,17 @@ def test_cubic_elements_on_an_installed_shaft_are_refused(tmp_path, capsys):
     assert len(err.splitlines()) == 1 and "free shafts only" in err and "Traceback" not in err
 
 
+def test_orders_adapted_on_a_mesh_too_fine_for_the_budget_are_refused(capsys):
+    """Adapting the orders assembles the whole order-4 space once: the default mesh's
+    (about 5e5 DOFs, from the element sizes) is refused before any work when it is over
+    twice a 100,000-DOF budget, with its size and memory, exit 2."""
+    assert main(["modes", "paper2018", "--order", "4", "--accuracy", "0.1",
+                 "--max-dofs", "100000", "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert "up to 4" in err and "GB" in err and "--max-dofs" in err
+
+
 def test_unknown_key_is_named(tmp_path, capsys):
     f = tmp_path / "bad.toml"
     f.write_text(PAPER.replace("depth_mm = 3.0", "depth_mm = 3.0\ndepht_mm = 3.0"))

@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 THETA = 0.6           # Doerfler: raise the elements holding this share of the gain
 MAX_ROUNDS = 8
 MIN_GROWTH = 0.02     # a round cut short by the budget must add this share of DOFs
+ASSEMBLED = 2.0       # the whole space assembled may be this many times the budget
 HISTORY = ("orders", "f", "kinds", "dofs", "eta", "trimmed", "round_bound", "round_seconds",
            "reached", "why")
 
@@ -68,15 +69,24 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
                        options: RunOptions = RunOptions()) -> Adapted:
     """Solve `scene` (order 3 or 4) with element orders raised until every frequency's
     bound is below `target` (fraction) or the next space would exceed `max_dofs`."""
-    from shaftfem.cad.mesh import check_budget, mesh_shape
+    from shaftfem.cad.mesh import BYTES_PER_DOF, check_budget, estimate_dofs, mesh_shape
     from shaftfem.cad.solid import build_shape
+    from shaftfem.errors import BudgetError
     from shaftfem.store import cache_dir
     from shaftfem.workflows.pipeline import Stopwatch, check_order
 
     watch = Stopwatch()
     check_order(scene)
-    # the budget is on the spaces solved: the first, order 2 everywhere, must fit it
+    # the budget is on the spaces solved: the first, order 2 everywhere, must fit it,
+    # and the whole space they are taken from is assembled once
     check_budget(scene.shaft, scene.grooves, replace(scene.mesh, order=2), max_dofs)
+    whole = estimate_dofs(scene.shaft, scene.grooves, scene.mesh)
+    if whole > ASSEMBLED * max_dofs:
+        raise BudgetError(
+            f"adapting the orders up to {scene.mesh.order} on this mesh assembles about "
+            f"{whole:.2g} DOFs ({whole * BYTES_PER_DOF / 1e9:.2g} GB), above {ASSEMBLED:g} "
+            f"times the budget of {max_dofs} DOFs; use a larger --mesh-size, a lower "
+            "--order, or raise the budget (--max-dofs)")
     with watch.lap("cad"):
         shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)
     with watch.lap("mesh"):
