@@ -99,16 +99,22 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
         system = assemble(mesh, scene.material, threads=options.threads)
     path = (cache_dir() / "adapted"
             / f"orders-{adapt_key(scene, shape, target, max_dofs)}.npz")
-    if options.use_cache and path.exists():
-        cached = _cached(path, scene, shape, mesh, system, target, max_dofs, options, watch)
-        if cached is not None:
-            return cached
+    z = _load(path, system) if options.use_cache and path.exists() else None
+    if z is not None:
+        from shaftfem.fem.hierarchy import restricted, spanned
+
+        orders = z["orders"].astype(np.int64)
+        keep = spanned(system, orders)
+        sub, n_nodes = restricted(system, keep, int(orders.max())), system.nodes.shape[0]
+        del system  # not needed again: its memory goes before the solve
+        return _cached(z, scene, shape, mesh, sub, keep, n_nodes, target, max_dofs, options,
+                       watch)
     return _adapt(scene, shape, mesh, system, target, max_dofs, options, watch, path)
 
 
 def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, target: float,
            max_dofs: int, options: RunOptions, watch, path) -> Adapted:
-    from shaftfem.fem.hierarchy import spanned
+    from shaftfem.fem.hierarchy import restricted, spanned
 
     top = system.order
     orders = np.full(_n_elements(system), 2, dtype=np.int64)
@@ -120,7 +126,8 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         keep = spanned(system, orders)
         options.say(f"order round {len(rounds) + 1}: {3 * keep.size} DOFs "
                     f"({np.mean(orders == top):.0%} of the elements at order {top}); solving")
-        sub, modes, space = _solve(scene, mesh, system, orders, keep, options, watch)
+        sub, modes, space = _solve(scene, mesh, restricted(system, keep, int(orders.max())),
+                                   keep, system.nodes.shape[0], options, watch)
         space = replace(space, trimmed=trimmed)
         if not spaces:  # the first round's modes are the ones followed
             scene = replace(scene, modes=replace(scene.modes, count=modes.count,
@@ -185,17 +192,17 @@ def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, ma
     return new, "", lo < n
 
 
-def _solve(scene: Scene, mesh: ShaftMesh, system: System, orders: np.ndarray,
-           keep: np.ndarray, options: RunOptions, watch) -> tuple[System, Modes, Space]:
-    """The system and modes of the space `orders` (functions `keep`), and its summary."""
+def _solve(scene: Scene, mesh: ShaftMesh, sub: System, keep: np.ndarray, n_nodes: int,
+           options: RunOptions, watch) -> tuple[System, Modes, Space]:
+    """The modes of `sub`, the space of the whole one's (of `n_nodes` scalar functions)
+    functions `keep`, and its summary."""
     from shaftfem.fem.eigen import SolverSettings
-    from shaftfem.fem.hierarchy import raised, restricted
+    from shaftfem.fem.hierarchy import raised
     from shaftfem.fem.modes import modal_analysis
 
-    sub = restricted(system, keep, int(orders.max()))
     with watch.lap("solve"):
         modes = modal_analysis(sub, scene.modes, SolverSettings(options.factoriser))
-    full = replace(modes, shapes=raised(modes.shapes, keep, system.nodes.shape[0]))
+    full = replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
     rec = recovery_estimate(mesh, scene.material, full)
     return sub, modes, Space(dofs=modes.n_dofs, frequencies=modes.frequencies,
                              kinds=list(modes.kinds), recovery=rec.relative, volume=rec.volume)
@@ -268,34 +275,39 @@ def _save(path, orders: np.ndarray, spaces: list[Space], rounds: list[Round], re
                            reached=np.bool_(reached), why=np.str_(why)))
 
 
-def _cached(path, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System,
-            target: float, max_dofs: int, options: RunOptions, watch) -> Adapted | None:
-    """The cached orders solved once, bounded with the rounds before kept beside them;
-    None (and the entry discarded) where the entry is damaged or does not fit the mesh."""
-    from shaftfem.fem.hierarchy import spanned
+def _load(path, system: System):
+    """The cached run's arrays, or None (and the entry discarded) where the entry is
+    damaged or does not fit the mesh."""
     from shaftfem.store import discard, load_arrays
 
     z, why = load_arrays(path, HISTORY)
-    if z is None or z["orders"].shape != (_n_elements(system),):
-        discard(f"adapted orders {path.stem}", why or "another mesh's orders", path)
+    if z is None or z["orders"].shape != (_n_elements(system),) or len(z["f"]) < 1:
+        discard(f"adapted orders {path.stem}", why or "another mesh's orders, or no "
+                "round before the last", path)
         return None
+    return z
+
+
+def _cached(z, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, sub: System,
+            keep: np.ndarray, n_nodes: int, target: float, max_dofs: int,
+            options: RunOptions, watch) -> Adapted:
+    """The cached orders' space `sub` solved once, bounded with the rounds before kept
+    beside them."""
     options.say("adapted orders from cache; solving")
-    orders = z["orders"].astype(np.int64)
     before = [Space(int(d), f, [str(k) for k in kinds], eta, 0.0, bool(t))
               for f, kinds, d, eta, t in zip(z["f"], z["kinds"], z["dofs"], z["eta"],
                                              z["trimmed"])]
-    sub, modes, last = _solve(scene, mesh, system, orders, spanned(system, orders), options,
-                              watch)
+    sub, modes, last = _solve(scene, mesh, sub, keep, n_nodes, options, watch)
     last = replace(last, trimmed=bool(z["trimmed"][-1]))
     est = _bound(before + [last], shape, scene)
     if est is None:
-        return None
+        raise AssertionError("a cached order-adaptive run has a round before its last")
     rounds = [Round(int(d), float(b), float(s)) for d, b, s in
               zip([s.dofs for s in before] + [last.dofs], z["round_bound"], z["round_seconds"])]
     return Adapted(result=_result(scene, shape, mesh, sub, modes, watch), estimate=est,
                    target=target, max_dofs=max_dofs, rounds=tuple(rounds),
                    reached=bool(z["reached"]), why=str(z["why"]), from_cache=True,
-                   what=f"orders (up to {system.order})")
+                   what=f"orders (up to {scene.mesh.order})")
 
 
 def _n_elements(system: System) -> int:
