@@ -274,8 +274,9 @@ def carried_estimate(before: ErrorEstimate, f_before: np.ndarray, f: np.ndarray,
                      recovery: np.ndarray, dofs: int) -> ErrorEstimate:
     """The bound of a space that contains one already bounded (`before`, its frequencies
     f_before matched to this one's modes f): its error is the earlier error less the drop
-    between them, so (B f_before - (f_before - f)) / f bounds it wherever B did. Used
-    where a round's step was cut short, and its drops measure no contraction."""
+    between them, so (B f_before - (f_before - f)) / f bounds it wherever B did. An
+    adaptive run's rounds take it where it is tighter than their own rates' bound, and
+    alone where the budget cut a round's step short (its drops measure no rate)."""
     prev, f_before, top = (np.asarray(x, float) for x in (before.relative_error, f_before, f))
     bound = (prev * f_before - (f_before - top)) / top
     ok = np.isfinite(bound)

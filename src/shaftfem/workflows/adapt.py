@@ -217,7 +217,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, target: float, max_
         if prev is None:
             # the modes of the first mesh fix which modes are followed from round to round
             scene = with_modes(scene, count=result.modes.count)
-            bound = _planning_bound(rec.relative)
+            bound = planning_bound(rec.relative)
         else:
             est = _bound(result, rec, prev)
             bound = est.relative_error
@@ -277,7 +277,7 @@ def _next_sizes(scene: Scene, result: ModalResult, rec: Recovery, bound: np.ndar
     return sizes, predicted, ""
 
 
-def _planning_bound(recovery: np.ndarray) -> np.ndarray:
+def planning_bound(recovery: np.ndarray) -> np.ndarray:
     """Before a second mesh exists: the recovery estimate with the safety factor (it may
     fall short; it only plans the next mesh)."""
     return SAFETY * recovery

@@ -32,7 +32,7 @@ from shaftfem.fem.estimate import (
     recovery_estimate,
 )
 from shaftfem.runtime import RunOptions
-from shaftfem.workflows.adapt import Adapted, Round, adapt_key
+from shaftfem.workflows.adapt import Adapted, Round, adapt_key, planning_bound
 
 if TYPE_CHECKING:
     from shaftfem.cad.mesh import ShaftMesh
@@ -134,7 +134,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
                                                  max_frequency=None))
         spaces.append(space)
         est = _bound(spaces, shape, scene)
-        bound = est.relative_error if est is not None else 1.5 * space.recovery
+        bound = est.relative_error if est is not None else planning_bound(space.recovery)
         rounds.append(Round(space.dofs, float(np.max(bound)), time.perf_counter() - t))
         options.say(f"order round {len(rounds)}: {space.dofs} DOFs, largest bound "
                     f"{100 * np.max(bound):.2g} %")
