@@ -22,9 +22,27 @@ def adapted(cylinder):
     scene = with_mesh(cylinder.scene, SIZE_MM, order=3)
     # a target below the 16 mm circle's geometric floor: the run ends on its budget
     cold = run_order_adaptive(scene, 1e-5, 20_000, RunOptions(use_cache=True))
-    # what the modal commands run for --accuracy 0.001 --order 3
-    warm = run_bounded(with_accuracy(scene, 1e-3, 20_000), options=RunOptions(use_cache=True))
-    return scene, cold, warm.adapted
+    # what the modal commands run for --accuracy 0.001 --order 3, counting its numeric
+    # factorisations and recoveries
+    from shaftfem.fem import factor
+    from shaftfem.workflows import order_adapt
+
+    counts = {"factorisations": 0, "recoveries": 0}
+    run, recover = factor.Pardiso._run, order_adapt.recovery_estimate
+
+    def counted_run(self, phase, *args, **kwargs):
+        counts["factorisations"] += phase == 22
+        return run(self, phase, *args, **kwargs)
+
+    def counted_recovery(*args, **kwargs):
+        counts["recoveries"] += 1
+        return recover(*args, **kwargs)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(factor.Pardiso, "_run", counted_run)
+        mp.setattr(order_adapt, "recovery_estimate", counted_recovery)
+        warm = run_bounded(with_accuracy(scene, 1e-3, 20_000), options=RunOptions(use_cache=True))
+    return scene, cold, warm.adapted, counts
 
 
 @pytest.fixture(scope="module")
@@ -39,7 +57,7 @@ def test_adapted_space_lies_between_uniform_orders(adapted, uniform):
     adapted space is strictly larger than order 2 and smaller than order 3."""
     from shaftfem.fem.estimate import matched
 
-    _, cold, _ = adapted
+    _, cold, _, _ = adapted
     m = cold.result.modes
     f2 = matched(m.kinds, uniform[2].modes.kinds, uniform[2].modes.frequencies)
     f3 = matched(m.kinds, uniform[3].modes.kinds, uniform[3].modes.frequencies)
@@ -53,7 +71,7 @@ def test_adapted_space_lies_between_uniform_orders(adapted, uniform):
 def test_adapted_space_is_conforming_and_rigid_free(adapted):
     """K t = 0 for the three translations of the adapted space (its constant field), and
     the solver found exactly six rigid modes."""
-    _, cold, _ = adapted
+    _, cold, _, _ = adapted
     s = cold.result.system
     for c in range(3):
         t = np.zeros(s.n_dofs)
@@ -65,7 +83,7 @@ def test_adapted_space_is_conforming_and_rigid_free(adapted):
 def test_bounds_fall_round_by_round(adapted):
     """From the second round (the first bounded one) on, each round's largest bound is
     below the last's."""
-    _, cold, _ = adapted
+    _, cold, _, _ = adapted
     bounds = [r.max_bound for r in cold.rounds[1:]]
     assert all(b < a for a, b in zip(bounds, bounds[1:])), bounds
 
@@ -73,7 +91,7 @@ def test_bounds_fall_round_by_round(adapted):
 def test_budget_and_torsion_bound(adapted, cylinder):
     """The run ends within its DOF budget, saying why, and its first torsion frequency
     lies inside its bound of c_t/2L."""
-    scene, cold, _ = adapted
+    scene, cold, _, _ = adapted
     assert not cold.reached and "budget" in cold.why
     assert cold.result.modes.n_dofs <= 20_000
     m, mat = cold.result.modes, scene.material
@@ -83,8 +101,11 @@ def test_budget_and_torsion_bound(adapted, cylinder):
 
 
 def test_warm_run_takes_the_cached_orders(adapted):
-    """The second run solves the cached space once: same DOFs, frequencies and bound."""
-    _, cold, warm = adapted
+    """The second run solves the cached space once, factorising once at the cached
+    shift and taking the last round's recovery from the cache: same DOFs, frequencies
+    and bound."""
+    _, cold, warm, counts = adapted
+    assert counts == {"factorisations": 1, "recoveries": 0}
     assert warm.from_cache and not cold.from_cache
     assert warm.result.modes.n_dofs == cold.result.modes.n_dofs
     assert np.allclose(warm.result.modes.frequencies, cold.result.modes.frequencies, rtol=1e-9)

@@ -11,9 +11,14 @@ last's. The second round is bounded by its recovery estimate confirmed by the fi
 (fem.estimate.combine); from the third on, the last three rounds' drops measure how much
 of the remaining error each round removes, per mode (fem.estimate.contraction_estimate).
 
-The final orders and what their bound needs from the rounds before are cached, keyed
-like an adapted mesh (workflows.adapt.adapt_key) and the order: a warm re-run
-assembles and solves once.
+Each round factorises once: the shift at which the round before proved its modes
+complete serves as this round's (its frequencies are no higher), counting and solving
+through the one factor (fem.eigen.slice_below).
+
+The final orders, every round's frequencies and recovery estimates and the last proven
+shift are cached, keyed like an adapted mesh (workflows.adapt.adapt_key) and the order:
+a warm re-run assembles and factorises once, and takes the last round's recovery from
+the cache when its re-solved frequencies are the cached ones.
 """
 
 from __future__ import annotations
@@ -47,8 +52,10 @@ THETA = 0.6           # Doerfler: raise the elements holding this share of the g
 MAX_ROUNDS = 8
 MIN_GROWTH = 0.02     # a round cut short by the budget must add this share of DOFs
 ASSEMBLED = 2.0       # the whole space assembled may be this many times the budget
-HISTORY = ("orders", "f", "kinds", "dofs", "eta", "trimmed", "round_bound", "round_seconds",
-           "reached", "why")
+# a re-solved space matches its cached frequencies to this (round-off of the solver)
+SAME_FREQUENCIES = 1e-7
+HISTORY = ("orders", "f", "kinds", "dofs", "eta", "trimmed", "volume", "shift",
+           "round_bound", "round_seconds", "reached", "why")
 
 
 @dataclass(frozen=True)
@@ -119,6 +126,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
     top = system.order
     orders = np.full(_n_elements(system), 2, dtype=np.int64)
     trimmed = False
+    hint: float | None = None
     spaces: list[Space] = []
     rounds: list[Round] = []
     while True:
@@ -126,9 +134,11 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         keep = spanned(system, orders)
         options.say(f"order round {len(rounds) + 1}: {3 * keep.size} DOFs "
                     f"({np.mean(orders == top):.0%} of the elements at order {top}); solving")
-        sub, modes, space = _solve(scene, mesh, restricted(system, keep, int(orders.max())),
-                                   keep, system.nodes.shape[0], options, watch)
-        space = replace(space, trimmed=trimmed)
+        sub = restricted(system, keep, int(orders.max()))
+        modes = _solve(scene, sub, hint, options, watch)
+        hint = modes.inertia_shift
+        space = replace(_space(scene, mesh, modes, keep, system.nodes.shape[0]),
+                        trimmed=trimmed)
         if not spaces:  # the first round's modes are the ones followed
             scene = replace(scene, modes=replace(scene.modes, count=modes.count,
                                                  max_frequency=None))
@@ -150,7 +160,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         raise AssertionError("an order-adaptive run ends with a bounded round")
     result = _result(scene, shape, mesh, sub, modes, watch)
     if options.use_cache:
-        _save(path, orders, spaces, rounds, reached, why)
+        _save(path, orders, spaces, modes.inertia_shift, rounds, reached, why)
     return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
                    rounds=tuple(rounds), reached=reached, why=why, from_cache=False,
                    what=f"orders (up to {top})")
@@ -192,20 +202,28 @@ def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, ma
     return new, "", lo < n
 
 
-def _solve(scene: Scene, mesh: ShaftMesh, sub: System, keep: np.ndarray, n_nodes: int,
-           options: RunOptions, watch) -> tuple[System, Modes, Space]:
-    """The modes of `sub`, the space of the whole one's (of `n_nodes` scalar functions)
-    functions `keep`, and its summary."""
+def _solve(scene: Scene, sub: System, hint: float | None, options: RunOptions,
+           watch) -> Modes:
+    """The modes of the space `sub`, factorised first at `hint` (rad^2/s^2), the shift
+    where a larger space proved its modes complete, if given."""
     from shaftfem.fem.eigen import SolverSettings
-    from shaftfem.fem.hierarchy import raised
     from shaftfem.fem.modes import modal_analysis
 
     with watch.lap("solve"):
-        modes = modal_analysis(sub, scene.modes, SolverSettings(options.factoriser))
+        return modal_analysis(sub, scene.modes, SolverSettings(options.factoriser),
+                              shift_hint=hint)
+
+
+def _space(scene: Scene, mesh: ShaftMesh, modes: Modes, keep: np.ndarray,
+           n_nodes: int) -> Space:
+    """The summary of a round's `modes`, solved on the whole space's (of `n_nodes` scalar
+    functions) functions `keep`, with their recovery estimates."""
+    from shaftfem.fem.hierarchy import raised
+
     full = replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
     rec = recovery_estimate(mesh, scene.material, full)
-    return sub, modes, Space(dofs=modes.n_dofs, frequencies=modes.frequencies,
-                             kinds=list(modes.kinds), recovery=rec.relative, volume=rec.volume)
+    return Space(dofs=modes.n_dofs, frequencies=modes.frequencies, kinds=list(modes.kinds),
+                 recovery=rec.relative, volume=rec.volume)
 
 
 def _bound(spaces: list[Space], shape: ShaftShape, scene: Scene) -> ErrorEstimate | None:
@@ -257,19 +275,19 @@ def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, mo
                        timings=watch.timings(), warnings=scene_warnings(scene, modes))
 
 
-def _save(path, orders: np.ndarray, spaces: list[Space], rounds: list[Round], reached: bool,
-          why: str) -> None:
-    """The final orders, the rounds before the last (their bound's inputs) and whether
-    each round's step was cut short."""
+def _save(path, orders: np.ndarray, spaces: list[Space], shift: float, rounds: list[Round],
+          reached: bool, why: str) -> None:
+    """The final orders, every round's summary (the bound's inputs), the mesh's volume
+    and the shift (rad^2/s^2) at which the last round's modes were proven complete."""
     from shaftfem.store import save_arrays
 
-    before = spaces[:-1]
     save_arrays(path, dict(orders=orders.astype(np.int8),
                            trimmed=np.array([s.trimmed for s in spaces]),
-                           f=np.array([s.frequencies for s in before]),
-                           kinds=np.array([s.kinds for s in before]),
-                           dofs=np.array([s.dofs for s in before]),
-                           eta=np.array([s.recovery for s in before]),
+                           f=np.array([s.frequencies for s in spaces]),
+                           kinds=np.array([s.kinds for s in spaces]),
+                           dofs=np.array([s.dofs for s in spaces]),
+                           eta=np.array([s.recovery for s in spaces]),
+                           volume=np.float64(spaces[-1].volume), shift=np.float64(shift),
                            round_bound=np.array([r.max_bound for r in rounds]),
                            round_seconds=np.array([r.seconds for r in rounds]),
                            reached=np.bool_(reached), why=np.str_(why)))
@@ -281,7 +299,7 @@ def _load(path, system: System):
     from shaftfem.store import discard, load_arrays
 
     z, why = load_arrays(path, HISTORY)
-    if z is None or z["orders"].shape != (_n_elements(system),) or len(z["f"]) < 1:
+    if z is None or z["orders"].shape != (_n_elements(system),) or len(z["f"]) < 2:
         discard(f"adapted orders {path.stem}", why or "another mesh's orders, or no "
                 "round before the last", path)
         return None
@@ -291,19 +309,27 @@ def _load(path, system: System):
 def _cached(z, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, sub: System,
             keep: np.ndarray, n_nodes: int, target: float, max_dofs: int,
             options: RunOptions, watch) -> Adapted:
-    """The cached orders' space `sub` solved once, bounded with the rounds before kept
-    beside them."""
+    """The cached orders' space `sub` solved once (factorised at the cached shift),
+    bounded with the rounds kept beside them. The last round's recovery estimate is
+    the cached one where the re-solved frequencies are the cached ones, and computed
+    again where not."""
     options.say("adapted orders from cache; solving")
-    before = [Space(int(d), f, [str(k) for k in kinds], eta, 0.0, bool(t))
+    spaces = [Space(int(d), f, [str(k) for k in kinds], eta, float(z["volume"]), bool(t))
               for f, kinds, d, eta, t in zip(z["f"], z["kinds"], z["dofs"], z["eta"],
                                              z["trimmed"])]
-    sub, modes, last = _solve(scene, mesh, sub, keep, n_nodes, options, watch)
-    last = replace(last, trimmed=bool(z["trimmed"][-1]))
+    modes = _solve(scene, sub, float(z["shift"]), options, watch)
+    cached = spaces[-1]
+    if not (modes.n_dofs == cached.dofs and list(modes.kinds) == cached.kinds
+            and np.allclose(modes.frequencies, cached.frequencies, rtol=SAME_FREQUENCIES,
+                            atol=0.0)):
+        cached = replace(_space(scene, mesh, modes, keep, n_nodes), trimmed=cached.trimmed)
+    before = spaces[:-1]
+    last = replace(cached, frequencies=modes.frequencies)
     est = _bound(before + [last], shape, scene)
     if est is None:
         raise AssertionError("a cached order-adaptive run has a round before its last")
-    rounds = [Round(int(d), float(b), float(s)) for d, b, s in
-              zip([s.dofs for s in before] + [last.dofs], z["round_bound"], z["round_seconds"])]
+    rounds = [Round(s.dofs, float(b), float(t)) for s, b, t in
+              zip(before + [last], z["round_bound"], z["round_seconds"])]
     return Adapted(result=_result(scene, shape, mesh, sub, modes, watch), estimate=est,
                    target=target, max_dofs=max_dofs, rounds=tuple(rounds),
                    reached=bool(z["reached"]), why=str(z["why"]), from_cache=True,
