@@ -31,14 +31,14 @@ def one(shaft: str, sizes_mm: tuple, order: int, target: float, budget: int) -> 
     from shaftfem.workflows import order_adapt
 
     seen = []
-    solve = order_adapt._solve
+    space = order_adapt._space
 
     def recorded(*args, **kwargs):
-        out = solve(*args, **kwargs)
-        seen.append(out[2])
+        out = space(*args, **kwargs)
+        seen.append(out)
         return out
 
-    order_adapt._solve = recorded
+    order_adapt._space = recorded
     s, g, e = (x * 1e-3 for x in sizes_mm)
     scene = scene_of(shaft)
     scene = replace(scene, mesh=replace(scene.mesh, size=s, groove_size=g, edge_size=e,

@@ -82,6 +82,18 @@ def test_a_larger_space_carries_the_bound_less_the_drop():
     assert est.relative_error[0] == pytest.approx((fc[0] - truth) / fc[0], rel=1e-12)
 
 
+def test_a_drop_beyond_the_earlier_bound_is_no_carried_bound():
+    """A drop of 0.6 % after a bound of 0.5 %: the earlier bound failed, so nothing is
+    carried (never a negative bound): the recovery estimate, marked and said."""
+    fb, fc = np.array([101.0]), np.array([100.4])
+    before = combine(fb, np.array([0.005]), fb * 1.01, np.array([0.02]), 100, "test")
+    before = replace(before, relative_error=np.array([0.5 / 101.0]))
+    est = carried_estimate(before, fb, fc, np.array([0.001]), 100)
+    assert est.relative_error[0] == pytest.approx(SAFETY * 0.001 + before.geometry)
+    assert not est.reliable[0]
+    assert any("did not hold" in n for n in est.notes)
+
+
 def test_matched_pairs_kinds_in_order():
     ref = ["bending", "bending", "torsion", "axial"]
     coarse = ["bending", "torsion", "bending"]  # torsion overtook the second bending mode

@@ -276,17 +276,29 @@ def carried_estimate(before: ErrorEstimate, f_before: np.ndarray, f: np.ndarray,
     f_before matched to this one's modes f): its error is the earlier error less the drop
     between them, so (B f_before - (f_before - f)) / f bounds it wherever B did. An
     adaptive run's rounds take it where it is tighter than their own rates' bound, and
-    alone where the budget cut a round's step short (its drops measure no rate)."""
+    alone where the budget cut a round's step short (its drops measure no rate).
+
+    A drop larger than B f_before proves that B did not hold: that mode's bound is
+    then SAFETY times its recovery estimate, marked unreliable, and a note says so."""
     prev, f_before, top = (np.asarray(x, float) for x in (before.relative_error, f_before, f))
     bound = (prev * f_before - (f_before - top)) / top
-    ok = np.isfinite(bound)
+    broken = np.isfinite(bound) & ~(bound > 0)
+    ok = np.isfinite(bound) & ~broken
     bound = np.where(ok, bound, SAFETY * np.asarray(recovery, float) + before.geometry)
+    reliable = ok & before.reliable
     for group in clusters(top):
         bound[group] = bound[group].max()
+        reliable[group] = reliable[group].all()
+    notes = before.notes
+    if broken.any():
+        modes = ", ".join(str(i + 1) for i in np.flatnonzero(broken))
+        notes += (f"mode(s) {modes}: the drop to this round exceeds the round before's "
+                  "bound, which so did not hold; the bound here rests on the recovery "
+                  "estimate alone",)
     return ErrorEstimate(relative_error=bound, recovery=np.asarray(recovery, float),
-                         two_mesh=np.full(top.size, np.nan), reliable=ok & before.reliable,
+                         two_mesh=np.full(top.size, np.nan), reliable=reliable,
                          coarse_dofs=dofs, method="the round before's bound, less the drop "
-                         "to this round", geometry=before.geometry, notes=before.notes)
+                         "to this round", geometry=before.geometry, notes=notes)
 
 
 def _rate_bound(top: np.ndarray, est: np.ndarray, recovery: np.ndarray, geometry: float,

@@ -261,9 +261,11 @@ def _bound_with(spaces: list[Space], geometry: float) -> ErrorEstimate | None:
     a = spaces[-3]
     est = contraction_estimate((f(a), f(b), last.frequencies), (a.dofs, b.dofs, last.dofs),
                                last.recovery, geometry)
-    tighter = carried.relative_error < est.relative_error
+    # a carried bound resting on a bound the drops disproved is no tighter bound
+    tighter = carried.reliable & (carried.relative_error < est.relative_error)
     return replace(est, relative_error=np.where(tighter, carried.relative_error,
-                                                est.relative_error))
+                                                est.relative_error),
+                   notes=est.notes + tuple(n for n in carried.notes if n not in est.notes))
 
 
 def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, modes: Modes,
