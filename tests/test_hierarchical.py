@@ -167,3 +167,24 @@ def test_order_4_bound_holds_on_the_cylinder(runs, cylinder):
     k = r.modes.kinds.index("torsion")
     ct = torsion_hz(1, L, m.youngs_modulus, m.poisson_ratio, m.density)
     assert est.relative_error[k] > abs(r.modes.frequencies[k] / ct - 1)
+
+
+def test_a_space_inside_assembles_as_the_whole_space_restricted(runs):
+    """Orders 2-4 at random per element: assembling only their space gives the K, M and
+    values at the points of the whole order-4 space restricted to it (the same entries
+    summed, to round-off), and keeps the same functions."""
+    from shaftfem.fem.hierarchy import assemble_space, restricted, spanned
+
+    r = runs[4]
+    orders = np.random.default_rng(7).integers(2, 5, r.mesh.n_elements)
+    keep = spanned(r.system, orders)
+    whole = restricted(r.system, keep, 4)
+    direct, inside = assemble_space(r.mesh, r.scene.material, orders)
+    assert np.array_equal(np.flatnonzero(inside), keep) and inside.size == r.system.nodes.shape[0]
+    assert whole.n_dofs < r.system.n_dofs
+    for name in ("K", "M", "mass_scalar", "point_values"):
+        a, b = getattr(whole, name), getattr(direct, name)
+        assert abs(a - b).max() <= 1e-13 * abs(a).max(), name
+    assert np.array_equal(whole.constant, direct.constant)
+    assert np.array_equal(whole.degrees, direct.degrees)
+    assert np.allclose(whole.nodes, direct.nodes, rtol=0, atol=1e-15)

@@ -132,16 +132,29 @@ class Pattern:
 
     indptr: np.ndarray
     indices: np.ndarray
-    slot: np.ndarray  # (E * n * n,) index of the block of element e's pair (a, b)
+    # (E * n * n,) index of the block of element e's pair (a, b); n_blocks for a pair
+    # left out (a function outside the space)
+    slot: np.ndarray
     n_nodes: int
 
     @classmethod
-    def of(cls, element_dofs: np.ndarray, n_nodes: int) -> Pattern:
-        """element_dofs (n, E): the scalar node of each element's local function."""
+    def of(cls, element_dofs: np.ndarray, n_nodes: int,
+           kept: np.ndarray | None = None) -> Pattern:
+        """element_dofs (n, E): the scalar node of each element's local function;
+        `kept` (n, E): which local functions belong to the space (None: all)."""
         n = element_dofs.shape[0]
         e = element_dofs.T.astype(np.int64)
         key = (np.repeat(e, n, axis=1) * n_nodes + np.tile(e, (1, n))).ravel()
+        inside = None
+        if kept is not None:
+            k = kept.T
+            inside = (np.repeat(k, n, axis=1) & np.tile(k, (1, n))).ravel()
+            key = key[inside]
         pairs, slot = np.unique(key, return_inverse=True)
+        if inside is not None:
+            full = np.full(inside.size, len(pairs), dtype=np.int64)
+            full[inside] = slot.ravel()
+            slot = full
         indptr = np.searchsorted(pairs // n_nodes, np.arange(n_nodes + 1))
         return cls(indptr=indptr.astype(np.int32), indices=(pairs % n_nodes).astype(np.int32),
                    slot=slot.ravel(), n_nodes=n_nodes)
@@ -156,9 +169,10 @@ class Pattern:
         v = values.reshape(E * n * n, -1)
         s = self.slot[elements.start * n * n: elements.stop * n * n]
         # a 0/1 matrix with one entry per column: its product scatters and adds in C
+        # (the pairs left out land in one more row, dropped)
         scatter = sp.csc_matrix((np.ones(len(s)), s, np.arange(len(s) + 1)),
-                                shape=(self.n_blocks, len(s)))
-        return scatter @ v
+                                shape=(self.n_blocks + 1, len(s)))
+        return (scatter @ v)[:self.n_blocks]
 
     def matrix(self, blocks: np.ndarray, size: int) -> sp.csr_matrix:
         """The CSR matrix of (n_blocks, size * size) summed blocks."""
@@ -227,17 +241,24 @@ class Discretisation:
 
 def discretise(mesh) -> Discretisation:
     """The scalar P1/P2 basis on a mesh.ShaftMesh and the block sparsity of K and M."""
-    from skfem import Basis
-
-    basis = Basis(mesh.to_skfem(), _element(mesh.order), intorder=STIFFNESS_INTORDER[mesh.order])
+    basis = scalar_basis(mesh)
     return Discretisation(basis=basis,
                           pattern=Pattern.of(basis.element_dofs, basis.N), order=mesh.order)
+
+
+def scalar_basis(mesh):
+    """scikit-fem's scalar basis of the mesh's order on a mesh.ShaftMesh, at the
+    stiffness quadrature."""
+    from skfem import Basis
+
+    return Basis(mesh.to_skfem(), _element(mesh.order), intorder=STIFFNESS_INTORDER[mesh.order])
 
 
 def stiffness_and_mass(basis, pattern: Pattern, material: Material, mass_intorder: int,
                        threads: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """K (N/m, 3x3 blocks) and the scalar consistent mass (kg) on a scalar basis, its
-    element kernels summed over chunks on `threads` threads."""
+    element kernels summed over chunks on `threads` threads (the pattern's pairs left
+    out, of functions outside the space, dropped)."""
     lam, mu = material.lame
     grad = _gradients(basis)
     phi, m_dx = _reference_values(basis, mass_intorder)

@@ -19,6 +19,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
+import scipy.sparse as sp
 
 from shaftfem.fem.assembly import System
 
@@ -52,10 +53,58 @@ def spanned(system: System, element_orders: np.ndarray) -> np.ndarray:
     by the maximum rule: a function is kept when an element holding it has its degree."""
     if system.degrees is None or system.element_dofs is None:
         raise ValueError("only a full hierarchical system has orders per element")
-    reach = np.zeros(system.degrees.size, dtype=np.int64)
-    np.maximum.at(reach, system.element_dofs.ravel(),
-                  np.broadcast_to(element_orders, system.element_dofs.shape).ravel())
-    return np.flatnonzero(system.degrees <= reach)
+    return _spanned(system.degrees, system.element_dofs, element_orders)
+
+
+def _spanned(degrees: np.ndarray, element_dofs: np.ndarray,
+             element_orders: np.ndarray) -> np.ndarray:
+    reach = np.zeros(degrees.size, dtype=np.int64)
+    np.maximum.at(reach, element_dofs.ravel(),
+                  np.broadcast_to(element_orders, element_dofs.shape).ravel())
+    return np.flatnonzero(degrees <= reach)
+
+
+def assemble_space(mesh, material, element_orders: np.ndarray,
+                   threads: int | None = None) -> tuple[System, np.ndarray]:
+    """The system of the space with order `element_orders[e]` on element e of a
+    mesh.ShaftMesh (the mesh's order the highest), assembled directly: the same K and M
+    as `restricted(assemble(mesh), spanned(...))` without the whole space's, and which
+    of the whole space's scalar functions it keeps (a mask)."""
+    from shaftfem.fem.assembly import (
+        MASS_INTORDER,
+        Pattern,
+        _check_translations,
+        point_values,
+        scalar_basis,
+        stiffness_and_mass,
+    )
+    from shaftfem.fem.elements import hierarchical_coordinates, hierarchical_degrees
+    from shaftfem.runtime import assembly_threads
+
+    order = mesh.order
+    basis = scalar_basis(mesh)
+    degrees = np.zeros(basis.N, dtype=np.int64)
+    degrees[basis.element_dofs] = hierarchical_degrees(order)[:, None]
+    keep = _spanned(degrees, basis.element_dofs, element_orders)
+    number = np.full(basis.N, -1, dtype=np.int64)
+    number[keep] = np.arange(keep.size)
+    local = number[basis.element_dofs]
+    kept = local >= 0
+    # every element's kernel is on all its local functions (batched alike; the copies
+    # that grouping elements by the degrees they keep takes cost more than it saves);
+    # the pairs of functions outside the space are dropped in the sum
+    pattern = Pattern.of(np.where(kept, local, 0), keep.size, kept)
+    K, Ms = stiffness_and_mass(basis, pattern, material, MASS_INTORDER[order],
+                               assembly_threads(threads))
+    constant, nodes = hierarchical_coordinates(basis)
+    constant, nodes = constant[keep], nodes[keep]
+    _check_translations(K, nodes, constant)
+    return System(K=K, M=sp.kron(Ms, sp.identity(3, format="csr"), format="csr"),
+                  mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
+                  order=int(element_orders.max()),
+                  point_values=point_values(mesh.element_cells, basis,
+                                            mesh.points.shape[0])[:, keep].tocsr(),
+                  constant=constant, degrees=degrees[keep], element_dofs=None), number >= 0
 
 
 def raise_indicators(system: System, keep: np.ndarray, element_orders: np.ndarray,

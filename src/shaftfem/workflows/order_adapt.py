@@ -17,8 +17,9 @@ through the one factor (fem.eigen.slice_below).
 
 The final orders, every round's frequencies and recovery estimates and the last proven
 shift are cached, keyed like an adapted mesh (workflows.adapt.adapt_key) and the order:
-a warm re-run assembles and factorises once, and takes the last round's recovery from
-the cache when its re-solved frequencies are the cached ones.
+a warm re-run assembles only the final space (fem.hierarchy.assemble_space), factorises
+once, and takes the last round's recovery from the cache when its re-solved frequencies
+are the cached ones.
 """
 
 from __future__ import annotations
@@ -99,23 +100,24 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
     with watch.lap("mesh"):
         mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
                           use_cache=options.use_cache)
+    path = (cache_dir() / "adapted"
+            / f"orders-{adapt_key(scene, shape, target, max_dofs)}.npz")
+    z = _load(path, mesh.n_elements) if options.use_cache and path.exists() else None
+    if z is not None:
+        from shaftfem.fem.hierarchy import assemble_space
+
+        options.say(f"mesh: {mesh.n_elements} elements; adapted orders from cache; "
+                    "assembling their space")
+        with watch.lap("assembly"):
+            sub, inside = assemble_space(mesh, scene.material, z["orders"].astype(np.int64),
+                                         threads=options.threads)
+        return _cached(z, scene, shape, mesh, sub, np.flatnonzero(inside), inside.size,
+                       target, max_dofs, options, watch)
     options.say(f"mesh: {mesh.n_elements} elements; assembling order {scene.mesh.order}")
     with watch.lap("assembly"):
         from shaftfem.fem.assembly import assemble
 
         system = assemble(mesh, scene.material, threads=options.threads)
-    path = (cache_dir() / "adapted"
-            / f"orders-{adapt_key(scene, shape, target, max_dofs)}.npz")
-    z = _load(path, system) if options.use_cache and path.exists() else None
-    if z is not None:
-        from shaftfem.fem.hierarchy import restricted, spanned
-
-        orders = z["orders"].astype(np.int64)
-        keep = spanned(system, orders)
-        sub, n_nodes = restricted(system, keep, int(orders.max())), system.nodes.shape[0]
-        del system  # not needed again: its memory goes before the solve
-        return _cached(z, scene, shape, mesh, sub, keep, n_nodes, target, max_dofs, options,
-                       watch)
     return _adapt(scene, shape, mesh, system, target, max_dofs, options, watch, path)
 
 
@@ -295,13 +297,14 @@ def _save(path, orders: np.ndarray, spaces: list[Space], shift: float, rounds: l
                            reached=np.bool_(reached), why=np.str_(why)))
 
 
-def _load(path, system: System):
+def _load(path, n_elements: int):
     """The cached run's arrays, or None (and the entry discarded) where the entry is
-    damaged or does not fit the mesh."""
+    damaged or does not fit the mesh (of `n_elements` elements)."""
     from shaftfem.store import discard, load_arrays
 
     z, why = load_arrays(path, HISTORY)
-    if z is None or z["orders"].shape != (_n_elements(system),) or len(z["f"]) < 2:
+    if (z is None or z["orders"].shape != (n_elements,) or len(z["f"]) < 2
+            or z["orders"].min() < 2):
         discard(f"adapted orders {path.stem}", why or "another mesh's orders, or no "
                 "round before the last", path)
         return None
@@ -315,7 +318,7 @@ def _cached(z, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, sub: System,
     bounded with the rounds kept beside them. The last round's recovery estimate is
     the cached one where the re-solved frequencies are the cached ones, and computed
     again where not."""
-    options.say("adapted orders from cache; solving")
+    options.say("solving the adapted orders' space")
     spaces = [Space(int(d), f, [str(k) for k in kinds], eta, float(z["volume"]), bool(t))
               for f, kinds, d, eta, t in zip(z["f"], z["kinds"], z["dofs"], z["eta"],
                                              z["trimmed"])]
