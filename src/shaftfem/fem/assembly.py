@@ -280,23 +280,45 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
     order, k_basis = d.order, d.basis
     K, Ms = stiffness_and_mass(k_basis, d.pattern, material,
                                mass_intorder or MASS_INTORDER[order], assembly_threads(threads))
-    M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
     if order >= 3:  # hierarchical: values at the mesh's points come from the basis
-        from shaftfem.fem.elements import hierarchical_coordinates, hierarchical_degrees
-
-        constant, nodes = hierarchical_coordinates(k_basis)
-        _check_translations(K, nodes, constant)
-        degrees = np.zeros(k_basis.N, dtype=np.int64)
-        degrees[k_basis.element_dofs] = hierarchical_degrees(order)[:, None]
-        return System(K=K, M=M, mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
-                      order=order, point_values=point_values(mesh.element_cells, k_basis,
-                                                             mesh.points.shape[0]),
-                      constant=constant, degrees=degrees, element_dofs=k_basis.element_dofs)
+        return hierarchical_system(mesh, k_basis, K, Ms)
+    M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
     nodes = np.ascontiguousarray(k_basis.doflocs.T)
     _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
                   point_dofs=point_dofs(mesh.cells, k_basis.element_dofs, nodes, mesh.points),
                   order=order)
+
+
+def hierarchical_degrees_of(basis) -> np.ndarray:
+    """The polynomial degree of each of a hierarchical `basis`' scalar functions (N,)."""
+    from shaftfem.fem.elements import hierarchical_degrees
+
+    degrees = np.zeros(basis.N, dtype=np.int64)
+    degrees[basis.element_dofs] = hierarchical_degrees(basis.elem.maxdeg)[:, None]
+    return degrees
+
+
+def hierarchical_system(mesh, basis, K: sp.csr_matrix, Ms: sp.csr_matrix,
+                        keep: np.ndarray | None = None, order: int | None = None) -> System:
+    """The System of K and the scalar mass Ms on a hierarchical `basis` of a
+    mesh.ShaftMesh, or, with `keep` (ascending indices of its scalar functions), of the
+    space they span (K and Ms already of those functions; `order` its highest degree).
+    Checked: a rigid translation costs no strain."""
+    from shaftfem.fem.elements import hierarchical_coordinates
+
+    constant, nodes = hierarchical_coordinates(basis)
+    degrees = hierarchical_degrees_of(basis)
+    values = point_values(mesh.element_cells, basis, mesh.points.shape[0])
+    element_dofs = basis.element_dofs
+    if keep is not None:
+        constant, nodes, degrees = constant[keep], nodes[keep], degrees[keep]
+        values, element_dofs = values[:, keep].tocsr(), None
+    _check_translations(K, nodes, constant)
+    return System(K=K, M=sp.kron(Ms, sp.identity(3, format="csr"), format="csr"),
+                  mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
+                  order=order or mesh.order, point_values=values, constant=constant,
+                  degrees=degrees, element_dofs=element_dofs)
 
 
 def point_dofs(cells: np.ndarray, element_dofs: np.ndarray, nodes: np.ndarray,

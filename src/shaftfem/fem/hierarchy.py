@@ -19,7 +19,6 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-import scipy.sparse as sp
 
 from shaftfem.fem.assembly import System
 
@@ -73,19 +72,15 @@ def assemble_space(mesh, material, element_orders: np.ndarray,
     from shaftfem.fem.assembly import (
         MASS_INTORDER,
         Pattern,
-        _check_translations,
-        point_values,
+        hierarchical_degrees_of,
+        hierarchical_system,
         scalar_basis,
         stiffness_and_mass,
     )
-    from shaftfem.fem.elements import hierarchical_coordinates, hierarchical_degrees
     from shaftfem.runtime import assembly_threads
 
-    order = mesh.order
     basis = scalar_basis(mesh)
-    degrees = np.zeros(basis.N, dtype=np.int64)
-    degrees[basis.element_dofs] = hierarchical_degrees(order)[:, None]
-    keep = _spanned(degrees, basis.element_dofs, element_orders)
+    keep = _spanned(hierarchical_degrees_of(basis), basis.element_dofs, element_orders)
     number = np.full(basis.N, -1, dtype=np.int64)
     number[keep] = np.arange(keep.size)
     local = number[basis.element_dofs]
@@ -94,17 +89,10 @@ def assemble_space(mesh, material, element_orders: np.ndarray,
     # that grouping elements by the degrees they keep takes cost more than it saves);
     # the pairs of functions outside the space are dropped in the sum
     pattern = Pattern.of(np.where(kept, local, 0), keep.size, kept)
-    K, Ms = stiffness_and_mass(basis, pattern, material, MASS_INTORDER[order],
+    K, Ms = stiffness_and_mass(basis, pattern, material, MASS_INTORDER[mesh.order],
                                assembly_threads(threads))
-    constant, nodes = hierarchical_coordinates(basis)
-    constant, nodes = constant[keep], nodes[keep]
-    _check_translations(K, nodes, constant)
-    return System(K=K, M=sp.kron(Ms, sp.identity(3, format="csr"), format="csr"),
-                  mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
-                  order=int(element_orders.max()),
-                  point_values=point_values(mesh.element_cells, basis,
-                                            mesh.points.shape[0])[:, keep].tocsr(),
-                  constant=constant, degrees=degrees[keep], element_dofs=None), number >= 0
+    return (hierarchical_system(mesh, basis, K, Ms, keep, int(element_orders.max())),
+            number >= 0)
 
 
 def raise_indicators(system: System, keep: np.ndarray, element_orders: np.ndarray,
