@@ -195,3 +195,35 @@ def test_a_krylov_space_blind_to_a_mode_is_caught_below_a_hint_too(cylinder, pla
     with pytest.raises(SolverError, match="a mode was skipped"):
         eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid, settings=SolverSettings("pardiso"),
                           shift_hint=sol.inertia_shift)
+
+
+def test_a_start_basis_of_the_same_pencil_replaces_lanczos(plain, monkeypatch):
+    """Given the space's own elastic vectors, the solve below the hint runs no Lanczos:
+    Rayleigh-Ritz on them gives the same ten modes (to 1e-9), residuals below 1e-8,
+    proven by the inertia count at the hint."""
+    s, rigid, sol = plain
+    monkeypatch.setattr(eigen, "eigsh", lambda *a, **k: pytest.fail("Lanczos ran"))
+    again = eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid,
+                              settings=SolverSettings("pardiso"),
+                              shift_hint=sol.inertia_shift, start=sol.pairs.X[:, 6:])
+    assert again.inertia_count == 16
+    assert np.max(np.abs(again.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
+    assert again.pairs.relative_residuals()[6:].max() < 1e-8
+
+
+@pytest.mark.parametrize("spoilt", ["a mode replaced by noise", "a mode missing"])
+def test_a_start_basis_that_does_not_hold_the_modes_falls_back(plain, spoilt):
+    """A start basis lacking a mode never hides it: the pairs come out as Lanczos finds
+    them, all sixteen counted below the hint."""
+    s, rigid, sol = plain
+    X = sol.pairs.X[:, 6:].copy()
+    if spoilt == "a mode missing":
+        X = X[:, 1:]
+    else:
+        X[:, 3] = np.random.default_rng(3).standard_normal(X.shape[0])
+    again = eigen.solve_modes(s.K, s.M, ModeRequest(10), rigid=rigid,
+                              settings=SolverSettings("pardiso"),
+                              shift_hint=sol.inertia_shift, start=X)
+    assert again.inertia_count == 16
+    assert np.max(np.abs(again.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
+    assert again.pairs.relative_residuals()[6:].max() < 1e-8

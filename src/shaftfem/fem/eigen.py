@@ -11,7 +11,10 @@ CHOLMOD or SuperLU (shaftfem.fem.factor). Two strategies, one proof
   search is repeated with a larger Krylov space;
 * `slice_below`: with a shift hint s from an earlier solve, K - s M is factorised
   once: its inertia counts the eigenvalues below s and Lanczos finds them through
-  the same factor, saving the second factorisation.
+  the same factor, saving the second factorisation;
+* `refine_below`: with a hint and a start basis that already holds the pairs below
+  it (an earlier solve of the same space), Rayleigh-Ritz on the basis and Davidson
+  steps through the same factor replace Lanczos.
 """
 
 from __future__ import annotations
@@ -71,6 +74,9 @@ SLICE_SLACK = 4
 # ARPACK's restarts below a hint (it needs 1-3 there); one that does not converge by
 # then falls back to the search.
 SLICE_RESTARTS = 10
+# Davidson steps at most from a start basis below a hint; a basis that is the space's
+# own eigenvectors needs none or one, and one that is not falls back to Lanczos.
+REFINE_DAVIDSON = 2
 # With a frequency limit instead of a count, the Krylov space grows (twice the
 # modes each time) until a mode above the limit is found, up to MAX_MODES modes.
 MAX_MODES = MAX_MODE_COUNT
@@ -134,7 +140,8 @@ class Problem:
 
 def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRequest(),
                 rigid: np.ndarray | None = None, settings: SolverSettings = SolverSettings(),
-                shift_hint: float | None = None) -> EigenSolution:
+                shift_hint: float | None = None, start: np.ndarray | None = None
+                ) -> EigenSolution:
     """The lowest pairs: the rigid ones and the `wanted` elastic ones above them (the
     lowest count, or every one below max_frequency, Hz), proven complete.
 
@@ -142,7 +149,8 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRe
     space and returned as the r lowest pairs (None: six are found among the pairs).
     `shift_hint` (rad^2/s^2): where an earlier solve of a pencil like this one proved
     its modes complete (PARDISO only); a hint that does not serve falls back to the
-    search."""
+    search. `start` (n_dofs, m): vectors spanning (nearly) the elastic pairs below the
+    hint, tried before Lanczos."""
     scale = float(np.median(K.diagonal() / M.diagonal()))
     extra = RIGID_BODY_MODES if rigid is None else 0
     fixed = _rigid_pairs(K, M, rigid) if rigid is not None and rigid.shape[1] else None
@@ -151,7 +159,9 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRe
     if (shift_hint is not None and wanted.max_frequency is None
             and uses_pardiso(settings.factoriser, pencil.n, K.nnz)):
         factor = shifted_factor(pencil, shift_hint, settings)
-        sliced = slice_below(p, factor, shift_hint, settings.ncv)
+        sliced = None if start is None else refine_below(p, factor, shift_hint, start)
+        if sliced is None:
+            sliced = slice_below(p, factor, shift_hint, settings.ncv)
         if sliced is not None:
             return sliced
         factor.shift_to(p.sigma)
@@ -220,6 +230,35 @@ def slice_below(p: Problem, factor: ShiftedFactor, s: float, ncv: int | None
                                  inertia_shift=s)
         ncv = min(p.K.shape[0] - p.r - 1, 2 * ncv_used)
     return None
+
+
+def refine_below(p: Problem, factor: ShiftedFactor, s: float, start: np.ndarray
+                 ) -> EigenSolution | None:
+    """Every eigenpair below s from a basis `start` that holds as many vectors as there
+    are elastic eigenvalues below s (a cached solve of this pencil): Rayleigh-Ritz on it
+    and up to REFINE_DAVIDSON Davidson steps through the factor of K - s M, proven by
+    its inertia like Lanczos' pairs; None where the basis does not serve."""
+    try:
+        counted = count_below(factor, s)
+    except SolverError:
+        return None
+    m = counted - p.r
+    if start.shape != (p.K.shape[0], m) or m < p.k:
+        return None
+    solve, project = _operators(p, factor)
+    try:
+        pairs = rayleigh_ritz(p.K, p.M, project(start), m)
+    except np.linalg.LinAlgError:  # a (nearly) dependent basis
+        return None
+    for _ in range(REFINE_DAVIDSON):
+        pairs = _davidson(p, pairs, solve)
+    if p.fixed is not None:
+        pairs = p.fixed.join(pairs)
+    if not (pairs.verified(p.zero, ACCEPT_RESIDUAL, p.r).all()
+            and int(np.sum(pairs.lam < s)) == counted):
+        return None
+    return EigenSolution(pairs=pairs.first(p.r + p.k), scale=p.scale,
+                         factoriser=factor.backend, inertia_count=counted, inertia_shift=s)
 
 
 def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray) -> Ritz:

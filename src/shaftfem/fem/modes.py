@@ -79,12 +79,14 @@ class Modes:
 def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
                    settings: SolverSettings = SolverSettings(),
                    installed: Installed | None = None,
-                   shift_hint: float | None = None) -> Modes:
+                   shift_hint: float | None = None, start: np.ndarray | None = None) -> Modes:
     """Solve, separate the rigid-body modes, check and classify the elastic ones: the
     lowest `wanted.count`, or every one below `wanted.max_frequency` (at least one).
-    `shift_hint`: see eigen.solve_modes (a Modes' inertia_shift from an earlier solve)."""
+    `shift_hint`, `start`: see eigen.solve_modes (a Modes' inertia_shift and shapes from
+    an earlier solve of the same free system)."""
     K, M, rigid, what = _pencil(system, installed)
-    sol = solve_modes(K, M, wanted, rigid=rigid, settings=settings, shift_hint=shift_hint)
+    sol = solve_modes(K, M, wanted, rigid=rigid, settings=settings, shift_hint=shift_hint,
+                      start=start)
     n_given = rigid.shape[1]
     _check_zero_modes(sol, n_given, what)
     lam = sol.eigenvalues

@@ -56,7 +56,7 @@ ASSEMBLED = 2.0       # the whole space assembled may be this many times the bud
 # a re-solved space matches its cached frequencies to this (round-off of the solver)
 SAME_FREQUENCIES = 1e-7
 HISTORY = ("orders", "f", "kinds", "dofs", "eta", "trimmed", "volume", "shift",
-           "round_bound", "round_seconds", "reached", "why")
+           "round_bound", "round_seconds", "reached", "why", "shapes")
 
 
 @dataclass(frozen=True)
@@ -162,7 +162,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         raise AssertionError("an order-adaptive run ends with a bounded round")
     result = _result(scene, shape, mesh, sub, modes, watch)
     if options.use_cache:
-        _save(path, orders, spaces, modes.inertia_shift, rounds, reached, why)
+        _save(path, orders, spaces, modes, rounds, reached, why)
     return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
                    rounds=tuple(rounds), reached=reached, why=why, from_cache=False,
                    what=f"orders (up to {top})")
@@ -205,15 +205,16 @@ def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, ma
 
 
 def _solve(scene: Scene, sub: System, hint: float | None, options: RunOptions,
-           watch) -> Modes:
+           watch, start: np.ndarray | None = None) -> Modes:
     """The modes of the space `sub`, factorised first at `hint` (rad^2/s^2), the shift
-    where a larger space proved its modes complete, if given."""
+    where a smaller space proved its modes complete, if given; `start`: the shapes of an
+    earlier solve of the same space, refined instead of a new Lanczos search."""
     from shaftfem.fem.eigen import SolverSettings
     from shaftfem.fem.modes import modal_analysis
 
     with watch.lap("solve"):
         return modal_analysis(sub, scene.modes, SolverSettings(options.factoriser),
-                              shift_hint=hint)
+                              shift_hint=hint, start=start)
 
 
 def _space(scene: Scene, mesh: ShaftMesh, modes: Modes, keep: np.ndarray,
@@ -279,10 +280,11 @@ def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, mo
                        timings=watch.timings(), warnings=scene_warnings(scene, modes))
 
 
-def _save(path, orders: np.ndarray, spaces: list[Space], shift: float, rounds: list[Round],
+def _save(path, orders: np.ndarray, spaces: list[Space], modes: Modes, rounds: list[Round],
           reached: bool, why: str) -> None:
-    """The final orders, every round's summary (the bound's inputs), the mesh's volume
-    and the shift (rad^2/s^2) at which the last round's modes were proven complete."""
+    """The final orders, every round's summary (the bound's inputs), the mesh's volume,
+    and the last round's shapes and the shift (rad^2/s^2) at which its modes were proven
+    complete (a warm run refines those shapes instead of searching anew)."""
     from shaftfem.store import save_arrays
 
     save_arrays(path, dict(orders=orders.astype(np.int8),
@@ -291,7 +293,8 @@ def _save(path, orders: np.ndarray, spaces: list[Space], shift: float, rounds: l
                            kinds=np.array([s.kinds for s in spaces]),
                            dofs=np.array([s.dofs for s in spaces]),
                            eta=np.array([s.recovery for s in spaces]),
-                           volume=np.float64(spaces[-1].volume), shift=np.float64(shift),
+                           volume=np.float64(spaces[-1].volume),
+                           shift=np.float64(modes.inertia_shift), shapes=modes.shapes,
                            round_bound=np.array([r.max_bound for r in rounds]),
                            round_seconds=np.array([r.seconds for r in rounds]),
                            reached=np.bool_(reached), why=np.str_(why)))
@@ -322,7 +325,7 @@ def _cached(z, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, sub: System,
     spaces = [Space(int(d), f, [str(k) for k in kinds], eta, float(z["volume"]), bool(t))
               for f, kinds, d, eta, t in zip(z["f"], z["kinds"], z["dofs"], z["eta"],
                                              z["trimmed"])]
-    modes = _solve(scene, sub, float(z["shift"]), options, watch)
+    modes = _solve(scene, sub, float(z["shift"]), options, watch, start=z["shapes"])
     cached = spaces[-1]
     if not (modes.n_dofs == cached.dofs and list(modes.kinds) == cached.kinds
             and np.allclose(modes.frequencies, cached.frequencies, rtol=SAME_FREQUENCIES,
