@@ -15,11 +15,13 @@ Each round factorises once: the shift at which the round before proved its modes
 complete serves as this round's (its frequencies are no higher), counting and solving
 through the one factor (fem.eigen.slice_below).
 
-The final orders, every round's frequencies and recovery estimates and the last proven
-shift are cached, keyed like an adapted mesh (workflows.adapt.adapt_key) and the order:
-a warm re-run assembles only the final space (fem.hierarchy.assemble_space), factorises
-once, and takes the last round's recovery from the cache when its re-solved frequencies
-are the cached ones.
+The final orders, every round's frequencies and recovery estimates, the last round's
+shapes and the last proven shift are cached, keyed like an adapted mesh
+(workflows.adapt.adapt_key) and the order: a warm re-run assembles only the final space
+(fem.hierarchy.assemble_space), factorises once, refines the cached shapes at that shift
+instead of searching (fem.eigen.refine_below, which proves them by the same inertia count
+and residuals), and takes the last round's recovery from the cache when its re-solved
+frequencies are the cached ones.
 """
 
 from __future__ import annotations
