@@ -67,8 +67,8 @@ HISTORY = ("functions", "f", "kinds", "dofs", "eta", "trimmed", "volume", "shift
 @dataclass(frozen=True)
 class Space:
     """One round's space: its DOFs, frequencies (Hz) and their kinds, recovery
-    estimates (fraction), the mesh's volume, and whether the step to it was cut short
-    by the budget."""
+    estimates (fraction; nan where not computed), the mesh's volume, and whether the
+    step to it was cut short by the budget."""
 
     dofs: int
     frequencies: np.ndarray
@@ -150,13 +150,20 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         sub = restricted(system, keep, int(system.degrees[keep].max()))
         modes = _solve(scene, sub, hint, options, watch)
         hint = modes.inertia_shift
-        space = replace(_space(scene, mesh, modes, keep, system.nodes.shape[0]),
+        # from the third round on, the rounds' own drops bound the modes: a round's
+        # recovery estimate is computed only where they leave a mode unbounded
+        known = spaces[0].volume if len(spaces) >= 2 else None
+        space = replace(_space(scene, mesh, modes, keep, system.nodes.shape[0], known),
                         trimmed=trimmed)
         if not spaces:  # the first round's modes are the ones followed
             scene = replace(scene, modes=replace(scene.modes, count=modes.count,
                                                  max_frequency=None))
         spaces.append(space)
         est = _bound(spaces, shape, scene)
+        if est is not None and not np.all(np.isfinite(est.relative_error)):
+            spaces[-1] = space = replace(_space(scene, mesh, modes, keep,
+                                                system.nodes.shape[0]), trimmed=trimmed)
+            est = _bound(spaces, shape, scene)
         bound = est.relative_error if est is not None else planning_bound(space.recovery)
         rounds.append(Round(space.dofs, float(np.max(bound)), time.perf_counter() - t))
         options.say(f"order round {len(rounds)}: {space.dofs} DOFs, largest bound "
@@ -225,10 +232,16 @@ def _solve(scene: Scene, sub: System, hint: float | None, options: RunOptions,
 
 
 def _space(scene: Scene, mesh: ShaftMesh, modes: Modes, keep: np.ndarray,
-           n_nodes: int) -> Space:
+           n_nodes: int, volume: float | None = None) -> Space:
     """The summary of a round's `modes`, solved on the whole space's (of `n_nodes` scalar
-    functions) functions `keep`, with their recovery estimates."""
+    functions) functions `keep`, with their recovery estimates; given the mesh's
+    `volume` (m^3), without them (nan)."""
     from shaftfem.fem.hierarchy import raised
+
+    if volume is not None:
+        return Space(dofs=modes.n_dofs, frequencies=modes.frequencies,
+                     kinds=list(modes.kinds), recovery=np.full(modes.frequencies.size, np.nan),
+                     volume=volume)
 
     full = replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
     rec = recovery_estimate(mesh, scene.material, full)
