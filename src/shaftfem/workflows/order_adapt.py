@@ -11,8 +11,9 @@ a raised element would share with its neighbours: on the paper's shaft (12/10/3 
 to order 4) 250k DOFs reach 0.092 % against 0.118 % with orders per element. The spaces
 are nested, so each round's frequencies are at or below the last's. The second round is
 bounded by its recovery estimate confirmed by the first
-(fem.estimate.combine); from the third on, the last three rounds' drops measure how much
-of the remaining error each round removes, per mode (fem.estimate.contraction_estimate).
+(fem.estimate.combine); from the third on, the rounds' drops measure how much of the
+remaining error each round removes, per mode, read at the slowest the run has shown
+(fem.estimate.contraction_estimate).
 
 Each round factorises once: the shift at which the round before proved its modes
 complete serves as this round's (its frequencies are no higher), counting and solving
@@ -252,7 +253,7 @@ def _space(scene: Scene, mesh: ShaftMesh, modes: Modes, keep: np.ndarray,
 def _bound(spaces: list[Space], shape: ShaftShape, scene: Scene) -> ErrorEstimate | None:
     """The last round's bound, None on the first. The second round's is its recovery
     estimate confirmed by the first. After that each round carries the round before's
-    bound less the drop to it, or the last three rounds' convergence where that is
+    bound less the drop to it, or the rounds' slowest convergence where that is
     tighter; a round whose step the budget cut short takes the carried bound alone (its
     drops measure no convergence). So the bound falls round by round. Earlier rounds'
     modes are matched to the last's by kind."""
@@ -281,9 +282,8 @@ def _bound_with(spaces: list[Space], geometry: float) -> ErrorEstimate | None:
         b.dofs)
     if last.trimmed:
         return carried
-    a = spaces[-3]
-    est = contraction_estimate((f(a), f(b), last.frequencies), (a.dofs, b.dofs, last.dofs),
-                               last.recovery, geometry)
+    est = contraction_estimate([f(s) for s in spaces[:-1]] + [last.frequencies],
+                               [s.dofs for s in spaces], last.recovery, geometry)
     # a carried bound resting on a bound the drops disproved is no tighter bound
     tighter = carried.reliable & (carried.relative_error < est.relative_error)
     return replace(est, relative_error=np.where(tighter, carried.relative_error,
