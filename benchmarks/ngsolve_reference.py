@@ -51,7 +51,7 @@ def frequencies(K: sp.csr_matrix, M: sp.csr_matrix, k: int = N_ELASTIC + 6) -> n
     upper = sp.triu((K - sigma * M).tocsr(), format="csr")
     upper.sort_indices()
     solver = pypardiso.PyPardisoSolver(mtype=2)
-    solver.factorise(upper)
+    solver.factorize(upper)
     op = LinearOperator(K.shape, matvec=lambda b: solver.solve(upper, np.asarray(b, float)),
                         dtype=float)
     lam = eigsh(K, k=k, M=M, sigma=sigma, OPinv=op, which="LM", tol=1e-12,
