@@ -8,11 +8,10 @@ its frequencies lies below order p's: f_(p-1) - f_p is a guaranteed lower bound 
 f_(p-1)'s error, and the two solutions give the bound of f_p (fem.estimate.combine).
 
 Any set of the global functions spans a conforming space (each is continuous across
-the elements that share its vertex, edge or face). An order per element is one such
-choice: an edge's or face's functions of degree k are kept when any element holding it
-has order k or more (the maximum rule of p-element codes). Adding functions lowers every
-frequency or leaves it, so a space may grow by single functions too, each of an edge,
-face or interior and of one degree (`surplus` says which would pay).
+the elements that share its vertex, edge or face), so an order per element is a choice
+of functions: an edge's or face's functions of degree k are kept when any element
+holding it has order k or more (the maximum rule of p-element codes). Raising one
+element's order adds functions and so lowers every frequency or leaves it.
 """
 
 from __future__ import annotations
@@ -64,13 +63,12 @@ def _spanned(degrees: np.ndarray, element_dofs: np.ndarray,
     return np.flatnonzero(degrees <= reach)
 
 
-def assemble_space(mesh, material, functions: np.ndarray,
-                   threads: int | None = None) -> System:
-    """The system of the space of the whole hierarchical space's scalar functions
-    `functions` (a mask; every vertex function among them) on a mesh.ShaftMesh of the
-    whole space's order, assembled directly: the same K and M as
-    `restricted(assemble(mesh), np.flatnonzero(functions), ...)` without the whole
-    space's. Raises ValueError when the mask is not of the whole space's size."""
+def assemble_space(mesh, material, element_orders: np.ndarray,
+                   threads: int | None = None) -> tuple[System, np.ndarray]:
+    """The system of the space with order `element_orders[e]` on element e of a
+    mesh.ShaftMesh (the mesh's order the highest), assembled directly: the same K and M
+    as `restricted(assemble(mesh), spanned(...))` without the whole space's, and which
+    of the whole space's scalar functions it keeps (a mask)."""
     from shaftfem.fem.assembly import (
         MASS_INTORDER,
         Pattern,
@@ -82,9 +80,7 @@ def assemble_space(mesh, material, functions: np.ndarray,
     from shaftfem.runtime import assembly_threads
 
     basis = scalar_basis(mesh)
-    if functions.shape != (basis.N,):
-        raise ValueError(f"a mask of {functions.size} functions for a space of {basis.N}")
-    keep = np.flatnonzero(functions)
+    keep = _spanned(hierarchical_degrees_of(basis), basis.element_dofs, element_orders)
     number = np.full(basis.N, -1, dtype=np.int64)
     number[keep] = np.arange(keep.size)
     local = number[basis.element_dofs]
@@ -95,31 +91,35 @@ def assemble_space(mesh, material, functions: np.ndarray,
     pattern = Pattern.of(np.where(kept, local, 0), keep.size, kept)
     K, Ms = stiffness_and_mass(basis, pattern, material, MASS_INTORDER[mesh.order],
                                assembly_threads(threads))
-    degree = int(hierarchical_degrees_of(basis)[keep].max())
-    return hierarchical_system(mesh, basis, K, Ms, keep, degree)
+    return (hierarchical_system(mesh, basis, K, Ms, keep, int(element_orders.max())),
+            number >= 0)
 
 
-def surplus(system: System, keep: np.ndarray, shapes: np.ndarray,
-            eigenvalues: np.ndarray) -> np.ndarray:
-    """How much adding each scalar function of the hierarchical `system` to the space
-    `keep` would lower the frequencies: per function (n,), the largest over the modes of
-    the relative frequency drop it alone would give (zero on the functions kept).
+def raise_indicators(system: System, keep: np.ndarray, element_orders: np.ndarray,
+                     shapes: np.ndarray, eigenvalues: np.ndarray) -> np.ndarray:
+    """How much raising each element's order by one would lower the frequencies: per
+    element (E,), the largest over the modes of the relative frequency drops that its
+    new functions would give one at a time.
 
-    For a mode (lambda, u) of the space and a function phi outside it, the Rayleigh
-    quotient on span(u, phi) falls by about r^2 / (k - lambda m), with
+    For a mode (lambda, u) of the space `keep` and a function phi outside it, the
+    Rayleigh quotient on span(u, phi) falls by about r^2 / (k - lambda m), with
     r = phi^T (K - lambda M) u, k = phi^T K phi, m = phi^T M phi (the hierarchical
-    surplus estimate), summed over phi's three components; df / f = dlambda / (2 lambda).
-    `shapes` (3 len(keep), m) are M-normalised; `eigenvalues` (m,) in rad^2/s^2."""
-    if system.degrees is None:
-        raise ValueError("only a hierarchical system has functions to add")
+    surplus estimate); df / f = dlambda / (2 lambda). `shapes` (3 len(keep), m) are
+    M-normalised; `eigenvalues` (m,) in rad^2/s^2."""
+    if system.degrees is None or system.element_dofs is None:
+        raise ValueError("only a full hierarchical system has orders per element")
+    from shaftfem.fem.elements import hierarchical_degrees
+
     n = system.degrees.size
     U = raised(shapes, keep, n)
     R = system.K @ U - (system.M @ U) * eigenvalues
     k, m = system.K.diagonal()[:, None], system.M.diagonal()[:, None]
     drop = R**2 / np.maximum(k - eigenvalues * m, 1e-3 * k) / (2 * eigenvalues)
-    drop = drop.reshape(n, 3, -1).sum(axis=1).max(axis=1)
+    drop = drop.reshape(n, 3, -1).sum(axis=1)
     drop[keep] = 0.0
-    return drop
+    new = hierarchical_degrees(system.order)[:, None] == element_orders[None, :] + 1
+    per_element = np.einsum("le,lem->em", new, drop[system.element_dofs])
+    return per_element.max(axis=1)
 
 
 def raised(shapes: np.ndarray, keep: np.ndarray, n_nodes: int) -> np.ndarray:

@@ -1,26 +1,30 @@
-"""Orders adapted to a requested accuracy on one mesh (p-adaptivity): add higher-degree
-functions where the modes' error is, until every frequency's bound is below the target
-or the DOF budget is spent.
+"""Element orders adapted to a requested accuracy on one mesh (p-adaptivity): raise the
+order where the modes' error is, until every frequency's bound is below the target or
+the DOF budget is spent.
 
 The mesh's hierarchical space of the scene's order (3 or 4) is assembled once; every
 round solves a space inside it (fem.hierarchy): first order 2 everywhere, then, each
-round, the edge, face and interior functions that would lower the frequencies most
-(fem.hierarchy.surplus), chosen until they hold THETA of the total (Doerfler's
-marking). Choosing functions rather than element orders spends no DOFs on the functions
-a raised element would share with its neighbours: on the paper's shaft (12/10/3 mm, up
-to order 4) 250k DOFs reach 0.092 % against 0.118 % with orders per element. The spaces
-are nested, so each round's frequencies are at or below the last's. The second round is
-bounded by its recovery estimate confirmed by the first
+round, the elements whose next order's functions would lower the frequencies most
+(fem.hierarchy.raise_indicators), chosen until they hold THETA of the total (Doerfler's
+marking). The spaces are nested, so each round's frequencies are at or below the
+last's. The second round is bounded by its recovery estimate confirmed by the first
 (fem.estimate.combine); from the third on, the rounds' drops measure how much of the
 remaining error each round removes, per mode, read at the slowest the run has shown
 (fem.estimate.contraction_estimate).
+
+Raising single edge, face and interior functions by their own surplus instead of whole
+elements was measured and not kept: it spends fewer DOFs (the paper's shaft, 12/10/3
+mm: 0.092 % true error at 247k DOFs against 0.118 %), but it reaches the plateau of the
+whole order-4 space so quickly that the rounds' drops no longer see what is left: on
+10/5/5 mm, whose whole order-4 space is itself 0.119 % off, the bounds fell below the
+true error on 7 of 10 modes.
 
 Each round factorises once: the shift at which the round before proved its modes
 complete serves as this round's (its frequencies are no higher), counting and solving
 through the one factor (fem.eigen.slice_below).
 
-The final space's functions, every round's frequencies and recovery estimates, the last
-round's shapes and the last proven shift are cached, keyed like an adapted mesh
+The final orders, every round's frequencies and recovery estimates, the last round's
+shapes and the last proven shift are cached, keyed like an adapted mesh
 (workflows.adapt.adapt_key) and the order: a warm re-run assembles only the final space
 (fem.hierarchy.assemble_space), factorises once, refines the cached shapes at that shift
 instead of searching (fem.eigen.refine_below, which proves them by the same inertia count
@@ -58,10 +62,10 @@ if TYPE_CHECKING:
 THETA = 0.6           # Doerfler: raise the elements holding this share of the gain
 MAX_ROUNDS = 8
 MIN_GROWTH = 0.02     # a round cut short by the budget must add this share of DOFs
-ASSEMBLED = 2.5       # the whole space assembled may be this many times the budget
+ASSEMBLED = 2.0       # the whole space assembled may be this many times the budget
 # a re-solved space matches its cached frequencies to this (round-off of the solver)
 SAME_FREQUENCIES = 1e-7
-HISTORY = ("functions", "f", "kinds", "dofs", "eta", "trimmed", "volume", "shift",
+HISTORY = ("orders", "f", "kinds", "dofs", "eta", "trimmed", "volume", "shift",
            "round_bound", "round_seconds", "reached", "why", "shapes")
 
 
@@ -81,8 +85,8 @@ class Space:
 
 def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
                        options: RunOptions = RunOptions()) -> Adapted:
-    """Solve `scene` (order 3 or 4) with higher-degree functions added until every
-    frequency's bound is below `target` (fraction) or the next space would exceed `max_dofs`."""
+    """Solve `scene` (order 3 or 4) with element orders raised until every frequency's
+    bound is below `target` (fraction) or the next space would exceed `max_dofs`."""
     from shaftfem.cad.mesh import BYTES_PER_DOF, check_budget, estimate_dofs, mesh_shape
     from shaftfem.cad.solid import build_shape
     from shaftfem.errors import BudgetError
@@ -108,22 +112,17 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
                           use_cache=options.use_cache)
     path = (cache_dir() / "adapted"
             / f"orders-{adapt_key(scene, shape, target, max_dofs)}.npz")
-    z = _load(path) if options.use_cache and path.exists() else None
+    z = _load(path, mesh.n_elements) if options.use_cache and path.exists() else None
     if z is not None:
         from shaftfem.fem.hierarchy import assemble_space
-        from shaftfem.store import discard
 
         options.say(f"mesh: {mesh.n_elements} elements; adapted orders from cache; "
                     "assembling their space")
-        try:
-            with watch.lap("assembly"):
-                sub = assemble_space(mesh, scene.material, z["functions"],
-                                     threads=options.threads)
-        except ValueError as exc:
-            discard(f"adapted orders {path.stem}", f"another mesh's functions ({exc})", path)
-        else:
-            return _cached(z, scene, shape, mesh, sub, np.flatnonzero(z["functions"]),
-                           z["functions"].size, target, max_dofs, options, watch)
+        with watch.lap("assembly"):
+            sub, inside = assemble_space(mesh, scene.material, z["orders"].astype(np.int64),
+                                         threads=options.threads)
+        return _cached(z, scene, shape, mesh, sub, np.flatnonzero(inside), inside.size,
+                       target, max_dofs, options, watch)
     options.say(f"mesh: {mesh.n_elements} elements; assembling order {scene.mesh.order}")
     with watch.lap("assembly"):
         from shaftfem.fem.assembly import assemble
@@ -134,21 +133,20 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
 
 def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, target: float,
            max_dofs: int, options: RunOptions, watch, path) -> Adapted:
-    from shaftfem.fem.hierarchy import restricted
+    from shaftfem.fem.hierarchy import restricted, spanned
 
-    assert system.degrees is not None
     top = system.order
-    functions = system.degrees <= 2
+    orders = np.full(_n_elements(system), 2, dtype=np.int64)
     trimmed = False
     hint: float | None = None
     spaces: list[Space] = []
     rounds: list[Round] = []
     while True:
         t = time.perf_counter()
-        keep = np.flatnonzero(functions)
+        keep = spanned(system, orders)
         options.say(f"order round {len(rounds) + 1}: {3 * keep.size} DOFs "
-                    f"({keep.size / functions.size:.0%} of order {top}'s functions); solving")
-        sub = restricted(system, keep, int(system.degrees[keep].max()))
+                    f"({np.mean(orders == top):.0%} of the elements at order {top}); solving")
+        sub = restricted(system, keep, int(orders.max()))
         modes = _solve(scene, sub, hint, options, watch)
         hint = modes.inertia_shift
         # from the third round on, the rounds' own drops bound the modes: a round's
@@ -173,50 +171,54 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         if reached:
             why = ""
             break
-        new, why, trimmed = _next(system, keep, modes, max_dofs, len(rounds), bound)
+        new, why, trimmed = _next(system, orders, keep, modes, max_dofs, len(rounds), bound)
         if new is None:
             break
-        functions = new
+        orders = new
     if est is None:
         raise AssertionError("an order-adaptive run ends with a bounded round")
     result = _result(scene, shape, mesh, sub, modes, watch)
     if options.use_cache:
-        _save(path, functions, spaces, modes, rounds, reached, why)
+        _save(path, orders, spaces, modes, rounds, reached, why)
     return Adapted(result=result, estimate=est, target=target, max_dofs=max_dofs,
                    rounds=tuple(rounds), reached=reached, why=why, from_cache=False,
                    what=f"orders (up to {top})")
 
 
-def _next(system: System, keep: np.ndarray, modes: Modes, max_dofs: int, n_rounds: int,
-          bound: np.ndarray) -> tuple[np.ndarray | None, str, bool]:
-    """The next round's functions (a mask of the whole space's; or None and why there is
-    none), and whether the budget cut the marked set short."""
-    from shaftfem.fem.hierarchy import surplus
+def _next(system: System, orders: np.ndarray, keep: np.ndarray, modes: Modes, max_dofs: int,
+          n_rounds: int, bound: np.ndarray) -> tuple[np.ndarray | None, str, bool]:
+    """The next round's element orders (or None and why there is none), and whether the
+    budget cut the marked set short."""
+    from shaftfem.fem.hierarchy import raise_indicators, spanned
 
     top = system.order
     worst = f"{100 * np.max(bound):.2g} %"
     if n_rounds >= MAX_ROUNDS:
         return None, f"stopped after {MAX_ROUNDS} rounds with a largest bound of {worst}", False
-    n = system.K.shape[0] // 3
-    if keep.size == n:
-        return None, (f"the whole order-{top} space is solved, with a largest bound of "
-                      f"{worst}: a finer mesh (--mesh-size) or a higher order goes "
-                      "further"), False
-    gain = surplus(system, keep, modes.shapes, (2 * np.pi * modes.frequencies) ** 2)
-    ranked = np.argsort(gain)[::-1][:n - keep.size]
+    if np.all(orders >= top):
+        return None, (f"every element is at order {top}, with a largest bound of {worst}: "
+                      "a finer mesh (--mesh-size) or a higher order goes further"), False
+    gain = raise_indicators(system, keep, orders, modes.shapes,
+                            (2 * np.pi * modes.frequencies) ** 2)
+    gain[orders >= top] = 0.0
+    ranked = np.argsort(gain)[::-1]
     share = np.cumsum(gain[ranked]) / max(gain.sum(), 1e-300)
-    marked = int(np.searchsorted(share, THETA)) + 1
-    # the best-ranked of them that fit the budget
-    take = min(marked, ranked.size, max_dofs // 3 - keep.size)
+    n = int(np.searchsorted(share, THETA)) + 1
+    # the largest marked set (by rank) that fits the budget
+    lo, hi = 0, n
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        trial = orders.copy()
+        trial[ranked[:mid]] += 1
+        lo, hi = (mid, hi) if 3 * spanned(system, trial).size <= max_dofs else (lo, mid - 1)
+    new = orders.copy()
+    new[ranked[:lo]] += 1
     # a round that the budget leaves almost empty costs a solve and gains nothing
-    if take <= 0 or (take < marked and take < MIN_GROWTH * keep.size):
+    if lo == 0 or (lo < n and spanned(system, new).size < (1 + MIN_GROWTH) * keep.size):
         return None, (f"raising the orders further would exceed the budget of {max_dofs} "
                       f"DOFs (--max-dofs); the bounds shown are those reached at "
                       f"{3 * keep.size} DOFs"), False
-    new = np.zeros(n, dtype=bool)
-    new[keep] = True
-    new[ranked[:take]] = True
-    return new, "", take < marked
+    return new, "", lo < n
 
 
 def _solve(scene: Scene, sub: System, hint: float | None, options: RunOptions,
@@ -300,15 +302,14 @@ def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, mo
                        timings=watch.timings(), warnings=scene_warnings(scene, modes))
 
 
-def _save(path, functions: np.ndarray, spaces: list[Space], modes: Modes, rounds: list[Round],
+def _save(path, orders: np.ndarray, spaces: list[Space], modes: Modes, rounds: list[Round],
           reached: bool, why: str) -> None:
-    """The final space's functions (a mask of the whole space's), every round's summary
-    (the bound's inputs), the mesh's volume, and the last round's shapes and the shift
-    (rad^2/s^2) at which its modes were proven complete (a warm run refines those shapes
-    instead of searching anew)."""
+    """The final orders, every round's summary (the bound's inputs), the mesh's volume,
+    and the last round's shapes and the shift (rad^2/s^2) at which its modes were proven
+    complete (a warm run refines those shapes instead of searching anew)."""
     from shaftfem.store import save_arrays
 
-    save_arrays(path, dict(functions=functions,
+    save_arrays(path, dict(orders=orders.astype(np.int8),
                            trimmed=np.array([s.trimmed for s in spaces]),
                            f=np.array([s.frequencies for s in spaces]),
                            kinds=np.array([s.kinds for s in spaces]),
@@ -321,14 +322,15 @@ def _save(path, functions: np.ndarray, spaces: list[Space], modes: Modes, rounds
                            reached=np.bool_(reached), why=np.str_(why)))
 
 
-def _load(path):
+def _load(path, n_elements: int):
     """The cached run's arrays, or None (and the entry discarded) where the entry is
-    damaged or holds no round before the last."""
+    damaged or does not fit the mesh (of `n_elements` elements)."""
     from shaftfem.store import discard, load_arrays
 
     z, why = load_arrays(path, HISTORY)
-    if z is None or z["functions"].dtype != bool or len(z["f"]) < 2:
-        discard(f"adapted orders {path.stem}", why or "not a space's functions, or no "
+    if (z is None or z["orders"].shape != (n_elements,) or len(z["f"]) < 2
+            or z["orders"].min() < 2):
+        discard(f"adapted orders {path.stem}", why or "another mesh's orders, or no "
                 "round before the last", path)
         return None
     return z
@@ -363,3 +365,8 @@ def _cached(z, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, sub: System,
                    reached=bool(z["reached"]), why=str(z["why"]), from_cache=True,
                    what=f"orders (up to {scene.mesh.order})")
 
+
+def _n_elements(system: System) -> int:
+    if system.element_dofs is None:
+        raise ValueError("adapting the orders needs a whole hierarchical system")
+    return int(system.element_dofs.shape[1])
