@@ -65,7 +65,8 @@ def one(shaft: str, sizes_mm: tuple, order: int, target: float, budget: int) -> 
         rounds.append((r.dofs, r.max_bound, float(np.max(true)), float(np.min(true))))
     true, at = true_errors(a.result.modes.frequencies, list(a.result.modes.kinds))
     eff = a.estimate.relative_error[at] / true
-    return {"rounds": rounds, "wall": wall, "peak": peak_mb(), "why": a.why,
+    return {"rounds": rounds, "wall": wall, "cad": a.result.timings.cad, "peak": peak_mb(),
+            "why": a.why,
             "eff": (float(eff.min()), float(eff.max())), "holds": int(np.sum(eff >= 1)),
             "within3": int(np.sum((eff >= 1) & (eff <= 3))), "n": int(true.size)}
 
