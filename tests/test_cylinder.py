@@ -80,7 +80,7 @@ def test_cubic_elements_are_conforming_and_exact_for_cubic_fields():
     from skfem.helpers import dot, grad
 
     from shaftfem.cad.mesh import EDGES, sorted_cells
-    from shaftfem.fem.elements import lagrange_cubic
+    from shaftfem.cad.tetrahedra import lagrange_cubic
 
     m = MeshTet1().refined(2)
     t = m.t.T.copy()

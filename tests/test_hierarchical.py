@@ -30,8 +30,8 @@ def test_order_3_is_the_lagrange_cubic_space(runs, cylinder):
     quadrature, gives the hierarchical order-3 frequencies to 1e-10: one space, two bases."""
     from skfem import Basis, BilinearForm
 
+    from shaftfem.cad.tetrahedra import lagrange_cubic
     from shaftfem.fem.assembly import MASS_INTORDER, STIFFNESS_INTORDER
-    from shaftfem.fem.elements import lagrange_cubic
 
     mesh = runs[3].mesh.to_skfem()
     m = cylinder.scene.material

@@ -14,43 +14,39 @@ excitation, another margin) skips meshing and gets the very same nodes.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from shaftfem.cad.solid import ShaftShape
+from shaftfem.cad.tetrahedra import (
+    EDGES,
+    MIN_JACOBIAN_RATIO,
+    element_jacobian_ratios,
+    jacobian_ratio,
+    skfem_mesh,
+    sorted_cells,
+)
 from shaftfem.errors import BudgetError, MeshError
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
 
-MIN_JACOBIAN_RATIO = 0.02  # smallest det J / largest det J allowed within one element
 # Bump when the meshing or the cache entry changes, so old cached meshes are not reused
 # (2: entries carry checksums; 3: the checksum covers the arrays in name order).
 MESH_VERSION = 3
 
 
-def skfem_mesh(points: np.ndarray, cells: np.ndarray):
-    """scikit-fem's MeshTet1 / MeshTet2 of points (N, 3) and meshio-ordered cells (E, 4 or 10).
-
-    scikit-fem takes the cells' columns as its local nodes in the same order (vertices,
-    then the edge nodes), which `assembly.point_dofs` relies on.
-    """
-    from skfem import MeshTet1, MeshTet2
-
-    kind = MeshTet2 if cells.shape[1] == 10 else MeshTet1
-    return kind(np.ascontiguousarray(points.T), np.ascontiguousarray(cells.T))
-
-
 @dataclass(frozen=True)
 class ShaftMesh:
-    """A tetrahedral mesh in m: points (N, 3), cells (E, 4 or 10) in VTK/meshio node order."""
+    """A tetrahedral mesh in m: points (N, 3), cells (E, 4 or 10) in VTK/meshio node
+    order, or (E, 20) for cubic geometry, in the cubic element's order (cad.cubic)."""
 
     points: np.ndarray
     cells: np.ndarray
     order: int
     min_jacobian_ratio: float
-    straightened: int  # P2 elements whose curved edges were straightened to stay valid
+    straightened: int  # curved elements made straight-sided to stay valid
     from_cache: bool = False
 
     @property
@@ -58,14 +54,20 @@ class ShaftMesh:
         return self.cells.shape[0]
 
     @property
+    def geometry_order(self) -> int:
+        """The degree of the map from the reference element: 1, 2 or 3."""
+        return {4: 1, 10: 2, 20: 3}[self.cells.shape[1]]
+
+    @property
     def cell_type(self) -> str:
-        return cell_type(self.order)
+        """meshio's name of the cells."""
+        return "tetra20" if self.geometry_order == 3 else cell_type(self.order)
 
     @property
     def element_cells(self) -> np.ndarray:
-        """The cells as the elements take them: for P3, vertices in ascending order
-        (sorted_cells), so that neighbours agree on their edges' nodes."""
-        if self.order < 3:
+        """The cells as the elements take them: for orders 3 and 4, vertices in ascending
+        order (sorted_cells), so that neighbours agree on their edges' nodes."""
+        if self.order < 3 or self.geometry_order == 3:  # cubic cells come ascending
             return self.cells
         return sorted_cells(self.cells)
 
@@ -130,15 +132,21 @@ def check_budget(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
 def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
              settings: MeshSettings, cuts: tuple[float, ...] = (),
              hubs: tuple[tuple[float, float], ...] = ()) -> str:
-    """A hash of everything the mesh depends on."""
-    from shaftfem.cad.mesher import EDGE_GRADING, HUB_SIZE
+    """A hash of everything the mesh depends on: its sizes and the degree of its map,
+    not the element order on it (orders 2 to 4 share a quadratic mesh, 3 and 4 a cubic
+    one, whose optimisers take minutes)."""
+    from shaftfem.cad.mesher import EDGE_GRADING, HIGH_ORDER_OPTIMISERS, HUB_SIZE
     from shaftfem.cad.session import gmsh_version
 
+    geometry = {k: v for k, v in asdict(settings).items() if k != "geometry_order"}
+    geometry["order"] = 1 if settings.order == 1 else settings.geometry_order
     payload = {
         "version": MESH_VERSION, "gmsh": gmsh_version(),
         "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
+        **({"optimisers": list(HIGH_ORDER_OPTIMISERS), "nodes": "parametric"}
+           if geometry["order"] == 3 else {}),
         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
-        "settings": asdict(settings), **({"cuts": list(cuts)} if cuts else {}),
+        "settings": geometry, **({"cuts": list(cuts)} if cuts else {}),
         **({"hubs": [list(h) for h in hubs], "hub_size": HUB_SIZE} if hubs else {}),
     }
     return content_key(payload, files=() if shape.brep is None else (shape.brep,))
@@ -155,8 +163,8 @@ def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     path = cache_dir() / "meshes" / f"{key}.npz"
     if use_cache and path.exists():
         fields, why = load_arrays(path, MESH_ARRAYS)
-        if fields is not None:
-            return mesh_from_arrays(fields)
+        if fields is not None:  # the entry may be another element order's
+            return replace(mesh_from_arrays(fields), order=settings.order)
         discard(f"mesh {key}", why, path)
     mesh = _generate(shape, shaft, grooves, settings, cuts=cuts, hubs=hubs)
     if use_cache:
@@ -200,7 +208,12 @@ def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)
     straightened = 0
-    if settings.order >= 2:
+    if settings.geometry_order == 3:
+        from shaftfem.cad.cubic import ascending, curve_inside, straighten_folded
+
+        cells = ascending(cells)   # copies of a sector renumber the vertices
+        points, straightened = straighten_folded(curve_inside(points, cells), cells)
+    elif settings.order >= 2:
         points, straightened = straighten_bad_elements(points, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
@@ -228,20 +241,6 @@ def _compact(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndar
     remap = np.full(points.shape[0], -1, dtype=np.int64)
     remap[used] = np.arange(used.size)
     return np.ascontiguousarray(points[used]), remap[cells]
-
-
-# Edges of a 10-node tetrahedron in VTK/meshio order: node 4 + k sits on EDGES[k].
-EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
-# scikit-fem's reference tetrahedron: its vertices and its faces in local order
-VERTICES = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
-FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
-# The 20 nodes of a cubic tetrahedron, reference coordinates: the vertices, two points on
-# each edge at its thirds (the one near the edge's first vertex first), each face's centre.
-CUBIC_NODES = np.vstack(
-    [VERTICES]
-    + [np.array([(2 * VERTICES[i] + VERTICES[j]) / 3, (VERTICES[i] + 2 * VERTICES[j]) / 3])
-       for i, j in EDGES]
-    + [VERTICES[list(f)].mean(axis=0)[None] for f in FACES])
 
 
 def straighten_bad_elements(points: np.ndarray, cells: np.ndarray,
@@ -280,46 +279,3 @@ def check_jacobians(points: np.ndarray, cells: np.ndarray) -> float:
     return ratio
 
 
-def jacobian_ratio(points: np.ndarray, cells: np.ndarray) -> float:
-    """Smallest over elements of min(det J) / max |det J|, sampled at nodes and inside."""
-    return float(np.min(element_jacobian_ratios(points, cells)))
-
-
-def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """Per element min(det J) / max |det J|, sampled at nodes and inside.
-
-    Negative means an element inverted against its straight-sided self; the
-    determinant is evaluated with
-    scikit-fem's isoparametric mapping, the one the assembly integrates with.
-    """
-    mapping = skfem_mesh(points, cells)._mapping()
-    # vertices, edge midpoints, face centroids and the centroid of the reference tet
-    v = VERTICES
-    pts = list(v)
-    pts += [(v[i] + v[j]) / 2 for i in range(4) for j in range(i + 1, 4)]
-    pts += [(v[i] + v[j] + v[k]) / 3 for i, j, k in FACES]
-    pts.append(v.mean(axis=0))
-    det = mapping.detDF(np.array(pts).T)
-    # each element against its straight-sided self (ascending-vertex cells mix orientations)
-    v = points[cells[:, :4]]
-    straight = np.einsum("ed,ed->e", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]),
-                         v[:, 3] - v[:, 0])
-    det = np.sign(straight)[:, None] * det
-    return det.min(axis=1) / np.abs(det).max(axis=1)
-
-
-def sorted_cells(cells: np.ndarray) -> np.ndarray:
-    """Cells (E, 4) or (E, 10, meshio order) with their vertices in ascending order and
-    the edge nodes permuted to match: the cubic element's (fem.elements) edge nodes then agree
-    between neighbours. (An odd permutation flips the element's orientation; the
-    quadrature takes |det J|.)"""
-    perm = np.argsort(cells[:, :4], axis=1)
-    out = np.take_along_axis(cells[:, :4], perm, axis=1)
-    if cells.shape[1] == 4:
-        return out
-    edge_of = np.zeros((4, 4), dtype=np.int64)      # local vertices -> local edge
-    for k, (a, b) in enumerate(EDGES):
-        edge_of[a, b] = edge_of[b, a] = k
-    rows = np.arange(cells.shape[0])
-    mids = [cells[rows, 4 + edge_of[perm[:, a], perm[:, b]]] for a, b in EDGES]
-    return np.hstack([out, np.column_stack(mids)])

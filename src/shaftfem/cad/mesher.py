@@ -28,6 +28,13 @@ from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 # beam's at the default 8 mm, 0.41 % with 4 mm there, at 1.4 times the DOFs.
 HUB_SIZE = 0.5
 
+# gmsh's high-order optimisers, in turn, on a mesh curved to order 3: the elastic one
+# untangles most folded elements quickly, the direct one most of the rest (paper's shaft,
+# 12/8/8 mm: 26 elements left to straighten, against 153 and 38 with either alone and 459
+# with neither; 136 s). They run in a child process: they have aborted the process on
+# this geometry (an uncaught C++ exception).
+HIGH_ORDER_OPTIMISERS = ("HighOrderElastic", "HighOrder")
+
 # Distance (in units of the size jump) over which the element size grows from the
 # edge size to the groove size: 1 means each element is about twice its inner neighbour.
 EDGE_GRADING = 1.0
@@ -197,10 +204,32 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
                cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = ()
                ) -> tuple[np.ndarray, np.ndarray]:
     """Tetrahedra of the solid in `brep` (None: a plain shaft's 90-degree sector):
-    points (N, 3) in m and cells (E, 4 or 10) in meshio's node order. `sizes`: an
+    points (N, 3) in m and cells (E, 4 or 10) in meshio's node order, or (E, 20) in the
+    cubic element's (cad.cubic) for `settings.geometry_order` 3. `sizes`: an
     element-size field (points, tets, size at each point, m) in place of the
     settings' groove, edge and hub sizes; `cuts`: z (m) of planes the mesh must
     follow; `hubs`: (z0, z1) (m) of the parts' seats, meshed finer."""
+    if settings.geometry_order == 3:
+        return _in_child(_mesh_solid, brep, shaft, grooves, settings, sizes, cuts, hubs)
+    return _mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs)
+
+
+def _in_child(function, *args):
+    """function(*args) in a child process, a crash of it a MeshError."""
+    from shaftfem.cad.child import ChildCrashed, call_in_child
+
+    try:
+        return call_in_child(function, *args)
+    except ChildCrashed as exc:
+        raise MeshError(f"gmsh stopped while curving the mesh to cubic geometry ({exc}); "
+                        "use [mesh] geometry_order = 2 or another element size") from exc
+
+
+def _mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
+                settings: MeshSettings,
+                sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+                cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = ()
+                ) -> tuple[np.ndarray, np.ndarray]:
     import meshio
 
     with session("mesh") as s, translated(MeshError, "gmsh could not mesh the solid"):
@@ -230,7 +259,14 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
         gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "shaft")
         try:
             gmsh.model.mesh.generate(3)
-            if settings.order >= 2:  # curved: the geometry is quadratic for P2 and P3
+            if settings.geometry_order == 3:
+                gmsh.model.mesh.setOrder(3)
+                _even_on_cad(gmsh)
+                if grooves is not None:  # a plain shaft's cubic elements do not fold
+                    for method in HIGH_ORDER_OPTIMISERS:
+                        gmsh.model.mesh.optimize(method)
+                return _cubic_cells(gmsh)
+            if settings.order >= 2:  # curved: the geometry is quadratic for P2 and up
                 gmsh.model.mesh.setOrder(2)
         finally:
             if view is not None:
@@ -248,3 +284,89 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
     if cells is None or len(cells) == 0:
         raise MeshError("the mesh has no tetrahedra")
     return m.points, cells
+
+
+def _cubic_cells(gmsh) -> tuple[np.ndarray, np.ndarray]:
+    """gmsh's 20-node tetrahedra: points (N, 3) and cells (E, 20) in the cubic element's
+    order, vertices ascending (cad.cubic)."""
+    from shaftfem.cad.cubic import ascending
+
+    etype = gmsh.model.mesh.getElementType("tetrahedron", 3)
+    local = np.array(gmsh.model.mesh.getElementProperties(etype)[4]).reshape(-1, 3)
+    _, nodes = gmsh.model.mesh.getElementsByType(etype)
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    if len(nodes) == 0:
+        raise MeshError("the mesh has no tetrahedra")
+    index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
+    index[tags.astype(np.int64)] = np.arange(tags.size)
+    cells = index[np.asarray(nodes, dtype=np.int64)].reshape(-1, 20)
+    return coords.reshape(-1, 3), ascending(cells, local)
+
+
+def _unwrapped(uv: np.ndarray, period: np.ndarray) -> np.ndarray:
+    """Parameters (n, k, d) of each element's nodes, moved by whole periods next to its
+    first node's (a periodic surface's or curve's seam)."""
+    out = uv.copy()
+    for d in range(uv.shape[2]):
+        if period[d] > 0:
+            out[:, :, d] -= period[d] * np.round((uv[:, :, d] - uv[:, :1, d]) / period[d])
+    return out
+
+
+def _even_on_cad(gmsh) -> None:
+    """Every boundary node of a curved mesh at its element's parametric position: the
+    nodes inside each boundary line and triangle go where the element's vertices'
+    parameters, interpolated linearly, put them on the curve or surface.
+
+    gmsh projects the straight element's points onto the surface instead: on a curved
+    face that puts an edge's nodes nearer its ends than its thirds (0.325 on a 45-degree
+    arc), an uneven map on which orders 3 and 4 fit the field worse. The 32 mm
+    cylinder at 12 mm: torsion at order 4 9.3e-5 from c_t / 2L, 9.5e-6 with the nodes
+    placed here (quadratic geometry's midpoints are even by symmetry)."""
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    xyz = {int(t): coords[3 * i:3 * i + 3] for i, t in enumerate(tags)}
+    for dim, name in ((1, "line"), (2, "triangle")):
+        etype = gmsh.model.mesh.getElementType(name, 3)
+        local = np.array(gmsh.model.mesh.getElementProperties(etype)[4]).reshape(-1, dim)
+        if dim == 1:
+            lam = np.column_stack([(1 - local[:, 0]) / 2, (1 + local[:, 0]) / 2])
+        else:
+            lam = np.column_stack([1 - local.sum(axis=1), local])
+        for _, tag in gmsh.model.getEntities(dim):
+            _, nodes = gmsh.model.mesh.getElementsByType(etype, tag)
+            if len(nodes) == 0:
+                continue
+            own = set(int(t) for t in gmsh.model.mesh.getNodes(dim, tag, includeBoundary=False)[0])
+            cells = np.asarray(nodes, dtype=np.int64).reshape(-1, len(lam))
+            verts = cells[:, :dim + 1]
+            flat = np.concatenate([xyz[int(t)] for t in verts.ravel()])
+            uv = np.asarray(gmsh.model.getParametrization(dim, tag, flat)).reshape(
+                verts.shape[0], dim + 1, dim)
+            period = _periods(gmsh, dim, tag)
+            uv = _unwrapped(uv, period)
+            for k in range(dim + 1, len(lam)):
+                moving = np.array([int(t) in own for t in cells[:, k]])
+                if not moving.any():
+                    continue
+                target = np.einsum("j,njd->nd", lam[k], uv[moving])
+                new = np.asarray(gmsh.model.getValue(dim, tag, target.ravel())).reshape(-1, 3)
+                for t, x, q in zip(cells[moving, k], new, target):
+                    gmsh.model.mesh.setNode(int(t), x.tolist(), q.tolist())
+                    xyz[int(t)] = x
+
+
+def _periods(gmsh, dim: int, tag: int) -> np.ndarray:
+    """Each parameter's period on a curve or surface (0: not periodic): its range, when
+    the two ends of the range map to the same points."""
+    lo, hi = gmsh.model.getParametrizationBounds(dim, tag)
+    out = np.zeros(dim)
+    for d in range(dim):
+        rest = np.linspace(lo[1 - d], hi[1 - d], 5)[1:-1] if dim == 2 else [None]
+        ends = []
+        for end in (lo[d], hi[d]):
+            uv = [[end, r] if d == 0 else [r, end] for r in rest] if dim == 2 else [[end]]
+            ends.append(np.asarray(gmsh.model.getValue(dim, tag, np.ravel(uv))).reshape(-1, 3))
+        size = np.ptp(np.vstack(ends), axis=0).max() + 1e-300
+        if np.abs(ends[0] - ends[1]).max() < 1e-9 * max(size, 1e-3):
+            out[d] = hi[d] - lo[d]
+    return out

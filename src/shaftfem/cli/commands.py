@@ -58,7 +58,8 @@ def _scene(args):
     from shaftfem.workflows.bounded import with_accuracy
     from shaftfem.workflows.pipeline import with_mesh, with_modes
 
-    scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order)
+    scene = with_mesh(load_scene(args.scene), args.mesh_size, args.order,
+                      getattr(args, "geometry_order", None))
     if getattr(args, "free", False):
         scene = scene.free()
     scene = with_accuracy(scene, args.accuracy, args.max_dofs, fixed=args.mesh_size is not None)

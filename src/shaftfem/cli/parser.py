@@ -105,6 +105,9 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
     c.add_argument("--order", type=int, choices=(1, 2, 3, 4),
                    help="element order: 1, 2, 3 or 4 (3, 4: hierarchical; free shafts) "
                    "(default: scene)")
+    c.add_argument("--geometry-order", type=int, choices=(2, 3),
+                   help="how the elements follow the CAD surfaces: 2 (quadratic) or 3 "
+                   "(cubic; orders 3 and 4) (default: scene, else 2)")
     c.add_argument("--modes", type=_count, metavar="N",
                    help="number of elastic modes (default: the scene's [modes] count, else 10)")
     c.add_argument("--max-frequency", type=_hz, metavar="HZ",

@@ -1,19 +1,9 @@
 """The scalar elements, by order: scikit-fem's P1 and P2 tetrahedra, a cubic Lagrange
 one, and a hierarchical family of any order p >= 2.
 
-The cubic Lagrange tetrahedron (20 nodes: the vertices, two points on each edge at
-its thirds, the centre of each face) in barycentric coordinates l_i:
+The cubic Lagrange tetrahedron (cad.tetrahedra) checks the hierarchical one.
 
-    vertex i:                 l_i (3 l_i - 1)(3 l_i - 2) / 2
-    edge (i, j), near i:      9/2 l_i l_j (3 l_i - 1)
-    face (i, j, k):           27 l_i l_j l_k
-
-An edge's two nodes are told apart by the edge's direction, from its local vertex
-i to j. Neighbours agree on it when every element lists its vertices in ascending
-global order (cad.mesh.sorted_cells): then each edge runs from its lower global vertex to
-its higher in every element that shares it.
-
-The hierarchical tetrahedron of order p spans the same polynomials; its functions are
+The hierarchical tetrahedron of order p spans the cubic's polynomials at p = 3; its functions are
 products of barycentric bubbles and Legendre polynomials P_n, so order p's functions are
 order p - 1's and a few more (nested spaces: the frequencies fall as p rises):
 
@@ -31,60 +21,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaftfem.cad.mesh import CUBIC_NODES, EDGES, FACES, VERTICES  # the reference tetrahedron
-
-# d l_i / d X on the reference element (l_0 = 1 - x - y - z)
-GRAD_L = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
-
-
-def lagrange_cubic():
-    """The cubic Lagrange tetrahedron (the class), for ascending-vertex cells."""
-    from skfem import ElementH1
-    from skfem.refdom import RefTet
-
-    class ElementTetP3(ElementH1):
-        """The cubic Lagrange tetrahedron on ascending-vertex cells (see the module)."""
-
-        nodal_dofs = 1
-        edge_dofs = 2
-        facet_dofs = 1
-        maxdeg = 3
-        dofnames = ["u"] * 4      # one per DOF of a vertex, an edge (2) and a face
-        doflocs = CUBIC_NODES
-        refdom = RefTet
-
-        def lbasis(self, X, i):
-            lam = np.array([1.0 - X[0] - X[1] - X[2], X[0], X[1], X[2]])
-            phi, dl = _cubic(lam, i)
-            # chain rule: d phi / d X = sum_k (d phi / d l_k) (d l_k / d X)
-            dphi = np.einsum("k...,kd->d...", dl, GRAD_L)
-            return phi, dphi
-
-    return ElementTetP3
-
+from shaftfem.cad.tetrahedra import (  # the reference tetrahedron, the cubic Lagrange map
+    EDGES,
+    FACES,
+    GRAD_L,
+    VERTICES,
+)
 
 # the highest element order a scene may ask for
 MAX_ORDER = 4
-
-
-def _cubic(lam: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
-    """Basis function i of the cubic tetrahedron at barycentric points `lam` (4, ...), and
-    its derivatives with respect to the four l's."""
-    dl = np.zeros_like(lam)
-    if i < 4:
-        a = lam[i]
-        dl[i] = (27 * a**2 - 18 * a + 2) / 2
-        return a * (3 * a - 1) * (3 * a - 2) / 2, dl
-    if i < 16:
-        e, near_j = divmod(i - 4, 2)
-        a, b = EDGES[e] if not near_j else EDGES[e][::-1]
-        la, lb = lam[a], lam[b]
-        dl[a] = 4.5 * lb * (6 * la - 1)
-        dl[b] = 4.5 * la * (3 * la - 1)
-        return 4.5 * la * lb * (3 * la - 1), dl
-    a, b, c = FACES[i - 16]
-    dl[a], dl[b], dl[c] = 27 * lam[b] * lam[c], 27 * lam[a] * lam[c], 27 * lam[a] * lam[b]
-    return 27 * lam[a] * lam[b] * lam[c], dl
 
 
 def _legendre(n: int, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -156,10 +156,20 @@ def write_mode_files(result: ModalResult, folder: Path,
                     folder / "open_in_paraview.py")
     write_csv(folder / "modes.csv", modes_table(result, est))
     (folder / "modes.json").write_text(json_text(modes_record(result, est)))
-    meshio.write(folder / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, mesh.cells)]),
+    meshio.write(folder / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, msh_cells(mesh))]),
                  file_format="gmsh", binary=False)
     write_solid(result.shape.brep, result.scene.shaft,
                 [folder / "shaft.step", folder / "shaft.brep"])
     return [folder / n for n in names + ["modes.pvd", "modes_all.vtu", "open_in_paraview.py",
                                           "modes.csv", "modes.json", "mesh.msh", "shaft.step",
                                           "shaft.brep"]]
+
+
+def msh_cells(mesh) -> np.ndarray:
+    """The mesh's cells in gmsh's node order (meshio writes them as given): meshio's
+    10-node order is put right by meshio itself; cubic cells take gmsh's 20-node order."""
+    if mesh.geometry_order == 3:
+        from shaftfem.cad.cubic import GMSH_NODES, in_node_order
+
+        return in_node_order(mesh.points, mesh.cells, GMSH_NODES)
+    return mesh.cells

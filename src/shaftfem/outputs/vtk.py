@@ -22,6 +22,7 @@ def grid(mesh: ShaftMesh, scale: float = 1.0):
     from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
     from vtkmodules.vtkCommonCore import vtkPoints
     from vtkmodules.vtkCommonDataModel import (
+        VTK_LAGRANGE_TETRAHEDRON,
         VTK_QUADRATIC_TETRA,
         VTK_TETRA,
         vtkCellArray,
@@ -31,12 +32,18 @@ def grid(mesh: ShaftMesh, scale: float = 1.0):
     points = vtkPoints()
     points.SetData(numpy_to_vtk(np.ascontiguousarray(mesh.points * scale), deep=True))
     n, per = mesh.cells.shape
+    connectivity = mesh.cells
+    if per == 20:  # cubic geometry: VTK's Lagrange tetrahedron, ParaView draws it curved
+        from shaftfem.cad.cubic import VTK_NODES, in_node_order
+
+        connectivity = in_node_order(mesh.points, mesh.cells, VTK_NODES)
     cells = vtkCellArray()
     cells.SetData(numpy_to_vtkIdTypeArray(np.arange(0, (n + 1) * per, per), deep=True),
-                  numpy_to_vtkIdTypeArray(np.ascontiguousarray(mesh.cells.ravel()), deep=True))
+                  numpy_to_vtkIdTypeArray(np.ascontiguousarray(connectivity.ravel()), deep=True))
     g = vtkUnstructuredGrid()
     g.SetPoints(points)
-    g.SetCells(VTK_QUADRATIC_TETRA if per == 10 else VTK_TETRA, cells)
+    kind = {10: VTK_QUADRATIC_TETRA, 20: VTK_LAGRANGE_TETRAHEDRON}.get(per, VTK_TETRA)
+    g.SetCells(kind, cells)
     return g
 
 

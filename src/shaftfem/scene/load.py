@@ -215,7 +215,7 @@ def _mesh_settings(source: str, mesh_t: dict, shaft_t: dict, grooves: Grooves | 
             f"shaft length ({shaft_t['length_mm']:g} mm)"
         )
     return MeshSettings(size=size * MM, groove_size=groove_size * MM, edge_size=edge_size * MM,
-                        order=mesh_t["order"])
+                        order=mesh_t["order"], geometry_order=mesh_t["geometry_order"])
 
 
 def _response_point(source: str, resp_t: dict, shaft_t: dict) -> float | None:

@@ -78,12 +78,14 @@ def cell_type(order: int) -> str:
 @dataclass(frozen=True)
 class MeshSettings:
     """Element sizes in m; `order` 1 (P1, linear), 2 (P2, quadratic), or 3 and 4
-    (hierarchical cubic and quartic, on the same curved quadratic geometry as P2)."""
+    (hierarchical cubic and quartic); `geometry_order` 2 (elements curved quadratically
+    onto the CAD surfaces, as P2's) or 3 (cubically, for orders 3 and 4)."""
 
     size: float
     groove_size: float
     edge_size: float
     order: int
+    geometry_order: int = 2
 
 
 @dataclass(frozen=True)

@@ -244,6 +244,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "order": Key(int, "element order: 1 (P1), 2 (P2), or 3 and 4 (hierarchical cubic "
                      "and quartic; free shafts)", lambda v: v in (1, 2, 3, 4), "1, 2, 3 or 4",
                      default=2, required=False),
+        "geometry_order": Key(int, "how the elements follow the CAD surfaces: 2 (curved "
+                              "quadratically) or 3 (cubically: closer on coarse elements; "
+                              "element orders 3 and 4; meshing takes minutes, once per design)",
+                              lambda v: v in (2, 3), "2 or 3", default=2, required=False),
         "target_error_percent": Key(
             float, "bound wanted on every frequency's discretisation error, %: the mesh is "
             "adapted until it holds (default: the fixed mesh above, with its bound)",

@@ -129,6 +129,7 @@ def adapt_key(scene: Scene, shape: ShaftShape, target: float, max_dofs: int) -> 
     payload = {"version": ADAPT_VERSION, "mesh": mesh_key(shape, scene.shaft, scene.grooves,
                                                            scene.mesh, scene.seat_cuts(),
                                                            scene.hubs()),
+               "order": scene.mesh.order,  # the mesh's key leaves the element order out
                "target": target, "max_dofs": max_dofs, "modes": scene.modes.count,
                "max_frequency": scene.modes.max_frequency,
                "material": [scene.material.youngs_modulus, scene.material.poisson_ratio,

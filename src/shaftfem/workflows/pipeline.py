@@ -43,9 +43,10 @@ class Stopwatch:
         return Timings(**self.laps, total=time.perf_counter() - self.start)
 
 
-def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None) -> Scene:
+def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None,
+              geometry_order: int | None = None) -> Scene:
     """The scene with another element size away from the grooves, mm (the groove sizes
-    scaled alike), and/or element order (1 to 4)."""
+    scaled alike), element order (1 to 4) and/or geometry order (2, 3)."""
     m = scene.mesh
     if size_mm is not None:
         if not 0 < size_mm <= scene.shaft.length * 1e3:  # also refuses nan and inf
@@ -55,11 +56,18 @@ def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = No
         m = replace(m, size=m.size * k, groove_size=m.groove_size * k, edge_size=m.edge_size * k)
     if order is not None:
         m = replace(m, order=order)
+    if geometry_order is not None:
+        m = replace(m, geometry_order=geometry_order)
     return replace(scene, mesh=m)
 
 
 def check_order(scene: Scene) -> None:
-    """Cubic elements take free shafts only: seats and parts read nodal values."""
+    """Cubic elements take free shafts only: seats and parts read nodal values; cubic
+    geometry takes the hierarchical elements (orders 3 and 4) only."""
+    if scene.mesh.geometry_order == 3 and scene.mesh.order < 3:
+        raise SceneError(f"{scene.source}: geometry order 3 with element order "
+                         f"{scene.mesh.order}: cubic geometry takes element orders 3 and 4; "
+                         "use --order 3 or 4 ([mesh] order), or geometry order 2")
     if scene.mesh.order > 2 and scene.installed:
         raise SceneError(f"{scene.source}: element order {scene.mesh.order}: cubic elements "
                          "take free shafts only for now; use order 2 (or --free on a scene "
