@@ -119,6 +119,48 @@ def test_the_elements_hold_the_cylinder_volume(cubic_runs, cylinder):
     assert 0 < error <= 1.05 * arc**4 / 3240, (error, arc)
 
 
+def test_order_4_is_bounded_by_order_3_on_cubic_geometry(cubic_runs, cylinder):
+    """No order below the geometry's moves the body rigidly, so order 4 on cubic geometry
+    is bounded by order 3 alone, with both recovery estimates: every mode bounded, and
+    the torsion mode's bound above its true error against c_t / 2L."""
+    from shaftfem.workflows.bounded import estimate_errors
+
+    r = cubic_runs[4]
+    est = estimate_errors(r)
+    assert "order 3 in the same space" in est.method
+    assert np.all(np.isfinite(est.relative_error)) and np.all(est.relative_error > 0)
+    m, L = cylinder.scene.material, cylinder.scene.shaft.length
+    k = r.modes.kinds.index("torsion")
+    ct = torsion_hz(1, L, m.youngs_modulus, m.poisson_ratio, m.density)
+    assert est.relative_error[k] > abs(r.modes.frequencies[k] / ct - 1)
+
+
+def test_order_3_on_cubic_geometry_is_bounded_on_a_coarser_mesh(cubic_runs, cylinder):
+    """Order 3 on cubic geometry has no order below it that moves the body rigidly: its
+    bound comes from a coarser cubic mesh, and the torsion mode lies inside it."""
+    from shaftfem.workflows.bounded import estimate_errors
+
+    r = cubic_runs[3]
+    est = estimate_errors(r)
+    assert "coarser mesh" in est.method
+    m, L = cylinder.scene.material, cylinder.scene.shaft.length
+    k = r.modes.kinds.index("torsion")
+    ct = torsion_hz(1, L, m.youngs_modulus, m.poisson_ratio, m.density)
+    assert est.relative_error[k] > abs(r.modes.frequencies[k] / ct - 1)
+
+
+def test_orders_do_not_adapt_on_cubic_geometry():
+    """--accuracy at order 4 on cubic geometry: a clear error (exit 2) before any
+    meshing, naming the geometry order and what to use instead."""
+    from shaftfem.errors import SceneError
+
+    run = subprocess.run([sys.executable, "-m", "shaftfem", "modes", "plain_cylinder",
+                          "--order", "4", "--geometry-order", "3", "--accuracy", "0.1", "-q"],
+                         capture_output=True, text=True)
+    assert run.returncode == SceneError.exit_code and "Traceback" not in run.stderr
+    assert "cubic geometry" in run.stderr and "geometry order 2" in run.stderr, run.stderr
+
+
 def test_files_carry_the_cubic_cells_in_each_program_order(cubic_runs, tmp_path):
     """The mode file: VTK Lagrange tetrahedra whose nodes sit where the cubic map puts
     VTK's reference points; mesh.msh: gmsh's 20-node tetrahedra, read back by gmsh."""

@@ -61,7 +61,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     from shaftfem.fem.estimate import combine, matched, recovery_estimate, volume_difference
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
 
-    if result.system.degrees is not None:
+    if result.system.degrees is not None and result.system.order > result.mesh.geometry_order:
         return hierarchy_errors(result, options)
     scene, m = result.scene, result.modes
     size_mm = scene.mesh.size * 1e3 * ratio
@@ -81,9 +81,11 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
 def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
     """The bound of a hierarchical (order p >= 3) run's frequencies from the lower orders
     inside the same space (fem.hierarchy), whose frequencies are never below order p's:
-    orders p - 1 and p - 2 measure the rate of convergence (fem.estimate.hierarchy_estimate);
-    order 3 has only order 2 below it on its quadratic geometry (order 1 cannot move it
-    rigidly), so order 2's recovery estimate gives the ratio of the errors (combine)."""
+    orders p - 1 and p - 2 measure the rate of convergence (fem.estimate.hierarchy_estimate).
+    No order below the geometry's moves the body rigidly (x is not in its space), so order
+    3 on quadratic geometry and order 4 on cubic have only one order below them, whose
+    recovery estimate gives the ratio of the errors (combine). (Order 3 on cubic geometry
+    has none: estimate_errors confirms it on a coarser mesh.)"""
     from shaftfem.fem.estimate import (
         combine,
         hierarchy_estimate,
@@ -95,7 +97,7 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
 
     scene, m, system = result.scene, result.modes, result.system
     p = system.order
-    below = 2 if p >= 4 else 1
+    below = min(2, p - result.mesh.geometry_order)
     options.say(f"error estimate: order{'s' if below > 1 else ''} "
                 f"{', '.join(str(p - k) for k in range(below, 0, -1))} inside order {p}'s space")
     fine = recovery_estimate(result.mesh, scene.material, m)
