@@ -231,7 +231,7 @@ def test_geometry_order_3_needs_the_hierarchical_elements(tmp_path):
                           "--out", str(tmp_path / "o")],
                          capture_output=True, text=True)
     assert run.returncode == SceneError.exit_code and "Traceback" not in run.stderr
-    assert "geometry order 3" in run.stderr and "element orders 3 and 4" in run.stderr
+    assert "geometry order 3" in run.stderr and "element orders 3 to 5" in run.stderr
     assert not (tmp_path / "o").exists()
 
 
@@ -247,3 +247,28 @@ def test_a_child_that_aborts_becomes_an_error():
     with pytest.raises(ZeroDivisionError):
         call_in_child(divmod, 1, 0)
     assert call_in_child(divmod, 7, 2) == (3, 1)
+
+
+def test_order_5_on_cubic_geometry(cylinder):
+    """Order 5 on a cubic mesh (16 mm): six rigid modes at zero strain; its bound from
+    orders 3 and 4 inside its space (three nested orders) measures a rate on every mode,
+    which takes frequencies falling from order 3 to 4 to 5; the torsion mode within 2e-6
+    of c_t / 2L (the floor of this cubic geometry: orders 4 and 5 sit on it, 8e-7 and
+    9e-7 off) and inside its bound."""
+    from shaftfem.fem.supports import rigid_body_modes
+    from shaftfem.workflows.bounded import estimate_errors
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
+
+    r = run_modes(with_mesh(cylinder.scene, 16.0, order=5, geometry_order=3))
+    s, f5 = r.system, r.modes.frequencies
+    R = rigid_body_modes(s.nodes, constant=s.constant)
+    assert np.max(np.linalg.norm(s.K @ R, axis=0)
+                  / (abs(s.K).max() * np.linalg.norm(R, axis=0))) < 1e-12
+    assert r.modes.n_rigid == 6 and r.modes.residuals.max() < 1e-8
+    m, L = cylinder.scene.material, cylinder.scene.shaft.length
+    ct = torsion_hz(1, L, m.youngs_modulus, m.poisson_ratio, m.density)
+    k = r.modes.kinds.index("torsion")
+    assert abs(f5[k] / ct - 1) < 2e-6
+    est = estimate_errors(r)
+    assert "three nested orders" in est.method and est.reliable.all()
+    assert est.relative_error[k] > abs(f5[k] / ct - 1)

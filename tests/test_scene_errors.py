@@ -28,7 +28,7 @@ CASES = [
     ("poisson_ratio", "-1.0", "material.poisson_ratio"),
     ("youngs_modulus_mpa", '"steel"', "material.youngs_modulus_mpa"),  # wrong type
     ("element_size_mm", "0", "mesh.element_size_mm"),
-    ("order", "5", "mesh.order"),
+    ("order", "6", "mesh.order"),
     ("hands", '["right", "right"]', "grooves.hands"),
     ("power_kw", "0", "sizing.power_kw"),
 ]
@@ -132,7 +132,7 @@ def test_absurd_values_are_refused_before_any_work(tmp_path, capsys, key, value,
     ["check", "--margin", "inf"], ["check", "--margin", "100"], ["modes", "--modes", "0"],
     ["modes", "--modes", "many"], ["modes", "--max-frequency", "nan"],
     ["study", "--p2", "12,0"], ["sweep", "no_such_sweep.toml"], ["size", "no_such_scene"],
-    ["modes", "--order", "5"], ["frobnicate"]])
+    ["modes", "--order", "6"], ["frobnicate"]])
 def test_bad_command_lines_are_one_line_and_exit_2(capsys, args):
     argv = args[:1] + (["plain_cylinder"] if args[0] in ("check", "modes") else []) + args[1:]
     assert main(argv + (["-q"] if args[0] in ("check", "modes") else [])) == 2

@@ -65,7 +65,7 @@ class ShaftMesh:
 
     @property
     def element_cells(self) -> np.ndarray:
-        """The cells as the elements take them: for orders 3 and 4, vertices in ascending
+        """The cells as the elements take them: for orders 3 to 5, vertices in ascending
         order (sorted_cells), so that neighbours agree on their edges' nodes."""
         if self.order < 3 or self.geometry_order == 3:  # cubic cells come ascending
             return self.cells
@@ -80,7 +80,7 @@ class ShaftMesh:
 # are less regular), and DOFs per element of a P2 / P1 mesh; fitted on the shipped scenes
 # (within 40 %, enough to refuse a size that is off by orders of magnitude).
 ELEMENTS_PER_H3 = 6.0
-DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0, 4: 40.0}
+DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0, 4: 40.0, 5: 74.0}
 BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (docs/performance.md)
 
 
@@ -133,7 +133,7 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
              settings: MeshSettings, cuts: tuple[float, ...] = (),
              hubs: tuple[tuple[float, float], ...] = ()) -> str:
     """A hash of everything the mesh depends on: its sizes and the degree of its map,
-    not the element order on it (orders 2 to 4 share a quadratic mesh, 3 and 4 a cubic
+    not the element order on it (orders 2 to 5 share a quadratic mesh, 3 to 5 a cubic
     one, whose optimisers take minutes)."""
     from shaftfem.cad.mesher import EDGE_GRADING, HIGH_ORDER_OPTIMISERS, HUB_SIZE
     from shaftfem.cad.session import gmsh_version

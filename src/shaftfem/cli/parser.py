@@ -83,7 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
                        "sweep file (TOML): base scene and parameter axes or points", cmd.cmd_sweep)
     sw.add_argument("--estimate", action="store_true",
                     help="also bound each frequency's error (one more solve per variant: "
-                    "on a coarser mesh, or of the lower orders at orders 3 and 4)")
+                    "on a coarser mesh, or of the lower orders at orders 3 to 5)")
     _dask_command(sub, "calibrate", "find unknown scene values that reproduce target "
                   "frequencies (grid on Dask, then least squares)",
                   "calibration file (TOML): base, unknowns, targets", cmd.cmd_calibrate)
@@ -102,12 +102,12 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
     c.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
     c.add_argument("--mesh-size", type=_size_mm, metavar="MM",
                    help="element size away from the grooves, mm (groove sizes scale with it)")
-    c.add_argument("--order", type=int, choices=(1, 2, 3, 4),
-                   help="element order: 1, 2, 3 or 4 (3, 4: hierarchical; free shafts) "
+    c.add_argument("--order", type=int, choices=(1, 2, 3, 4, 5),
+                   help="element order: 1 to 5 (3 to 5: hierarchical; free shafts) "
                    "(default: scene)")
     c.add_argument("--geometry-order", type=int, choices=(2, 3),
                    help="how the elements follow the CAD surfaces: 2 (quadratic) or 3 "
-                   "(cubic; orders 3 and 4) (default: scene, else 2)")
+                   "(cubic; orders 3 to 5) (default: scene, else 2)")
     c.add_argument("--modes", type=_count, metavar="N",
                    help="number of elastic modes (default: the scene's [modes] count, else 10)")
     c.add_argument("--max-frequency", type=_hz, metavar="HZ",
@@ -127,7 +127,7 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
     if estimate:
         c.add_argument("--no-estimate", action="store_true",
                        help="skip the error bound (one more solve: on a coarser mesh, or "
-                       "of the lower orders at orders 3 and 4)")
+                       "of the lower orders at orders 3 to 5)")
     _accuracy_arguments(c)
     c.add_argument("--free", action="store_true",
                    help="free-free: leave the scene's [[support]] bearings off (the shaft "
@@ -142,7 +142,7 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
 
 def _accuracy_arguments(c: argparse.ArgumentParser) -> None:
     c.add_argument("--accuracy", type=_accuracy, metavar="PERCENT",
-                   help="adapt the mesh (order 2) or the element orders (orders 3, 4) "
+                   help="adapt the mesh (order 2) or the element orders (orders 3 to 5) "
                    "until every frequency's error bound is below PERCENT (default: the "
                    "scene's [mesh] target_error_percent, else the fixed mesh)")
     c.add_argument("--max-dofs", type=_max_dofs, metavar="N",

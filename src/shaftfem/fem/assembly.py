@@ -38,12 +38,13 @@ from shaftfem.scene.model import Material
 # negative weight, which can make an element's stiffness indefinite. Order 4 takes 7 (24
 # points) for its stiffness, not the exact 6: that rule has 15 points, too few for a
 # 35-function element's 99 strain modes (on the 16 mm cylinder it left three spurious
-# zero-energy modes).
-STIFFNESS_INTORDER = {1: 1, 2: 2, 3: 5, 4: 7}
-MASS_INTORDER = {1: 2, 2: 4, 3: 6, 4: 8}
+# zero-energy modes). Order 5 takes 9 (45 points, the highest rule scikit-fem has) for
+# both: its stiffness is exact on straight elements, its mass one degree short.
+STIFFNESS_INTORDER = {1: 1, 2: 2, 3: 5, 4: 7, 5: 9}
+MASS_INTORDER = {1: 2, 2: 4, 3: 6, 4: 8, 5: 9}
 # Where an integral must stay a sum of positive terms (energies, L2 projections): rules
 # with positive weights only (scikit-fem's rules 3, 4, 8 and 9 have negative ones).
-POSITIVE_INTORDER = {1: 2, 2: 4, 3: 6, 4: 7}
+POSITIVE_INTORDER = {1: 2, 2: 4, 3: 6, 4: 7, 5: 7}
 # Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
 # element) stay in cache-sized arrays, and the chunks spread over the threads.
 CHUNK = 4096
@@ -66,14 +67,14 @@ class System:
     nodes: np.ndarray
     point_dofs: np.ndarray      # (n_points,) scalar node of each mesh point (P1, P2)
     order: int
-    # orders 3, 4: the values at the mesh's points from the scalar DOFs, (n_points, n_nodes)
+    # orders 3 to 5: the values at the mesh's points from the scalar DOFs, (n_points, n_nodes)
     point_values: sp.csr_matrix | None = None
-    # orders 3, 4: the coefficients of the constant field 1 (n_nodes,): 1 on the vertex
+    # orders 3 to 5: the coefficients of the constant field 1 (n_nodes,): 1 on the vertex
     # functions, 0 on the rest (None: 1 everywhere, as for Lagrange elements)
     constant: np.ndarray | None = None
-    # orders 3, 4: the polynomial degree of each scalar DOF's function (n_nodes,)
+    # orders 3 to 5: the polynomial degree of each scalar DOF's function (n_nodes,)
     degrees: np.ndarray | None = None
-    # orders 3, 4: the scalar DOF of each element's local function (n_local, n_elements)
+    # orders 3 to 5: the scalar DOF of each element's local function (n_local, n_elements)
     element_dofs: np.ndarray | None = None
 
     @property

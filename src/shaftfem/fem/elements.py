@@ -28,9 +28,6 @@ from shaftfem.cad.tetrahedra import (  # the reference tetrahedron, the cubic La
     VERTICES,
 )
 
-# the highest element order a scene may ask for
-MAX_ORDER = 4
-
 
 def _legendre(n: int, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """P_n(s) and P_n'(s)."""
@@ -167,7 +164,7 @@ def hierarchical_coordinates(basis) -> tuple[np.ndarray, np.ndarray]:
 
 def element(order: int):
     """The scalar element of that order on tetrahedra: scikit-fem's P1 and P2, and the
-    hierarchical one for 3 and 4 (its spaces nested: order 4 contains order 3)."""
+    hierarchical one from 3 on (its spaces nested: order 4 contains order 3)."""
     from skfem import ElementTetP1, ElementTetP2
 
     if order >= 3:

@@ -77,9 +77,9 @@ def cell_type(order: int) -> str:
 
 @dataclass(frozen=True)
 class MeshSettings:
-    """Element sizes in m; `order` 1 (P1, linear), 2 (P2, quadratic), or 3 and 4
-    (hierarchical cubic and quartic); `geometry_order` 2 (elements curved quadratically
-    onto the CAD surfaces, as P2's) or 3 (cubically, for orders 3 and 4)."""
+    """Element sizes in m; `order` 1 (P1, linear), 2 (P2, quadratic), or 3 to 5
+    (hierarchical); `geometry_order` 2 (elements curved quadratically onto the CAD
+    surfaces, as P2's) or 3 (cubically, for orders 3 to 5)."""
 
     size: float
     groove_size: float

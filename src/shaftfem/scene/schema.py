@@ -241,12 +241,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "(default: the root radius, or groove size / 3 for sharp corners)",
             *upto(20_000, "at most element_size_mm"), required=False,
         ),
-        "order": Key(int, "element order: 1 (P1), 2 (P2), or 3 and 4 (hierarchical cubic "
-                     "and quartic; free shafts)", lambda v: v in (1, 2, 3, 4), "1, 2, 3 or 4",
+        "order": Key(int, "element order: 1 (P1), 2 (P2), or 3 to 5 (hierarchical; free "
+                     "shafts)", lambda v: v in (1, 2, 3, 4, 5), "1, 2, 3, 4 or 5",
                      default=2, required=False),
         "geometry_order": Key(int, "how the elements follow the CAD surfaces: 2 (curved "
                               "quadratically) or 3 (cubically: closer on coarse elements; "
-                              "element orders 3 and 4; meshing takes minutes, once per design)",
+                              "element orders 3 to 5; meshing takes minutes, once per design)",
                               lambda v: v in (2, 3), "2 or 3", default=2, required=False),
         "target_error_percent": Key(
             float, "bound wanted on every frequency's discretisation error, %: the mesh is "

@@ -1,7 +1,7 @@
 """Every modal command's entry point: the modes with an error bound for each frequency.
 
 A scene with a target error is solved on meshes adapted to it (workflows.adapt) at
-order 2, or with element orders adapted on its mesh up to its order 3 or 4
+order 2, or with element orders adapted on its mesh up to its order 3 to 5
 (workflows.order_adapt). Otherwise its fixed mesh is solved and, when asked, bounded by its recovery
 estimate confirmed on the same scene solved on a mesh COARSER times coarser
 (fem.estimate says how the two combine).
@@ -37,7 +37,7 @@ def run_bounded(scene: Scene, estimate: bool = True,
                 options: RunOptions = RunOptions()) -> Bounded:
     """The modes with their error bounds (`Bounded.estimate.relative_error`, fractions
     of each frequency): adapted to the scene's target_error when it has one (the mesh at
-    order 2, the element orders up to the scene's order 3 or 4), else on its fixed mesh
+    order 2, the element orders up to the scene's order 3 to 5), else on its fixed mesh
     (bounded when `estimate`)."""
     if scene.target_error is not None:
         if scene.mesh.order >= 3:

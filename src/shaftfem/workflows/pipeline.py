@@ -63,11 +63,11 @@ def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = No
 
 def check_order(scene: Scene) -> None:
     """Cubic elements take free shafts only: seats and parts read nodal values; cubic
-    geometry takes the hierarchical elements (orders 3 and 4) only."""
+    geometry takes the hierarchical elements (orders 3 to 5) only."""
     if scene.mesh.geometry_order == 3 and scene.mesh.order < 3:
         raise SceneError(f"{scene.source}: geometry order 3 with element order "
-                         f"{scene.mesh.order}: cubic geometry takes element orders 3 and 4; "
-                         "use --order 3 or 4 ([mesh] order), or geometry order 2")
+                         f"{scene.mesh.order}: cubic geometry takes element orders 3 to 5; "
+                         "use --order 3, 4 or 5 ([mesh] order), or geometry order 2")
     if scene.mesh.order > 2 and scene.installed:
         raise SceneError(f"{scene.source}: element order {scene.mesh.order}: cubic elements "
                          "take free shafts only for now; use order 2 (or --free on a scene "
