@@ -95,18 +95,36 @@ def curve_inside(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     return straight + d[dof]
 
 
+# shares of its curving a folded element tries to keep, largest first, and the det J
+# ratio that a share must give it (a barely valid element fits the field poorly)
+KEPT_CURVING = (0.75, 0.5, 0.25)
+KEPT_RATIO = 0.1
+
+
 def straighten_folded(points: np.ndarray, cells: np.ndarray,
                       rounds: int = 10) -> tuple[np.ndarray, int]:
-    """Make straight-sided every element whose det J ratio is at most MIN_JACOBIAN_RATIO
-    (its shared nodes too, so neighbours may need a next round); the new points and how
-    many elements were straightened."""
+    """Take back the curving of every element whose det J ratio is at most
+    MIN_JACOBIAN_RATIO: each keeps the largest share of it (KEPT_CURVING) that gives it
+    a ratio above KEPT_RATIO on its own, else none (straight-sided). Its shared nodes move too, so
+    neighbours may need a next round; the last rounds straighten fully. The new points
+    and how many elements were touched."""
     points = points.copy()
     done = np.zeros(len(cells), dtype=bool)
-    for _ in range(rounds):
+    for r in range(rounds):
         bad = element_jacobian_ratios(points, cells) <= MIN_JACOBIAN_RATIO
         if not bad.any():
             break
-        points[cells[bad, 4:]] = straight_positions(points, cells[bad])
+        nodes = cells[bad, 4:]
+        straight = straight_positions(points, cells[bad])
+        bend = points[nodes] - straight
+        share = np.zeros(int(bad.sum()))
+        if r < rounds // 2:  # partial first; a fold left after that goes straight
+            for t in KEPT_CURVING:
+                trial = points.copy()
+                trial[nodes] = straight + t * bend
+                ok = (share == 0) & (element_jacobian_ratios(trial, cells[bad]) > KEPT_RATIO)
+                share[ok] = t
+        points[nodes] = straight + share[:, None, None] * bend
         done |= bad
     return points, int(done.sum())
 

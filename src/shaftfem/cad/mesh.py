@@ -135,6 +135,7 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     """A hash of everything the mesh depends on: its sizes and the degree of its map,
     not the element order on it (orders 2 to 5 share a quadratic mesh, 3 to 5 a cubic
     one, whose optimisers take minutes)."""
+    from shaftfem.cad.cubic import KEPT_CURVING, KEPT_RATIO
     from shaftfem.cad.mesher import EDGE_GRADING, HIGH_ORDER_OPTIMISERS, HUB_SIZE
     from shaftfem.cad.session import gmsh_version
 
@@ -143,7 +144,8 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     payload = {
         "version": MESH_VERSION, "gmsh": gmsh_version(),
         "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
-        **({"optimisers": list(HIGH_ORDER_OPTIMISERS), "nodes": "parametric"}
+        **({"optimisers": list(HIGH_ORDER_OPTIMISERS), "nodes": "parametric",
+            "folds": ["partly straightened", list(KEPT_CURVING), KEPT_RATIO]}
            if geometry["order"] == 3 else {}),
         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
         "settings": geometry, **({"cuts": list(cuts)} if cuts else {}),
