@@ -105,9 +105,9 @@ def straighten_folded(points: np.ndarray, cells: np.ndarray,
                       rounds: int = 10) -> tuple[np.ndarray, int]:
     """Take back the curving of every element whose det J ratio is at most
     MIN_JACOBIAN_RATIO: each keeps the largest share of it (KEPT_CURVING) that gives it
-    a ratio above KEPT_RATIO on its own, else none (straight-sided). Its shared nodes move too, so
-    neighbours may need a next round; the last rounds straighten fully. The new points
-    and how many elements were touched."""
+    a ratio above KEPT_RATIO on its own, else none (straight-sided). Its shared nodes
+    move too, so neighbours may need a next round; the last rounds straighten fully. The
+    new points and how many elements were touched."""
     points = points.copy()
     done = np.zeros(len(cells), dtype=bool)
     for r in range(rounds):
@@ -117,12 +117,15 @@ def straighten_folded(points: np.ndarray, cells: np.ndarray,
         nodes = cells[bad, 4:]
         straight = straight_positions(points, cells[bad])
         bend = points[nodes] - straight
-        share = np.zeros(int(bad.sum()))
+        n = int(bad.sum())
+        share = np.zeros(n)
         if r < rounds // 2:  # partial first; a fold left after that goes straight
+            own = points[cells[bad]]       # each element on its own nodes
+            alone = np.arange(20 * n).reshape(n, 20)
             for t in KEPT_CURVING:
-                trial = points.copy()
-                trial[nodes] = straight + t * bend
-                ok = (share == 0) & (element_jacobian_ratios(trial, cells[bad]) > KEPT_RATIO)
+                own[:, 4:] = straight + t * bend
+                ok = (share == 0) & (element_jacobian_ratios(own.reshape(-1, 3), alone)
+                                     > KEPT_RATIO)
                 share[ok] = t
         points[nodes] = straight + share[:, None, None] * bend
         done |= bad

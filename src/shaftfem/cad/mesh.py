@@ -145,7 +145,7 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         "version": MESH_VERSION, "gmsh": gmsh_version(),
         "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
         **({"optimisers": list(HIGH_ORDER_OPTIMISERS), "nodes": "parametric",
-            "folds": ["partly straightened", list(KEPT_CURVING), KEPT_RATIO]}
+            "folds": ["partly straightened, each on its own", list(KEPT_CURVING), KEPT_RATIO]}
            if geometry["order"] == 3 else {}),
         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
         "settings": geometry, **({"cuts": list(cuts)} if cuts else {}),
