@@ -7,7 +7,13 @@ import sys
 
 from shaftfem.cli import commands as cmd
 from shaftfem.errors import EXIT_BAD_INPUT
-from shaftfem.scene.schema import DEFAULT_MAX_DOFS, MAX_DOFS_LIMIT, MAX_MODE_COUNT
+from shaftfem.scene.schema import (
+    DEFAULT_MAX_DOFS,
+    ELEMENT_ORDERS,
+    GEOMETRY_ORDERS,
+    MAX_DOFS_LIMIT,
+    MAX_MODE_COUNT,
+)
 
 # fem.factor.FACTORISERS plus "auto"; spelled out here because the CLI must not import
 # SciPy before a command needs it (`shaftfem size` loads no solver).
@@ -102,10 +108,10 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
     c.add_argument("scene", nargs="?", default=None, help=SCENE_HELP)
     c.add_argument("--mesh-size", type=_size_mm, metavar="MM",
                    help="element size away from the grooves, mm (groove sizes scale with it)")
-    c.add_argument("--order", type=int, choices=(1, 2, 3, 4, 5),
+    c.add_argument("--order", type=int, choices=ELEMENT_ORDERS,
                    help="element order: 1 to 5 (3 to 5: hierarchical; free shafts) "
                    "(default: scene)")
-    c.add_argument("--geometry-order", type=int, choices=(2, 3),
+    c.add_argument("--geometry-order", type=int, choices=GEOMETRY_ORDERS,
                    help="how the elements follow the CAD surfaces: 2 (quadratic) or 3 "
                    "(cubic; orders 3 to 5) (default: scene, else 2)")
     c.add_argument("--modes", type=_count, metavar="N",

@@ -19,6 +19,9 @@ MAX_MODE_COUNT = 200
 # An adaptive mesh stops before it needs more DOFs than this (about 6 GB at the peak).
 DEFAULT_MAX_DOFS = 400_000
 MAX_DOFS_LIMIT = 20_000_000
+# element orders (1, 2: Lagrange; 3 on: hierarchical) and degrees of the elements' map
+ELEMENT_ORDERS = (1, 2, 3, 4, 5)
+GEOMETRY_ORDERS = (2, 3)
 SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs")
 COUPLINGS = ("distributing", "rigid")
 # Modal damping of a steel shaft in rolling bearings: 1-3 % of critical is usual.
@@ -242,12 +245,13 @@ SCHEMA: dict[str, dict[str, Key]] = {
             *upto(20_000, "at most element_size_mm"), required=False,
         ),
         "order": Key(int, "element order: 1 (P1), 2 (P2), or 3 to 5 (hierarchical; free "
-                     "shafts)", lambda v: v in (1, 2, 3, 4, 5), "1, 2, 3, 4 or 5",
+                     "shafts)", lambda v: v in ELEMENT_ORDERS, "1, 2, 3, 4 or 5",
                      default=2, required=False),
         "geometry_order": Key(int, "how the elements follow the CAD surfaces: 2 (curved "
                               "quadratically) or 3 (cubically: closer on coarse elements; "
                               "element orders 3 to 5; meshing takes minutes, once per design)",
-                              lambda v: v in (2, 3), "2 or 3", default=2, required=False),
+                              lambda v: v in GEOMETRY_ORDERS, "2 or 3", default=2,
+                              required=False),
         "target_error_percent": Key(
             float, "bound wanted on every frequency's discretisation error, %: the mesh is "
             "adapted until it holds (default: the fixed mesh above, with its bound)",
