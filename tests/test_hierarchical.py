@@ -188,3 +188,14 @@ def test_a_space_inside_assembles_as_the_whole_space_restricted(runs):
     assert np.array_equal(whole.constant, direct.constant)
     assert np.array_equal(whole.degrees, direct.degrees)
     assert np.allclose(whole.nodes, direct.nodes, rtol=0, atol=1e-15)
+
+
+def test_every_order_a_scene_may_ask_for_has_its_quadrature_and_dof_estimate():
+    """The orders the schema and the CLI accept each have a stiffness, mass and
+    positive-weight rule and a DOFs-per-element estimate for the budget check."""
+    from shaftfem.cad.mesh import DOFS_PER_ELEMENT
+    from shaftfem.fem.assembly import MASS_INTORDER, POSITIVE_INTORDER, STIFFNESS_INTORDER
+    from shaftfem.scene.schema import ELEMENT_ORDERS
+
+    for table in (STIFFNESS_INTORDER, MASS_INTORDER, POSITIVE_INTORDER, DOFS_PER_ELEMENT):
+        assert set(ELEMENT_ORDERS) <= set(table), table
