@@ -45,7 +45,7 @@ def main(size_mm: float, repeat: int) -> None:
         n = grad.shape[2]
         return d.pattern.matrix(_sum_over_chunks(
             lambda c: elasticity_blocks(grad[c], d.basis.dx[c], lam, mu).reshape(
-                c.stop - c.start, n, n, 9), grad.shape[0], d.pattern, assembly_threads()), 3)
+                c.stop - c.start, n, n, 9), grad.shape[0], n, 9, d.pattern, assembly_threads()), 3)
 
     def vector_form():
         return stiffness(mesh.to_skfem(), 2, lam, mu)

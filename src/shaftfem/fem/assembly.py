@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from threading import Lock
 from typing import Any
 
 import numpy as np
@@ -45,9 +46,10 @@ MASS_INTORDER = {1: 2, 2: 4, 3: 6, 4: 8, 5: 9}
 # Where an integral must stay a sum of positive terms (energies, L2 projections): rules
 # with positive weights only (scikit-fem's rules 3, 4, 8 and 9 have negative ones).
 POSITIVE_INTORDER = {1: 2, 2: 4, 3: 6, 4: 7, 5: 7}
-# Elements per chunk of the element kernels: the chunk's blocks (30 x 30 per
-# element) stay in cache-sized arrays, and the chunks spread over the threads.
-CHUNK = 4096
+# Node pairs per chunk of the element kernels (4096 P2 elements of 10 x 10 pairs; 130
+# of order 5's 56 x 56): the chunk's blocks stay in arrays of a few tens of MB, and the
+# chunks spread over the threads.
+CHUNK_PAIRS = 4096 * 100
 
 
 @dataclass(frozen=True)
@@ -164,16 +166,24 @@ class Pattern:
     def n_blocks(self) -> int:
         return len(self.indices)
 
-    def sum_blocks(self, values: np.ndarray, elements: slice) -> np.ndarray:
-        """Sum (E, n, n, k) element values of `elements` into (n_blocks, k) stored ones."""
+    def sum_blocks(self, values: np.ndarray, elements: slice
+                   ) -> tuple[np.ndarray | slice, np.ndarray]:
+        """Sum (E, n, n, k) element values of `elements` by stored block: which blocks
+        (n_blocks stands for the pairs left out) and their sums there, (m, k). Compact
+        where the chunk touches few of the blocks (high orders), so that it costs its own
+        size, not the matrix's; else all n_blocks + 1 (the sort would cost more)."""
         E, n = values.shape[0], values.shape[1]
         v = values.reshape(E * n * n, -1)
-        s = self.slot[elements.start * n * n: elements.stop * n * n]
+        row = self.slot[elements.start * n * n: elements.stop * n * n]
+        touched: np.ndarray | slice = slice(0, self.n_blocks + 1)
+        m = self.n_blocks + 1
+        if self.n_blocks > 4 * len(row):
+            touched, row = np.unique(row, return_inverse=True)
+            m = len(touched)
         # a 0/1 matrix with one entry per column: its product scatters and adds in C
-        # (the pairs left out land in one more row, dropped)
-        scatter = sp.csc_matrix((np.ones(len(s)), s, np.arange(len(s) + 1)),
-                                shape=(self.n_blocks + 1, len(s)))
-        return (scatter @ v)[:self.n_blocks]
+        scatter = sp.csc_matrix((np.ones(len(row)), row.ravel(), np.arange(len(row) + 1)),
+                                shape=(m, len(row)))
+        return touched, scatter @ v
 
     def matrix(self, blocks: np.ndarray, size: int) -> sp.csr_matrix:
         """The CSR matrix of (n_blocks, size * size) summed blocks."""
@@ -200,25 +210,31 @@ def _gradients(basis) -> np.ndarray:
                     axis=-1).transpose(1, 2, 3, 0)
 
 
-def _sum_over_chunks(kernel, n_elements: int, pattern: Pattern, threads: int) -> np.ndarray:
-    """Sum of kernel(chunk) over chunks of elements, in `threads` threads (NumPy's
-    products release the GIL). The kernels only read arrays made before: scikit-fem
-    fills a mesh's mapping lazily and not thread-safely (a cold P1 stiffness once came
-    out 18 % wrong), so no scikit-fem call runs in the threads."""
-    chunks = [slice(i, min(i + CHUNK, n_elements)) for i in range(0, n_elements, CHUNK)]
+def _sum_over_chunks(kernel, n_elements: int, n_local: int, width: int, pattern: Pattern,
+                     threads: int) -> np.ndarray:
+    """The (n_blocks, width) sum of kernel(chunk), (E, n_local, n_local, width), over
+    chunks of elements, in `threads` threads (NumPy's products release the GIL) adding
+    into one array. The kernels only read arrays made before: scikit-fem fills a mesh's
+    mapping lazily and not thread-safely (a cold P1 stiffness once came out 18 % wrong),
+    so no scikit-fem call runs in the threads."""
+    size = max(1, CHUNK_PAIRS // n_local**2)
+    chunks = [slice(i, min(i + size, n_elements)) for i in range(0, n_elements, size)]
+    total = np.zeros((pattern.n_blocks + 1, width))  # the last row: the pairs left out
+    lock = Lock()
 
     def work(part):
-        total = None
         for c in part:
-            s = pattern.sum_blocks(kernel(c), c)
-            total = s if total is None else total + s
-        return total
+            touched, sums = pattern.sum_blocks(kernel(c), c)
+            with lock:
+                total[touched] += sums
 
     parts = [chunks[i::threads] for i in range(threads) if chunks[i::threads]]
     if len(parts) == 1:
-        return work(parts[0])
-    with ThreadPoolExecutor(len(parts)) as pool:
-        return sum(pool.map(work, parts))
+        work(parts[0])
+    else:
+        with ThreadPoolExecutor(len(parts)) as pool:
+            list(pool.map(work, parts))
+    return total[:pattern.n_blocks]
 
 
 @dataclass(frozen=True)
@@ -266,9 +282,9 @@ def stiffness_and_mass(basis, pattern: Pattern, material: Material, mass_intorde
     n_el, nb = grad.shape[0], grad.shape[2]
     K = pattern.matrix(_sum_over_chunks(
         lambda c: elasticity_blocks(grad[c], basis.dx[c], lam, mu).reshape(
-            c.stop - c.start, nb, nb, 9), n_el, pattern, threads), 3)
+            c.stop - c.start, nb, nb, 9), n_el, nb, 9, pattern, threads), 3)
     Ms = material.density * pattern.matrix(_sum_over_chunks(
-        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, pattern, threads), 1)
+        lambda c: mass_blocks(phi, m_dx[c])[..., None], n_el, nb, 1, pattern, threads), 1)
     return K, Ms
 
 
