@@ -199,3 +199,22 @@ def test_every_order_a_scene_may_ask_for_has_its_quadrature_and_dof_estimate():
 
     for table in (STIFFNESS_INTORDER, MASS_INTORDER, POSITIVE_INTORDER, DOFS_PER_ELEMENT):
         assert set(ELEMENT_ORDERS) <= set(table), table
+
+
+def test_a_warm_bounded_run_refines_each_kept_solve_without_lanczos(runs, monkeypatch):
+    """Run again with the cache, order 4 and the two orders inside it that bound it are
+    each refined from their last solve on the mesh (kept shift and shapes): Lanczos never
+    runs, and the frequencies, bounds and inertia counts are the cold run's (1e-9)."""
+    from shaftfem.fem import eigen
+    from shaftfem.workflows.bounded import estimate_errors
+    from shaftfem.workflows.pipeline import run_modes
+
+    r = runs[4]
+    cold = estimate_errors(r)  # keeps the lower orders' solves
+    monkeypatch.setattr(eigen, "eigsh", lambda *a, **k: pytest.fail("Lanczos ran"))
+    warm = run_modes(r.scene)
+    again = estimate_errors(warm)
+    assert np.max(np.abs(warm.modes.frequencies / r.modes.frequencies - 1)) < 1e-9
+    assert warm.modes.residuals.max() < 1e-8
+    assert warm.modes.inertia_count == r.modes.inertia_count == 16
+    assert np.max(np.abs(again.relative_error / cold.relative_error - 1)) < 1e-6

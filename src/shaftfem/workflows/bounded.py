@@ -118,12 +118,16 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
 
 
 def _solve_lower(system, result: ModalResult, options: RunOptions):
-    """The modes of a lower order's system, as many as the run's."""
+    """The modes of a lower order's system, as many as the run's (with the cache,
+    refined from this order's last solve on the mesh, like any solve)."""
     from shaftfem.fem.eigen import SolverSettings
-    from shaftfem.fem.modes import modal_analysis
+    from shaftfem.workflows.pipeline import solve_system
 
-    request = replace(result.scene.modes, count=result.modes.count, max_frequency=None)
-    return modal_analysis(system, request, SolverSettings(options.factoriser))
+    scene = result.scene
+    request = replace(scene.modes, count=result.modes.count, max_frequency=None)
+    lower = replace(scene, modes=request, mesh=replace(scene.mesh, order=system.order))
+    return solve_system(lower, result.mesh, system, options, SolverSettings(options.factoriser),
+                        space=f"inside order {result.system.order}")
 
 
 def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | None = None,

@@ -21,6 +21,9 @@ if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only wh
 
     from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.cad.solid import ShaftShape
+    from shaftfem.fem.assembly import System
+    from shaftfem.fem.eigen import SolverSettings
+    from shaftfem.fem.installation import Installed
     from shaftfem.fem.modes import Modes
 
 
@@ -120,7 +123,6 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
     from shaftfem.fem.assembly import assemble, discretise
     from shaftfem.fem.eigen import SolverSettings
     from shaftfem.fem.factor import analyse_in_background, uses_pardiso
-    from shaftfem.fem.modes import modal_analysis
 
     watch = watch or Stopwatch()
     with watch.lap("assembly"):
@@ -138,16 +140,37 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
             installed = install(scene, system.K, system.M, system.nodes, d.basis.mesh, d.order)
     n_dofs = system.n_dofs if installed is None else installed.K.shape[0]
     options.say(f"{n_dofs} DOFs; factorising and solving")
-    hint = shift_hint(scene) if options.use_cache else None
     with watch.lap("solve"):
-        modes = modal_analysis(system, scene.modes,
-                               SolverSettings(options.factoriser, analysis=analysis),
-                               installed=installed, shift_hint=hint)
-    if options.use_cache and modes.inertia_shift != hint:
-        keep_shift(scene, modes.inertia_shift)
+        modes = solve_system(scene, mesh, system, options,
+                             SolverSettings(options.factoriser, analysis=analysis), installed)
     return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
                        timings=watch.timings(), warnings=scene_warnings(scene, modes),
                        installed=installed)
+
+
+def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOptions,
+                 settings: SolverSettings, installed: Installed | None = None,
+                 space: str = "") -> Modes:
+    """The scene's modes of `system` on `mesh` (`scene.mesh.order` its order; `space`
+    names its basis where another of that order on the mesh differs from it, as a lower
+    order inside a hierarchical space does from a Lagrange one).
+
+    With the cache: factorised first at the shift where the last solve of this scene on
+    this mesh proved its modes complete, and its shapes refined there instead of a new
+    search (none kept: the last proven shift of the scene on any mesh); this solve's
+    kept in turn."""
+    from shaftfem.fem.modes import modal_analysis
+
+    last = (last_solve(scene, mesh, system.n_dofs, space)
+            if options.use_cache and installed is None else None)
+    hint = last[0] if last else (shift_hint(scene) if options.use_cache else None)
+    modes = modal_analysis(system, scene.modes, settings, installed=installed,
+                           shift_hint=hint, start=last[1] if last else None)
+    if options.use_cache and modes.inertia_shift != hint:
+        keep_shift(scene, modes.inertia_shift)
+    if options.use_cache and installed is None and (last is None or modes.inertia_shift != hint):
+        keep_solve(scene, mesh, modes.inertia_shift, modes.shapes, space)
+    return modes
 
 
 def _shift_path(scene: Scene):
@@ -190,6 +213,49 @@ def keep_shift(scene: Scene, shift: float) -> None:
 
     if shift > 0:
         save_arrays(_shift_path(scene), {"shift": np.float64(shift)})
+
+
+def _solve_path(scene: Scene, mesh: ShaftMesh, space: str):
+    """Where the last solve of this scene on this very mesh is kept (the shift key's
+    fields, the mesh settings, the mesh's own nodes and cells, and the basis)."""
+    import hashlib
+    from dataclasses import asdict
+
+    from shaftfem.store import cache_dir, content_key
+
+    digest = hashlib.sha256(mesh.points.tobytes() + mesh.cells.tobytes()).hexdigest()
+    key = content_key({"version": 1, "scene": _shift_path(scene).stem,
+                       "mesh": asdict(scene.mesh), "nodes": digest, "space": space})
+    return cache_dir() / "solves" / f"{key}.npz"
+
+
+def last_solve(scene: Scene, mesh: ShaftMesh, n_dofs: int,
+               space: str = "") -> tuple[float, object] | None:
+    """(shift, shapes) of the last solve of the scene on this mesh, if kept: the shift
+    (rad^2/s^2) where it proved its modes complete and its mode shapes (n_dofs, count),
+    from which the next solve refines the modes instead of searching for them
+    (fem.eigen.refine_below proves them anew)."""
+    from shaftfem.store import discard, load_arrays
+
+    path = _solve_path(scene, mesh, space)
+    if not path.exists():
+        return None
+    fields, why = load_arrays(path, ("shift", "shapes"))
+    if (fields is None or not float(fields["shift"]) > 0
+            or fields["shapes"].shape != (n_dofs, scene.modes.count)):
+        discard("last solve", why or "another system's shift or shapes", path)
+        return None
+    return float(fields["shift"]), fields["shapes"]
+
+
+def keep_solve(scene: Scene, mesh: ShaftMesh, shift: float, shapes, space: str = "") -> None:
+    """Keep a solve's proven shift and mode shapes for the next solve on the same mesh."""
+    import numpy as np
+
+    from shaftfem.store import save_arrays
+
+    if shift > 0 and scene.modes.max_frequency is None:
+        save_arrays(_solve_path(scene, mesh, space), {"shift": np.float64(shift), "shapes": shapes})
 
 
 def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
