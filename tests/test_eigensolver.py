@@ -227,3 +227,15 @@ def test_a_start_basis_that_does_not_hold_the_modes_falls_back(plain, spoilt):
     assert again.inertia_count == 16
     assert np.max(np.abs(again.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
     assert again.pairs.relative_residuals()[6:].max() < 1e-8
+
+
+def test_the_one_norm_of_a_symmetric_matrix_is_scipys(plain):
+    """one_norm (no copy of the matrix) gives SciPy's ||A||_1 of K and M, and 0 where an
+    empty row would otherwise take its neighbour's entry."""
+    from scipy.sparse.linalg import norm as spnorm
+
+    s, _, _ = plain
+    for A in (s.K, s.M):
+        assert eigen.one_norm(A) == pytest.approx(spnorm(A, 1), rel=1e-12)
+    gap = sp.csr_matrix(np.array([[0.0, 0.0], [0.0, -3.0]]))
+    assert eigen.one_norm(gap) == 3.0

@@ -26,7 +26,6 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import eigsh
-from scipy.sparse.linalg import norm as spnorm
 
 from shaftfem.errors import SolverError
 from shaftfem.fem.factor import Pencil, ShiftedFactor, uses_pardiso
@@ -261,10 +260,21 @@ def refine_below(p: Problem, factor: ShiftedFactor, s: float, start: np.ndarray
                          factoriser=factor.backend, inertia_count=counted, inertia_shift=s)
 
 
+def one_norm(A: sp.csr_matrix) -> float:
+    """||A||_1 of a symmetric CSR matrix: its largest row sum of |a_ij| (= column sum),
+    without the copy of A that abs(A) makes (0.3 s a call at order 5's 74M entries)."""
+    data = np.abs(A.data)
+    if not data.size:
+        return 0.0
+    sums = np.add.reduceat(data, A.indptr[:-1])
+    sums[np.diff(A.indptr) == 0] = 0.0  # reduceat gives an empty row its next entry
+    return float(sums.max())
+
+
 def _rigid_pairs(K: sp.csr_matrix, M: sp.csr_matrix, R: np.ndarray) -> Ritz:
     """Rayleigh-Ritz pairs of (K, M) on the rigid motions R, which K must not resist."""
     pairs = rayleigh_ritz(K, M, R, R.shape[1])
-    strain = np.linalg.norm(pairs.KX, axis=0) / (spnorm(K, 1) * np.linalg.norm(pairs.X, axis=0))
+    strain = np.linalg.norm(pairs.KX, axis=0) / (one_norm(K) * np.linalg.norm(pairs.X, axis=0))
     if np.any(strain > 1e-9):
         raise SolverError(f"K resists a rigid motion (|K r| / |K| |r| = {strain.max():.2g}): "
                           "the stiffness is wrong or the body is not free")

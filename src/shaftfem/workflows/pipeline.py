@@ -18,6 +18,7 @@ from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
+    import numpy as np
 
     from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.cad.solid import ShaftShape
@@ -230,7 +231,7 @@ def _solve_path(scene: Scene, mesh: ShaftMesh, space: str):
 
 
 def last_solve(scene: Scene, mesh: ShaftMesh, n_dofs: int,
-               space: str = "") -> tuple[float, object] | None:
+               space: str = "") -> tuple[float, np.ndarray] | None:
     """(shift, shapes) of the last solve of the scene on this mesh, if kept: the shift
     (rad^2/s^2) where it proved its modes complete and its mode shapes (n_dofs, count),
     from which the next solve refines the modes instead of searching for them
@@ -248,7 +249,8 @@ def last_solve(scene: Scene, mesh: ShaftMesh, n_dofs: int,
     return float(fields["shift"]), fields["shapes"]
 
 
-def keep_solve(scene: Scene, mesh: ShaftMesh, shift: float, shapes, space: str = "") -> None:
+def keep_solve(scene: Scene, mesh: ShaftMesh, shift: float, shapes: np.ndarray,
+               space: str = "") -> None:
     """Keep a solve's proven shift and mode shapes for the next solve on the same mesh."""
     import numpy as np
 
