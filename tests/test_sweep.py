@@ -196,3 +196,17 @@ def test_a_folder_of_another_sweep_is_refused_and_the_same_sweep_resumes(sweep_f
         "[30.0, 32.0]", "[32.0]"))
     rows = run_sweep(load_sweep(more), out / "results.csv", workers=1)
     assert len(rows) == 2 and rows[0] == read_results(out / "results.csv")[0]
+
+
+def test_a_variant_keeps_no_mode_shapes_but_a_single_run_does(tmp_path, monkeypatch):
+    """A sweep solves each design once: its variants leave no kept solve in the cache
+    (7 MB a design at the default mesh), where the same design run alone keeps one."""
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
+
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path / "cache"))
+    row = run_variant("plain_cylinder", {"modes.count": 4.0}, 16.0, n_modes=4)
+    assert row["status"] == "ok", row["error"]
+    assert not list((tmp_path / "cache" / "solves").glob("*.npz"))
+    run_modes(with_modes(with_mesh(load_scene("plain_cylinder"), 16.0), count=4))
+    assert len(list((tmp_path / "cache" / "solves").glob("*.npz"))) == 1

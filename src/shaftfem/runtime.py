@@ -49,10 +49,13 @@ def worker_env() -> dict[str, str]:
 @dataclass(frozen=True)
 class RunOptions:
     """How a run is carried out, never what it computes: whether the cache is read and
-    written, the factoriser ('auto', 'pardiso', 'cholmod', 'superlu'), the assembly
-    threads (None: one per core) and where progress lines go (None: nowhere)."""
+    written, whether each solve keeps its mode shapes there for a re-run of the design
+    (sweeps and calibrations, which solve each design once, do not: 7 MB a design at
+    the default mesh), the factoriser ('auto', 'pardiso', 'cholmod', 'superlu'), the
+    assembly threads (None: one per core) and where progress lines go (None: nowhere)."""
 
     use_cache: bool = True
+    keep_solves: bool = True
     factoriser: str = "auto"
     threads: int | None = None
     progress: Callable[[str], None] | None = None

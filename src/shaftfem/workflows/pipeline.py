@@ -159,7 +159,7 @@ def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOpti
     With the cache: factorised first at the shift where the last solve of this scene on
     this mesh proved its modes complete, and its shapes refined there instead of a new
     search (none kept: the last proven shift of the scene on any mesh); this solve's
-    kept in turn."""
+    kept in turn (unless the options say not to)."""
     from shaftfem.fem.modes import modal_analysis
 
     last = (last_solve(scene, mesh, system.n_dofs, space)
@@ -169,7 +169,8 @@ def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOpti
                            shift_hint=hint, start=last[1] if last else None)
     if options.use_cache and modes.inertia_shift != hint:
         keep_shift(scene, modes.inertia_shift)
-    if options.use_cache and installed is None and (last is None or modes.inertia_shift != hint):
+    if (options.use_cache and options.keep_solves and installed is None
+            and (last is None or modes.inertia_shift != hint)):
         keep_solve(scene, mesh, modes.inertia_shift, modes.shapes, space)
     return modes
 

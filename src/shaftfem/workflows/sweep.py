@@ -54,6 +54,7 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
 
         scene = with_mesh(load_scene(base, overrides=overrides), mesh_size_mm)
         scene = with_modes(scene, count=n_modes or scene.modes.count)
+        options = replace(options, keep_solves=False)  # each variant is solved once
         r = run_modes(scene, options)
         m = r.modes
         for i in range(m.count):
