@@ -18,6 +18,8 @@ from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
+    from pathlib import Path
+
     import numpy as np
 
     from shaftfem.cad.mesh import ShaftMesh
@@ -162,16 +164,16 @@ def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOpti
     kept in turn (unless the options say not to)."""
     from shaftfem.fem.modes import modal_analysis
 
-    last = (last_solve(scene, mesh, system.n_dofs, space)
-            if options.use_cache and installed is None else None)
+    path = (_solve_path(scene, mesh, space) if options.use_cache and installed is None
+            and scene.modes.max_frequency is None else None)
+    last = last_solve(path, system.n_dofs, scene.modes.count) if path else None
     hint = last[0] if last else (shift_hint(scene) if options.use_cache else None)
     modes = modal_analysis(system, scene.modes, settings, installed=installed,
                            shift_hint=hint, start=last[1] if last else None)
     if options.use_cache and modes.inertia_shift != hint:
         keep_shift(scene, modes.inertia_shift)
-    if (options.use_cache and options.keep_solves and installed is None
-            and (last is None or modes.inertia_shift != hint)):
-        keep_solve(scene, mesh, modes.inertia_shift, modes.shapes, space)
+    if path and options.keep_solves and (last is None or modes.inertia_shift != hint):
+        keep_solve(path, modes.inertia_shift, modes.shapes)
     return modes
 
 
@@ -217,9 +219,10 @@ def keep_shift(scene: Scene, shift: float) -> None:
         save_arrays(_shift_path(scene), {"shift": np.float64(shift)})
 
 
-def _solve_path(scene: Scene, mesh: ShaftMesh, space: str):
+def _solve_path(scene: Scene, mesh: ShaftMesh, space: str) -> Path:
     """Where the last solve of this scene on this very mesh is kept (the shift key's
-    fields, the mesh settings, the mesh's own nodes and cells, and the basis)."""
+    fields, the mesh settings, the mesh's own nodes and cells, and the basis); a solve
+    up to a frequency limit keeps none (its count varies)."""
     import hashlib
     from dataclasses import asdict
 
@@ -231,34 +234,32 @@ def _solve_path(scene: Scene, mesh: ShaftMesh, space: str):
     return cache_dir() / "solves" / f"{key}.npz"
 
 
-def last_solve(scene: Scene, mesh: ShaftMesh, n_dofs: int,
-               space: str = "") -> tuple[float, np.ndarray] | None:
-    """(shift, shapes) of the last solve of the scene on this mesh, if kept: the shift
+def last_solve(path: Path, n_dofs: int, count: int) -> tuple[float, np.ndarray] | None:
+    """(shift, shapes) of the last solve kept at `path` (_solve_path), if any: the shift
     (rad^2/s^2) where it proved its modes complete and its mode shapes (n_dofs, count),
     from which the next solve refines the modes instead of searching for them
     (fem.eigen.refine_below proves them anew)."""
     from shaftfem.store import discard, load_arrays
 
-    path = _solve_path(scene, mesh, space)
     if not path.exists():
         return None
     fields, why = load_arrays(path, ("shift", "shapes"))
     if (fields is None or not float(fields["shift"]) > 0
-            or fields["shapes"].shape != (n_dofs, scene.modes.count)):
+            or fields["shapes"].shape != (n_dofs, count)):
         discard("last solve", why or "another system's shift or shapes", path)
         return None
     return float(fields["shift"]), fields["shapes"]
 
 
-def keep_solve(scene: Scene, mesh: ShaftMesh, shift: float, shapes: np.ndarray,
-               space: str = "") -> None:
-    """Keep a solve's proven shift and mode shapes for the next solve on the same mesh."""
+def keep_solve(path: Path, shift: float, shapes: np.ndarray) -> None:
+    """Keep a solve's proven shift and mode shapes at `path` (_solve_path) for the next
+    solve on the same mesh."""
     import numpy as np
 
     from shaftfem.store import save_arrays
 
-    if shift > 0 and scene.modes.max_frequency is None:
-        save_arrays(_solve_path(scene, mesh, space), {"shift": np.float64(shift), "shapes": shapes})
+    if shift > 0:
+        save_arrays(path, {"shift": np.float64(shift), "shapes": shapes})
 
 
 def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
