@@ -34,11 +34,16 @@ def configure_threads() -> None:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", str(BLAS_THREADS))
 
 
+def cores() -> int:
+    """One thread per core, at most 8."""
+    return max(1, min(os.cpu_count() or 1, 8))
+
+
 def assembly_threads(requested: int | None = None) -> int:
     """Threads for assembling K and M: `requested`, else one per core (at most 8)."""
     if requested is not None:
         return max(1, int(requested))
-    return max(1, min(os.cpu_count() or 1, 8))
+    return cores()
 
 
 def worker_env() -> dict[str, str]:

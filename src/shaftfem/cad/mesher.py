@@ -19,6 +19,7 @@ import numpy as np
 
 from shaftfem.cad.session import session, translated
 from shaftfem.errors import MeshError
+from shaftfem.runtime import cores
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 
 # Under an attached part's hub, and one shaft radius beyond each end, elements are
@@ -269,6 +270,9 @@ def _mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
                     # (std::terminate). Logged instead, it leaves that patch as it was,
                     # and the elements still folded are straightened after.
                     s.option("General.AbortOnError", 0)
+                    # gmsh's own default is one thread; the direct optimiser works its
+                    # patches in parallel (16/12/12 mm on 2 cores: 125 s -> 67 s)
+                    s.option("General.NumThreads", cores())
                     for method in HIGH_ORDER_OPTIMISERS:
                         gmsh.model.mesh.optimize(method)
                 return _cubic_cells(gmsh)
