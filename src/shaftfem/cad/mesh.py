@@ -33,8 +33,9 @@ from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
 
 # Bump when the meshing or the cache entry changes, so old cached meshes are not reused
-# (2: entries carry checksums; 3: the checksum covers the arrays in name order).
-MESH_VERSION = 3
+# (2: entries carry checksums; 3: the checksum covers the arrays in name order; 4: they
+# keep the points from before the straightening).
+MESH_VERSION = 4
 
 
 @dataclass(frozen=True)
@@ -48,6 +49,9 @@ class ShaftMesh:
     min_jacobian_ratio: float
     straightened: int  # curved elements made straight-sided to stay valid
     from_cache: bool = False
+    # the points before the straightening (None where no element was straightened):
+    # there the straightened elements' faces followed the CAD surfaces
+    unfolded: np.ndarray | None = None
 
     @property
     def n_elements(self) -> int:
@@ -174,14 +178,15 @@ def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     return mesh
 
 
-MESH_ARRAYS = ("points", "cells", "order", "ratio", "straightened")
+MESH_ARRAYS = ("points", "cells", "order", "ratio", "straightened", "unfolded")
 
 
 def mesh_arrays(mesh: ShaftMesh) -> dict[str, Any]:
     """A mesh as the named arrays of a cache entry."""
     return dict(points=mesh.points, cells=mesh.cells, order=np.int64(mesh.order),
                 ratio=np.float64(mesh.min_jacobian_ratio),
-                straightened=np.int64(mesh.straightened))
+                straightened=np.int64(mesh.straightened),
+                unfolded=np.zeros((0, 3)) if mesh.unfolded is None else mesh.unfolded)
 
 
 def mesh_from_arrays(fields: dict) -> ShaftMesh:
@@ -189,7 +194,7 @@ def mesh_from_arrays(fields: dict) -> ShaftMesh:
     return ShaftMesh(points=fields["points"], cells=fields["cells"], order=int(fields["order"]),
                      min_jacobian_ratio=float(fields["ratio"]),
                      straightened=int(fields["straightened"]),
-                     from_cache=True)
+                     from_cache=True, unfolded=fields["unfolded"] if len(fields["unfolded"]) else None)
 
 
 def remesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
@@ -210,16 +215,18 @@ def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)
     straightened = 0
+    curved = points
     if settings.geometry_order == 3:
         from shaftfem.cad.cubic import ascending, curve_inside, straighten_folded
 
         cells = ascending(cells)   # copies of a sector renumber the vertices
-        points, straightened = straighten_folded(curve_inside(points, cells), cells)
+        curved = curve_inside(points, cells)
+        points, straightened = straighten_folded(curved, cells)
     elif settings.order >= 2:
         points, straightened = straighten_bad_elements(points, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
-                     straightened=straightened)
+                     straightened=straightened, unfolded=curved if straightened else None)
 
 
 def _four_copies(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -37,9 +37,12 @@ def timings_line(result: ModalResult) -> str:
 
 def estimate_notes(est: ErrorEstimate) -> list[str]:
     """How the bounds were made, and where they rest on less."""
+    straightened = ("" if est.straightening is None else
+                    ", and each mode's shift from the straightened elements' faces, up to "
+                    f"{100 * float(est.straightening.max()):.2g} %")
     return [f"+- : bound on the discretisation error of each frequency ({est.method}, "
-            f"plus the mesh's volume difference from the solid, {100 * est.geometry:.1g} %; "
-            "the computed frequencies converge from above)"] + list(est.notes)
+            f"plus the mesh's volume difference from the solid, {100 * est.geometry:.1g} %"
+            f"{straightened}; the computed frequencies converge from above)"] + list(est.notes)
 
 
 def bound_text(est: ErrorEstimate, i: int) -> str:
