@@ -203,7 +203,7 @@ def straightening(mesh: ShaftMesh, material: Material, modes: Modes) -> Straight
         return Straightening(relative=np.zeros(n), shift=np.zeros(n), layer=0.0)
     final, before = mesh.to_skfem(), skfem_mesh(mesh.unfolded, mesh.element_cells)
     moved = np.flatnonzero(np.any(mesh.unfolded != mesh.points, axis=1))
-    touched = np.isin(mesh.element_cells, moved).any(axis=1)
+    touched = np.any(np.isin(mesh.element_cells, moved), axis=1)
     faces = final.boundary_facets()
     faces = faces[touched[final.f2t[0, faces]]]
     owners = final.f2t[0, faces]

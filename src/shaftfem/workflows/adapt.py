@@ -41,7 +41,7 @@ from shaftfem.fem.estimate import (
     combine,
     matched,
     recovery_estimate,
-    volume_difference,
+    with_straightening,
 )
 from shaftfem.fem.result import ModalResult
 from shaftfem.runtime import RunOptions
@@ -292,8 +292,12 @@ def _solve(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, options: RunOptions
 
 
 def _bound(result: ModalResult, rec: Recovery, prev: Coarser) -> ErrorEstimate:
+    from shaftfem.workflows.bounded import geometry_allowances
+
     m = result.modes
-    return combine(m.frequencies, rec.relative, matched(m.kinds, prev.kinds, prev.frequencies),
-                   matched(m.kinds, prev.kinds, prev.recovery), prev.dofs,
-                   method=f"recovery, confirmed on the adaptive round before ({prev.dofs} DOFs)",
-                   geometry=volume_difference(rec.volume, result.shape, result.scene.shaft))
+    geometry, straightened = geometry_allowances(result, rec.volume)
+    return with_straightening(
+        combine(m.frequencies, rec.relative, matched(m.kinds, prev.kinds, prev.frequencies),
+                matched(m.kinds, prev.kinds, prev.recovery), prev.dofs,
+                method=f"recovery, confirmed on the adaptive round before ({prev.dofs} DOFs)",
+                geometry=geometry), m.frequencies, straightened)

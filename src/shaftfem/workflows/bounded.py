@@ -73,7 +73,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     coarse_scene = with_modes(with_mesh(scene, size_mm), count=m.count)
     coarse = run_modes(coarse_scene, replace(options, progress=None))
     ceta = recovery_estimate(coarse.mesh, scene.material, coarse.modes).relative
-    geometry, straightened = _geometry(result, fine.volume)
+    geometry, straightened = geometry_allowances(result, fine.volume)
     return with_straightening(
         combine(m.frequencies, fine.relative,
                 matched(m.kinds, coarse.modes.kinds, coarse.modes.frequencies),
@@ -82,7 +82,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
         m.frequencies, straightened)
 
 
-def _geometry(result: ModalResult, mesh_volume: float) -> tuple[float, np.ndarray]:
+def geometry_allowances(result: ModalResult, mesh_volume: float) -> tuple[float, np.ndarray]:
     """The mesh's allowances for the solid's shape: the relative volume difference from
     the solid of its faces as curved onto the CAD (before any straightening), and each
     mode's shift from the straightened faces (fem.estimate.straightening)."""
@@ -116,7 +116,7 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
     options.say(f"error estimate: order{'s' if below > 1 else ''} "
                 f"{', '.join(str(p - k) for k in range(below, 0, -1))} inside order {p}'s space")
     fine = recovery_estimate(result.mesh, scene.material, m)
-    geometry, straightened = _geometry(result, fine.volume)
+    geometry, straightened = geometry_allowances(result, fine.volume)
     lower, keep = lower_order(system)
     first = _solve_lower(lower, result, options)
     f1 = matched(m.kinds, first.kinds, first.frequencies)
