@@ -69,6 +69,10 @@ def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[d
             "recovery_estimate_percent": (None if est is None or not np.isfinite(est.recovery[i])
                                           else float(100 * est.recovery[i])),
             "error_bound_confirmed": None if est is None else bool(est.reliable[i]),
+            # the bound's share for the straightened elements' faces (fem.estimate.straightening)
+            "straightening_allowance_percent": (
+                None if est is None else 0.0 if est.straightening is None
+                else float(100 * est.straightening[i])),
         })
     if result.scene.held:
         from shaftfem.fem.response import DIRECTIONS, modal_basis, participation
