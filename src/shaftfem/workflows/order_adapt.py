@@ -174,6 +174,7 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
             spaces[-1] = space = replace(_space(scene, mesh, modes, keep,
                                                 system.nodes.shape[0]), trimmed=trimmed)
             est = _bound(spaces, shape, scene)
+        est = _straightened(est, scene, mesh, modes, keep, system.nodes.shape[0])
         bound = est.relative_error if est is not None else planning_bound(space.recovery)
         rounds.append(Round(space.dofs, float(np.max(bound)), time.perf_counter() - t))
         options.say(f"order round {len(rounds)}: {space.dofs} DOFs, largest bound "
@@ -261,6 +262,20 @@ def _space(scene: Scene, mesh: ShaftMesh, modes: Modes, keep: np.ndarray,
     rec = recovery_estimate(mesh, scene.material, full)
     return Space(dofs=modes.n_dofs, frequencies=modes.frequencies, kinds=list(modes.kinds),
                  recovery=rec.relative, volume=rec.volume)
+
+
+def _straightened(est: ErrorEstimate | None, scene: Scene, mesh: ShaftMesh, modes: Modes,
+                  keep: np.ndarray, n_nodes: int) -> ErrorEstimate | None:
+    """`est` with each mode's allowance for the mesh's straightened elements
+    (fem.estimate.straightening, on the round's modes as functions of the whole space)."""
+    from shaftfem.fem.estimate import straightening, with_straightening
+    from shaftfem.fem.hierarchy import raised
+
+    if est is None or mesh.unfolded is None:
+        return est
+    full = replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
+    return with_straightening(est, modes.frequencies,
+                              straightening(mesh, scene.material, full).relative)
 
 
 def _bound(spaces: list[Space], shape: ShaftShape, scene: Scene) -> ErrorEstimate | None:
@@ -366,7 +381,7 @@ def _cached(z, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, sub: System,
         cached = replace(_space(scene, mesh, modes, keep, n_nodes), trimmed=cached.trimmed)
     before = spaces[:-1]
     last = replace(cached, frequencies=modes.frequencies)
-    est = _bound(before + [last], shape, scene)
+    est = _straightened(_bound(before + [last], shape, scene), scene, mesh, modes, keep, n_nodes)
     if est is None:
         raise AssertionError("a cached order-adaptive run has a round before its last")
     rounds = [Round(s.dofs, float(b), float(t)) for s, b, t in
