@@ -19,9 +19,13 @@ def runs(cylinder):
 
 
 def _elastic_hz(K, M, n=10):
-    """The first n elastic frequencies of a free body, Hz (six rigid modes skipped)."""
+    """The first n elastic frequencies of a free body, Hz (six rigid modes skipped), each
+    the Rayleigh quotient of its eigenvector: ARPACK's eigenvalues near its shift of
+    almost zero (the rigid modes) came out only to about 1e-10, the quotient of the same
+    vectors is exact to the square of their error."""
     sigma = -1e-8 * np.median(K.diagonal() / M.diagonal())
-    w = sla.eigsh(K, n + 6, M, sigma=sigma, which="LM", tol=1e-13, return_eigenvectors=False)
+    _, X = sla.eigsh(K, n + 6, M, sigma=sigma, which="LM", tol=1e-13)
+    w = np.einsum("ij,ij->j", X, K @ X) / np.einsum("ij,ij->j", X, M @ X)
     return np.sqrt(np.sort(w)[6:]) / (2 * np.pi)
 
 

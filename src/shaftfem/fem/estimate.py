@@ -438,6 +438,16 @@ def _rate_bound(top: np.ndarray, est: np.ndarray, recovery: np.ndarray, geometry
                          geometry=abs(geometry), notes=notes)
 
 
+def geometry_allowances(mesh: ShaftMesh, shape: ShaftShape, shaft: Shaft, material: Material,
+                        modes: Modes, mesh_volume: float) -> tuple[float, np.ndarray]:
+    """The mesh's allowances for the solid's shape: the relative volume difference from
+    the solid of its faces as curved onto the CAD (before any straightening; the mesh
+    itself holds `mesh_volume`, m^3), and each mode's shift from the straightened faces
+    (straightening)."""
+    s = straightening(mesh, material, modes)
+    return volume_difference(mesh_volume + s.layer, shape, shaft), s.relative
+
+
 def volume_difference(mesh_volume: float, shape: ShaftShape, shaft: Shaft) -> float:
     """(V_mesh - V) / V against the analytic volume of the cylinder less its grooves."""
     exact = np.pi * shaft.radius**2 * shaft.length - shape.groove_volume_analytic

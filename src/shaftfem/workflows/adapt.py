@@ -39,6 +39,7 @@ from shaftfem.fem.estimate import (
     ErrorEstimate,
     Recovery,
     combine,
+    geometry_allowances,
     matched,
     recovery_estimate,
     with_straightening,
@@ -292,10 +293,9 @@ def _solve(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, options: RunOptions
 
 
 def _bound(result: ModalResult, rec: Recovery, prev: Coarser) -> ErrorEstimate:
-    from shaftfem.workflows.bounded import geometry_allowances
-
     m = result.modes
-    geometry, straightened = geometry_allowances(result, rec.volume)
+    geometry, straightened = geometry_allowances(result.mesh, result.shape, result.scene.shaft,
+                                                 result.scene.material, m, rec.volume)
     return with_straightening(
         combine(m.frequencies, rec.relative, matched(m.kinds, prev.kinds, prev.frequencies),
                 matched(m.kinds, prev.kinds, prev.recovery), prev.dofs,

@@ -16,8 +16,6 @@ from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:
-    import numpy as np
-
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.result import ModalResult
     from shaftfem.workflows.adapt import Adapted
@@ -60,7 +58,13 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     """The bound of a fixed mesh's frequencies: its recovery estimate, confirmed by the
     same scene solved on a mesh `ratio` times coarser (cached like any solve, unless
     the options say not to)."""
-    from shaftfem.fem.estimate import combine, matched, recovery_estimate, with_straightening
+    from shaftfem.fem.estimate import (
+        combine,
+        geometry_allowances,
+        matched,
+        recovery_estimate,
+        with_straightening,
+    )
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
 
     if result.system.degrees is not None and result.system.order > result.mesh.geometry_order:
@@ -73,24 +77,14 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     coarse_scene = with_modes(with_mesh(scene, size_mm), count=m.count)
     coarse = run_modes(coarse_scene, replace(options, progress=None))
     ceta = recovery_estimate(coarse.mesh, scene.material, coarse.modes).relative
-    geometry, straightened = geometry_allowances(result, fine.volume)
+    geometry, straightened = geometry_allowances(result.mesh, result.shape, scene.shaft,
+                                                 scene.material, m, fine.volume)
     return with_straightening(
         combine(m.frequencies, fine.relative,
                 matched(m.kinds, coarse.modes.kinds, coarse.modes.frequencies),
                 matched(m.kinds, coarse.modes.kinds, ceta), coarse.modes.n_dofs,
                 method=f"recovery, confirmed on a {ratio:g}x coarser mesh", geometry=geometry),
         m.frequencies, straightened)
-
-
-def geometry_allowances(result: ModalResult, mesh_volume: float) -> tuple[float, np.ndarray]:
-    """The mesh's allowances for the solid's shape: the relative volume difference from
-    the solid of its faces as curved onto the CAD (before any straightening), and each
-    mode's shift from the straightened faces (fem.estimate.straightening)."""
-    from shaftfem.fem.estimate import straightening, volume_difference
-
-    s = straightening(result.mesh, result.scene.material, result.modes)
-    return (volume_difference(mesh_volume + s.layer, result.shape, result.scene.shaft),
-            s.relative)
 
 
 def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
@@ -103,6 +97,7 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
     has none: estimate_errors confirms it on a coarser mesh.)"""
     from shaftfem.fem.estimate import (
         combine,
+        geometry_allowances,
         hierarchy_estimate,
         matched,
         recovery_estimate,
@@ -116,7 +111,8 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
     options.say(f"error estimate: order{'s' if below > 1 else ''} "
                 f"{', '.join(str(p - k) for k in range(below, 0, -1))} inside order {p}'s space")
     fine = recovery_estimate(result.mesh, scene.material, m)
-    geometry, straightened = geometry_allowances(result, fine.volume)
+    geometry, straightened = geometry_allowances(result.mesh, result.shape, scene.shaft,
+                                                 scene.material, m, fine.volume)
     lower, keep = lower_order(system)
     first = _solve_lower(lower, result, options)
     f1 = matched(m.kinds, first.kinds, first.frequencies)

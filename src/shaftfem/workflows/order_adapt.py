@@ -160,21 +160,14 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         sub = restricted(system, keep, int(orders.max()))
         modes = _solve(scene, sub, hint, options, watch)
         hint = modes.inertia_shift
-        # from the third round on, the rounds' own drops bound the modes: a round's
-        # recovery estimate is computed only where they leave a mode unbounded
-        known = spaces[0].volume if len(spaces) >= 2 else None
-        space = replace(_space(scene, mesh, modes, keep, system.nodes.shape[0], known),
+        space = replace(_space(scene, mesh, modes, keep, system.nodes.shape[0]),
                         trimmed=trimmed)
         if not spaces:  # the first round's modes are the ones followed
             scene = replace(scene, modes=replace(scene.modes, count=modes.count,
                                                  max_frequency=None))
         spaces.append(space)
-        est = _bound(spaces, shape, scene)
-        if est is not None and not np.all(np.isfinite(est.relative_error)):
-            spaces[-1] = space = replace(_space(scene, mesh, modes, keep,
-                                                system.nodes.shape[0]), trimmed=trimmed)
-            est = _bound(spaces, shape, scene)
-        est = _straightened(est, scene, mesh, modes, keep, system.nodes.shape[0])
+        est = _straightened(_bound(spaces, shape, scene), scene, mesh, modes, keep,
+                            system.nodes.shape[0])
         bound = est.relative_error if est is not None else planning_bound(space.recovery)
         rounds.append(Round(space.dofs, float(np.max(bound)), time.perf_counter() - t))
         options.say(f"order round {len(rounds)}: {space.dofs} DOFs, largest bound "
@@ -247,16 +240,10 @@ def _solve(scene: Scene, sub: System, hint: float | None, options: RunOptions,
 
 
 def _space(scene: Scene, mesh: ShaftMesh, modes: Modes, keep: np.ndarray,
-           n_nodes: int, volume: float | None = None) -> Space:
+           n_nodes: int) -> Space:
     """The summary of a round's `modes`, solved on the whole space's (of `n_nodes` scalar
-    functions) functions `keep`, with their recovery estimates; given the mesh's
-    `volume` (m^3), without them (nan)."""
+    functions) functions `keep`, with their recovery estimates."""
     from shaftfem.fem.hierarchy import raised
-
-    if volume is not None:
-        return Space(dofs=modes.n_dofs, frequencies=modes.frequencies,
-                     kinds=list(modes.kinds), recovery=np.full(modes.frequencies.size, np.nan),
-                     volume=volume)
 
     full = replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
     rec = recovery_estimate(mesh, scene.material, full)
@@ -299,24 +286,44 @@ def _bound_with(spaces: list[Space], geometry: float) -> ErrorEstimate | None:
     def f(s: Space) -> np.ndarray:
         return matched(last.kinds, s.kinds, s.frequencies)
 
-    if len(spaces) == 2:
-        return combine(last.frequencies, last.recovery, f(b),
-                       matched(last.kinds, b.kinds, b.recovery), b.dofs,
+    first = spaces[0]
+    # this round's recovery estimate confirmed by the order-2 round, as round 2's is
+    anchored = combine(last.frequencies, last.recovery, f(first),
+                       matched(last.kinds, first.kinds, first.recovery), first.dofs,
                        method="recovery, confirmed by the order-2 round", geometry=geometry)
+    if len(spaces) == 2:
+        return anchored
     before = _bound_with(spaces[:-1], geometry)
     assert before is not None
     carried = carried_estimate(replace(before, relative_error=matched(
         last.kinds, b.kinds, before.relative_error)), f(b), last.frequencies, last.recovery,
         b.dofs)
     if last.trimmed:
-        return carried
+        return _at_least(carried, anchored)
     est = contraction_estimate([f(s) for s in spaces[:-1]] + [last.frequencies],
                                [s.dofs for s in spaces], last.recovery, geometry)
     # a carried bound resting on a bound the drops disproved is no tighter bound
     tighter = carried.reliable & (carried.relative_error < est.relative_error)
-    return replace(est, relative_error=np.where(tighter, carried.relative_error,
+    return _at_least(replace(est, relative_error=np.where(tighter, carried.relative_error,
+                                                          est.relative_error),
+                             notes=est.notes + tuple(n for n in carried.notes
+                                                     if n not in est.notes)), anchored)
+
+
+def _at_least(est: ErrorEstimate, anchored: ErrorEstimate) -> ErrorEstimate:
+    """`est`, each bound raised to the recovery estimate confirmed by the order-2 round
+    where that is larger. The rounds' drops follow them towards the whole space's
+    frequencies and cannot see that space's own error: orders up to 3 on the paper's
+    shaft (8/4/4 mm) read 0.055 % from the drops on a mode 0.16 % off, the rounds
+    closing on the whole order-3 space (0.176 % off); confirmed by the order-2 round,
+    that mode's bound was 0.55 % (2.8-3.7 times the true error on all ten)."""
+    larger = anchored.relative_error > est.relative_error
+    if not larger.any():
+        return est
+    return replace(est, relative_error=np.where(larger, anchored.relative_error,
                                                 est.relative_error),
-                   notes=est.notes + tuple(n for n in carried.notes if n not in est.notes))
+                   method=f"{est.method}; at least {anchored.method}",
+                   notes=est.notes + tuple(n for n in anchored.notes if n not in est.notes))
 
 
 def _result(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, modes: Modes,
