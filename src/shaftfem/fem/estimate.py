@@ -195,7 +195,7 @@ def straightening(mesh: ShaftMesh, material: Material, modes: Modes) -> Straight
     from skfem.quadrature import get_quadrature
     from skfem.refdom import RefTri
 
-    from shaftfem.cad.mesh import skfem_mesh
+    from shaftfem.cad.tetrahedra import skfem_mesh
     from shaftfem.fem.assembly import _element
 
     n = modes.frequencies.size
@@ -230,10 +230,12 @@ def straightening(mesh: ShaftMesh, material: Material, modes: Modes) -> Straight
         shift = was.global_coordinates().value - on.global_coordinates().value
         vn_da = np.einsum("ieq,ieq->eq", shift, normal) * qw
         layer += float(vn_da.sum())
+        phi = np.array([on.basis[j][0].value for j in range(on.Nbfun)])   # (nb, e, q)
+        dphi = np.array([on.basis[j][0].grad for j in range(on.Nbfun)])  # (nb, 3, e, q)
         for k in range(n):
-            fields = [on.interpolate(modes.shapes[i::3, k]) for i in range(3)]
-            u = np.array([f.value for f in fields])
-            grad = np.array([f.grad for f in fields])      # grad[i, j] = du_i / dx_j
+            coef = modes.shapes[:, k].reshape(-1, 3)[on.element_dofs]    # (nb, e, 3)
+            u = np.einsum("jei,jeq->ieq", coef, phi)
+            grad = np.einsum("jei,jdeq->ideq", coef, dphi)  # grad[i, d] = du_i / dx_d
             eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
             div = eps[0, 0] + eps[1, 1] + eps[2, 2]
             energy = lam * div**2 + 2 * mu * np.einsum("ijeq,ijeq->eq", eps, eps)
