@@ -160,14 +160,13 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, system: System, tar
         sub = restricted(system, keep, int(orders.max()))
         modes = _solve(scene, sub, hint, options, watch)
         hint = modes.inertia_shift
-        space = replace(_space(scene, mesh, modes, keep, system.nodes.shape[0]),
-                        trimmed=trimmed)
+        whole = _whole(modes, keep, system.nodes.shape[0])
+        space = replace(_space(scene, mesh, whole), trimmed=trimmed)
         if not spaces:  # the first round's modes are the ones followed
             scene = replace(scene, modes=replace(scene.modes, count=modes.count,
                                                  max_frequency=None))
         spaces.append(space)
-        est = _straightened(_bound(spaces, shape, scene), scene, mesh, modes, keep,
-                            system.nodes.shape[0])
+        est = _straightened(_bound(spaces, shape, scene), scene, mesh, whole)
         bound = est.relative_error if est is not None else planning_bound(space.recovery)
         rounds.append(Round(space.dofs, float(np.max(bound)), time.perf_counter() - t))
         options.say(f"order round {len(rounds)}: {space.dofs} DOFs, largest bound "
@@ -239,30 +238,32 @@ def _solve(scene: Scene, sub: System, hint: float | None, options: RunOptions,
                               shift_hint=hint, start=start)
 
 
-def _space(scene: Scene, mesh: ShaftMesh, modes: Modes, keep: np.ndarray,
-           n_nodes: int) -> Space:
-    """The summary of a round's `modes`, solved on the whole space's (of `n_nodes` scalar
-    functions) functions `keep`, with their recovery estimates."""
+def _whole(modes: Modes, keep: np.ndarray, n_nodes: int) -> Modes:
+    """A round's `modes`, solved on the whole space's (of `n_nodes` scalar functions)
+    functions `keep`, with their shapes as vectors of the whole space (n_dofs stays the
+    round's)."""
     from shaftfem.fem.hierarchy import raised
 
-    full = replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
-    rec = recovery_estimate(mesh, scene.material, full)
-    return Space(dofs=modes.n_dofs, frequencies=modes.frequencies, kinds=list(modes.kinds),
+    return replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
+
+
+def _space(scene: Scene, mesh: ShaftMesh, whole: Modes) -> Space:
+    """The summary of a round's modes (`_whole`), with their recovery estimates."""
+    rec = recovery_estimate(mesh, scene.material, whole)
+    return Space(dofs=whole.n_dofs, frequencies=whole.frequencies, kinds=list(whole.kinds),
                  recovery=rec.relative, volume=rec.volume)
 
 
-def _straightened(est: ErrorEstimate | None, scene: Scene, mesh: ShaftMesh, modes: Modes,
-                  keep: np.ndarray, n_nodes: int) -> ErrorEstimate | None:
+def _straightened(est: ErrorEstimate | None, scene: Scene, mesh: ShaftMesh,
+                  whole: Modes) -> ErrorEstimate | None:
     """`est` with each mode's allowance for the mesh's straightened elements
     (fem.estimate.straightening, on the round's modes as functions of the whole space)."""
     from shaftfem.fem.estimate import straightening, with_straightening
-    from shaftfem.fem.hierarchy import raised
 
     if est is None or mesh.unfolded is None:
         return est
-    full = replace(modes, shapes=raised(modes.shapes, keep, n_nodes))
-    return with_straightening(est, modes.frequencies,
-                              straightening(mesh, scene.material, full).relative)
+    return with_straightening(est, whole.frequencies,
+                              straightening(mesh, scene.material, whole).relative)
 
 
 def _bound(spaces: list[Space], shape: ShaftShape, scene: Scene) -> ErrorEstimate | None:
@@ -382,14 +383,15 @@ def _cached(z, scene: Scene, shape: ShaftShape, mesh: ShaftMesh, sub: System,
               for f, kinds, d, eta, t in zip(z["f"], z["kinds"], z["dofs"], z["eta"],
                                              z["trimmed"])]
     modes = _solve(scene, sub, float(z["shift"]), options, watch, start=z["shapes"])
+    whole = _whole(modes, keep, n_nodes)
     cached = spaces[-1]
     if not (modes.n_dofs == cached.dofs and list(modes.kinds) == cached.kinds
             and np.allclose(modes.frequencies, cached.frequencies, rtol=SAME_FREQUENCIES,
                             atol=0.0)):
-        cached = replace(_space(scene, mesh, modes, keep, n_nodes), trimmed=cached.trimmed)
+        cached = replace(_space(scene, mesh, whole), trimmed=cached.trimmed)
     before = spaces[:-1]
     last = replace(cached, frequencies=modes.frequencies)
-    est = _straightened(_bound(before + [last], shape, scene), scene, mesh, modes, keep, n_nodes)
+    est = _straightened(_bound(before + [last], shape, scene), scene, mesh, whole)
     if est is None:
         raise AssertionError("a cached order-adaptive run has a round before its last")
     rounds = [Round(s.dofs, float(b), float(t)) for s, b, t in
