@@ -27,3 +27,15 @@ def peak_mb() -> float:
     import resource
 
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def options(args: list[str], defaults: dict[str, str]) -> tuple[dict[str, str], list[str]]:
+    """The values of the `--flag value` pairs in `args` for the flags of `defaults` (else
+    their defaults), and the other arguments in order."""
+    values, rest, it = dict(defaults), [], iter(args)
+    for a in it:
+        if a in defaults:
+            values[a] = next(it)
+        else:
+            rest.append(a)
+    return values, rest

@@ -28,7 +28,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _common import machine  # noqa: E402
+from _common import machine, options  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "geometry" / "paper2018.toml"
@@ -106,8 +106,8 @@ def main() -> None:
     if args == ["--sweep-child"]:
         sweep_child()
         return
-    rev = args[args.index("--baseline") + 1] if "--baseline" in args else "24b4bc9"
-    repeat = int(args[args.index("--repeat") + 1]) if "--repeat" in args else 3
+    opts, _ = options(args, {"--baseline": "24b4bc9", "--repeat": "3"})
+    rev, repeat = opts["--baseline"], int(opts["--repeat"])
     base = checkout(rev)
     trees = {f"{rev} (before)": base / "src", "this tree": ROOT / "src"}
     runs = {"modes (paper2018, bound included)": [],

@@ -20,7 +20,7 @@ from pathlib import Path
 
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
-from _common import machine  # noqa: E402
+from _common import machine, options  # noqa: E402
 from cold_runs import ROOT, checkout  # noqa: E402
 
 ONE = """
@@ -51,11 +51,9 @@ def meshing(src: Path, sizes: str) -> dict:
 
 
 def main(argv: list) -> None:
-    flags = {"--baseline", "--repeat"}
-    rev = argv[argv.index("--baseline") + 1] if "--baseline" in argv else "8774487"
-    repeat = int(argv[argv.index("--repeat") + 1]) if "--repeat" in argv else 3
-    sizes = [a for i, a in enumerate(argv)
-             if a not in flags and (i == 0 or argv[i - 1] not in flags)] or ["16/12/12"]
+    opts, sizes = options(argv, {"--baseline": "8774487", "--repeat": "3"})
+    rev, repeat = opts["--baseline"], int(opts["--repeat"])
+    sizes = sizes or ["16/12/12"]
     base = checkout(rev) / "src"
     trees = {rev: base, "this tree": ROOT / "src"}
     print(f"machine: {machine()}; paper2018, order 5 on cubic geometry, {repeat} meshings "

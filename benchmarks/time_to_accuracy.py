@@ -19,17 +19,15 @@ from pathlib import Path
 
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
-from _common import in_fresh_process, machine  # noqa: E402, I001  (before NumPy)
+from _common import in_fresh_process, machine, options  # noqa: E402, I001  (before NumPy)
 
 import ngsolve_same_mesh as same  # noqa: E402
 
 
 def main(argv: list) -> None:
-    repeat = int(argv[argv.index("--repeat") + 1]) if "--repeat" in argv else 3
-    own = argv[argv.index("--own") + 1] if "--own" in argv else "16/8:3:0.25"
-    flags = {"--repeat", "--own"}
-    ours = [a for i, a in enumerate(argv)
-            if a not in flags and (i == 0 or argv[i - 1] not in flags)] or ["16/12/12:5:3"]
+    opts, ours = options(argv, {"--repeat": "3", "--own": "16/8:3:0.25"})
+    repeat, own = int(opts["--repeat"]), opts["--own"]
+    ours = ours or ["16/12/12:5:3"]
     print(f"machine: {machine()}; paper2018, {repeat} runs each, alternating\n")
     step = str(same.step_file())
     runs: dict = {}

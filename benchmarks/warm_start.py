@@ -26,7 +26,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _common import machine  # noqa: E402
+from _common import machine, options  # noqa: E402
 
 
 def cli_run(scene: str, out: Path) -> tuple[float, float, list[float]]:
@@ -69,10 +69,5 @@ def main(scenes: list[str], repeat: int) -> None:
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    n = 3
-    if "--repeat" in args:
-        i = args.index("--repeat")
-        n = int(args[i + 1])
-        del args[i:i + 2]
-    main(args or ["paper2018"], n)
+    opts, scenes = options(sys.argv[1:], {"--repeat": "3"})
+    main(scenes or ["paper2018"], int(opts["--repeat"]))
