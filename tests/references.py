@@ -184,3 +184,82 @@ def timoshenko_rotor_hz(n_modes: int, length: float, radius: float, E: float, nu
     lam = eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True,
                subset_by_index=[0, n_modes - 1])
     return list(np.sqrt(lam) / (2 * math.pi))
+
+
+def hollow_shear_factor(nu: float, m: float) -> float:
+    """Cowper's shear coefficient of a circular tube, m = inner / outer radius (a solid
+    bar at m = 0: 6 (1 + nu) / (7 + 6 nu))."""
+    a = (1 + m * m) ** 2
+    return 6 * (1 + nu) * a / ((7 + 6 * nu) * a + (20 + 12 * nu) * m * m)
+
+
+def profile_elements(segments: list[tuple[float, float, float, float]], n_el: int
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Element ends z (n_el + 1,) and each element's outer and inner radius at its middle,
+    for segments (length, outer radius at start, at end, inner radius), m; element ends
+    fall on the segments' ends."""
+    total = sum(s[0] for s in segments)
+    z, ro, ri = [0.0], [], []
+    z0 = 0.0
+    for length, r0, r1, rin in segments:
+        k = max(2, round(n_el * length / total))
+        t = (np.arange(k) + 0.5) / k
+        z += list(z0 + length * (np.arange(1, k + 1) / k))
+        ro += list(r0 + (r1 - r0) * t)
+        ri += [rin] * k
+        z0 += length
+    return np.array(z), np.array(ro), np.array(ri)
+
+
+def timoshenko_profile_hz(n_modes: int, segments: list[tuple[float, float, float, float]],
+                          E: float, nu: float, rho: float, pins: tuple[float, ...] = (),
+                          n_el: int = 1200) -> list[float]:
+    """The lowest elastic bending frequencies of a stepped, conical or hollow shaft as a 1D
+    Timoshenko beam in one plane (linear elements, one-point shear, consistent mass with
+    rotary inertia, Cowper's coefficient for a tube), each element's section that at its
+    middle: free-free (its two rigid modes left out) or pinned (w = 0) at `pins` (m)."""
+    from scipy.linalg import eigh
+
+    G = E / (2 * (1 + nu))
+    z, ro, ri = profile_elements(segments, n_el)
+    n = 2 * len(z)
+    K, M = np.zeros((n, n)), np.zeros((n, n))
+    for e in range(len(z) - 1):
+        h = z[e + 1] - z[e]
+        A = math.pi * (ro[e] ** 2 - ri[e] ** 2)
+        I = math.pi * (ro[e] ** 4 - ri[e] ** 4) / 4
+        kappa = hollow_shear_factor(nu, ri[e] / ro[e])
+        dofs = [2 * e, 2 * e + 1, 2 * e + 2, 2 * e + 3]
+        B = np.array([-1 / h, -0.5, 1 / h, -0.5])
+        K[np.ix_(dofs, dofs)] += (E * I / h * np.array([[0, 0, 0, 0], [0, 1, 0, -1],
+                                                        [0, 0, 0, 0], [0, -1, 0, 1]])
+                                  + kappa * G * A * h * np.outer(B, B))
+        lin = h / 6 * np.array([[2, 1], [1, 2]])
+        M[np.ix_(dofs[::2], dofs[::2])] += rho * A * lin
+        M[np.ix_(dofs[1::2], dofs[1::2])] += rho * I * lin
+    held = [2 * int(np.argmin(np.abs(z - p))) for p in pins]
+    keep = np.setdiff1d(np.arange(n), held)
+    lam = eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True,
+               subset_by_index=[0, n_modes + 1])
+    f = np.sqrt(np.abs(lam)) / (2 * math.pi)
+    return list((f[2:] if not pins else f)[:n_modes])
+
+
+def rod_profile_hz(n_modes: int, segments: list[tuple[float, float, float, float]],
+                   modulus: float, rho: float, polar: bool, n_el: int = 1200) -> list[float]:
+    """The lowest free-free frequencies of a stepped rod, 1D, linear elements: torsion
+    (`polar`: stiffness G J, inertia rho J; exact in 3D for a uniform circular section)
+    or axial (E A, rho A; no lateral inertia). `modulus` is G or E."""
+    from scipy.linalg import eigh
+
+    z, ro, ri = profile_elements(segments, n_el)
+    n = len(z)
+    K, M = np.zeros((n, n)), np.zeros((n, n))
+    for e in range(n - 1):
+        h = z[e + 1] - z[e]
+        a = (math.pi * (ro[e] ** 4 - ri[e] ** 4) / 2 if polar
+             else math.pi * (ro[e] ** 2 - ri[e] ** 2))
+        K[e:e + 2, e:e + 2] += modulus * a / h * np.array([[1, -1], [-1, 1]])
+        M[e:e + 2, e:e + 2] += rho * a * h / 6 * np.array([[2, 1], [1, 2]])
+    lam = eigh(K, M, eigvals_only=True, subset_by_index=[1, n_modes])
+    return list(np.sqrt(lam) / (2 * math.pi))

@@ -29,10 +29,12 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfem.cad.outline import outline as half_section
+from shaftfem.cad.outline import runout
 from shaftfem.cad.profile import TOOL_OVERSHOOT, profile_outline
 from shaftfem.cad.session import session, stdout_to_devnull, translated
 from shaftfem.errors import GeometryError
-from shaftfem.scene.model import Grooves, Shaft
+from shaftfem.scene.model import Grooves, Keyway, Shaft
 
 SECTIONS_PER_CELL = 13          # exact sections per half turn (15 degree steps)
 
@@ -88,13 +90,17 @@ def _groove_piece(occ, g: Grooves, radius: float, outline, hand: int,
 
 
 def _cell(occ, g: Grooves, radius: float, outline, z0: float, length: float,
-          turn: float) -> int:
-    """A grooved stretch [z0, z0 + length]: cylinder minus each hand's groove piece.
+          turn: float, bore: float = 0.0) -> int:
+    """A grooved stretch [z0, z0 + length]: cylinder (less its bore of radius `bore`)
+    minus each hand's groove piece.
 
     `turn` is the angle of the right-hand groove's centre at z0 minus pi/2.
     """
     floor = radius - g.depth
     body = occ.addCylinder(0, 0, z0, 0, 0, length, radius)
+    if bore > 0:
+        hole = occ.addCylinder(0, 0, z0, 0, 0, length, bore)
+        body = occ.cut([(3, body)], [(3, hole)])[0][0][1]
     for hand in g.hands:
         theta0 = hand * (math.pi / 2 + turn)
         tool = _groove_piece(occ, g, radius, outline, hand, z0, length, theta0)
@@ -135,10 +141,92 @@ def _build(gmsh, shaft: Shaft, grooves: Grooves | None) -> None:
     """Create the shaft in the current gmsh model (not yet synchronised)."""
     occ = gmsh.model.occ
     R, L = shaft.radius, shaft.length
+    if not shaft.plain:
+        body = _profile_body(occ, shaft)
+        if grooves is not None:
+            _grooved(gmsh, shaft, grooves, lambda z0, z1: _slice(occ, body, z0, z1, R))
+            occ.remove([(3, body)], recursive=True)
+        return
     if grooves is None:
         occ.addCylinder(0, 0, 0, 0, 0, L, R)
         return
-    g = grooves
+    _grooved(gmsh, shaft, grooves, lambda z0, z1: occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, R))
+
+
+def _profile_body(occ, shaft: Shaft) -> int:
+    """A stepped shaft: its half-section (cad.outline) revolved about the axis, the
+    keyways cut from it."""
+    curves = []
+    for piece in half_section(shaft):
+        a = occ.addPoint(piece.a[1], 0.0, piece.a[0])
+        b = occ.addPoint(piece.b[1], 0.0, piece.b[0])
+        if piece.centre is None:
+            curves.append(occ.addLine(a, b))
+        else:
+            c = occ.addPoint(piece.centre[1], 0.0, piece.centre[0])
+            curves.append(occ.addCircleArc(a, c, b))
+    face = occ.addPlaneSurface([occ.addCurveLoop(curves)])
+    out = occ.revolve([(2, face)], 0, 0, 0, 0, 0, 1, 2 * math.pi)
+    vols = [t for d, t in out if d == 3]
+    if len(vols) != 1:
+        raise GeometryError(f"revolving the profile gave {len(vols)} solids instead of 1")
+    body = vols[0]
+    for k in shaft.keyways:
+        radius = shaft.radius_at(k.start + k.length / 2)
+        assert radius is not None
+        cut, _ = occ.cut([(3, body)], [(3, _keyway_tool(occ, k, radius))])
+        if len(cut) != 1:
+            raise GeometryError(f"cutting the keyway at {k.start * 1e3:g} mm left {len(cut)} "
+                                "solids instead of 1")
+        body = cut[0][1]
+    return body
+
+
+def _keyway_tool(occ, k: Keyway, radius: float) -> int:
+    """The cutter's path as a solid: the keyway's plan (form "rounded": a slot with round
+    ends; "sled": straight, its ends rising along the disc cutter) from the floor to
+    above the surface, turned to the keyway's angle."""
+    floor, top = radius - k.depth, radius + TOOL_OVERSHOOT
+    w = k.width
+    if k.form == "rounded":
+        a = w / 2
+        parts = [occ.addBox(floor, -a, k.start + a, top - floor, w, k.length - w)]
+        parts += [occ.addCylinder(floor, 0, z, top - floor, 0, 0, a)
+                  for z in (k.start + a, k.end - a)]
+    else:
+        run, rc = runout(k, radius), k.cutter_radius
+        parts = [occ.addBox(floor, -w / 2, k.start + run, top - floor, w, k.length - 2 * run)]
+        parts += [occ.addCylinder(floor + rc, -w / 2, z, 0, w, 0, rc)
+                  for z in (k.start + run, k.end - run)]
+    tool, _ = occ.fuse([(3, parts[0])], [(3, t) for t in parts[1:]])
+    tag = tool[0][1]
+    if k.corner_radius > 0:
+        occ.synchronize()
+        eps = 1e-7
+        edges = [t for _, t in occ.getEntitiesInBoundingBox(
+            floor - eps, -w, k.start - eps, floor + eps, w, k.end + eps, dim=1)]
+        tag = occ.fillet([tag], edges, [k.corner_radius])[0][1]
+    occ.rotate([(3, tag)], 0, 0, 0, 0, 0, 1, k.angle)
+    return tag
+
+
+def _slice(occ, body: int, z0: float, z1: float, radius: float) -> int:
+    """The part z0 <= z <= z1 of the solid `body` (left in place), as a new solid."""
+    box = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, 2 * radius)
+    part, _ = occ.intersect(occ.copy([(3, body)]), [(3, box)])
+    if len(part) != 1:
+        raise GeometryError(f"the profile between {z0 * 1e3:g} and {z1 * 1e3:g} mm is "
+                            f"{len(part)} solids instead of 1")
+    return part[0][1]
+
+
+def _grooved(gmsh, shaft: Shaft, g: Grooves, plug) -> None:
+    """The grooved zone's cells at its section's radius and bore, joined to the plain
+    stretches `plug(z0, z1)` makes on either side."""
+    occ = gmsh.model.occ
+    L = shaft.length
+    section = shaft.profile[shaft.section_at(g.start + g.length / 2) or 0]
+    R, bore = section.diameter_start / 2, section.bore / 2
     outline = profile_outline(g, R)
     half = g.pitch / 2
     n_full = int(math.floor(g.length / half + 1e-9))
@@ -146,10 +234,10 @@ def _build(gmsh, shaft: Shaft, grooves: Grooves | None) -> None:
     end = g.start + g.length
     # Volume tags in axial order (the plain start first): gmsh numbers the imported
     # solid's entities in this order, and the mesh depends on it.
-    start_plug = occ.addCylinder(0, 0, 0, 0, 0, g.start, R) if g.start > 1e-9 else None
+    start_plug = plug(0.0, g.start) if g.start > 1e-9 else None
     cells = []
     if n_full:
-        cell = _cell(occ, g, R, outline, g.start, half, 0.0)
+        cell = _cell(occ, g, R, outline, g.start, half, 0.0, bore)
         cells.append(cell)
         for k in range(1, n_full):
             copy = occ.copy([(3, cell)])
@@ -158,8 +246,9 @@ def _build(gmsh, shaft: Shaft, grooves: Grooves | None) -> None:
             occ.translate(copy, 0, 0, k * half)
             cells.append(copy[0][1])
     if rest > 1e-9:
-        cells.append(_cell(occ, g, R, outline, g.start + n_full * half, rest, n_full * math.pi))
-    end_plug = occ.addCylinder(0, 0, end, 0, 0, L - end, R) if L - end > 1e-9 else None
+        cells.append(_cell(occ, g, R, outline, g.start + n_full * half, rest, n_full * math.pi,
+                           bore))
+    end_plug = plug(end, L) if L - end > 1e-9 else None
     # A plain end's disk meets a cell's notched face only in part: that one needs a
     # general fragment, of the two solids alone (fast); so does a shorter last cell,
     # whose face is built apart from the copies'. Then every contact is a shared face.

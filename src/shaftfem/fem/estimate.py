@@ -451,9 +451,8 @@ def geometry_allowances(mesh: ShaftMesh, shape: ShaftShape, shaft: Shaft, materi
 
 
 def volume_difference(mesh_volume: float, shape: ShaftShape, shaft: Shaft) -> float:
-    """(V_mesh - V) / V against the analytic volume of the cylinder less its grooves."""
-    exact = np.pi * shaft.radius**2 * shaft.length - shape.groove_volume_analytic
-    return mesh_volume / exact - 1
+    """(V_mesh - V) / V against the solid's reference volume (ShaftShape)."""
+    return mesh_volume / shape.reference_volume - 1
 
 
 def matched(ref_kinds: list[str], kinds: list[str], values: np.ndarray) -> np.ndarray:

@@ -112,15 +112,26 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
                      carried=tuple(seats.carried), M_carried=M_c)
 
 
+def seat_radius(scene: Scene, nodes: np.ndarray, seat: tuple[float, float]) -> float:
+    """The shaft's outer radius under a seat (m): its section's, or, on a STEP solid,
+    the largest node radius within the band."""
+    radius = scene.shaft.radius_at(0.5 * (seat[0] + seat[1]))
+    if radius is not None:
+        return radius
+    z = nodes[:, 2]
+    inside = (z >= seat[0] - 1e-9) & (z <= seat[1] + 1e-9)
+    return float(np.hypot(nodes[inside, 0], nodes[inside, 1]).max()) if inside.any() else 0.0
+
+
 def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int,
            mass_diagonal: np.ndarray) -> _Seats:
     """Each seat's band and what holds it; each part's slice (rigid joint) or section
     (distributing) and centre (`mass_diagonal`: the scalar mass matrix's diagonal, the
     sections' weights)."""
-    radius = scene.shaft.radius
     out = _Seats([], [], [], np.zeros(0, np.int64), [], [], [])
     held_bands: list[np.ndarray] = []
     for s in scene.held:
+        radius = seat_radius(scene, nodes, s.seat)
         idx = band_nodes(nodes, radius, s.seat)
         if idx.size == 0:
             raise SolverError(f"{s.name}: no mesh node on its seat band ({s.seat[0] * 1e3:g} "
@@ -135,7 +146,7 @@ def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int,
         else:
             out.restraints += means
     for a in scene.attachments:
-        idx = band_nodes(nodes, radius, a.seat)
+        idx = band_nodes(nodes, seat_radius(scene, nodes, a.seat), a.seat)
         if idx.size == 0:
             raise SolverError(f"{a.name}: no mesh node on its seat band")
         if a.joint == "distributing":

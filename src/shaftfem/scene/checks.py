@@ -25,6 +25,7 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
     L = shaft.length
     narrowest = max(SEAT_MIN, SEAT_PER_ELEMENT * mesh.size)
     edges = [0.0, L] + ([] if grooves is None else [grooves.start, grooves.start + grooves.length])
+    edges += list(shaft.step_positions())
     for table, part in seats:
         lo, hi = part.seat
         at = where(source, table, "position_mm")
@@ -38,12 +39,17 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
         if near:
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm ends "
-                f"within {SEAT_MIN / MM:g} mm of {near[0] / MM:g} mm (a shaft end or the "
+                f"within {SEAT_MIN / MM:g} mm of {near[0] / MM:g} mm (a shaft end, a step or the "
                 "grooved zone): put it exactly there or at least 1 mm away")
         if lo < -1e-12 or hi > L + 1e-12:
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm "
                 f"(width_mm = {part.width / MM:g}) must lie on the shaft, 0 to {L / MM:g} mm")
+        steps = [z for z in shaft.step_positions() if lo + 1e-12 < z < hi - 1e-12]
+        if steps:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm "
+                f"crosses the shoulder at {steps[0] / MM:g} mm; a seat lies on one section")
         if grooves is not None and lo < grooves.start + grooves.length and hi > grooves.start:
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm lies "
@@ -60,14 +66,33 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
                 f"{a.seat[1] / MM:g} mm)")
 
 
-def check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:
+def check_grooves(source: str, g: dict, shaft: Shaft) -> Grooves:
+    """The grooves in SI: within one cylindrical section, of its radius, clear of its
+    bore (file units in `g`)."""
     def fail(key: str, msg: str) -> SceneError:
         return SceneError(f"{where(source, 'grooves', key)} = {g[key]!r}: {msg}")
 
-    radius = shaft_t["diameter_mm"] / 2
-    length = shaft_t["length_mm"]
-    if g["depth_mm"] >= radius:
-        raise fail("depth_mm", f"must be less than the shaft radius ({radius:g} mm)")
+    length = shaft.length / MM
+    start = g["start_mm"]
+    if start is None:
+        start = (length - g["grooved_length_mm"]) / 2
+    k = shaft.section_at((start + g["grooved_length_mm"] / 2) * MM)
+    section = shaft.profile[k or 0]
+    radius, bore = section.diameter_start / 2 / MM, section.bore / 2 / MM
+    if len(shaft.profile) > 1 and k is not None:
+        z0, z1 = (z / MM for z in shaft.section_bounds()[k])
+        if start < z0 - 1e-9 or start + g["grooved_length_mm"] > z1 + 1e-9 or section.conical:
+            raise fail("grooved_length_mm", f"the grooved zone {start:g} to "
+                       f"{start + g['grooved_length_mm']:g} mm must lie within one cylindrical "
+                       f"section (section {k + 1} runs {z0:g} to {z1:g} mm"
+                       f"{', a cone' if section.conical else ''})")
+        if any(key.start < (start + g["grooved_length_mm"]) * MM and key.end > start * MM
+               for key in shaft.keyways):
+            raise fail("grooved_length_mm", "a keyway lies over the grooved zone")
+    if g["depth_mm"] >= radius - bore:
+        raise fail("depth_mm", f"must be less than the wall ({radius - bore:g} mm: the "
+                   f"section's radius {radius:g} mm less its bore's)" if bore else
+                   f"must be less than the shaft radius ({radius:g} mm)")
     if g["width_mm"] > g["pitch_mm"] / 2:
         raise fail("width_mm", f"must not exceed half the pitch ({g['pitch_mm'] / 2:g} mm)")
     if g["root_radius_mm"] > min(g["depth_mm"], g["width_mm"] / 2):
@@ -75,10 +100,7 @@ def check_grooves(source: str, g: dict, shaft_t: dict) -> Grooves:
                    f"({min(g['depth_mm'], g['width_mm'] / 2):g} mm)")
     if g["grooved_length_mm"] > length:
         raise fail("grooved_length_mm", f"must not exceed the shaft length ({length:g} mm)")
-    start = g["start_mm"]
-    if start is None:
-        start = (length - g["grooved_length_mm"]) / 2
-    elif start + g["grooved_length_mm"] > length:
+    if g["start_mm"] is not None and start + g["grooved_length_mm"] > length:
         raise fail("start_mm", f"start + grooved_length_mm must not exceed the shaft length "
                    f"({length:g} mm)")
     # The groove ends need a little solid beyond them for the CAD to stay one body.

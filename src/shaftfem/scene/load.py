@@ -25,6 +25,7 @@ from shaftfem.scene.model import (
     Shaft,
     Support,
 )
+from shaftfem.scene.profile import imported_shaft, shaft_from_tables
 from shaftfem.scene.schema import SCHEMA
 from shaftfem.scene.toml_reading import read_toml, split_parameter, validate_table, where
 
@@ -85,11 +86,13 @@ def load_scene(scene: str | Path | SceneText | None = None,
     return it in SI. `overrides` maps 'table.key' (or 'table[i].key' for entry i of a
     repeated table) to a value in file units. A bad value raises SceneError naming the
     file, the key, the value and what is allowed."""
+    folder = None
     if isinstance(scene, SceneText):
         data, source = tomllib.loads(scene.text), scene.source
     else:
         path = resolve_scene_path(scene)
         data, source = read_toml(path, "scene"), path.name
+        folder = path.resolve().parent
     for dotted, value in (overrides or {}).items():
         table, index, key = split_parameter(dotted) or (None, None, None)
         if table is None:
@@ -104,7 +107,7 @@ def load_scene(scene: str | Path | SceneText | None = None,
         entries = _entries_with(source, dotted, data, table, index, "the scene", source)
         data[table] = entries
         entries[index][key] = value
-    return scene_from_dict(data, source=source)
+    return scene_from_dict(data, source=source, folder=folder)
 
 
 def check_entries(source: str, base: SceneText, names: list[str]) -> None:
@@ -129,23 +132,34 @@ def _entries_with(source: str, name: str, data: dict, table: str, index: int, sc
     return entries
 
 
-def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
-    """Check a parsed scene (file units) and convert it to SI."""
+def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = None) -> Scene:
+    """Check a parsed scene (file units) and convert it to SI (`folder`: the scene
+    file's, where a STEP file it names is looked for)."""
     _check_tables(source, data)
+    shaft_raw = data.get("shaft", {})
+    if isinstance(shaft_raw, dict) and "section" in shaft_raw:
+        raise SceneError(f"{source}: [[shaft.section]]: write the sections as [[section]] "
+                         "tables (each with length_mm and diameter_mm, from the left end)")
     t = {name: validate_table(source, name, data.get(name, {}), SCHEMA[name])
          for name in ("shaft", "material", "mesh", "resonance", "modes", "response")}
     top = validate_table(source, "", data, SCHEMA[""])
     sizing = (validate_table(source, "sizing", data["sizing"], SCHEMA["sizing"])
               if "sizing" in data else None)
     shaft_t, mat_t, mesh_t, res_t = t["shaft"], t["material"], t["mesh"], t["resonance"]
-    shaft = Shaft(length=shaft_t["length_mm"] * MM, diameter=shaft_t["diameter_mm"] * MM)
+    shaft = shaft_from_tables(source, shaft_t, _array(source, data, "section"),
+                              _array(source, data, "keyway"), folder)
+    if shaft.step is not None:
+        if "grooves" in data:
+            raise SceneError(f"{source}: [grooves] beside [shaft] step_file: cut the grooves "
+                             "in the CAD model instead")
+        shaft = imported_shaft(source, shaft)
     material = Material(name=mat_t["name"], youngs_modulus=mat_t["youngs_modulus_mpa"] * MPA,
                         poisson_ratio=mat_t["poisson_ratio"], density=mat_t["density_kg_m3"])
     grooves = None
     if "grooves" in data:
         g = validate_table(source, "grooves", data["grooves"], SCHEMA["grooves"])
-        grooves = check_grooves(source, g, shaft_t)
-    mesh = _mesh_settings(source, mesh_t, shaft_t, grooves)
+        grooves = check_grooves(source, g, shaft)
+    mesh = _mesh_settings(source, mesh_t, shaft, grooves)
     supports = tuple(_support(source, i, e) for i, e in enumerate(_array(source, data, "support")))
     attachments = tuple(_attachment(source, i, e)
                         for i, e in enumerate(_array(source, data, "attachment")))
@@ -154,7 +168,7 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
         raise SceneError(f"{where(source, 'mesh', 'order')} = {mesh.order}: cubic elements take "
                          "free shafts only for now; use order 2 with [[support]] or "
                          "[[attachment]] tables")
-    point = _response_point(source, t["response"], shaft_t)
+    point = _response_point(source, t["response"], shaft)
     target = mesh_t["target_error_percent"]
     return Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,
                  material=material, grooves=grooves, mesh=mesh,
@@ -191,7 +205,7 @@ def _excitations(source: str, data: dict) -> tuple[Excitation, ...]:
     return tuple(out)
 
 
-def _mesh_settings(source: str, mesh_t: dict, shaft_t: dict, grooves: Grooves | None
+def _mesh_settings(source: str, mesh_t: dict, shaft: Shaft, grooves: Grooves | None
                    ) -> MeshSettings:
     """The element sizes (defaults: grooves half the size, their edges a third of that or
     the root radius), none above the element size, which is not above the shaft."""
@@ -209,21 +223,21 @@ def _mesh_settings(source: str, mesh_t: dict, shaft_t: dict, grooves: Grooves | 
                 f"{where(source, 'mesh', key)} = {value:g}: must not exceed "
                 f"element_size_mm = {size:g}"
             )
-    if size > shaft_t["length_mm"]:
+    if size > shaft.length / MM:
         raise SceneError(
             f"{where(source, 'mesh', 'element_size_mm')} = {size:g}: must not exceed the "
-            f"shaft length ({shaft_t['length_mm']:g} mm)"
+            f"shaft length ({shaft.length / MM:g} mm)"
         )
     return MeshSettings(size=size * MM, groove_size=groove_size * MM, edge_size=edge_size * MM,
                         order=mesh_t["order"], geometry_order=mesh_t["geometry_order"])
 
 
-def _response_point(source: str, resp_t: dict, shaft_t: dict) -> float | None:
+def _response_point(source: str, resp_t: dict, shaft: Shaft) -> float | None:
     """The response point, mm, on the shaft (None: the default)."""
     point = resp_t["point_mm"]
-    if point is not None and point > shaft_t["length_mm"]:
+    if point is not None and point > shaft.length / MM:
         raise SceneError(f"{where(source, 'response', 'point_mm')} = {point:g}: must lie on the "
-                         f"shaft, 0 to {shaft_t['length_mm']:g} mm")
+                         f"shaft, 0 to {shaft.length / MM:g} mm")
     return point
 
 

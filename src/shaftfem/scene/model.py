@@ -19,15 +19,119 @@ MM = 1e-3  # m per mm: scene files are in mm
 
 
 @dataclass(frozen=True)
+class Section:
+    """One stretch of a stepped shaft's profile, all in m: its length, its outer
+    diameter at its start and at its end (a cone where they differ), its bore (0:
+    solid), and at the step to the next section the fillet radius in the concave corner
+    and the chamfer (45 degrees, its leg) on the convex one."""
+
+    length: float
+    diameter_start: float
+    diameter_end: float
+    bore: float = 0.0
+    fillet: float = 0.0
+    chamfer: float = 0.0
+
+    @property
+    def conical(self) -> bool:
+        return self.diameter_start != self.diameter_end
+
+
+@dataclass(frozen=True)
+class Keyway:
+    """A keyway milled into the shaft, all in m and rad: from z = `start` over `length`
+    along the axis, `width` across, its flat floor `depth` below the surface at its
+    centre line, centred at `angle` about the axis (0: towards +x). `form` "rounded":
+    end-milled, round ends (DIN 6885 form A); "sled": disc-cut, the ends running out
+    along the cutter's radius `cutter_radius`. `corner_radius`: the floor's corners."""
+
+    start: float
+    length: float
+    width: float
+    depth: float
+    angle: float = 0.0
+    form: str = "rounded"
+    corner_radius: float = 0.0
+    cutter_radius: float = 0.0
+
+    @property
+    def end(self) -> float:
+        return self.start + self.length
+
+
+@dataclass(frozen=True)
+class StepSolid:
+    """The user's own solid from a STEP file, in the unit the file states: its path, the
+    checksum of its content (the cache key), and the shaft axis as two points in the
+    file's coordinates, m (None: the z direction through the middle of the solid's
+    bounding box)."""
+
+    path: str
+    sha256: str
+    axis: tuple[tuple[float, float, float], tuple[float, float, float]] | None = None
+    summary: str = ""   # what its import found (cad.step.StepImport.summary)
+
+
+@dataclass(frozen=True)
 class Shaft:
-    """A solid round shaft: length and diameter in m."""
+    """The shaft, in m: its overall length and largest outer diameter, and its form.
+
+    With no `sections`, keyways or chamfer it is a solid round bar of that diameter (the
+    shorthand `[shaft] length_mm, diameter_mm`); else its profile is `sections` from the
+    left end, with `keyways` cut into it and `end_chamfer` at both ends. A `step` shaft
+    is the user's own solid, its axis along z from z = 0 once imported."""
 
     length: float
     diameter: float
+    sections: tuple[Section, ...] = ()
+    keyways: tuple[Keyway, ...] = ()
+    end_chamfer: float = 0.0
+    step: StepSolid | None = None
 
     @property
     def radius(self) -> float:
+        """The largest outer radius, m."""
         return 0.5 * self.diameter
+
+    @property
+    def plain(self) -> bool:
+        """A solid round bar (grooved or not): no steps, bore, keyway, chamfer or STEP."""
+        return not (self.sections or self.keyways or self.end_chamfer or self.step)
+
+    @property
+    def profile(self) -> tuple[Section, ...]:
+        """The sections from the left end (a plain bar is one; a STEP shaft has none)."""
+        if self.step is not None:
+            return ()
+        return self.sections or (Section(self.length, self.diameter, self.diameter),)
+
+    def section_bounds(self) -> list[tuple[float, float]]:
+        """(z0, z1) of each section, m."""
+        out, z = [], 0.0
+        for s in self.profile:
+            out.append((z, z + s.length))
+            z += s.length
+        return out
+
+    def step_positions(self) -> tuple[float, ...]:
+        """z (m) of each change of section: the shoulders and the ends of cones."""
+        return tuple(z1 for _, z1 in self.section_bounds()[:-1])
+
+    def section_at(self, z: float) -> int | None:
+        """The index of the section holding z (the left one at a step; None for STEP)."""
+        for i, (z0, z1) in enumerate(self.section_bounds()):
+            if z <= z1 + 1e-12:
+                return i if z >= z0 - 1e-12 else None
+        return None
+
+    def radius_at(self, z: float) -> float | None:
+        """The outer radius at z, m (None where the profile is not known: a STEP shaft)."""
+        i = self.section_at(z)
+        if i is None:
+            return None
+        s, (z0, z1) = self.profile[i], self.section_bounds()[i]
+        t = 0.0 if z1 == z0 else min(max((z - z0) / (z1 - z0), 0.0), 1.0)
+        return 0.5 * (s.diameter_start + t * (s.diameter_end - s.diameter_start))
 
 
 @dataclass(frozen=True)

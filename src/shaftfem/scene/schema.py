@@ -24,6 +24,7 @@ ELEMENT_ORDERS = (1, 2, 3, 4, 5)
 GEOMETRY_ORDERS = (2, 3)
 SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs")
 COUPLINGS = ("distributing", "rigid")
+KEYWAY_FORMS = ("rounded", "sled")
 # Modal damping of a steel shaft in rolling bearings: 1-3 % of critical is usual.
 DEFAULT_DAMPING_PERCENT = 2.0
 
@@ -76,8 +77,73 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "description": Key(str, "free text", required=False),
     },
     "shaft": {
-        "length_mm": Key(float, "overall shaft length, mm", *upto(20_000, "a shaft up to 20 m")),
-        "diameter_mm": Key(float, "outer diameter, mm", *upto(2_000, "up to 2 m")),
+        "length_mm": Key(float, "overall shaft length, mm (a plain bar; leave out with "
+                         "[[section]] or step_file)", *upto(20_000, "a shaft up to 20 m"),
+                         required=False),
+        "diameter_mm": Key(float, "outer diameter, mm (a plain bar; leave out with "
+                           "[[section]] or step_file)", *upto(2_000, "up to 2 m"),
+                           required=False),
+        "end_chamfer_mm": Key(float, "45-degree chamfer at both shaft ends, its leg, mm",
+                              *upto(1_000, "up to 1 m", closed_low=True), default=0.0,
+                              required=False),
+        "step_file": Key(str, "the shaft's own solid from CAD: a STEP file, relative to the "
+                         "scene file, in the unit the file states (no [[section]], "
+                         "[grooves] or [[keyway]] beside it)",
+                         lambda v: v.strip() != "", "a file name", required=False),
+        "axis_from_mm": Key(("list", (int, float)), "a point on the shaft axis in the STEP "
+                            "file's coordinates, [x, y, z] mm, at the left end's side "
+                            "(default: the axis is along z through the middle of the "
+                            "solid's bounding box)", lambda v: len(v) == 3,
+                            "three numbers", required=False),
+        "axis_to_mm": Key(("list", (int, float)), "a second point on the axis, towards the "
+                          "right end, [x, y, z] mm", lambda v: len(v) == 3, "three numbers",
+                          required=False),
+    },
+    "section": {  # an array of tables: [[section]], the stepped profile from the left end
+        "length_mm": Key(float, "length of the section along the axis, mm",
+                         *upto(20_000, "up to 20 m")),
+        "diameter_mm": Key(float, "outer diameter, mm (or diameter_start_mm and "
+                           "diameter_end_mm for a cone)", *upto(2_000, "up to 2 m"),
+                           required=False),
+        "diameter_start_mm": Key(float, "a cone's outer diameter at its left end, mm",
+                                 *upto(2_000, "up to 2 m"), required=False),
+        "diameter_end_mm": Key(float, "a cone's outer diameter at its right end, mm",
+                               *upto(2_000, "up to 2 m"), required=False),
+        "bore_mm": Key(float, "inner diameter, mm (0: solid)",
+                       *upto(2_000, "up to 2 m", closed_low=True), default=0.0,
+                       required=False),
+        "fillet_mm": Key(float, "fillet radius in the concave corner of the step to the "
+                         "next section, mm (0: sharp)", *upto(1_000, "up to 1 m",
+                                                              closed_low=True),
+                         default=0.0, required=False),
+        "chamfer_mm": Key(float, "45-degree chamfer on the convex edge of the step to the "
+                          "next section, its leg, mm", *upto(1_000, "up to 1 m",
+                                                            closed_low=True),
+                          default=0.0, required=False),
+    },
+    "keyway": {  # an array of tables: [[keyway]], a keyway milled into one section
+        "position_mm": Key(float, "centre of the keyway from the shaft's left end, mm",
+                           *upto(20_000, "up to 20 m", closed_low=True)),
+        "length_mm": Key(float, "length of the keyway along the axis, end to end, mm",
+                         *upto(20_000, "up to 20 m")),
+        "width_mm": Key(float, "width b across the keyway, mm (default: DIN 6885-1 for the "
+                        "section's diameter)", *upto(1_000, "up to 1 m"), required=False),
+        "depth_mm": Key(float, "depth t1 of the floor below the surface, mm (default: "
+                        "DIN 6885-1 for the section's diameter)", *upto(1_000, "up to 1 m"),
+                        required=False),
+        "angle_deg": Key(float, "angle of the keyway's centre about the axis from +x, deg",
+                         lambda v: -360 <= v <= 360, "in [-360, 360]", default=0.0,
+                         required=False),
+        "form": Key(str, "\"rounded\": end-milled, round ends (DIN 6885 form A); "
+                    "\"sled\": disc-cut, the ends running out along the cutter",
+                    lambda v: v in KEYWAY_FORMS, ", ".join(f'"{f}"' for f in KEYWAY_FORMS),
+                    default="rounded", required=False),
+        "corner_radius_mm": Key(float, "radius of the floor's two corners, mm (0: sharp)",
+                                *upto(1_000, "up to 1 m", closed_low=True), default=0.0,
+                                required=False),
+        "cutter_diameter_mm": Key(float, "the disc cutter's diameter, mm (form \"sled\"; "
+                                  "default four times the width)", *upto(2_000, "up to 2 m"),
+                                  required=False),
     },
     "material": {
         "name": Key(str, "material name", required=False, default="steel"),
@@ -267,7 +333,17 @@ SCHEMA: dict[str, dict[str, Key]] = {
 # from these and SCHEMA, and a test fails when the page and the schema disagree.
 TABLES: dict[str, Table] = {
     "": Table("Keys at the top of the file, before any table."),
-    "shaft": Table("The shaft's outer cylinder.", required=True),
+    "shaft": Table(
+        "The shaft: a plain round bar (`length_mm`, `diameter_mm`), a stepped profile "
+        "given by [[section]] tables (then this table may be left out), or the user's own "
+        "solid (`step_file`)."),
+    "section": Table(
+        "One section of a stepped shaft, from the left end: a cylinder or a cone, solid or "
+        "bored, with a fillet and a chamfer at the step to the next section. The sections "
+        "replace `[shaft] length_mm` and `diameter_mm`.", repeated=True),
+    "keyway": Table(
+        "A keyway milled into one section (width and depth default to DIN 6885-1 for the "
+        "section's diameter).", repeated=True),
     "material": Table("An isotropic, linear elastic material.", required=True),
     "grooves": Table(
         "Helical grooves cut into the shaft, one or two hands of the same pitch, profile "
