@@ -23,7 +23,9 @@ FLOATS = [math.nan, math.inf, -math.inf, 1e300, -1e300, "text", True, [1.0], {"a
 INTS = [2.5, math.nan, "text", True, -1, 10**12, [1]]
 STRINGS = [5, 1.5, True, ["a"]]
 LISTS = {"hands": ["right", [], ["up"], [1], ["left", "left"], ["right", "left", "right"]],
-         "orders": [1, [], [0], [-2], [1.5], ["one"]]}
+         "orders": [1, [], [0], [-2], [1.5], ["one"]],
+         "axis_from_mm": [1.0, [], [0.0, 1.0], [0, 0, 0, 1], ["a", "b", "c"]],
+         "axis_to_mm": [1.0, [], [0.0, 1.0], [0, 0, 0, 1], ["a", "b", "c"]]}
 
 
 def _toml_value(v) -> str:

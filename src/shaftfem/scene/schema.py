@@ -90,12 +90,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
                          "scene file, in the unit the file states (no [[section]], "
                          "[grooves] or [[keyway]] beside it)",
                          lambda v: v.strip() != "", "a file name", required=False),
-        "axis_from_mm": Key(("list", (int, float)), "a point on the shaft axis in the STEP "
+        "axis_from_mm": Key(("list", float), "a point on the shaft axis in the STEP "
                             "file's coordinates, [x, y, z] mm, at the left end's side "
                             "(default: the axis is along z through the middle of the "
                             "solid's bounding box)", lambda v: len(v) == 3,
                             "three numbers", required=False),
-        "axis_to_mm": Key(("list", (int, float)), "a second point on the axis, towards the "
+        "axis_to_mm": Key(("list", float), "a second point on the axis, towards the "
                           "right end, [x, y, z] mm", lambda v: len(v) == 3, "three numbers",
                           required=False),
     },

@@ -32,6 +32,10 @@ def _coerce(source: str, table: str, key: str, spec: Key, value: Any) -> Any:
         if not isinstance(value, str):
             raise SceneError(f"{at} = {value!r}: expected a string ({spec.doc})")
     elif isinstance(spec.kind, tuple) and spec.kind[0] == "list":
+        if spec.kind[1] is float and isinstance(value, list) and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                for v in value):
+            value = [float(v) for v in value]  # [0, 0, 1] means numbers too
         if not isinstance(value, list) or not all(isinstance(v, spec.kind[1]) for v in value):
             raise SceneError(f"{at} = {value!r}: expected a list ({spec.doc})")
     if spec.check is not None and not spec.check(value):
