@@ -17,8 +17,8 @@ import sys
 
 import numpy as np
 import pytest
-from references import rod_profile_hz, timoshenko_profile_hz
 
+from references import rod_profile_hz, timoshenko_profile_hz
 from shaftfem.errors import SceneError
 from shaftfem.scene.load import SceneText, load_scene
 
@@ -152,11 +152,11 @@ def test_tube_torsion_is_ct_over_2l_within_its_bound():
 def test_profile_volume_against_opencascade():
     """The half-section's volume by Pappus (cad.outline) against OpenCASCADE's volume of
     the revolved, filleted and chamfered solid."""
-    from shaftfem.cad.build import build_solid
-    from shaftfem.cad.outline import outline, revolved_volume
-
     import tempfile
     from pathlib import Path
+
+    from shaftfem.cad.build import build_solid
+    from shaftfem.cad.outline import outline, revolved_volume
 
     s = scene(STEPPED + "[shaft]\nend_chamfer_mm = 1.0\n").shaft
 
