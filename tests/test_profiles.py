@@ -14,6 +14,7 @@ import math
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -244,3 +245,24 @@ def test_a_file_that_is_not_step_is_refused(tmp_path):
     out = subprocess.run([sys.executable, "-m", "shaftfem", "modes", str(tmp_path / "s.toml")],
                          capture_output=True, text=True)
     assert out.returncode == 2 and "Traceback" not in out.stderr
+
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def test_a_step_file_from_another_cad_kernel_gives_the_parametric_frequencies():
+    """examples/keyed_stepped_shaft.step, written by build123d (tests/data/make_keyed_step.py)
+    from cylinders, edge fillets and chamfers and a slot: imported, its frequencies lie
+    within the two bounds of the same shaft's parametric scene."""
+    import shaftfem
+    from shaftfem.cad.step import placed
+
+    step = placed(load_scene(EXAMPLES / "step_shaft.toml"))
+    assert step.shaft.length == pytest.approx(0.300, abs=1e-9)
+    # what the import prints: build123d's own volume of its solid, 249135.62 mm^3
+    assert "300 mm long, 249136 mm^3, outer radius 12.5 to 17.5 mm" in step.shaft.step.summary
+    a = shaftfem.run_bounded(step)
+    b = shaftfem.run_bounded(scene(STEPPED + KEYWAY))
+    fa, fb = a.result.modes.frequencies, b.result.modes.frequencies
+    allowed = a.estimate.relative_error + b.estimate.relative_error
+    assert np.all(np.abs(fa / fb - 1) <= allowed), (fa / fb - 1, allowed)

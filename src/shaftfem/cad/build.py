@@ -37,6 +37,7 @@ from shaftfem.errors import GeometryError
 from shaftfem.scene.model import Grooves, Keyway, Shaft
 
 SECTIONS_PER_CELL = 13          # exact sections per half turn (15 degree steps)
+STEP_SUFFIXES = (".step", ".stp")
 
 
 # --------------------------------------------------------------------------
@@ -117,7 +118,7 @@ def _cell(occ, g: Grooves, radius: float, outline, z0: float, length: float,
     return body
 
 
-def _glue(gmsh, first: int, rest: list[int]) -> None:
+def glue(gmsh, first: int, rest: list[int]) -> None:
     """Join solids that touch only on faces they have in full (the cells, once each end
     is joined to its neighbour): OpenCASCADE's glue mode skips the face-face
     intersections that make a general fragment of helical B-spline faces slow."""
@@ -261,10 +262,10 @@ def _grooved(gmsh, shaft: Shaft, g: Grooves, plug) -> None:
     solids = ([start_plug] if start_plug is not None else []) + cells + (
         [end_plug] if end_plug is not None else [])
     if len(solids) > 1:
-        _glue(gmsh, solids[0], solids[1:])
+        glue(gmsh, solids[0], solids[1:])
 
 
-def _check_connected(gmsh) -> None:
+def check_connected(gmsh) -> None:
     """All volumes must form one body: every volume shares a face with another."""
     vols = [t for _, t in gmsh.model.getEntities(3)]
     if len(vols) < 2:
@@ -299,14 +300,15 @@ def build_solid(shaft: Shaft, grooves: Grooves | None, brep: Path) -> tuple[floa
         gmsh.model.occ.synchronize()
         vols = gmsh.model.getEntities(3)
         volume = sum(gmsh.model.occ.getMass(3, t) for _, t in vols)
-        _check_connected(gmsh)
+        check_connected(gmsh)
         gmsh.write(str(brep))
     return volume, len(vols)
 
 
 def write_solid(brep: Path | None, shaft: Shaft, paths: list[Path]) -> None:
     """The solid as STEP or BREP files (by suffix; for CAD and the workshop): from its
-    BREP, or, for a shaft without grooves, a plain cylinder built on the spot."""
+    BREP, or, for a shaft without grooves, a plain cylinder built on the spot. STEP in
+    mm, as it states; BREP, which states no unit, in m."""
     with session("export") as s, stdout_to_devnull(), \
             translated(GeometryError, "the solid could not be written as STEP/BREP"):
         gmsh = s.gmsh
@@ -316,4 +318,12 @@ def write_solid(brep: Path | None, shaft: Shaft, paths: list[Path]) -> None:
             gmsh.model.occ.importShapes(str(brep))
         gmsh.model.occ.synchronize()
         for path in paths:
-            gmsh.write(str(path))
+            if path.suffix.lower() not in STEP_SUFFIXES:
+                gmsh.write(str(path))
+        # OpenCASCADE's STEP writer states millimetres and writes the numbers as they are
+        steps = [p for p in paths if p.suffix.lower() in STEP_SUFFIXES]
+        if steps:
+            gmsh.model.occ.dilate(gmsh.model.getEntities(3), 0, 0, 0, 1e3, 1e3, 1e3)
+            gmsh.model.occ.synchronize()
+            for path in steps:
+                gmsh.write(str(path))

@@ -8,14 +8,18 @@ wrong axis is seen at once.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
+from shaftfem.cad.build import check_connected, glue
 from shaftfem.cad.session import session, stdout_to_devnull, translated
-from shaftfem.errors import SceneError
-from shaftfem.scene.model import StepSolid
+from shaftfem.errors import GeometryError, SceneError
+from shaftfem.scene.checks import check_seats
+from shaftfem.scene.model import Scene, StepSolid
+from shaftfem.scene.toml_reading import where
 
 
 @dataclass(frozen=True)
@@ -38,12 +42,12 @@ class StepImport:
                 f"to {self.outer_max * 1e3:.4g} mm")
 
 
-def import_step(step: StepSolid, where: str, brep: Path | None = None) -> StepImport:
+def import_step(step: StepSolid, key: str, brep: Path | None = None) -> StepImport:
     """Import the STEP file, check it is one solid, find its axis and place it along z
-    from z = 0 (written to `brep` when given). `where` names the scene key for errors
+    from z = 0 (written to `brep` when given). `key` names the scene key for errors
     (SceneError, exit 2: the file is the user's input)."""
     with session("step") as s, stdout_to_devnull(), \
-            translated(SceneError, f"{where} = {step.path!r}: OpenCASCADE could not read it"):
+            translated(SceneError, f"{key} = {step.path!r}: OpenCASCADE could not read it"):
         gmsh = s.gmsh
         gmsh.option.setString("Geometry.OCCTargetUnit", "M")
         try:
@@ -52,31 +56,41 @@ def import_step(step: StepSolid, where: str, brep: Path | None = None) -> StepIm
             gmsh.option.setString("Geometry.OCCTargetUnit", "")
         gmsh.model.occ.synchronize()
         vols = gmsh.model.getEntities(3)
-        if len(vols) != 1:
+        if not vols:
+            raise SceneError(f"{key} = {step.path!r}: holds no solid (only surfaces or "
+                             "curves): export the shaft as a closed solid")
+        if len(vols) > 1:  # a STEP file repeats the faces its solids share: one again
+            glue(gmsh, vols[0][1], [t for _, t in vols[1:]])
+            gmsh.model.occ.synchronize()
+            vols = gmsh.model.getEntities(3)
+        try:  # solids that share whole faces are one body (as shaftfem's own files are)
+            check_connected(gmsh)
+        except GeometryError:
             raise SceneError(
-                f"{where} = {step.path!r}: holds {len(vols)} solids; shaftfem takes one closed "
-                "solid (fuse the parts in CAD, or export the shaft alone)"
-                if vols else f"{where} = {step.path!r}: holds no solid (only surfaces or "
-                "curves): export the shaft as a closed solid")
-        volume = gmsh.model.occ.getMass(3, vols[0][1])
+                f"{key} = {step.path!r}: holds {len(vols)} solids that are not joined; "
+                "shaftfem takes one solid (fuse the parts in CAD, or export the shaft "
+                "alone)") from None
+        volume = sum(gmsh.model.occ.getMass(3, t) for _, t in vols)
         if not volume > 0:
-            raise SceneError(f"{where} = {step.path!r}: the solid has no volume ({volume:g} "
+            raise SceneError(f"{key} = {step.path!r}: the solid has no volume ({volume:g} "
                              "m^3): it is not closed")
-        axis = step.axis or _bounding_box_axis(gmsh, where, step.path)
+        axis = step.axis or _bounding_box_axis(gmsh, key, step.path)
         gmsh.model.occ.affineTransform(vols, _placing(gmsh, axis))
         gmsh.model.occ.synchronize()
-        xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
+        xyz = _surface_points(gmsh)
+        zmin, zmax = xyz[:, 2].min(), xyz[:, 2].max()
         gmsh.model.occ.translate(vols, 0, 0, -zmin)
         gmsh.model.occ.synchronize()
-        length = zmax - zmin
-        radii = _radii(gmsh, length)
+        length = float(zmax - zmin)
+        xyz[:, 2] -= zmin
+        radii = _radii(xyz, length)
         if brep is not None:
             gmsh.write(str(brep))
     return StepImport(axis=axis, length=length, volume=volume, outer_max=radii[0],
                       outer_min=radii[1], inner_min=radii[2])
 
 
-def _bounding_box_axis(gmsh, where: str, path: str
+def _bounding_box_axis(gmsh, key: str, path: str
                        ) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
     """The z direction through the middle of the solid's bounding box (in x and y); a
     solid longer across than along z has its axis elsewhere, and is refused."""
@@ -84,7 +98,7 @@ def _bounding_box_axis(gmsh, where: str, path: str
     across = max(xmax - xmin, ymax - ymin)
     if zmax - zmin < across:
         raise SceneError(
-            f"{where} = {path!r}: the solid is {across * 1e3:.4g} mm across but only "
+            f"{key} = {path!r}: the solid is {across * 1e3:.4g} mm across but only "
             f"{(zmax - zmin) * 1e3:.4g} mm along z, so its axis is not along z: give it with "
             "[shaft] axis_from_mm and axis_to_mm")
     x, y = (xmin + xmax) / 2, (ymin + ymax) / 2
@@ -105,21 +119,53 @@ def _placing(gmsh, axis) -> list[float]:
     return [*R[0], t[0], *R[1], t[1], *R[2], t[2]]
 
 
-def _radii(gmsh, length: float) -> tuple[float, float, float]:
-    """(largest outer radius, smallest outer radius, smallest radius) of the placed solid,
-    from a coarse surface mesh: the outer radius of each of 100 slices along z is its
-    largest node radius."""
-    xmin, ymin, _, xmax, ymax, _ = gmsh.model.getBoundingBox(-1, -1)
-    size = max(xmax - xmin, ymax - ymin, length) / 40
-    gmsh.option.setNumber("Mesh.MeshSizeMax", size)
-    gmsh.option.setNumber("Mesh.MeshSizeMin", size / 4)
-    gmsh.model.mesh.generate(2)
-    _, xyz, _ = gmsh.model.mesh.getNodes()
-    xyz = np.asarray(xyz).reshape(-1, 3)
-    gmsh.model.mesh.clear()
+def _surface_points(gmsh) -> np.ndarray:
+    """Points on the solid's edges (n, 3), 24 along each: exact on its boundary (where
+    OpenCASCADE's bounding box is widened by its tolerances), and an edge bounds every
+    face, so the ends and each step's outer radius are among them."""
+    out = []
+    for _, tag in gmsh.model.getEntities(1):
+        lo, hi = gmsh.model.getParametrizationBounds(1, tag)
+        t = np.linspace(lo[0], hi[0], 24)
+        out.append(np.asarray(gmsh.model.getValue(1, tag, t)).reshape(-1, 3))
+    return np.vstack(out)
+
+
+def _radii(xyz: np.ndarray, length: float) -> tuple[float, float, float]:
+    """(largest outer radius, smallest outer radius, smallest radius) of the placed solid's
+    surface points: the outer radius of each of 100 slices along z is its largest."""
     r = np.hypot(xyz[:, 0], xyz[:, 1])
     bins = np.minimum((xyz[:, 2] / max(length, 1e-300) * 100).astype(int), 99)
     outer = np.full(100, -np.inf)
     np.maximum.at(outer, bins, r)
     outer = outer[np.isfinite(outer)]
     return float(outer.max()), float(outer.min()), float(r.min())
+
+
+@functools.lru_cache(maxsize=8)
+def _imported(step: StepSolid, key: str) -> StepImport:
+    """One import per file and axis in a process (a bounded run places its scene twice)."""
+    return import_step(step, key)
+
+
+def placed(scene: Scene) -> Scene:
+    """A scene whose shaft is a STEP file, with the solid's length and largest diameter as
+    its import finds them (the summary kept for the run's header), and the checks that
+    need them done: the seats and the response point on the shaft, the element size not
+    above its length. Any other scene as it is."""
+    shaft = scene.shaft
+    if shaft.step is None or shaft.length > 0:
+        return scene
+    info = _imported(shaft.step, where(scene.source, "shaft", "step_file"))
+    step = replace(shaft.step, summary=info.summary(Path(shaft.step.path).name))
+    shaft = replace(shaft, length=info.length, diameter=2 * info.outer_max, step=step)
+    check_seats(scene.source, shaft, None, scene.supports, scene.attachments, scene.mesh)
+    if scene.mesh.size > shaft.length:
+        raise SceneError(f"{where(scene.source, 'mesh', 'element_size_mm')} = "
+                         f"{scene.mesh.size * 1e3:g}: must not exceed the shaft length "
+                         f"({shaft.length * 1e3:g} mm, as imported)")
+    point = scene.response_point
+    if point is not None and point > shaft.length:
+        raise SceneError(f"{where(scene.source, 'response', 'point_mm')} = {point * 1e3:g}: "
+                         f"must lie on the shaft, 0 to {shaft.length * 1e3:g} mm")
+    return replace(scene, shaft=shaft)

@@ -82,6 +82,24 @@ def installation_lines(result: ModalResult) -> list[str]:
     return out
 
 
+def shape_lines(shaft) -> list[str]:
+    """What the shaft is, where it is more than a plain bar: its sections, bores, keyways,
+    or what the import of its STEP file found."""
+    if shaft.step is not None:
+        return [shaft.step.summary]
+    if shaft.plain:
+        return []
+    parts = []
+    for s in shaft.profile:
+        d = (f"{s.diameter_start * 1e3:g}" if not s.conical
+             else f"{s.diameter_start * 1e3:g}-{s.diameter_end * 1e3:g}")
+        parts.append(f"{s.length * 1e3:g} x {d}" + (f"/{s.bore * 1e3:g}" if s.bore else ""))
+    keys = "".join(f", keyway {k.width * 1e3:g} x {k.depth * 1e3:g} x {k.length * 1e3:g} mm at "
+                   f"{k.start * 1e3:g}-{k.end * 1e3:g} mm" for k in shaft.keyways)
+    return [f"shaft: {len(shaft.profile)} section(s), length x diameter[/bore] "
+            f"{', '.join(parts)} mm{keys}"]
+
+
 def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     """The modes table as a designer reads it."""
     m, scene = result.modes, result.scene
@@ -92,6 +110,7 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
         f"scene {scene.name}: P{scene.mesh.order}, {m.n_dofs} DOFs, "
         f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm "
         f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factoriser}",
+        *shape_lines(scene.shaft),
         *installation_lines(result),
         f"{rigid}; Sturm check: {m.inertia_count} eigenvalues below "
         f"{m.inertia_shift_hz:.1f} Hz, as many as found",

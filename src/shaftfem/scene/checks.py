@@ -24,7 +24,8 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
              + [(f"attachment[{i}]", a) for i, a in enumerate(attachments)])
     L = shaft.length
     narrowest = max(SEAT_MIN, SEAT_PER_ELEMENT * mesh.size)
-    edges = [0.0, L] + ([] if grooves is None else [grooves.start, grooves.start + grooves.length])
+    edges = [0.0] + ([L] if L else [])  # an unplaced STEP shaft's length is not known yet
+    edges += [] if grooves is None else [grooves.start, grooves.start + grooves.length]
     edges += list(shaft.step_positions())
     for table, part in seats:
         lo, hi = part.seat
@@ -41,7 +42,7 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm ends "
                 f"within {SEAT_MIN / MM:g} mm of {near[0] / MM:g} mm (a shaft end, a step or the "
                 "grooved zone): put it exactly there or at least 1 mm away")
-        if lo < -1e-12 or hi > L + 1e-12:
+        if lo < -1e-12 or (hi > L + 1e-12 and shaft.step is None):
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm "
                 f"(width_mm = {part.width / MM:g}) must lie on the shaft, 0 to {L / MM:g} mm")

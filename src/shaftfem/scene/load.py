@@ -25,7 +25,7 @@ from shaftfem.scene.model import (
     Shaft,
     Support,
 )
-from shaftfem.scene.profile import imported_shaft, shaft_from_tables
+from shaftfem.scene.profile import shaft_from_tables
 from shaftfem.scene.schema import SCHEMA
 from shaftfem.scene.toml_reading import read_toml, split_parameter, validate_table, where
 
@@ -152,7 +152,6 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
         if "grooves" in data:
             raise SceneError(f"{source}: [grooves] beside [shaft] step_file: cut the grooves "
                              "in the CAD model instead")
-        shaft = imported_shaft(source, shaft)
     material = Material(name=mat_t["name"], youngs_modulus=mat_t["youngs_modulus_mpa"] * MPA,
                         poisson_ratio=mat_t["poisson_ratio"], density=mat_t["density_kg_m3"])
     grooves = None
@@ -223,7 +222,7 @@ def _mesh_settings(source: str, mesh_t: dict, shaft: Shaft, grooves: Grooves | N
                 f"{where(source, 'mesh', key)} = {value:g}: must not exceed "
                 f"element_size_mm = {size:g}"
             )
-    if size > shaft.length / MM:
+    if shaft.step is None and size > shaft.length / MM:
         raise SceneError(
             f"{where(source, 'mesh', 'element_size_mm')} = {size:g}: must not exceed the "
             f"shaft length ({shaft.length / MM:g} mm)"
@@ -235,7 +234,7 @@ def _mesh_settings(source: str, mesh_t: dict, shaft: Shaft, grooves: Grooves | N
 def _response_point(source: str, resp_t: dict, shaft: Shaft) -> float | None:
     """The response point, mm, on the shaft (None: the default)."""
     point = resp_t["point_mm"]
-    if point is not None and point > shaft.length / MM:
+    if point is not None and shaft.step is None and point > shaft.length / MM:
         raise SceneError(f"{where(source, 'response', 'point_mm')} = {point:g}: must lie on the "
                          f"shaft, 0 to {shaft.length / MM:g} mm")
     return point

@@ -238,18 +238,7 @@ def _step_shaft(source: str, t: dict, folder: Path | None) -> Shaft:
         axis = (a, b)
     step = StepSolid(path=str(path.resolve()), sha256=hashlib.sha256(data).hexdigest(),
                      axis=axis)
-    # length and diameter are the solid's: filled in once it is imported
+    # length and diameter are the solid's: the CAD stage fills them in when it imports
+    # the file (cad.step.placed), and checks the seats on them there
     return Shaft(length=0.0, diameter=0.0, step=step)
 
-
-def imported_shaft(source: str, shaft: Shaft) -> Shaft:
-    """A STEP shaft with its length and largest diameter, as its import finds them (the
-    import's summary kept for the run's header)."""
-    from dataclasses import replace
-
-    from shaftfem.cad.step import import_step
-
-    assert shaft.step is not None
-    info = import_step(shaft.step, where(source, "shaft", "step_file"))
-    step = replace(shaft.step, summary=info.summary(Path(shaft.step.path).name))
-    return replace(shaft, length=info.length, diameter=2 * info.outer_max, step=step)

@@ -170,7 +170,10 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int,
                  options: RunOptions = RunOptions()) -> Adapted:
     """Solve `scene` on meshes adapted until every frequency's bound is below `target`
     (fraction) or the next mesh would exceed `max_dofs`."""
+    from shaftfem.cad.step import placed
+
     watch = Stopwatch()
+    scene = placed(scene)
     check_order(scene)
     check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
     with watch.lap("cad"):

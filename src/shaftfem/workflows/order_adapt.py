@@ -89,11 +89,13 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
     bound is below `target` (fraction) or the next space would exceed `max_dofs`."""
     from shaftfem.cad.mesh import BYTES_PER_DOF, check_budget, estimate_dofs, mesh_shape
     from shaftfem.cad.solid import build_shape
+    from shaftfem.cad.step import placed
     from shaftfem.errors import BudgetError, SceneError
     from shaftfem.store import cache_dir
     from shaftfem.workflows.pipeline import Stopwatch, check_order
 
     watch = Stopwatch()
+    scene = placed(scene)
     check_order(scene)
     if scene.mesh.geometry_order == 3:
         # order 3 is the lowest that moves a cubic map rigidly, and the first rounds'

@@ -6,6 +6,7 @@ and keeps what each produced and how long it took.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -55,7 +56,7 @@ def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = No
     scaled alike), element order (1 to 4) and/or geometry order (2, 3)."""
     m = scene.mesh
     if size_mm is not None:
-        if not 0 < size_mm <= scene.shaft.length * 1e3:  # also refuses nan and inf
+        if not 0 < size_mm <= (scene.shaft.length * 1e3 or math.inf):  # also refuses nan
             raise SceneError(f"element size {size_mm:g} mm: must be > 0 and not exceed the "
                              f"shaft length ({scene.shaft.length * 1e3:g} mm)")
         k = size_mm * 1e-3 / m.size
@@ -99,8 +100,10 @@ def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
     what failed."""
     from shaftfem.cad.mesh import check_budget, mesh_shape
     from shaftfem.cad.solid import build_shape
+    from shaftfem.cad.step import placed
 
     watch = Stopwatch()
+    scene = placed(scene)
     check_order(scene)
     check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
     options.say("building the shaft's solid (CAD)")
