@@ -23,7 +23,7 @@ def test_glued_cells_make_the_solid_and_mesh_of_a_general_fragment(
     shaft = Shaft(length=start + 0.075 + 0.02, diameter=0.032)
     settings = MeshSettings(size=0.008, groove_size=0.004, edge_size=0.004, order=2)
     glued = build.build_solid(shaft, g, tmp_path / "glued.brep")
-    monkeypatch.setattr(build, "_glue", _general_fragment)
+    monkeypatch.setattr(build, "glue", _general_fragment)
     general = build.build_solid(shaft, g, tmp_path / "general.brep")
     assert glued == general       # volume (m^3) to the last bit, and the volume count
     a = mesh_solid(tmp_path / "glued.brep", shaft, g, settings)

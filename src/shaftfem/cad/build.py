@@ -189,18 +189,19 @@ def _keyway_tool(occ, k: Keyway, radius: float) -> int:
     above the surface, turned to the keyway's angle."""
     floor, top = radius - k.depth, radius + TOOL_OVERSHOOT
     w = k.width
-    if k.form == "rounded":
+    if k.form == "rounded":   # a slot: round ends of the cutter's radius w / 2
         a = w / 2
-        parts = [occ.addBox(floor, -a, k.start + a, top - floor, w, k.length - w)]
-        parts += [occ.addCylinder(floor, 0, z, top - floor, 0, 0, a)
-                  for z in (k.start + a, k.end - a)]
-    else:
+        ends = _ends(k.start + a, k.end - a)   # one, where the keyway is a round hole
+        parts = [occ.addCylinder(floor, 0, z, top - floor, 0, 0, a) for z in ends]
+    else:                     # the disc cutter's path: its ends run out at its radius
         run, rc = runout(k, radius), k.cutter_radius
-        parts = [occ.addBox(floor, -w / 2, k.start + run, top - floor, w, k.length - 2 * run)]
-        parts += [occ.addCylinder(floor + rc, -w / 2, z, 0, w, 0, rc)
-                  for z in (k.start + run, k.end - run)]
-    tool, _ = occ.fuse([(3, parts[0])], [(3, t) for t in parts[1:]])
-    tag = tool[0][1]
+        ends = _ends(k.start + run, k.end - run)
+        parts = [occ.addCylinder(floor + rc, -w / 2, z, 0, w, 0, rc) for z in ends]
+    if len(ends) == 2:
+        parts.append(occ.addBox(floor, -w / 2, ends[0], top - floor, w, ends[1] - ends[0]))
+    tag = parts[0]
+    if len(parts) > 1:
+        tag = occ.fuse([(3, parts[0])], [(3, t) for t in parts[1:]])[0][0][1]
     if k.corner_radius > 0:
         occ.synchronize()
         eps = 1e-7
@@ -209,6 +210,12 @@ def _keyway_tool(occ, k: Keyway, radius: float) -> int:
         tag = occ.fillet([tag], edges, [k.corner_radius])[0][1]
     occ.rotate([(3, tag)], 0, 0, 0, 0, 0, 1, k.angle)
     return tag
+
+
+def _ends(z0: float, z1: float) -> list[float]:
+    """The centres of a keyway cutter's two end positions, one where they meet (to 1e-9 m:
+    a box between them thinner than that fails in OpenCASCADE)."""
+    return [0.5 * (z0 + z1)] if z1 - z0 < 1e-9 else [z0, z1]
 
 
 def _slice(occ, body: int, z0: float, z1: float, radius: float) -> int:

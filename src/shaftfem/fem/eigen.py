@@ -57,7 +57,7 @@ START_SEED = 2018
 # inertia count is taken. A skipped mode is retried INERTIA_RETRIES times with a
 # larger Krylov space.
 EXTRA_RITZ = 2
-INERTIA_RETRIES = 1
+INERTIA_RETRIES = 2
 # ARPACK's tolerance: its Ritz values need not be final, the subspace and Davidson
 # steps after it bring the residuals to ~1e-9 (tolerance 0 took 7 more solves on
 # the paper's shaft for the same final residuals; 1e-4 left 6e-8).
@@ -174,27 +174,32 @@ def search(p: Problem, factor: ShiftedFactor, max_frequency: float | None,
     """Lanczos about sigma < 0, proven by the inertia at a gap above the pairs found;
     repeated from another start with a Krylov space twice as large if a mode was
     skipped, and refused if the count still differs."""
-    k, ncv = p.k, settings.ncv
+    k, ncv, extra = p.k, settings.ncv, EXTRA_RITZ
     for attempt in range(INERTIA_RETRIES + 1):
         pairs, k, ncv_used = _enough_pairs(p, factor, k, max_frequency, settings.tol, ncv,
-                                           attempt)
+                                           attempt, extra)
         good, found, s_top = verified_gap(pairs, p.r + k, p.zero, p.r)
         counted = count_below(factor, s_top) if found else 0
         if counted == found >= p.r + k:
             return EigenSolution(pairs=good.first(p.r + k), scale=p.scale,
                                  factoriser=factor.backend, inertia_count=counted,
                                  inertia_shift=s_top)
-        ncv = min(p.K.shape[0] - p.r - 1, 2 * ncv_used)
+        # a skipped mode is most often the partner of a repeated frequency (a bending
+        # pair, exactly repeated on a symmetric mesh): a wider search asks for more pairs
+        # as well as a larger space
+        extra += max(counted - found, 1) + EXTRA_RITZ
+        ncv = min(p.K.shape[0] - p.r - 1, max(2 * ncv_used, 2 * (p.r + k + extra) + 1))
         factor.shift_to(p.sigma)
     raise SolverError(unproven(pairs, found, counted, s_top, p.r, ncv_used, p.zero))
 
 
 def _enough_pairs(p: Problem, factor: ShiftedFactor, k: int, max_frequency: float | None,
-                  tol: float, ncv: int | None, attempt: int) -> tuple[Ritz, int, int]:
-    """The k lowest pairs and a few more (and k, the Krylov space's size); with a
+                  tol: float, ncv: int | None, attempt: int, extra: int = EXTRA_RITZ
+                  ) -> tuple[Ritz, int, int]:
+    """The k lowest pairs and `extra` more (and k, the Krylov space's size); with a
     frequency limit, k doubled until a pair lies above it."""
     while True:
-        pairs, ncv_used = _lanczos(p, factor, k + EXTRA_RITZ, p.sigma, tol, ncv, attempt)
+        pairs, ncv_used = _lanczos(p, factor, k + extra, p.sigma, tol, ncv, attempt)
         if max_frequency is None or pairs.lam[p.r + k - 1] > (2 * math.pi * max_frequency) ** 2:
             return pairs, k, ncv_used
         if k >= p.k_max:

@@ -201,6 +201,12 @@ def _keyway(source: str, i: int, raw: object, shaft: Shaft) -> Keyway:
         if cutter / 2 <= depth:
             raise SceneError(f"{where(source, table, 'cutter_diameter_mm')} = {cutter:g}: the "
                              f"cutter's radius must exceed the depth ({depth:g} mm)")
+        # the cutter's chord at the surface: a disc-cut keyway is at least this long
+        chord = 2 * math.sqrt(cutter * depth - depth * depth)
+        if t["length_mm"] < chord:
+            raise SceneError(f"{where(source, table, 'length_mm')} = {t['length_mm']:g}: a "
+                             f"disc-cut keyway {depth:g} mm deep with a {cutter:g} mm cutter is "
+                             f"at least {chord:.3g} mm long (the cutter's chord at the surface)")
     elif cutter is not None:
         raise SceneError(f"{where(source, table, 'cutter_diameter_mm')} = {cutter:g}: only "
                          "with form = \"sled\"")
