@@ -51,6 +51,11 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm "
                 f"crosses the shoulder at {steps[0] / MM:g} mm; a seat lies on one section")
+        k = shaft.section_at(part.position)
+        if k is not None and shaft.profile[k].conical:
+            raise SceneError(
+                f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm lies on "
+                f"section {k + 1}, a cone; seats go on cylindrical sections")
         if grooves is not None and lo < grooves.start + grooves.length and hi > grooves.start:
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm lies "
@@ -80,12 +85,13 @@ def check_grooves(source: str, g: dict, shaft: Shaft) -> Grooves:
     k = shaft.section_at((start + g["grooved_length_mm"] / 2) * MM)
     section = shaft.profile[k or 0]
     radius, bore = section.diameter_start / 2 / MM, section.bore / 2 / MM
-    if len(shaft.profile) > 1 and k is not None:
-        z0, z1 = (z / MM for z in shaft.section_bounds()[k])
+    if k is not None and not shaft.plain:
+        z0, z1 = (z / MM for z in shaft.plain_span(k))
         if start < z0 - 1e-9 or start + g["grooved_length_mm"] > z1 + 1e-9 or section.conical:
             raise fail("grooved_length_mm", f"the grooved zone {start:g} to "
                        f"{start + g['grooved_length_mm']:g} mm must lie within one cylindrical "
-                       f"section (section {k + 1} runs {z0:g} to {z1:g} mm"
+                       f"section, clear of its fillets and chamfers (section {k + 1}: "
+                       f"{z0:g} to {z1:g} mm"
                        f"{', a cone' if section.conical else ''})")
         if any(key.start < (start + g["grooved_length_mm"]) * MM and key.end > start * MM
                for key in shaft.keyways):

@@ -117,6 +117,19 @@ class Shaft:
         """z (m) of each change of section: the shoulders and the ends of cones."""
         return tuple(z1 for _, z1 in self.section_bounds()[:-1])
 
+    def plain_span(self, i: int) -> tuple[float, float]:
+        """(z0, z1) of section i less what the fillets and chamfers at its ends take, m:
+        at a step the fillet lies on the smaller section, the chamfer on the larger."""
+        prof, (z0, z1) = self.profile, self.section_bounds()[i]
+        left = right = self.end_chamfer
+        if i > 0:
+            step = prof[i - 1]
+            left = step.chamfer if step.diameter_end < prof[i].diameter_start else step.fillet
+        if i < len(prof) - 1:
+            step = prof[i]
+            right = step.fillet if step.diameter_end < prof[i + 1].diameter_start else step.chamfer
+        return z0 + left, z1 - right
+
     def section_at(self, z: float) -> int | None:
         """The index of the section holding z (the left one at a step; None for STEP)."""
         for i, (z0, z1) in enumerate(self.section_bounds()):

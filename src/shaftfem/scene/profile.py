@@ -160,13 +160,13 @@ def _keyway(source: str, i: int, raw: object, shaft: Shaft) -> Keyway:
     centre, length = t["position_mm"] * MM, t["length_mm"] * MM
     start, end = centre - length / 2, centre + length / 2
     k = shaft.section_at(centre)
-    bounds = shaft.section_bounds()
-    if k is None or start < bounds[k][0] - 1e-12 or end > bounds[k][1] + 1e-12 or (
-            start < -1e-12 or end > shaft.length + 1e-12):
+    spans = [shaft.plain_span(i) for i in range(len(shaft.profile))]
+    if k is None or start < spans[k][0] - 1e-12 or end > spans[k][1] + 1e-12:
         raise SceneError(
             f"{where(source, table, 'position_mm')} = {t['position_mm']:g}: the keyway "
-            f"{start / MM:g} to {end / MM:g} mm must lie within one section (sections: "
-            + ", ".join(f"{a / MM:g}-{b / MM:g}" for a, b in bounds) + " mm)")
+            f"{start / MM:g} to {end / MM:g} mm must lie within one section, clear of its "
+            "fillets and chamfers (sections: "
+            + ", ".join(f"{a / MM:g}-{b / MM:g}" for a, b in spans) + " mm)")
     s = shaft.profile[k]
     if s.conical:
         raise SceneError(f"{where(source, table, 'position_mm')} = {t['position_mm']:g}: "
