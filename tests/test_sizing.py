@@ -129,7 +129,8 @@ def test_the_scene_shaft_and_grooves_are_checked_against_the_sizing(tmp_path, ca
     f = tmp_path / "thin.toml"
     f.write_text(paper.replace("diameter_mm = 32.0", "diameter_mm = 20.0"))
     assert main(["size", str(f)]) == 1
-    assert "[shaft] diameter_mm = 20 is below the D = 24 mm" in capsys.readouterr().out
+    assert "diameter 20 mm (the grooved or smallest section's) is below the D = 24 mm" in (
+        capsys.readouterr().out)
     f.write_text(paper.replace("driven_teeth = 40", "driven_teeth = 30"))
     assert main(["size", str(f)]) == 1
     assert "[grooves] pitch_mm = 80 differs from P" in capsys.readouterr().out

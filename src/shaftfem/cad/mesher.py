@@ -42,6 +42,10 @@ HIGH_ORDER_OPTIMISERS = ("HighOrderElastic", "HighOrder")
 STEP_CURVATURE = 12
 
 # Distance (in units of the size jump) over which the element size grows from the
+# groove size on the groove and feature faces to the size away from them.
+FACE_GRADING = 2.5
+
+# Distance (in units of the size jump) over which the element size grows from the
 # edge size to the groove size: 1 means each element is about twice its inner neighbour.
 EDGE_GRADING = 1.0
 
@@ -95,33 +99,35 @@ def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], l
     return faces, edges, longest * 6 / 5
 
 
+def _near(gmsh, entities: str, tags: list[int], sampling: int, small: float, large: float,
+          grading: float) -> int:
+    """A size field: `small` within small / 2 of the entities (`entities`: gmsh's
+    "SurfacesList" or "CurvesList"), growing linearly to `large` over `grading` times
+    the difference."""
+    f = gmsh.model.mesh.field
+    d = f.add("Distance")
+    f.setNumbers(d, entities, tags)
+    f.setNumber(d, "Sampling", sampling)
+    t = f.add("Threshold")
+    f.setNumber(t, "InField", d)
+    f.setNumber(t, "SizeMin", small)
+    f.setNumber(t, "SizeMax", large)
+    f.setNumber(t, "DistMin", 0.5 * small)
+    f.setNumber(t, "DistMax", 0.5 * small + grading * (large - small))
+    return t
+
+
 def _groove_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> list[int]:
     """Size fields: groove_size at the groove faces, edge_size at the floor curves."""
-    f = gmsh.model.mesh.field
     faces, edges, longest = _groove_entities(gmsh, shaft, grooves)
     fields = []
     if faces:
-        d = f.add("Distance")
-        f.setNumbers(d, "SurfacesList", faces)
-        f.setNumber(d, "Sampling", 60)
-        t = f.add("Threshold")
-        f.setNumber(t, "InField", d)
-        f.setNumber(t, "SizeMin", s.groove_size)
-        f.setNumber(t, "SizeMax", s.size)
-        f.setNumber(t, "DistMin", 0.5 * s.groove_size)
-        f.setNumber(t, "DistMax", 0.5 * s.groove_size + 2.5 * (s.size - s.groove_size))
-        fields.append(t)
+        fields.append(_near(gmsh, "SurfacesList", faces, 60, s.groove_size, s.size,
+                            FACE_GRADING))
     if edges and s.edge_size < s.groove_size:
-        d = f.add("Distance")
-        f.setNumbers(d, "CurvesList", edges)
-        f.setNumber(d, "Sampling", max(20, math.ceil(2 * longest / s.edge_size)))
-        t = f.add("Threshold")
-        f.setNumber(t, "InField", d)
-        f.setNumber(t, "SizeMin", s.edge_size)
-        f.setNumber(t, "SizeMax", s.groove_size)
-        f.setNumber(t, "DistMin", 0.5 * s.edge_size)
-        f.setNumber(t, "DistMax", 0.5 * s.edge_size + EDGE_GRADING * (s.groove_size - s.edge_size))
-        fields.append(t)
+        fields.append(_near(gmsh, "CurvesList", edges,
+                            max(20, math.ceil(2 * longest / s.edge_size)), s.edge_size,
+                            s.groove_size, EDGE_GRADING))
     return fields
 
 
@@ -161,16 +167,8 @@ def _profile_fields(gmsh, shaft: Shaft, s: MeshSettings) -> list[int]:
     samples = {t: _sample(gmsh, 2, t) for _, t in gmsh.model.getEntities(2)}
     faces = feature_faces(shaft, samples)
     if faces and s.groove_size < s.size:
-        d = f.add("Distance")
-        f.setNumbers(d, "SurfacesList", faces)
-        f.setNumber(d, "Sampling", 40)
-        t = f.add("Threshold")
-        f.setNumber(t, "InField", d)
-        f.setNumber(t, "SizeMin", s.groove_size)
-        f.setNumber(t, "SizeMax", s.size)
-        f.setNumber(t, "DistMin", 0.5 * s.groove_size)
-        f.setNumber(t, "DistMax", 0.5 * s.groove_size + 2.5 * (s.size - s.groove_size))
-        fields.append(t)
+        fields.append(_near(gmsh, "SurfacesList", faces, 40, s.groove_size, s.size,
+                            FACE_GRADING))
     return fields
 
 

@@ -144,15 +144,43 @@ def size_screw(s: dict) -> SizingResult:
     return SizingResult(quantities=q, violations=bad)
 
 
+def keyways_in_one_section(shaft) -> int:
+    """The most keyways that share an axial position (Table 1 counts the keyways of one
+    cross-section), at most 2."""
+    cuts = shaft.keyways
+    most = max((sum(1 for b in cuts if b.start < a.end and a.start < b.end) for a in cuts),
+               default=0)
+    return min(most, 2)
+
+
+def sized_diameter(scene: Scene) -> float:
+    """The diameter the sizing applies to, m: the grooved section's, else the smallest
+    outer diameter of the profile."""
+    shaft = scene.shaft
+    if scene.grooves is not None and shaft.profile:
+        k = shaft.section_at(scene.grooves.start + scene.grooves.length / 2) or 0
+        return shaft.profile[k].diameter_start
+    if shaft.profile:
+        return min(min(s.diameter_start, s.diameter_end) for s in shaft.profile)
+    return shaft.diameter
+
+
 def size_from_scene(scene: Scene) -> SizingResult:
     """The sizing, and whether the scene's shaft and grooves agree with it."""
     if scene.sizing is None:
         raise SceneError(f"{scene.source}: no [sizing] table: `shaftfem size` needs one")
-    r = size_screw(scene.sizing)
-    diameter, need = scene.shaft.diameter * 1e3, r["D"]
+    sizing, drawn = dict(scene.sizing), keyways_in_one_section(scene.shaft)
+    if scene.shaft.keyways:   # the geometry's keyways, not the table's count, size the shaft
+        sizing["keyways"] = drawn
+    r = size_screw(sizing)
+    if scene.shaft.keyways and scene.sizing["keyways"] not in (0, drawn):
+        r.violations.append(f"[sizing] keyways = {scene.sizing['keyways']} but the shaft has "
+                            f"{drawn} in one section ([[keyway]]): sized with {drawn}")
+    diameter, need = sized_diameter(scene) * 1e3, r["D"]
     if diameter < need - 1e-9:
-        r.violations.append(f"[shaft] diameter_mm = {diameter:g} is below the D = {need:g} mm "
-                            "the duty needs (equations 1-9)")
+        r.violations.append(f"the shaft's diameter {diameter:g} mm (the grooved or smallest "
+                            f"section's) is below the D = {need:g} mm the duty needs "
+                            "(equations 1-9)")
     if scene.grooves is not None:
         pitch, gears = scene.grooves.pitch * 1e3, r["P"]
         if abs(pitch / gears - 1) > 1e-6:
