@@ -266,3 +266,41 @@ def test_a_step_file_from_another_cad_kernel_gives_the_parametric_frequencies():
     fa, fb = a.result.modes.frequencies, b.result.modes.frequencies
     allowed = a.estimate.relative_error + b.estimate.relative_error
     assert np.all(np.abs(fa / fb - 1) <= allowed), (fa / fb - 1, allowed)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("text", [STEPPED + KEYWAY, TUBE], ids=["keyed stepped", "tube"])
+def test_the_p2_bound_holds_against_order_4_on_the_same_mesh(text):
+    """Each P2 frequency's interval [f (1 - bound), f] holds the order-4 frequency of the
+    same mesh (a space holding P2's: nearer the solid's own frequencies, from above)."""
+    import shaftfem
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
+
+    p2 = shaftfem.run_bounded(scene(text))
+    p4 = run_modes(with_mesh(p2.result.scene, order=4))
+    f, f4 = p2.result.modes.frequencies, p4.modes.frequencies
+    bound = p2.estimate.relative_error
+    assert np.all(f4 <= f * (1 + 1e-9)), f4 / f - 1
+    assert np.all(f4 >= f * (1 - bound)), (f4 / f - 1, bound)
+
+
+@pytest.mark.slow
+def test_the_papers_shaft_through_step_gives_its_frequencies(tmp_path):
+    """The STEP that shaftfem writes of the paper's shaft, imported back: the paper's
+    frequencies within the two bounds (a different mesh: sizes from curvature, down to
+    half the 4 mm edge size, no groove fields)."""
+    import shaftfem
+    from shaftfem.cad.build import write_solid
+
+    paper = shaftfem.run_bounded(load_scene("paper2018"))
+    write_solid(paper.result.shape.brep, paper.result.scene.shaft, [tmp_path / "shaft.step"])
+    (tmp_path / "s.toml").write_text(
+        '[shaft]\nstep_file = "shaft.step"\n[mesh]\nelement_size_mm = 8.0\n'
+        'groove_element_size_mm = 4.0\nedge_element_size_mm = 4.0\n'
+        + MATERIAL.replace("210000.0", "211000.0").replace("0.3\n", "0.277\n")
+        .replace("7850.0", "7870.0"))
+    back = shaftfem.run_bounded(load_scene(tmp_path / "s.toml"))
+    assert "545 mm long" in back.result.scene.shaft.step.summary
+    fa, fb = back.result.modes.frequencies, paper.result.modes.frequencies
+    allowed = back.estimate.relative_error + paper.estimate.relative_error
+    assert np.all(np.abs(fa / fb - 1) <= allowed), (fa / fb - 1, allowed)

@@ -327,10 +327,13 @@ def write_solid(brep: Path | None, shaft: Shaft, paths: list[Path]) -> None:
         for path in paths:
             if path.suffix.lower() not in STEP_SUFFIXES:
                 gmsh.write(str(path))
-        # OpenCASCADE's STEP writer states millimetres and writes the numbers as they are
+        # the model is in m; OpenCASCADE's STEP writer states mm and converts to it from
+        # the unit it is told (its setting outlives the option: say it every time)
         steps = [p for p in paths if p.suffix.lower() in STEP_SUFFIXES]
         if steps:
-            gmsh.model.occ.dilate(gmsh.model.getEntities(3), 0, 0, 0, 1e3, 1e3, 1e3)
-            gmsh.model.occ.synchronize()
-            for path in steps:
-                gmsh.write(str(path))
+            gmsh.option.setString("Geometry.OCCTargetUnit", "M")
+            try:
+                for path in steps:
+                    gmsh.write(str(path))
+            finally:
+                gmsh.option.setString("Geometry.OCCTargetUnit", "")

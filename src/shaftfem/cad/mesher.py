@@ -37,6 +37,10 @@ HUB_SIZE = 0.5
 # process on this geometry (an uncaught C++ exception).
 HIGH_ORDER_OPTIMISERS = ("HighOrderElastic", "HighOrder")
 
+# A bored section's elements are at most this many times its wall thickness: a 1.5 mm
+# wall under 12 mm elements left gmsh no valid surface mesh (its faces intersected).
+WALL_ELEMENTS = 2.0
+
 # Elements per full turn of a curved face of a STEP solid (gmsh's size from curvature):
 # a 1 mm fillet gets elements of about 0.5 mm, a 32 mm shaft's surface about 8 mm ones.
 STEP_CURVATURE = 12
@@ -100,10 +104,11 @@ def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], l
 
 
 def _near(gmsh, entities: str, tags: list[int], sampling: int, small: float, large: float,
-          grading: float) -> int:
+          grading: float, local: bool = False) -> int:
     """A size field: `small` within small / 2 of the entities (`entities`: gmsh's
     "SurfacesList" or "CurvesList"), growing linearly to `large` over `grading` times
-    the difference."""
+    the difference; beyond that `large` everywhere, or, `local`, no size at all (another
+    field's)."""
     f = gmsh.model.mesh.field
     d = f.add("Distance")
     f.setNumbers(d, entities, tags)
@@ -114,6 +119,8 @@ def _near(gmsh, entities: str, tags: list[int], sampling: int, small: float, lar
     f.setNumber(t, "SizeMax", large)
     f.setNumber(t, "DistMin", 0.5 * small)
     f.setNumber(t, "DistMax", 0.5 * small + grading * (large - small))
+    if local:
+        f.setNumber(t, "StopAtDistMax", 1)
     return t
 
 
@@ -148,15 +155,22 @@ def _hub_fields(gmsh, shaft: Shaft, hubs: tuple[tuple[float, float], ...],
 
 
 def _profile_fields(gmsh, shaft: Shaft, s: MeshSettings) -> list[int]:
-    """Size fields of a stepped shaft: each section's elements at most a third of its
-    diameter, and `groove_size` on the faces of its features (fillets, chamfers,
-    keyways), graded back to the size over 2.5 times the difference."""
-    from shaftfem.cad.outline import feature_faces
+    """Size fields of a stepped shaft: each section's elements the size times its
+    diameter over the largest (in proportion to the size, so that a mesh asked 1.5 times
+    coarser is that everywhere, as the bound's second mesh must be; in a bored section
+    at most WALL_ELEMENTS times its wall), `groove_size` on the faces of its features
+    (fillets, chamfers, keyways), graded back to the size over 2.5 times the difference,
+    and `edge_size` along its sharp concave edges (a keyway's floor edges, a step without
+    a fillet), where the stress is singular, as at the grooves' floor edges."""
+    from shaftfem.cad.outline import feature_faces, singular_edges
 
     f = gmsh.model.mesh.field
     fields = []
     for sec, (z0, z1) in zip(shaft.profile, shaft.section_bounds()):
-        local = min(s.size, min(sec.diameter_start, sec.diameter_end) / 3)
+        thinnest = min(sec.diameter_start, sec.diameter_end)
+        local = s.size * thinnest / (2 * shaft.radius)
+        if sec.bore:   # a thin wall needs elements of its thickness to be meshed at all
+            local = min(local, WALL_ELEMENTS * (thinnest - sec.bore) / 2)
         if local < s.size:
             b = f.add("Box")
             big = 2 * shaft.radius
@@ -169,6 +183,14 @@ def _profile_fields(gmsh, shaft: Shaft, s: MeshSettings) -> list[int]:
     if faces and s.groove_size < s.size:
         fields.append(_near(gmsh, "SurfacesList", faces, 40, s.groove_size, s.size,
                             FACE_GRADING))
+    curves = {t: _sample(gmsh, 1, t, 5) for _, t in gmsh.model.getEntities(1)}
+    edges = singular_edges(shaft, curves)
+    if edges and s.edge_size < s.groove_size:
+        longest = max(float(np.sum(np.linalg.norm(np.diff(curves[t], axis=0), axis=1)))
+                      for t in edges) * 6 / 5
+        fields.append(_near(gmsh, "CurvesList", edges,
+                            max(20, math.ceil(2 * longest / s.edge_size)), s.edge_size,
+                            s.groove_size, EDGE_GRADING, local=True))
     return fields
 
 

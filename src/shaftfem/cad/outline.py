@@ -181,3 +181,26 @@ def _in_keyway(k: Keyway, xyz: np.ndarray, tol: float) -> bool:
     y = -s * xyz[:, 0] + c * xyz[:, 1]
     return bool(np.all((xyz[:, 2] > k.start - tol) & (xyz[:, 2] < k.end + tol)
                        & (np.abs(y) < k.width / 2 + tol) & (x > 0)))
+
+
+def singular_edges(shaft: Shaft, samples: dict[int, np.ndarray], tol: float = 1e-6) -> list[int]:
+    """The curves (tag -> sampled points (n, 3), m) along which the stress is singular:
+    the concave edges of the profile, where a step has no fillet, and a keyway's floor
+    edges (all of its curves below the shaft's surface; its rim's edges are convex)."""
+    rings = []  # (z, r) of each sharp concave corner of a step
+    prof, bounds = shaft.profile, shaft.section_bounds()
+    for s, nxt, (_, z1) in zip(prof, prof[1:], bounds):
+        if not s.fillet and s.diameter_end != nxt.diameter_start:
+            rings.append((z1, min(s.diameter_end, nxt.diameter_start) / 2))
+    out = []
+    for tag, xyz in samples.items():
+        r, z = np.hypot(xyz[:, 0], xyz[:, 1]), xyz[:, 2]
+        if any(np.all((np.abs(z - zc) < tol) & (np.abs(r - rc) < tol)) for zc, rc in rings):
+            out.append(tag)
+            continue
+        for k in shaft.keyways:
+            radius = shaft.radius_at(0.5 * (k.start + k.end)) or 0.0
+            if _in_keyway(k, xyz, tol) and np.all(r < radius - tol):
+                out.append(tag)
+                break
+    return out

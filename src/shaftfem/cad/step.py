@@ -75,7 +75,7 @@ def import_step(step: StepSolid, key: str, brep: Path | None = None) -> StepImpo
             raise SceneError(f"{key} = {step.path!r}: the solid has no volume ({volume:g} "
                              "m^3): it is not closed")
         axis = step.axis or _bounding_box_axis(gmsh, key, step.path)
-        gmsh.model.occ.affineTransform(vols, _placing(gmsh, axis))
+        _place(gmsh, vols, axis)
         gmsh.model.occ.synchronize()
         xyz = _surface_points(gmsh)
         zmin, zmax = xyz[:, 2].min(), xyz[:, 2].max()
@@ -105,18 +105,19 @@ def _bounding_box_axis(gmsh, key: str, path: str
     return (x, y, zmin), (x, y, zmax)
 
 
-def _placing(gmsh, axis) -> list[float]:
-    """The rigid motion (row-major 3x4) taking the axis onto z through the origin."""
+def _place(gmsh, vols, axis) -> None:
+    """Move the solid rigidly so that the axis lies on z through the origin: a translation
+    and a rotation (exact; an affine map would turn every face into a B-spline)."""
     a, b = np.asarray(axis[0], float), np.asarray(axis[1], float)
     u = (b - a) / np.linalg.norm(b - a)
-    # an orthonormal frame (e1, e2, u): e1 from the coordinate axis least along u
-    helper = np.eye(3)[int(np.argmin(np.abs(u)))]
-    e1 = np.cross(helper, u)
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(u, e1)
-    R = np.vstack([e1, e2, u])
-    t = -R @ a
-    return [*R[0], t[0], *R[1], t[1], *R[2], t[2]]
+    occ = gmsh.model.occ
+    occ.translate(vols, *(-a))
+    turn = np.cross(u, [0.0, 0.0, 1.0])
+    angle = float(np.arctan2(np.linalg.norm(turn), u[2]))
+    if angle > 1e-12:
+        about = turn / np.linalg.norm(turn) if np.linalg.norm(turn) > 1e-12 else np.array(
+            [1.0, 0.0, 0.0])   # u along -z: half a turn about x
+        occ.rotate(vols, 0, 0, 0, *about, angle)
 
 
 def _surface_points(gmsh) -> np.ndarray:

@@ -95,31 +95,73 @@ def render_geometry(result: ModalResult, path: str | Path) -> Path:
     p.set_background("white")
     p.add_mesh(surf, color="#b0b8c0", smooth_shading=True, specular=0.4)
     _draw_seats(pv, p, result.scene)
-    p.add_text(f"{result.scene.name}: {result.scene.shaft.length * 1e3:g} x "
-               f"{result.scene.shaft.diameter * 1e3:g} mm", font_size=12, color="black")
-    length = result.scene.shaft.length * 1e3
-    p.camera_position = [(0.0, -2.2 * length, length / 2), (0.0, 0.0, length / 2), (1, 0, 0)]
-    p.camera.elevation = 20
-    p.reset_camera()
-    p.camera.zoom(2.3)
+    shaft = result.scene.shaft
+    p.add_text(f"{result.scene.name}: {shaft.length * 1e3:g} x {shaft.diameter * 1e3:g} mm",
+               font_size=12, color="black")
+    length = shaft.length * 1e3
+    if shaft.plain:
+        p.camera_position = [(0.0, -2.2 * length, length / 2), (0.0, 0.0, length / 2),
+                             (1, 0, 0)]
+        p.camera.elevation = 20
+        p.reset_camera()
+        p.camera.zoom(2.3)
+    else:   # a profile: seen square from the side, its sections dimensioned
+        _dimensions(pv, p, shaft)
+        R = shaft.radius * 1e3   # the drawing spans x = -4 R (dimensions) to 2.3 R (labels)
+        p.camera_position = [(-0.85 * R, -3 * length, length / 2),
+                             (-0.85 * R, 0.0, length / 2), (1, 0, 0)]
+        p.enable_parallel_projection()
+        p.camera.parallel_scale = max(0.58 * length * GEOMETRY_SIZE[1] / GEOMETRY_SIZE[0],
+                                      3.4 * R)
     with atomic_path(path) as tmp:
         p.screenshot(str(tmp))
     p.close()
     return Path(path)
 
 
+def _dimensions(pv, p, shaft) -> None:
+    """A stepped shaft's main dimensions, mm: each section's diameter (and bore) above it,
+    its length on a dimension line below, the overall length beneath those."""
+    R = shaft.radius * 1e3
+    labels, points = [], []
+    below = -1.6 * R
+    for s, (z0, z1) in zip(shaft.profile, shaft.section_bounds()):
+        z0, z1 = z0 * 1e3, z1 * 1e3
+        d = (f"{s.diameter_start * 1e3:g}" if not s.conical
+             else f"{s.diameter_start * 1e3:g}-{s.diameter_end * 1e3:g}")
+        labels.append(f"D {d}" + (f" / bore {s.bore * 1e3:g}" if s.bore else ""))
+        points.append((1.35 * R, 0.0, 0.5 * (z0 + z1)))
+        p.add_mesh(pv.Line((below, 0.0, z0), (below, 0.0, z1)), color="black", line_width=2)
+        for z in (z0, z1):
+            p.add_mesh(pv.Line((below - 0.15 * R, 0.0, z), (-R * 1.05, 0.0, z)), color="grey")
+        labels.append(f"{z1 - z0:g}")
+        points.append((below - 0.35 * R, 0.0, 0.5 * (z0 + z1)))
+    total = shaft.length * 1e3
+    p.add_mesh(pv.Line((2.2 * below, 0.0, 0.0), (2.2 * below, 0.0, total)), color="black",
+               line_width=2)
+    labels.append(f"{total:g} mm")
+    points.append((2.2 * below - 0.35 * R, 0.0, 0.5 * total))
+    for k in shaft.keyways:
+        labels.append(f"keyway {k.width * 1e3:g} x {k.depth * 1e3:g} x {k.length * 1e3:g}")
+        points.append((2.0 * R, 0.0, 0.5 * (k.start + k.end) * 1e3))
+    p.add_point_labels(np.array(points), labels, font_size=14, text_color="black",
+                       shape=None, show_points=False, always_visible=True, justification_horizontal="center")
+
+
 def _draw_seats(pv, p, scene) -> None:
     """Bearings (orange rings) and attached parts (blue disks, of the radius a solid
     disk of their mass and polar inertia would have), see-through, on their seats."""
-    R = scene.shaft.radius * 1e3
+    def R(part) -> float:   # the shaft's radius under the seat, mm
+        return 1e3 * (scene.shaft.radius_at(part.position) or scene.shaft.radius)
+
     for s in scene.held:
         p.add_mesh(pv.Cylinder(center=(0, 0, s.position * 1e3), direction=(0, 0, 1),
-                               radius=1.6 * R, height=s.width * 1e3, resolution=60),
+                               radius=1.6 * R(s), height=s.width * 1e3, resolution=60),
                    color="#d08030", opacity=0.45)
     for a in scene.attachments:
         r = 1e3 * (2 * a.polar_inertia / a.mass) ** 0.5 if a.mass > 0 else 0.0
         p.add_mesh(pv.Cylinder(center=(0, 0, a.position * 1e3), direction=(0, 0, 1),
-                               radius=max(r, 1.3 * R), height=a.width * 1e3, resolution=60),
+                               radius=max(r, 1.3 * R(a)), height=a.width * 1e3, resolution=60),
                    color="#4a78c0", opacity=0.45)
 
 
