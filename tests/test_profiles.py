@@ -305,3 +305,27 @@ def test_the_papers_shaft_through_step_gives_its_frequencies(tmp_path):
     fa, fb = back.result.modes.frequencies, paper.result.modes.frequencies
     allowed = back.estimate.relative_error + paper.estimate.relative_error
     assert np.all(np.abs(fa / fb - 1) <= allowed), (fa / fb - 1, allowed)
+
+
+def test_the_tube_on_two_bearings_against_beam():
+    import shaftfem
+
+    run = shaftfem.run_bounded(scene(TUBE + BEARINGS.replace("280.0", "380.0")))
+    mat = run.result.scene.material
+    ref = timoshenko_profile_hz(2, segments(run.result.scene), mat.youngs_modulus,
+                                mat.poisson_ratio, mat.density, pins=(0.02, 0.38))
+    f, _ = by_kind(run, "bending")
+    # pinned at the seats' centres, as on the stepped shaft
+    assert abs(f[0] / ref[0] - 1) < 5e-3 and abs(f[2] / ref[1] - 1) < 1e-2
+
+
+def test_sweeps_reach_every_section_and_keyway():
+    """A sweep or calibration names a profile's keys as it names a support's:
+    'section[i].key', 'keyway[i].key' (entries from 0), each value checked as in a file."""
+    base = SceneText(text=STEPPED + KEYWAY, source="test.toml")
+    s = load_scene(base, overrides={"section[1].diameter_mm": 36.0,
+                                    "keyway[0].length_mm": 30.0})
+    assert s.shaft.profile[1].diameter_start == pytest.approx(0.036)
+    assert s.shaft.keyways[0].length == pytest.approx(0.030)
+    with pytest.raises(SceneError, match=r"section\[1\]\.fillet_mm = 9"):
+        load_scene(base, overrides={"section[1].fillet_mm": 9.0})
