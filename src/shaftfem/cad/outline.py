@@ -71,11 +71,12 @@ def outline(shaft: Shaft) -> list[Piece]:
         to((L - c, rn))
     to((L, rn - c))
     # back along the bore (or the axis), from the right end, a point only where it steps
-    for s, (z0, z1) in reversed(list(zip(prof, bounds))):
-        if pts[-1][0][1] != s.bore / 2:
-            to((z1, s.bore / 2))
-        if z0 == 0.0 or s.bore != prof[bounds.index((z0, z1)) - 1].bore:
-            to((z0, s.bore / 2))
+    for i in reversed(range(len(prof))):
+        (z0, z1), bore = bounds[i], prof[i].bore
+        if pts[-1][0][1] != bore / 2:
+            to((z1, bore / 2))
+        if i == 0 or bore != prof[i - 1].bore:
+            to((z0, bore / 2))
     pieces: list[Piece] = []
     closed = pts + [pts[0]]
     for (p, _), (q, centre) in zip(closed, closed[1:]):

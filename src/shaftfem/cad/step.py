@@ -25,15 +25,14 @@ from shaftfem.scene.toml_reading import where
 @dataclass(frozen=True)
 class StepImport:
     """What a STEP import found, in m: the axis (two points in the file's coordinates),
-    the solid's length along it, its volume (m^3), its largest and smallest outer radius
-    (over its length) and its smallest radius anywhere (a bore, a keyway's floor)."""
+    the solid's length along it, its volume (m^3), and its largest and smallest outer
+    radius (over its length)."""
 
     axis: tuple[tuple[float, float, float], tuple[float, float, float]]
     length: float
     volume: float
     outer_max: float
     outer_min: float
-    inner_min: float
 
     def summary(self, name: str) -> str:
         a, b = (", ".join(f"{v * 1e3:.4g}" for v in p) for p in self.axis)
@@ -77,17 +76,17 @@ def import_step(step: StepSolid, key: str, brep: Path | None = None) -> StepImpo
         axis = step.axis or _bounding_box_axis(gmsh, key, step.path)
         _place(gmsh, vols, axis)
         gmsh.model.occ.synchronize()
-        xyz = _surface_points(gmsh)
+        xyz = _edge_points(gmsh)
         zmin, zmax = xyz[:, 2].min(), xyz[:, 2].max()
         gmsh.model.occ.translate(vols, 0, 0, -zmin)
         gmsh.model.occ.synchronize()
         length = float(zmax - zmin)
         xyz[:, 2] -= zmin
-        radii = _radii(xyz, length)
+        outer_max, outer_min = _outer_radii(xyz, length)
         if brep is not None:
             gmsh.write(str(brep))
-    return StepImport(axis=axis, length=length, volume=volume, outer_max=radii[0],
-                      outer_min=radii[1], inner_min=radii[2])
+    return StepImport(axis=axis, length=length, volume=volume, outer_max=outer_max,
+                      outer_min=outer_min)
 
 
 def _bounding_box_axis(gmsh, key: str, path: str
@@ -120,7 +119,7 @@ def _place(gmsh, vols, axis) -> None:
         occ.rotate(vols, 0, 0, 0, *about, angle)
 
 
-def _surface_points(gmsh) -> np.ndarray:
+def _edge_points(gmsh) -> np.ndarray:
     """Points on the solid's edges (n, 3), 24 along each: exact on its boundary (where
     OpenCASCADE's bounding box is widened by its tolerances), and an edge bounds every
     face, so the ends and each step's outer radius are among them."""
@@ -132,15 +131,15 @@ def _surface_points(gmsh) -> np.ndarray:
     return np.vstack(out)
 
 
-def _radii(xyz: np.ndarray, length: float) -> tuple[float, float, float]:
-    """(largest outer radius, smallest outer radius, smallest radius) of the placed solid's
-    surface points: the outer radius of each of 100 slices along z is its largest."""
+def _outer_radii(xyz: np.ndarray, length: float) -> tuple[float, float]:
+    """(largest, smallest) outer radius of the placed solid, from points on its edges: the
+    outer radius of each of 100 slices along z is its largest point radius."""
     r = np.hypot(xyz[:, 0], xyz[:, 1])
     bins = np.minimum((xyz[:, 2] / max(length, 1e-300) * 100).astype(int), 99)
     outer = np.full(100, -np.inf)
     np.maximum.at(outer, bins, r)
     outer = outer[np.isfinite(outer)]
-    return float(outer.max()), float(outer.min()), float(r.min())
+    return float(outer.max()), float(outer.min())
 
 
 @functools.lru_cache(maxsize=8)

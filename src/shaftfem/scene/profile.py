@@ -88,7 +88,9 @@ def _section(source: str, i: int, raw: object) -> Section:
 def _check_steps(source: str, profile: tuple[Section, ...]) -> None:
     """Neighbouring sections share material across their step; each fillet and chamfer
     fits its step and the sections beside it."""
-    last = len(profile) - 1
+    # what the step before each section takes of it, as the solid will draw it
+    drawn = Shaft(length=sum(s.length for s in profile), diameter=0.0, sections=profile)
+    bounds = drawn.section_bounds()
     for i, (a, b) in enumerate(zip(profile, profile[1:] + (None,))):
         table = f"section[{i}]"
         if b is None:
@@ -128,18 +130,10 @@ def _check_steps(source: str, profile: tuple[Section, ...]) -> None:
                              "chamfer needs a cylindrical section above the step, longer than "
                              f"the chamfer (that section is {big.length / MM:g} mm"
                              f"{', a cone' if big.conical else ''})")
-        if i < last and a.fillet and small is a and a.fillet + _used_left(profile, i) > a.length:
+        if a.fillet and small is a and a.fillet + drawn.plain_span(i)[0] - bounds[i][0] > a.length:
             raise SceneError(f"{where(source, table, 'fillet_mm')} = {a.fillet / MM:g}: the "
                              "fillets and chamfers at both ends of section "
                              f"{i + 1} overlap ({a.length / MM:g} mm long)")
-
-
-def _used_left(profile: tuple[Section, ...], i: int) -> float:
-    """How much of section i's length the step before it takes (its fillet or chamfer)."""
-    if i == 0:
-        return 0.0
-    prev = profile[i - 1]
-    return prev.fillet if prev.diameter_end > profile[i].diameter_start else prev.chamfer
 
 
 def _check_end_chamfer(source: str, profile: tuple[Section, ...], c: float) -> None:
