@@ -125,33 +125,33 @@ PAPER_GROOVES_MM = (545.0 - 360.0) / 2  # where the paper shaft's centred groove
 SUPPORT = 'position_mm = {p}\nwidth_mm = {w}\nkind = "{kind}"\n{extra}'
 BAD = [
     # (support table, attachment table, key named)
-    (dict(p=5, w=12, kind="rigid", extra=""), None, "support[0].position_mm"),   # off the end
-    (dict(p=100, w=10, kind="rigid", extra=""), None, "support[0].position_mm"),  # on grooves
+    (dict(p=5, w=12, kind="rigid", extra=""), None, "support 1: position_mm"),   # off the end
+    (dict(p=100, w=10, kind="rigid", extra=""), None, "support 1: position_mm"),  # on grooves
     # seats too narrow to mean anything or to mesh (once exit 3 after 19 s of CAD), and
     # seats ending a sliver away from an end, the grooves or another seat
-    (dict(p=20, w=1e-6, kind="rigid", extra=""), None, "support[0].width_mm"),
-    (dict(p=20, w=0.01, kind="rigid", extra=""), None, "support[0].width_mm"),
-    (dict(p=20, w=0.9, kind="rigid", extra=""), None, "support[0].width_mm"),
-    (dict(p=5.25, w=10, kind="rigid", extra=""), None, "support[0].position_mm"),  # 0.25 mm
+    (dict(p=20, w=1e-6, kind="rigid", extra=""), None, "support 1: width_mm"),
+    (dict(p=20, w=0.01, kind="rigid", extra=""), None, "support 1: width_mm"),
+    (dict(p=20, w=0.9, kind="rigid", extra=""), None, "support 1: width_mm"),
+    (dict(p=5.25, w=10, kind="rigid", extra=""), None, "support 1: position_mm"),  # 0.25 mm
     (dict(p=PAPER_GROOVES_MM - 5.5, w=10, kind="rigid", extra=""), None,
-     "support[0].position_mm"),                                         # 0.5 mm from grooves
+     "support 1: position_mm"),                                         # 0.5 mm from grooves
     (dict(p=20, w=10, kind="rigid", extra=""), "position_mm = 30.5\nwidth_mm = 10\nmass_kg = 1",
-     "attachment[0].position_mm"),                                      # 0.5 mm apart
+     "attachment 1: position_mm"),                                      # 0.5 mm apart
     (dict(p=20, w=10, kind="springs", extra="radial_stiffness_n_per_mm = -5"), None,
-     "support[0].radial_stiffness_n_per_mm"),
+     "support 1: radial_stiffness_n_per_mm"),
     (dict(p=20, w=10, kind="rigid", extra="radial_stiffness_n_per_mm = 5"), None,
-     "support[0].radial_stiffness_n_per_mm"),
-    (dict(p=20, w=10, kind="springs", extra=""), None, "support[0].radial_stiffness_n_per_mm"),
+     "support 1: radial_stiffness_n_per_mm"),
+    (dict(p=20, w=10, kind="springs", extra=""), None, "support 1: radial_stiffness_n_per_mm"),
     (dict(p=20, w=10, kind="springs", extra="radial_stiffness_n_per_mm = 1e5\n"
           "tilting_stiffness_nmm_per_rad = 1e18"), None,
-     "support[0].tilting_stiffness_nmm_per_rad"),                       # beyond the cap
-    (dict(p=20, w=10, kind="hinged", extra=""), None, "support[0].kind"),
+     "support 1: tilting_stiffness_nmm_per_rad"),                       # beyond the cap
+    (dict(p=20, w=10, kind="hinged", extra=""), None, "support 1: kind"),
     (dict(p=20, w=10, kind="rigid", extra=""), "position_mm = 26\nwidth_mm = 8\nmass_kg = 1",
-     "attachment[0].position_mm"),                                      # seats overlap
+     "attachment 1: position_mm"),                                      # seats overlap
     (dict(p=20, w=10, kind="rigid", extra=""), "position_mm = 29\nwidth_mm = 8\nmass_kg = 1",
-     "attachment[0].position_mm"),                                      # seats touch
+     "attachment 1: position_mm"),                                      # seats touch
     (None, "position_mm = 20\nwidth_mm = 8\nmass_kg = 1\npolar_inertia_kg_m2 = 0.01\n"
-     "diametral_inertia_kg_m2 = 0.001", "attachment[0].diametral_inertia_kg_m2"),
+     "diametral_inertia_kg_m2 = 0.001", "attachment 1: diametral_inertia_kg_m2"),
 ]
 
 

@@ -35,18 +35,34 @@ def test_check_fails_with_an_excitation_on_a_mode(tmp_path, capsys):
     assert "FAIL" in capsys.readouterr().out
 
 
-def test_check_passes_twenty_percent_away(tmp_path, capsys):
+def test_a_free_free_pass_says_so_in_its_verdict_and_exits_4(tmp_path, capsys):
+    """No [[support]]: the verdict line says free-free, a caveat says what that means,
+    and the exit status is 4 (docs/cli.md), unless --free or [resonance] free_free says
+    free-free is what the check is for (then 0)."""
+    import json
+
     f = _scene_with_engine(tmp_path, _first_bending_hz() / 1.2)
-    assert main(["check", str(f), "-q", "--json", str(tmp_path / "c.json")]) == 0
-    assert "PASS" in capsys.readouterr().out
-    assert (tmp_path / "c.json").exists()
+    f.write_text(re.sub(r"free_free = true.*\n", "", f.read_text()))   # not declared
+    assert main(["check", str(f), "-q", "--json", str(tmp_path / "c.json")]) == 4
+    out = capsys.readouterr().out
+    verdict = next(line for line in out.splitlines() if line.startswith("VERDICT"))
+    assert verdict.startswith("VERDICT: PASS (free-free)")
+    assert "hanging free" in out and "[[support]]" in out and "free_free = true" in out
+    record = json.loads((tmp_path / "c.json").read_text())
+    assert record["free_free"] and record["exit_status"] == 4
+    assert main(["check", str(f), "-q", "--free"]) == 0
+    assert "PASS (free-free)" in capsys.readouterr().out
+    g = tmp_path / "meant.toml"
+    g.write_text(f.read_text().replace("[resonance]", "[resonance]\nfree_free = true", 1))
+    assert main(["check", str(g), "-q"]) == 0
+    assert "PASS (free-free)" in capsys.readouterr().out
 
 
 def test_check_bad_input_exits_2(tmp_path, capsys):
     f = tmp_path / "bad.toml"
     f.write_text(CYL.replace("orders = [1, 2]", "orders = [0]"))
     assert main(["check", str(f), "-q"]) == 2
-    assert "excitation[0].orders" in capsys.readouterr().err
+    assert "excitation 1" in capsys.readouterr().err
 
 
 @pytest.fixture(scope="module")

@@ -212,13 +212,13 @@ def test_keyed_stepped_shaft_against_calculix_on_the_same_mesh(tmp_path):
 BAD = [
     (STEPPED.replace("fillet_mm = 1.0\nchamfer_mm = 0.5\n[[section]]\nlength_mm = 220.0",
                      "fillet_mm = 6.0\nchamfer_mm = 0.5\n[[section]]\nlength_mm = 220.0", 1),
-     "section[0].fillet_mm = 6: the fillet and chamfer together"),
+     "section 1: fillet_mm = 6: the fillet and chamfer together"),
     (STEPPED.replace("diameter_mm = 35.0", "diameter_mm = 35.0\nbore_mm = 35.0"),
-     "section[1].bore_mm = 35: must be smaller than the section's outer diameter"),
+     "section 2: bore_mm = 35: must be smaller than the section's outer diameter"),
     (STEPPED.replace("length_mm = 220.0\ndiameter_mm = 35.0",
                      "length_mm = 220.0\ndiameter_mm = 35.0\nbore_mm = 28.0"),
-     "section[1].bore_mm: sections 1 and 2 do not join"),
-    (STEPPED + KEYWAY + "depth_mm = 17.5\n", "keyway[0].depth_mm = 17.5: the keyway is deeper"),
+     "section 2: bore_mm: sections 1 and 2 do not join"),
+    (STEPPED + KEYWAY + "depth_mm = 17.5\n", "keyway 1: depth_mm = 17.5: the keyway is deeper"),
     (STEPPED + KEYWAY.replace("150.0", "45.0"), "must lie within one section"),
     (STEPPED + BEARINGS.replace("20.0", "38.0", 1), "crosses the shoulder at 40 mm"),
     (STEPPED.replace("[[section]]", "[[shaft.section]]"), "write the sections as [[section]]"),
@@ -327,5 +327,5 @@ def test_sweeps_reach_every_section_and_keyway():
                                     "keyway[0].length_mm": 30.0})
     assert s.shaft.profile[1].diameter_start == pytest.approx(0.036)
     assert s.shaft.keyways[0].length == pytest.approx(0.030)
-    with pytest.raises(SceneError, match=r"section\[1\]\.fillet_mm = 9"):
+    with pytest.raises(SceneError, match=r"section 2: fillet_mm = 9"):
         load_scene(base, overrides={"section[1].fillet_mm": 9.0})

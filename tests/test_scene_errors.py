@@ -109,7 +109,7 @@ HUGE = [("length_mm", "1e300", "shaft.length_mm"), ("diameter_mm", "1e300", "sha
         ("density_kg_m3", "1e300", "material.density_kg_m3"),
         ("power_kw", "1e300", "sizing.power_kw"),
         ("rounding_step_mm", "1e300", "sizing.rounding_step_mm"),
-        ("speed_rpm", "inf", "excitation[0].speed_rpm"), ("depth_mm", "nan", "grooves.depth_mm")]
+        ("speed_rpm", "inf", "excitation 1 (\"engine\"): speed_rpm"), ("depth_mm", "nan", "grooves.depth_mm")]
 
 
 @pytest.mark.parametrize("key,value,named", HUGE)

@@ -1,12 +1,14 @@
 """The errors shaftfem raises on purpose: each one is a sentence a designer can act on.
 
 Each class carries the command line's exit status, so that a CI gate can tell a
-resonance (1) from bad input (2) and from a failure inside the computation (3).
+resonance (1) from bad input (2), from a failure inside the computation (3) and from
+a check that passed only on a free-free shaft (4).
 """
 
 EXIT_CHECK_FAILED = 1   # a check failed: a mode too close to an excitation harmonic
 EXIT_BAD_INPUT = 2      # a scene, sweep or calibration file or an argument is wrong
 EXIT_COMPUTATION = 3    # the mesher, the solver, a cache, the disk or the cluster failed
+EXIT_FREE_FREE = 4      # a resonance check passed, but on a shaft that nothing holds
 
 
 class ShaftfemError(Exception):

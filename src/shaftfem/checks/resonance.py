@@ -58,10 +58,23 @@ class ResonanceVerdict:
 
     approaches: list[Approach]   # every pair, closest first
     required: float
+    # nothing holds the shaft: its free-free modes, which lie above those in its bearings
+    free_free: bool = False
+    # ... and the scene (or --free) says free-free is what the check is meant on
+    free_free_intended: bool = False
 
     @property
     def ok(self) -> bool:
         return all(a.ok for a in self.approaches)
+
+    @property
+    def exit_status(self) -> int:
+        """0 pass, 1 fail, 4 a pass on a free-free shaft not declared free-free."""
+        from shaftfem.errors import EXIT_CHECK_FAILED, EXIT_FREE_FREE
+
+        if not self.ok:
+            return EXIT_CHECK_FAILED
+        return EXIT_FREE_FREE if self.free_free and not self.free_free_intended else 0
 
     @property
     def violations(self) -> list[Approach]:
@@ -79,6 +92,8 @@ class ResonanceVerdict:
     def as_dict(self) -> dict:
         return {
             "ok": self.ok,
+            "free_free": self.free_free,
+            "exit_status": self.exit_status,
             "required_margin": self.required,
             "approaches": [
                 {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,
@@ -127,8 +142,11 @@ def check_result(result: ModalResult, required: float | None = None) -> Resonanc
     if required is None:
         required = (api684_margin(1 / (2 * scene.damping_ratio)) if scene.criterion == "api684"
                     else scene.required_margin)
-    return check_resonance(result.modes.frequencies, result.modes.kinds, scene.excitations,
-                           required, _lateral_amplification(result))
+    v = check_resonance(result.modes.frequencies, result.modes.kinds, scene.excitations,
+                        required, _lateral_amplification(result))
+    v.free_free = not scene.held
+    v.free_free_intended = scene.free_free_intended or scene.hanging_free
+    return v
 
 
 def _lateral_amplification(result: ModalResult) -> Callable[[float], float] | None:

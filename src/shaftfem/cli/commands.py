@@ -119,7 +119,7 @@ def cmd_check(args) -> int:
     print(verdict_text(verdict))
     if args.json:
         _write_json(args.json, {"scene": result.scene.name, **verdict.as_dict()})
-    return 1 if not verdict.ok else _accuracy_status(args, adapted)
+    return verdict.exit_status or _accuracy_status(args, adapted)
 
 
 def cmd_export(args) -> int:
@@ -141,7 +141,7 @@ def cmd_render(args) -> int:
     from shaftfem.outputs.render import render_all
 
     result, _, adapted = _bounded(args)
-    files = render_all(result, args.out)
+    files = render_all(result, args.out, _options(args).say)
     print(f"wrote {len(files)} pictures to {args.out}: " + ", ".join(f.name for f in files))
     return _accuracy_status(args, adapted)
 
@@ -165,7 +165,8 @@ def cmd_design(args) -> int:
     print(verdict_text(d.verdict) if d.verdict is not None
           else verdict_line(None).replace("**", ""))
     print(f"\nreport: {d.report}")
-    return 1 if not d.ok else _accuracy_status(args, d.adapted)
+    status = d.verdict.exit_status if d.verdict is not None else 0
+    return status or _accuracy_status(args, d.adapted)
 
 
 def cmd_study(args) -> int:

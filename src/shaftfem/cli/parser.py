@@ -61,6 +61,21 @@ class _Parser(argparse.ArgumentParser):
         print(f"{self.prog}: error: {message} (see {self.prog} --help)", file=sys.stderr)
         raise SystemExit(EXIT_BAD_INPUT)
 
+    def parse_args(self, args=None, namespace=None):
+        """As argparse's, but an unknown flag is reported by its command, whose help
+        lists the flags it takes."""
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            command = self._subcommands().get(getattr(parsed, "command", None) or "", self)
+            command.error(f"unrecognized arguments: {' '.join(extras)}")
+        return parsed
+
+    def _subcommands(self) -> dict[str, argparse.ArgumentParser]:
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                return dict(action.choices)
+        return {}
+
 
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(
@@ -72,7 +87,8 @@ def build_parser() -> argparse.ArgumentParser:
     _modal_command(sub, "modes", "natural frequencies with their error bounds (in the scene's "
                    "supports if it has any, else free-free)", cmd.cmd_modes, estimate=True)
     _modal_command(sub, "check", "resonance check against the scene's excitations (exit 1 if "
-                   "a margin is violated)", cmd.cmd_check, margin=True)
+                   "a margin is violated, 4 if it holds on a free-free shaft)", cmd.cmd_check,
+                   margin=True)
     e = _modal_command(sub, "export", "mode shapes (VTU/PVD), tables (CSV/JSON), mesh (MSH), "
                        "solid (STEP/BREP); or a CalculiX deck", cmd.cmd_export, json=False,
                        out="required")
@@ -127,13 +143,14 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
     c.add_argument("--solver", choices=SOLVERS,
                    default="auto", help="sparse factorisation behind shift-invert "
                    "(default: the fastest installed; superlu is pure SciPy)")
-    if margin:
-        c.add_argument("--margin", type=_percent, metavar="PERCENT",
-                       help="required separation margin, %% (default: scene, else 15)")
-    if estimate:
-        c.add_argument("--no-estimate", action="store_true",
-                       help="skip the error bound (one more solve: on a coarser mesh, or "
-                       "of the lower orders at orders 3 to 5)")
+    # every modal command takes the same modal flags; those a command does not use say so
+    c.add_argument("--margin", type=_percent, metavar="PERCENT",
+                   help="required separation margin, %% (default: scene, else 15)"
+                   + ("" if margin else "; used by check and design"))
+    c.add_argument("--no-estimate", action="store_true",
+                   help="skip the error bound (one more solve: on a coarser mesh, or of the "
+                   "lower orders at orders 3 to 5)" + ("" if estimate else
+                                                      "; this command computes none"))
     _accuracy_arguments(c)
     c.add_argument("--free", action="store_true",
                    help="free-free: leave the scene's [[support]] bearings off (the shaft "

@@ -93,6 +93,21 @@ class ErrorEstimate:
     # each mode's allowance for the straightened elements' faces (None: none straightened)
     straightening: np.ndarray | None = None
 
+    @property
+    def upward(self) -> np.ndarray:
+        """Per mode, how far (fraction) the true frequency may lie above the computed one:
+        only the geometry allowances, which move it either way. The discretisation error
+        is one-sided (the computed frequencies converge from above), so the bound
+        `relative_error` holds downwards alone."""
+        up = np.full(self.relative_error.shape, self.geometry)
+        return up if self.straightening is None else up + self.straightening
+
+    def interval(self, frequencies: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(low, high), Hz: where each true frequency lies, f (1 - bound) to
+        f (1 + upward)."""
+        f = np.asarray(frequencies, float)
+        return f * (1 - self.relative_error), f * (1 + self.upward)
+
 
 # --------------------------------------------------------------------------
 # Recovery

@@ -97,7 +97,9 @@ def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
     elastic = sol.pairs.select(~is_rigid).first(n_modes)
     # M-normalise explicitly (the Ritz vectors are, up to round-off)
     elastic = elastic.scaled(1 / np.sqrt(np.einsum("ij,ij->j", elastic.X, elastic.MX)))
-    shapes = elastic.X if installed is None else installed.expand(elastic.X)
+    expand = (lambda X: X) if installed is None else installed.expand
+    elastic = fixed_basis(elastic, expand(elastic.X), system.mass_scalar)
+    shapes = expand(elastic.X)
     energy = energy_split(shapes, system.nodes, system.mass_scalar, system.constant)
     return Modes(frequencies=np.sqrt(elastic.lam) / (2 * math.pi), shapes=shapes,
                  residuals=elastic.relative_residuals(),
@@ -108,6 +110,35 @@ def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
                                                           - np.eye(elastic.X.shape[1])))),
                  shift=-SHIFT_FACTOR * sol.scale, n_dofs=K.shape[0], factoriser=sol.factoriser,
                  inertia_count=sol.inertia_count, inertia_shift=sol.inertia_shift)
+
+
+# Eigenvalues closer than this (relative) are one within the solver's tolerance: the
+# solver's basis of such a pair is any, so it is rotated to a fixed one.
+DEGENERATE_SPLIT = 1e-8
+
+
+def fixed_basis(pairs: Ritz, shapes: np.ndarray, mass_scalar: sp.csr_matrix) -> Ritz:
+    """The pairs with every degenerate cluster (eigenvalues within DEGENERATE_SPLIT)
+    rotated to its principal directions of x motion: the first mode of a bending pair
+    moves in x alone, the second in y alone. Each vector's sign is fixed as well (its
+    largest entry positive), so the same scene gives the same shapes whatever the
+    solver's start or shift. `shapes`: the vectors as displacements of every node."""
+    n = pairs.lam.size
+    Q = np.eye(n)
+    i = 0
+    while i < n:
+        j = i + 1
+        while j < n and pairs.lam[j] - pairs.lam[i] <= DEGENERATE_SPLIT * abs(pairs.lam[j]):
+            j += 1
+        if j - i > 1 and shapes.shape[0] == 3 * mass_scalar.shape[0]:
+            ux = shapes[0::3, i:j]
+            _, V = np.linalg.eigh(ux.T @ (mass_scalar @ ux))
+            Q[i:j, i:j] = V[:, ::-1]   # most x motion first
+        i = j
+    out = pairs.combined(Q) if not np.array_equal(Q, np.eye(n)) else pairs
+    full = shapes @ Q
+    biggest = full[np.argmax(np.abs(full), axis=0), np.arange(n)]
+    return out.scaled(np.where(biggest < 0, -1.0, 1.0))
 
 
 def _pencil(system: System, installed: Installed | None

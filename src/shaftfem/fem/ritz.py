@@ -53,6 +53,12 @@ class Ritz:
         return Ritz(np.concatenate([self.lam, other.lam]), np.hstack([self.X, other.X]),
                     np.hstack([self.KX, other.KX]), np.hstack([self.MX, other.MX]))
 
+    def combined(self, Q: np.ndarray) -> Ritz:
+        """The pairs of the vectors X Q (Q orthogonal), each with its Rayleigh quotient."""
+        X, KX, MX = self.X @ Q, self.KX @ Q, self.MX @ Q
+        lam = np.einsum("ij,ij->j", X, KX) / np.einsum("ij,ij->j", X, MX)
+        return Ritz(lam, X, KX, MX)
+
     def scaled(self, c: np.ndarray) -> Ritz:
         """The same pairs with vector j scaled by c[j]."""
         return Ritz(self.lam, self.X * c, self.KX * c, self.MX * c)

@@ -63,8 +63,13 @@ def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[d
             "energy_axial": float(e[0]),
             "energy_radial": float(e[1]),
             "energy_tangential": float(e[2]),
-            # FE frequencies converge from above: the truth lies in [f (1 - bound), f]
+            # the truth lies in [f (1 - bound), f (1 + upper)]: the discretisation error is
+            # one-sided, the geometry allowances (volume, straightening) move either way
             "error_bound_percent": None if est is None else float(100 * est.relative_error[i]),
+            "error_bound_upper_percent": None if est is None else float(100 * est.upward[i]),
+            "true_frequency_low_hz": (None if est is None
+                                      else float(f * (1 - est.relative_error[i]))),
+            "true_frequency_high_hz": None if est is None else float(f * (1 + est.upward[i])),
             # an order-adaptive run computes it only where its rounds' drops leave a mode
             "recovery_estimate_percent": (None if est is None or not np.isfinite(est.recovery[i])
                                           else float(100 * est.recovery[i])),

@@ -4,19 +4,28 @@ pyvista (VTK) is imported here and nowhere else. On a machine without a display
 VTK renders through EGL; the set-up command installs what that needs.
 
 A mode shape has no physical amplitude (it is mass-normalised), so every picture
-draws its largest displacement as DRAWN_FRACTION of the shaft's length and
-colours by |u| / max |u| of that mode (VTK's fonts have no "|", so the colour
-bar says it in words); the shaft at rest is drawn in
-translucent grey behind it. Each mode is seen across its own plane of motion,
-so that a bending mode's deflection is in the picture, not towards the viewer.
+draws it at a fixed size: a bending or axial mode's largest displacement as
+DRAWN_FRACTION of the shaft's length, a torsion mode's as TWIST_FRACTION of its
+radius (drawn at the length's scale, a twist would wrap the shaft round itself). The
+colour is |u| / max |u| of that mode (VTK's fonts have no "|", so the colour bar says
+it in words); the shaft at rest is drawn in translucent grey behind it, a hair
+thinner so that where the two coincide (at the bearings, in torsion) the moving
+surface is the one seen. Bearings are orange rings and parts blue disks. Each mode is
+seen across its own plane of motion, so that a bending mode's deflection is in the
+picture, not towards the viewer.
+
+The shaft's surface is extracted once for every picture, with every mode's drawn
+displacement on it; a GIF's frames are drawn in one window, and a frame whose phase
+repeats (sin is symmetric) is drawn once.
 """
 
 from __future__ import annotations
 
 import math
 import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -30,9 +39,13 @@ PANEL_SIZE = (800, 200)        # pixels per mode in modes.png, two modes a row
 BAR_HEIGHT = 110               # pixels of the strip with the colour bar and the legend
 GIF_SIZE = (800, 260)
 GIF_FRAMES = 16                # frames per period in each mode's GIF
-DRAWN_FRACTION = 0.06          # the largest displacement is drawn as 6 % of the length
+GIF_COLOURS = 128              # a GIF frame's palette
+DRAWN_FRACTION = 0.06          # bending, axial: largest displacement, of the length
+TWIST_FRACTION = 0.4           # torsion: largest displacement, of the radius
+REST_SHRINK = 0.985            # the grey shaft at rest, scaled about the axis
 CMAP = "viridis"
 COLOUR_LABEL = "displacement / largest displacement of the mode"
+BEARING_COLOUR, PART_COLOUR = "#d08030", "#4a78c0"
 
 
 def _pyvista():
@@ -42,6 +55,16 @@ def _pyvista():
     import pyvista as pv
 
     return pv
+
+
+def _plotter(pv, size: tuple[int, int], samples: int = 4, **kwargs):
+    """An off-screen plotter on white with `samples` x multi-sampling (pyvista's default
+    of 8 costs half again the time in software rendering, for edges no one sees)."""
+    theme = pv.themes.DocumentTheme()
+    theme.multi_samples = samples
+    p = pv.Plotter(off_screen=True, window_size=size, theme=theme, **kwargs)
+    p.set_background("white")
+    return p
 
 
 def _surface(grid, subdivision: int):
@@ -59,144 +82,196 @@ def _grid(pv, result: ModalResult):
     return pv.wrap(grid(result.mesh, scale=1e3))  # mm, as a designer reads it
 
 
-def _side_view(plotter, length: float, aspect: float, plane: np.ndarray | None = None) -> None:
-    """Parallel projection across the shaft (axis z, left to right), filling the panel.
+@dataclass(frozen=True)
+class Drawing:
+    """The shaft's outer surface (mm) with each mode's drawn displacement ("u1", ...)
+    and colour ("c1", ...) on it, the surface at rest, and each mode's plane of motion."""
 
-    `plane`: the unit lateral direction the mode moves in; it is drawn upwards."""
-    up = np.array([1.0, 0.0, 0.0]) if plane is None else np.array([plane[0], plane[1], 0.0])
-    eye = np.array([-up[1], up[0], 0.0])
-    centre = np.array([0.0, 0.0, length / 2])
-    plotter.camera_position = [tuple(centre + 3 * length * eye), tuple(centre), tuple(up)]
-    plotter.enable_parallel_projection()
-    plotter.camera.parallel_scale = 0.56 * length / aspect
+    surface: Any
+    rest: Any
+    planes: list[np.ndarray]
+    titles: list[str]
+    length: float   # mm
+
+    def moved(self, k: int, phase: float = 1.0) -> np.ndarray:
+        """Mode k's surface points at `phase` (-1 to 1) of its drawn amplitude."""
+        return np.asarray(self.surface.points) + phase * np.asarray(
+            self.surface.point_data[f"u{k + 1}"])
+
+
+def drawing(pv, result: ModalResult, subdivision: int = 1) -> Drawing:
+    """Every mode on one extracted surface: its displacement scaled for drawing
+    (DRAWN_FRACTION of the length, TWIST_FRACTION of the radius for torsion)."""
+    m, shaft = result.modes, result.scene.shaft
+    length, radius = shaft.length * 1e3, shaft.radius * 1e3
+    grid = _grid(pv, result)
+    planes = []
+    for k, u in enumerate(result.shapes_at_points()):
+        mag = np.linalg.norm(u, axis=1)
+        reach = TWIST_FRACTION * radius if m.kinds[k] == "torsion" else DRAWN_FRACTION * length
+        grid.point_data[f"u{k + 1}"] = u * (reach / mag.max())
+        grid.point_data[f"c{k + 1}"] = mag / mag.max()
+        planes.append(_plane(u))
+    # the normals of the surface at rest shade it moved as well (the drawn motion is a
+    # few per cent): drawn without a normals filter, its points can move frame by frame
+    surface = _surface(grid, subdivision).compute_normals(
+        cell_normals=False, split_vertices=False, consistent_normals=False,
+        auto_orient_normals=False)
+    rest = surface.copy(deep=True)
+    rest.points[:, :2] *= REST_SHRINK
+    rest.points[:, 2] = 0.5 * length + (rest.points[:, 2] - 0.5 * length) * (
+        1 - 0.2 * (1 - REST_SHRINK))
+    titles = [f"mode {k + 1}: {f:.1f} Hz, {kind}" for k, (f, kind)
+              in enumerate(zip(m.frequencies, m.kinds))]
+    return Drawing(surface=surface, rest=rest, planes=planes, titles=titles, length=length)
 
 
 def _plane(u: np.ndarray) -> np.ndarray:
-    """The lateral direction (x, y) of largest motion: the principal axis of (u_x, u_y)."""
+    """The lateral direction (x, y) of largest motion: the principal axis of (u_x, u_y),
+    its sign fixed (so that the same mode is seen from the same side every time)."""
     w, v = np.linalg.eigh(u[:, :2].T @ u[:, :2])
-    return v[:, np.argmax(w)]
+    d = v[:, np.argmax(w)]
+    return d if d[np.argmax(np.abs(d))] > 0 else -d
 
 
-def _mode_surface(grid, u: np.ndarray, length: float):
-    """The surface of `grid` (mm) carrying the mode's displacement u (at the grid's points),
-    scaled for drawing, and its |u| / max |u|; and the mode's plane of motion."""
-    mag = np.linalg.norm(u, axis=1)
-    g = grid.copy(deep=False)
-    g.point_data["u"] = u * (DRAWN_FRACTION * length / mag.max())
-    g.point_data[COLOUR_LABEL] = mag / mag.max()
-    return _surface(g, 1), _plane(u)
+def _frame(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
+           margin: float = 1.08) -> None:
+    """Parallel projection across the shaft (axis z, left to right), framed to fill the
+    view with `points` (mm). `plane`: the lateral direction drawn upwards."""
+    up = np.array([1.0, 0.0, 0.0]) if plane is None else np.array([plane[0], plane[1], 0.0])
+    eye = np.array([-up[1], up[0], 0.0])
+    height, along = points @ up, points[:, 2]
+    centre = (0.5 * (along.min() + along.max()) * np.array([0.0, 0.0, 1.0])
+              + 0.5 * (height.min() + height.max()) * up)
+    half = max(0.5 * (height.max() - height.min()), 0.5 * (along.max() - along.min()) / aspect)
+    span = along.max() - along.min()
+    plotter.camera_position = [tuple(centre + 3 * span * eye), tuple(centre), tuple(up)]
+    plotter.enable_parallel_projection()
+    plotter.camera.parallel_scale = margin * half
+
+
+def _draw_seats(pv, p, scene) -> np.ndarray:
+    """Bearings (orange rings) and attached parts (blue disks, of the radius a solid
+    disk of their mass and polar inertia would have), see-through, on their seats.
+    Returns the corners of what was drawn (mm), for framing."""
+    def R(part) -> float:   # the shaft's radius under the seat, mm
+        return 1e3 * (scene.shaft.radius_at(part.position) or scene.shaft.radius)
+
+    corners = []
+    for part, colour in ([(s, BEARING_COLOUR) for s in scene.held]
+                         + [(a, PART_COLOUR) for a in scene.attachments]):
+        if colour == PART_COLOUR and part.mass > 0:
+            r = max(1e3 * (2 * part.polar_inertia / part.mass) ** 0.5, 1.3 * R(part))
+        else:
+            r = 1.6 * R(part)
+        z, h = part.position * 1e3, part.width * 1e3
+        p.add_mesh(pv.Cylinder(center=(0, 0, z), direction=(0, 0, 1), radius=r, height=h,
+                               resolution=60), color=colour, opacity=0.45)
+        corners += [(s * r, t * r, z + e * h / 2) for s in (-1, 1) for t in (-1, 1)
+                    for e in (-1, 1)]
+    return np.array(corners).reshape(-1, 3)
 
 
 def render_geometry(result: ModalResult, path: str | Path) -> Path:
-    """A PNG of the shaft's solid (its mesh surface), seen from the side."""
+    """A PNG of the shaft's solid (its mesh surface) seen square from the side, with its
+    bearings and parts, and its main dimensions in mm."""
     pv = _pyvista()
     surf = _surface(_grid(pv, result), 2)
-    p = pv.Plotter(off_screen=True, window_size=GEOMETRY_SIZE)
-    p.set_background("white")
-    p.add_mesh(surf, color="#b0b8c0", smooth_shading=True, specular=0.4)
-    _draw_seats(pv, p, result.scene)
+    p = _plotter(pv, GEOMETRY_SIZE)
+    p.add_mesh(surf, color="#b0b8c0", smooth_shading=True, specular=0.3)
+    seats = _draw_seats(pv, p, result.scene)
     shaft = result.scene.shaft
-    p.add_text(f"{result.scene.name}: {shaft.length * 1e3:g} x {shaft.diameter * 1e3:g} mm",
-               font_size=12, color="black")
-    length = shaft.length * 1e3
-    if shaft.plain:
-        p.camera_position = [(0.0, -2.2 * length, length / 2), (0.0, 0.0, length / 2),
-                             (1, 0, 0)]
-        p.camera.elevation = 20
-        p.reset_camera()
-        p.camera.zoom(2.3)
-    else:   # a profile: seen square from the side, its sections dimensioned
-        _dimensions(pv, p, shaft)
-        R = shaft.radius * 1e3   # the drawing spans x = -4 R (dimensions) to 2.3 R (labels)
-        p.camera_position = [(-0.85 * R, -3 * length, length / 2),
-                             (-0.85 * R, 0.0, length / 2), (1, 0, 0)]
-        p.enable_parallel_projection()
-        p.camera.parallel_scale = max(0.58 * length * GEOMETRY_SIZE[1] / GEOMETRY_SIZE[0],
-                                      3.4 * R)
+    p.add_text(f"{result.scene.name}: {shaft.length * 1e3:g} mm long, largest diameter "
+               f"{shaft.diameter * 1e3:g} mm", font_size=12, color="black")
+    labels = _dimensions(pv, p, result.scene)
+    pts = np.vstack([np.asarray(surf.points), seats, labels])
+    _frame(p, pts, GEOMETRY_SIZE[0] / GEOMETRY_SIZE[1], margin=1.12)
     with atomic_path(path) as tmp:
         p.screenshot(str(tmp))
     p.close()
     return Path(path)
 
 
-def _dimensions(pv, p, shaft) -> None:
-    """A stepped shaft's main dimensions, mm: each section's diameter (and bore) above it,
-    its length on a dimension line below, the overall length beneath those."""
+def _dimensions(pv, p, scene) -> np.ndarray:
+    """The shaft's main dimensions, mm: each section's diameter (and bore) above it, its
+    length on a dimension line below, the overall length beneath those; the grooves'
+    and keyways' sizes. Returns where the labels stand (mm), for framing."""
+    shaft = scene.shaft
     R = shaft.radius * 1e3
     labels, points = [], []
-    below = -1.6 * R
-    for s, (z0, z1) in zip(shaft.profile, shaft.section_bounds()):
+    below = -1.9 * R
+    sections = list(zip(shaft.profile, shaft.section_bounds())) if shaft.profile else []
+    for s, (z0, z1) in sections:
         z0, z1 = z0 * 1e3, z1 * 1e3
         d = (f"{s.diameter_start * 1e3:g}" if not s.conical
              else f"{s.diameter_start * 1e3:g}-{s.diameter_end * 1e3:g}")
         labels.append(f"D {d}" + (f" / bore {s.bore * 1e3:g}" if s.bore else ""))
-        points.append((1.35 * R, 0.0, 0.5 * (z0 + z1)))
-        p.add_mesh(pv.Line((below, 0.0, z0), (below, 0.0, z1)), color="black", line_width=2)
-        for z in (z0, z1):
-            p.add_mesh(pv.Line((below - 0.15 * R, 0.0, z), (-R * 1.05, 0.0, z)), color="grey")
-        labels.append(f"{z1 - z0:g}")
-        points.append((below - 0.35 * R, 0.0, 0.5 * (z0 + z1)))
+        points.append((1.45 * R, 0.0, 0.5 * (z0 + z1)))
+        if len(sections) > 1:
+            p.add_mesh(pv.Line((below, 0.0, z0), (below, 0.0, z1)), color="black",
+                       line_width=2)
+            labels.append(f"{z1 - z0:g}")
+            points.append((below - 0.45 * R, 0.0, 0.5 * (z0 + z1)))
     total = shaft.length * 1e3
-    p.add_mesh(pv.Line((2.2 * below, 0.0, 0.0), (2.2 * below, 0.0, total)), color="black",
+    overall = 2.2 * below if len(sections) > 1 else below
+    for z in sorted({round(z * 1e3, 9) for b in shaft.section_bounds() for z in b}
+                    | {0.0, total}):
+        p.add_mesh(pv.Line((overall - 0.15 * R, 0.0, z), (-R * 1.05, 0.0, z)), color="grey")
+    p.add_mesh(pv.Line((overall, 0.0, 0.0), (overall, 0.0, total)), color="black",
                line_width=2)
     labels.append(f"{total:g} mm")
-    points.append((2.2 * below - 0.35 * R, 0.0, 0.5 * total))
+    points.append((overall - 0.45 * R, 0.0, 0.5 * total))
     for k in shaft.keyways:
         labels.append(f"keyway {k.width * 1e3:g} x {k.depth * 1e3:g} x {k.length * 1e3:g}")
-        points.append((2.0 * R, 0.0, 0.5 * (k.start + k.end) * 1e3))
-    p.add_point_labels(np.array(points), labels, font_size=14, text_color="black",
-                       shape=None, show_points=False, always_visible=True, justification_horizontal="center")
-
-
-def _draw_seats(pv, p, scene) -> None:
-    """Bearings (orange rings) and attached parts (blue disks, of the radius a solid
-    disk of their mass and polar inertia would have), see-through, on their seats."""
-    def R(part) -> float:   # the shaft's radius under the seat, mm
-        return 1e3 * (scene.shaft.radius_at(part.position) or scene.shaft.radius)
-
-    for s in scene.held:
-        p.add_mesh(pv.Cylinder(center=(0, 0, s.position * 1e3), direction=(0, 0, 1),
-                               radius=1.6 * R(s), height=s.width * 1e3, resolution=60),
-                   color="#d08030", opacity=0.45)
-    for a in scene.attachments:
+        points.append((-1.45 * R, 0.0, 0.5 * (k.start + k.end) * 1e3))
+    g = scene.grooves
+    if g is not None:
+        labels.append(f"{len(g.hands)} grooves, pitch {g.pitch * 1e3:g}, {g.width * 1e3:g} "
+                      f"wide, {g.depth * 1e3:g} deep")
+        points.append((2.3 * R, 0.0, (g.start + 0.5 * g.length) * 1e3))
+    for part in scene.held:   # under the overall length, by its bearing
+        labels.append(part.name)
+        points.append((overall - 1.2 * R, 0.0, part.position * 1e3))
+    for a in scene.attachments:   # over its disk
         r = 1e3 * (2 * a.polar_inertia / a.mass) ** 0.5 if a.mass > 0 else 0.0
-        p.add_mesh(pv.Cylinder(center=(0, 0, a.position * 1e3), direction=(0, 0, 1),
-                               radius=max(r, 1.3 * R(a)), height=a.width * 1e3, resolution=60),
-                   color="#4a78c0", opacity=0.45)
+        labels.append(a.name)
+        points.append((max(r, 1.3 * R) + 0.5 * R, 0.0, a.position * 1e3))
+    pts = np.array(points)
+    p.add_point_labels(pts, labels, font_size=14, text_color="black", shape=None,
+                       show_points=False, always_visible=True,
+                       justification_horizontal="center")
+    return pts
 
 
-def _draw_mode(p, rest, surf, plane, length: float, aspect: float, title: str):
-    """Draw one mode into the current (sub)plot; return the warped mesh drawn."""
-    warped = surf.warp_by_vector("u")
-    p.add_mesh(rest, color="grey", opacity=0.25)
-    p.add_mesh(warped, scalars=COLOUR_LABEL, cmap=CMAP, clim=(0.0, 1.0),
-               show_scalar_bar=False, smooth_shading=True)
-    p.add_text(title, position="upper_left", font_size=9, color="black")
-    _side_view(p, length, aspect, plane)
-    return warped
+def _draw_mode(pv, p, d: Drawing, k: int, scene, aspect: float):
+    """Mode k into the current (sub)plot, framed; returns the moving mesh drawn."""
+    moving = d.surface.copy(deep=True)   # its points move; the drawing's stay
+    moving.points = d.moved(k)
+    p.add_mesh(d.rest, color="grey", opacity=0.25)
+    actor = p.add_mesh(moving, scalars=f"c{k + 1}", cmap=CMAP, clim=(0.0, 1.0),
+                       show_scalar_bar=False)
+    actor.prop.interpolation = "gouraud"   # with the surface's own normals
+    seats = _draw_seats(pv, p, scene)
+    p.add_text(d.titles[k], position="upper_left", font_size=9, color="black")
+    lo = d.moved(k, -1.0)
+    _frame(p, np.vstack([moving.points, lo, seats]), aspect, d.planes[k])
+    return moving
 
 
-def render_modes(result: ModalResult, path: str | Path) -> Path:
+def render_modes(result: ModalResult, path: str | Path, d: Drawing | None = None) -> Path:
     """One PNG with a panel per mode (two a row), deformed, coloured by |u| / max |u|,
     with one colour bar and the drawing scale stated below them."""
     pv = _pyvista()
-    m = result.modes
-    n, cols = m.count, 2
+    d = d or drawing(pv, result)
+    n, cols = result.modes.count, 2
     rows = math.ceil(n / cols)
     w, h = PANEL_SIZE
     size = (cols * w, rows * h + BAR_HEIGHT)
-    p = pv.Plotter(off_screen=True, window_size=size, shape=(rows + 1, cols), border=True,
-                   border_color="lightgrey", groups=[(rows, slice(None))],
-                   row_weights=[h] * rows + [BAR_HEIGHT])
-    p.set_background("white")
-    length = result.scene.shaft.length * 1e3
-    grid = _grid(pv, result)
-    rest = _surface(grid, 1)
-    for k, u in enumerate(result.shapes_at_points()):
-        surf, plane = _mode_surface(grid, u, length)
+    p = _plotter(pv, size, shape=(rows + 1, cols), border=True, border_color="lightgrey",
+                 groups=[(rows, slice(None))], row_weights=[h] * rows + [BAR_HEIGHT])
+    for k in range(n):
         p.subplot(k // cols, k % cols)
-        _draw_mode(p, rest, surf, plane, length, w / h,
-                   f"mode {k + 1}: {m.frequencies[k]:.1f} Hz, {m.kinds[k]}")
+        _draw_mode(pv, p, d, k, result.scene, w / h)
     p.subplot(rows, 0)
     bar = pv.Line((0, 0, 0), (1, 0, 0), resolution=8)
     bar.point_data[COLOUR_LABEL] = np.linspace(0.0, 1.0, bar.n_points)
@@ -207,55 +282,76 @@ def render_modes(result: ModalResult, path: str | Path) -> Path:
                           n_labels=6, fmt="%.1f")
     sb.SetTitle("")  # said above the bar instead: VTK sets a bar's title onto its numbers
     p.add_text(COLOUR_LABEL, position="upper_edge", font_size=9, color="black")
-    p.add_text(f"deformation drawn to scale: largest displacement = {100 * DRAWN_FRACTION:g} % "
-               f"of the {length:g} mm shaft; grey: the shaft at rest", position="lower_edge",
-               font_size=9, color="black")
+    scene = result.scene
+    glyphs = (["orange: bearings"] if scene.held else []) + (
+        ["blue: parts"] if scene.attachments else [])
+    p.add_text(f"drawn to scale: largest displacement {100 * DRAWN_FRACTION:g} % of the "
+               f"{d.length:g} mm shaft (torsion: {100 * TWIST_FRACTION:g} % of its radius); "
+               + "; ".join(["grey: the shaft at rest"] + glyphs),
+               position="lower_edge", font_size=9, color="black")
     with atomic_path(path) as tmp:
         p.screenshot(str(tmp))
     p.close()
     return Path(path)
 
 
-def render_mode_gifs(result: ModalResult, out: str | Path, frames: int = GIF_FRAMES
-                     ) -> list[Path]:
-    """mode_NN.gif per mode: one period of the motion, `frames` frames."""
+def render_mode_gifs(result: ModalResult, out: str | Path, frames: int = GIF_FRAMES,
+                     d: Drawing | None = None, say=None) -> list[Path]:
+    """mode_NN.gif per mode: one period of the motion, `frames` frames, drawn in one
+    window; `say(message)` after each."""
+    from PIL import Image
+
     pv = _pyvista()
+    d = d or drawing(pv, result)
     out = Path(out)
-    m = result.modes
-    length = result.scene.shaft.length * 1e3
-    grid = _grid(pv, result)
-    rest = _surface(grid, 1)
     written = []
-    for k, u_points in enumerate(result.shapes_at_points()):
-        surf, plane = _mode_surface(grid, u_points, length)
-        base, u = np.array(surf.points), np.array(surf.point_data["u"])
-        p = pv.Plotter(off_screen=True, window_size=GIF_SIZE)
-        p.set_background("white")
-        shown = _draw_mode(p, rest, surf, plane, length, GIF_SIZE[0] / GIF_SIZE[1],
-                           f"mode {k + 1}: {m.frequencies[k]:.1f} Hz, {m.kinds[k]}")
+    p = _plotter(pv, GIF_SIZE, samples=1)   # quantised to GIF_COLOURS: edges alias anyway
+    for k in range(result.modes.count):
+        moving = _draw_mode(pv, p, d, k, result.scene, GIF_SIZE[0] / GIF_SIZE[1])
+        base, u = np.asarray(d.surface.points), np.asarray(d.surface.point_data[f"u{k + 1}"])
+        drawn: dict[float, Image.Image] = {}
+        images = []
+        for i in range(frames):
+            phase = round(math.sin(2 * math.pi * i / frames), 12)
+            if phase not in drawn:
+                moving.points = base + phase * u
+                p.render()
+                img = Image.fromarray(p.screenshot(return_img=True))
+                drawn[phase] = img.quantize(GIF_COLOURS, method=Image.Quantize.FASTOCTREE)
+            images.append(drawn[phase])
+        p.clear()   # texts too
         path = out / f"mode_{k + 1:02d}.gif"
         with atomic_path(path) as tmp:
-            p.open_gif(str(tmp), fps=frames // 2)
-            for i in range(frames):
-                shown.points = base + math.sin(2 * math.pi * i / frames) * u
-                p.write_frame()
-            p.close()  # the GIF is written out when its plotter closes
+            images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:],
+                           duration=round(2000 / frames), loop=0)
         written.append(path)
+        if say is not None:
+            say(f"picture {path.name}")
+    p.close()
     return written
 
 
 MANIFEST = "render.manifest.json"
 
 
-def render_all(result: ModalResult, out: str | Path) -> list[Path]:
+def render_all(result: ModalResult, out: str | Path, say=None) -> list[Path]:
     """geometry.png, modes.png and mode_NN.gif per mode, published together in `out`
     under render.manifest.json."""
     with staged_directory(out, MANIFEST) as stage:
-        written = render_into(result, stage)
+        written = render_into(result, stage, say)
     return [Path(out) / p.name for p in written]
 
 
-def render_into(result: ModalResult, folder: Path) -> list[Path]:
-    """The pictures of render_all, written straight into `folder`."""
-    return [render_geometry(result, folder / "geometry.png"),
-            render_modes(result, folder / "modes.png"), *render_mode_gifs(result, folder)]
+def render_into(result: ModalResult, folder: Path, say=None) -> list[Path]:
+    """The pictures of render_all, written straight into `folder`; `say(message)` after
+    each picture."""
+    def done(path: Path) -> Path:
+        if say is not None:
+            say(f"picture {path.name}")
+        return path
+
+    pv = _pyvista()
+    d = drawing(pv, result)
+    return [done(render_geometry(result, folder / "geometry.png")),
+            done(render_modes(result, folder / "modes.png", d)),
+            *render_mode_gifs(result, folder, d=d, say=say)]

@@ -25,11 +25,13 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
     """report.md's text; picture and file names are relative to the report's folder."""
     scene, m = result.scene, result.modes
     mat, g = scene.material, scene.grooves
-    lines = [f"# Modal design report: {scene.name}", "", tables.verdict_line(verdict), "",
-             "## Shaft", "",
-             f"- {scene.shaft.length * 1e3:g} mm long, {scene.shaft.diameter * 1e3:g} mm "
-             f"diameter, {mat.name} (E = {mat.youngs_modulus / 1e6:g} MPa, "
-             f"nu = {mat.poisson_ratio:g}, rho = {mat.density:g} kg/m^3)"]
+    lines = [f"# Modal design report: {scene.name}", ""]
+    lines += [x for line in tables.verdict_lines(verdict) for x in (line, "")]
+    lines += ["## Shaft", "",
+              f"- {scene.shaft.length * 1e3:g} mm long, {scene.shaft.diameter * 1e3:g} mm "
+              f"largest diameter, {mat.name} (E = {mat.youngs_modulus / 1e6:g} MPa, "
+              f"nu = {mat.poisson_ratio:g}, rho = {mat.density:g} kg/m^3)"]
+    lines += [f"- {line}" for line in tables.shape_lines(scene.shaft)]
     if g:
         hands = " and ".join("right" if h > 0 else "left" for h in g.hands)
         lines.append(f"- grooves: {hands}-hand, pitch {g.pitch * 1e3:g} mm, width "

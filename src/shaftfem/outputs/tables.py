@@ -36,21 +36,36 @@ def timings_line(result: ModalResult) -> str:
 
 
 def estimate_notes(est: ErrorEstimate) -> list[str]:
-    """How the bounds were made, and where they rest on less."""
+    """How the bounds were made, how to read them, and where they rest on less."""
     straightened = ("" if est.straightening is None else
                     ", and each mode's shift from the straightened elements' faces, up to "
                     f"{100 * float(est.straightening.max()):.2g} %")
-    return [f"+- : bound on the discretisation error of each frequency ({est.method}, "
-            f"plus the mesh's volume difference from the solid, {100 * est.geometry:.1g} %"
-            f"{straightened}; the computed frequencies converge from above)"] + list(est.notes)
+    return [f"error bound: the true frequency lies between f (1 - lower) and f (1 + upper). "
+            f"The computed frequencies converge from above, so the discretisation error "
+            f"({est.method}) counts downwards only; the geometry allowances count both "
+            f"ways: the mesh's volume difference from the solid, {100 * est.geometry:.1g} %"
+            f"{straightened}."] + list(est.notes)
+
+
+def _percent(x: float) -> str:
+    return f"{100 * x:.2g} %"
 
 
 def bound_text(est: ErrorEstimate, i: int) -> str:
-    """'+- 0.24 %' (two significant digits), '*' marking a bound not confirmed."""
+    """'-0.24 % +0.003 %': how far below and above f the true frequency may lie (two
+    significant digits), '*' marking a bound not confirmed."""
     e = est.relative_error[i]
     if not math.isfinite(e):
         return "n/a"
-    return f"+- {100 * e:.2g} %{'' if est.reliable[i] else '*'}"
+    return f"-{_percent(e)} +{_percent(est.upward[i])}{'' if est.reliable[i] else '*'}"
+
+
+def interval_text(est: ErrorEstimate, f: float, i: int) -> str:
+    """'[428.12, 434.64] Hz': where the true frequency lies."""
+    if not math.isfinite(est.relative_error[i]):
+        return "n/a"
+    lo, hi = f * (1 - est.relative_error[i]), f * (1 + est.upward[i])
+    return f"[{lo:.2f}, {hi:.2f}] Hz"
 
 
 def installation_lines(result: ModalResult) -> list[str]:
@@ -100,28 +115,53 @@ def shape_lines(shaft) -> list[str]:
             f"{', '.join(parts)} mm{keys}"]
 
 
+def residual_line(residuals) -> str:
+    """The eigenpairs' residuals as a fixed threshold they all meet (the values themselves
+    depend on where the solver started, and are in the JSON)."""
+    top = max(residuals, default=0.0)
+    limit = next((t for t in (1e-8, 1e-6, 1e-4) if top < t), None)
+    what = "residuals ||K x - w^2 M x|| / ||K x||"
+    return f"{what}: all below {limit:g}" if limit else f"{what}: up to {top:.1e}"
+
+
+def _feature_size(scene) -> str:
+    """' (grooves 4 mm)': the finer size, named after what the scene has that takes it."""
+    shaft = scene.shaft
+    has = [name for name, there in (
+        ("grooves", scene.grooves is not None),
+        ("fillets", any(s.fillet for s in shaft.profile)),
+        ("chamfers", shaft.end_chamfer or any(s.chamfer for s in shaft.profile)),
+        ("keyways", shaft.keyways)) if there]
+    return f" ({', '.join(has)} {scene.mesh.groove_size * 1e3:g} mm)" if has else ""
+
+
 def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     """The modes table as a designer reads it."""
     m, scene = result.modes, result.scene
     exc = scene.excitations[0] if scene.excitations else None
-    rigid = (f"rigid-body modes: {m.n_rigid} (all below {max(m.rigid_frequencies):.1e} Hz)"
+    # rounded up to a power of ten: the rigid modes' numerical noise, not a result
+    top = max(m.rigid_frequencies, default=0.0)
+    rigid = (f"rigid-body modes: {m.n_rigid} (all below "
+             f"{10.0 ** math.ceil(math.log10(max(top, 1e-12))):g} Hz)"
              if m.n_rigid else "rigid-body modes: none")
     lines = [
         f"scene {scene.name}: P{scene.mesh.order}, {m.n_dofs} DOFs, "
-        f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm "
-        f"(grooves {scene.mesh.groove_size * 1e3:g} mm), solver {m.factoriser}",
+        f"{result.mesh.n_elements} elements, element size {scene.mesh.size * 1e3:g} mm"
+        f"{_feature_size(scene)}, solver {m.factoriser}",
         *shape_lines(scene.shaft),
         *installation_lines(result),
         f"{rigid}; Sturm check: {m.inertia_count} eigenvalues below "
         f"{m.inertia_shift_hz:.1f} Hz, as many as found",
+        residual_line(m.residuals),
         "",
     ]
-    rows = [["mode", "frequency", "kind", "residual"]
-            + (["error bound"] if est is not None else [])
-            + ([f"f / {exc.name} {exc.frequency:g} Hz"] if exc else [])]
-    for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
-        rows.append([str(i + 1), f"{f:.2f} Hz", kind, f"{r:.1e}"]
-                    + ([bound_text(est, i)] if est is not None else [])
+    rows = [["mode", "frequency", "kind"]
+            + (["error bound", "true frequency in"] if est is not None else [])
+            + ([f"f / {exc.name} {hz(exc.frequency)}"] if exc else [])]
+    for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
+        rows.append([str(i + 1), f"{f:.2f} Hz", kind]
+                    + ([bound_text(est, i), interval_text(est, f, i)] if est is not None
+                       else [])
                     + ([f"{f / exc.frequency:.2f}"] if exc else []))
     lines += aligned(rows, left={2})
     if est is not None:
@@ -140,12 +180,15 @@ def participation_rows(result: ModalResult, p: Participation) -> tuple[list[str]
 
     head = ["mode", "frequency"] + [f"m_eff {d} ({PARTICIPATION_UNITS[d]})" for d in DIRECTIONS] + [
         f"sum {d}" for d in DIRECTIONS]
+    def mass(values) -> list[str]:   # round-off below 1e-9 of the total is 0
+        return [f"{v:.4g}" if abs(v) >= 1e-9 * t else "0" for v, t in zip(values, p.total)]
+
     rows = []
     if any(v > 0 for v in p.rigid):
-        rows.append(["rigid", "0 Hz"] + [f"{v:.4g}" for v in p.rigid]
+        rows.append(["rigid", "0 Hz"] + mass(p.rigid)
                     + [f"{100 * v:.1f} %" for v in p.rigid / p.total])
     for i, f in enumerate(result.modes.frequencies):
-        rows.append([str(i + 1), f"{f:.2f} Hz"] + [f"{v:.4g}" for v in p.effective[i]]
+        rows.append([str(i + 1), f"{f:.2f} Hz"] + mass(p.effective[i])
                     + [f"{100 * v:.1f} %" for v in p.cumulative[i]])
     rows.append(["total", ""] + [f"{v:.4g}" for v in p.total] + ["100 %"] * len(DIRECTIONS))
     return head, rows
@@ -166,51 +209,72 @@ def _amplified(v: ResonanceVerdict) -> bool:
     return any(a.amplification is not None for a in v.approaches)
 
 
-def verdict_text(v: ResonanceVerdict) -> str:
+def hz(f: float) -> str:
+    """A frequency as people write it: two decimals at most, no trailing zeros."""
+    return f"{f:.2f}".rstrip("0").rstrip(".") + " Hz"
+
+
+def verdict_rows(v: ResonanceVerdict) -> tuple[list[str], list[list[str]]]:
+    """The closest mode to each excitation harmonic, closest first."""
     amp = _amplified(v)
-    lines = [f"{'source':<10} {'order':>5} {'excitation':>13}  {'closest mode':>12} "
-             f"{'frequency':>12}  {'kind':<8} {'margin':>9}  {'required':>8}"
-             + (f"  {'amplification':>13}" if amp else "")]
-    for a in v.closest_per_harmonic():
-        lines.append(
-            f"{a.source:<10} {a.order:>5} {a.excitation:>10.2f} Hz  {a.mode:>12} "
-            f"{a.frequency:>9.2f} Hz  {a.kind:<8} {100 * a.margin:>8.1f} %  "
-            f"{100 * a.required:>6.1f} %"
-            + (f"  {a.amplification:>12.3f}x" if amp else "")
-            + f"  {'ok' if a.ok else 'TOO CLOSE'}")
-    if amp:
+    head = (["source", "order", "excitation", "closest mode", "frequency", "kind", "margin",
+             "required"] + (["amplification"] if amp else []) + [""])
+    rows = [[a.source, str(a.order), f"{a.excitation:.2f} Hz", str(a.mode),
+             f"{a.frequency:.2f} Hz", a.kind, f"{100 * a.margin:.1f} %",
+             f"{100 * a.required:.3g} %"] + ([f"{a.amplification:.3f}x"] if amp else [])
+            + ["ok" if a.ok else "TOO CLOSE"] for a in v.closest_per_harmonic()]
+    return head, rows
+
+
+def verdict_text(v: ResonanceVerdict) -> str:
+    """The resonance table, columns sized to their contents, and the verdict."""
+    head, rows = verdict_rows(v)
+    lines = aligned([head] + rows, left={0, 5, len(head) - 1})
+    if _amplified(v):
         lines += ["", "amplification: transmissibility |u / u_base| at the response point "
                   "for lateral base motion at the supports, at the harmonic's frequency"]
-    lines += ["", verdict_line(v).replace("**", "")]
+    lines += [""] + [line.replace("**", "") for line in verdict_lines(v)]
     return "\n".join(lines)
 
 
+FREE_FREE_CAVEAT = (
+    "free-free: no [[support]] holds this shaft, so these are its modes hanging free. In "
+    "its bearings its first bending mode can lie far lower (about half for a shaft on two "
+    "bearings; see the installed-shaft guide). Add [[support]] tables to check the shaft as "
+    "installed, or set [resonance] free_free = true (or pass --free) when free-free is what "
+    "the check is for.")
+
+
+def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
+    """The verdict line, and for a free-free shaft the caveat under it (Markdown bold)."""
+    lines = [verdict_line(v)]
+    if v is not None and v.free_free:
+        lines.append(FREE_FREE_CAVEAT)
+    return lines
+
+
 def verdict_line(v: ResonanceVerdict | None) -> str:
-    """One line: PASS or FAIL with the closest approach (Markdown bold)."""
+    """One line: PASS or FAIL with the closest approach, and on what (Markdown bold)."""
     if v is None:
         return ("**VERDICT: NOT CHECKED** - the scene has no [[excitation]] sources; add them "
                 "to check the modes against the excitation harmonics")
+    free = " (free-free)" if v.free_free else ""
     if v.ok:
         a = v.approaches[0]
-        return (f"**VERDICT: PASS** - no natural frequency within {100 * v.required:.3g} % "
-                f"of any excitation harmonic (closest: mode {a.mode}, {a.frequency:.1f} Hz, vs "
-                f"{a.source} x{a.order} at {a.excitation:.1f} Hz: {100 * a.margin:.0f} % apart)")
+        return (f"**VERDICT: PASS{free}** - no natural frequency within "
+                f"{100 * v.required:.3g} % of any excitation harmonic"
+                f"{' on the shaft hanging free' if free else ''} (closest: mode {a.mode}, "
+                f"{a.frequency:.1f} Hz, vs {a.source} x{a.order} at {a.excitation:.1f} Hz: "
+                f"{100 * a.margin:.0f} % apart)")
     a = v.violations[0]
-    return (f"**VERDICT: FAIL** - {len(v.violations)} mode/harmonic pair(s) closer than "
+    return (f"**VERDICT: FAIL{free}** - {len(v.violations)} mode/harmonic pair(s) closer than "
             f"{100 * v.required:.3g} %; closest: mode {a.mode} ({a.frequency:.1f} Hz, {a.kind}) "
             f"is only {100 * a.margin:.1f} % from {a.source} x{a.order} at "
             f"{a.excitation:.1f} Hz")
 
 
 def verdict_markdown(v: ResonanceVerdict) -> list[str]:
-    amp = _amplified(v)
-    return markdown(
-        ["source", "order", "excitation (Hz)", "closest mode", "frequency (Hz)", "margin",
-         "required"] + (["amplification"] if amp else []) + [""],
-        [[a.source, str(a.order), f"{a.excitation:.2f}", str(a.mode), f"{a.frequency:.2f}",
-          f"{100 * a.margin:.1f} %", f"{100 * a.required:.3g} %"]
-         + ([f"{a.amplification:.3f}x"] if amp else []) + ["ok" if a.ok else "TOO CLOSE"]
-         for a in v.closest_per_harmonic()])
+    return markdown(*verdict_rows(v))
 
 
 def sizing_text(r: SizingResult) -> str:
@@ -235,12 +299,11 @@ def sizing_markdown(r: SizingResult) -> list[str]:
 def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> list[str]:
     m = result.modes
     rows = []
-    for i, (f, kind, r) in enumerate(zip(m.frequencies, m.kinds, m.residuals)):
-        err = ""
-        if est is not None:
-            err = bound_text(est, i)
-        rows.append([str(i + 1), f"{f:.2f}", kind, f"{r:.1e}", err])
-    return markdown(["mode", "frequency (Hz)", "kind", "residual", "error bound"], rows)
+    for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
+        bound = [] if est is None else [bound_text(est, i), interval_text(est, f, i)]
+        rows.append([str(i + 1), f"{f:.2f}", kind] + bound)
+    return markdown(["mode", "frequency (Hz)", "kind"]
+                    + ([] if est is None else ["error bound", "true frequency in"]), rows)
 
 
 def side_by_side_markdown(installed: ModalResult, free: ModalResult) -> list[str]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from shaftfem.errors import SceneError
 from shaftfem.scene.model import MM, Attachment, Grooves, MeshSettings, Shaft, Support
-from shaftfem.scene.toml_reading import where
+from shaftfem.scene.toml_reading import entry, where
 
 # A seat's band must be meshable and mean something: at least SEAT_MIN wide (no bearing
 # or hub is narrower) and 1/16 of the element size (the band's faces need elements of
@@ -20,8 +20,8 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
                  mesh: MeshSettings) -> None:
     """Every seat wide enough to mesh, on the shaft, clear of the grooves, and no two
     seats overlapping; none nearer than SEAT_MIN to an edge it does not sit on."""
-    seats = ([(f"support[{i}]", s) for i, s in enumerate(supports)]
-             + [(f"attachment[{i}]", a) for i, a in enumerate(attachments)])
+    seats = ([(entry("support", i, s), s) for i, s in enumerate(supports)]
+             + [(entry("attachment", i, a), a) for i, a in enumerate(attachments)])
     L = shaft.length
     narrowest = max(SEAT_MIN, SEAT_PER_ELEMENT * mesh.size)
     edges = [0.0] + ([L] if L else [])  # an unplaced STEP shaft's length is not known yet
@@ -120,3 +120,42 @@ def check_grooves(source: str, g: dict, shaft: Shaft) -> Grooves:
         length=g["grooved_length_mm"] * MM,
         start=start * MM,
     )
+
+
+# What the tool has been verified on (docs/verification.md): shafts 5 mm to 10 m long,
+# length over largest diameter 1 to 60, and frequencies below 100 kHz.
+PLAUSIBLE_LENGTH = (5e-3, 10.0)          # m
+VERIFIED_SLENDERNESS = (1.0, 60.0)
+PLAUSIBLE_FREQUENCY = 1e5                # Hz
+
+
+class PlausibilityWarning(UserWarning):
+    """A scene that loads but looks like a slip (most often a unit)."""
+
+
+def implausible(source: str, shaft: Shaft) -> list[str]:
+    """What about the shaft's size looks like a slip, each naming the likely one."""
+    L, D = shaft.length, shaft.diameter
+    if not L:   # a STEP shaft is measured when it is placed
+        return []
+    out = []
+    if not PLAUSIBLE_LENGTH[0] <= L <= PLAUSIBLE_LENGTH[1]:
+        out.append(f"{source}: the shaft is {L / MM:g} mm long: lengths are in mm "
+                   "(length_mm, diameter_mm), so is this in metres or inches? The tool is "
+                   f"meant for shafts {PLAUSIBLE_LENGTH[0] / MM:g} mm to "
+                   f"{PLAUSIBLE_LENGTH[1]:g} m long")
+    slender = L / D
+    if not VERIFIED_SLENDERNESS[0] <= slender <= VERIFIED_SLENDERNESS[1]:
+        out.append(f"{source}: length / diameter = {slender:.3g} ({L / MM:g} mm over "
+                   f"{D / MM:g} mm): the tool is verified on {VERIFIED_SLENDERNESS[0]:g} to "
+                   f"{VERIFIED_SLENDERNESS[1]:g}; check that both are in mm")
+    return out
+
+
+def implausible_frequency(source: str, first_hz: float) -> list[str]:
+    """A first frequency no machine shaft has: most often lengths given in metres."""
+    if first_hz <= PLAUSIBLE_FREQUENCY:
+        return []
+    return [f"{source}: the first natural frequency is {first_hz / 1e3:.4g} kHz, above "
+            f"{PLAUSIBLE_FREQUENCY / 1e3:g} kHz: lengths are in mm, so is the shaft given "
+            "in metres?"]

@@ -8,11 +8,12 @@ in SI units (m, Pa, kg/m^3, W, rad/s), which is all the solver ever sees.
 from __future__ import annotations
 
 import tomllib
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfem.errors import SceneError
-from shaftfem.scene.checks import check_grooves, check_seats
+from shaftfem.scene.checks import PlausibilityWarning, check_grooves, check_seats, implausible
 from shaftfem.scene.model import (
     MM,
     Attachment,
@@ -27,7 +28,13 @@ from shaftfem.scene.model import (
 )
 from shaftfem.scene.profile import shaft_from_tables
 from shaftfem.scene.schema import SCHEMA
-from shaftfem.scene.toml_reading import read_toml, split_parameter, validate_table, where
+from shaftfem.scene.toml_reading import (
+    entry,
+    read_toml,
+    split_parameter,
+    validate_table,
+    where,
+)
 
 # The scenes shipped with shaftfem: the repository's geometry/ folder, which an
 # installed package carries as shaftfem/scenes (pyproject.toml maps one onto the other).
@@ -169,6 +176,8 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                          "[[attachment]] tables")
     point = _response_point(source, t["response"], shaft)
     target = mesh_t["target_error_percent"]
+    for message in implausible(source, shaft):
+        warnings.warn(message, PlausibilityWarning, stacklevel=2)
     return Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,
                  material=material, grooves=grooves, mesh=mesh,
                  excitations=_excitations(source, data), sizing=sizing,
@@ -179,7 +188,7 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                  max_dofs=mesh_t["max_dofs"], supports=supports, attachments=attachments,
                  damping_ratio=t["response"]["damping_ratio_percent"] / 100,
                  response_point=None if point is None else point * MM,
-                 criterion=res_t["criterion"])
+                 criterion=res_t["criterion"], free_free_intended=res_t["free_free"])
 
 
 def _check_tables(source: str, data: dict) -> None:
@@ -198,7 +207,7 @@ def _check_tables(source: str, data: dict) -> None:
 def _excitations(source: str, data: dict) -> tuple[Excitation, ...]:
     out = []
     for i, e in enumerate(_array(source, data, "excitation")):
-        e = validate_table(source, f"excitation[{i}]", e, SCHEMA["excitation"])
+        e = validate_table(source, entry("excitation", i, e), e, SCHEMA["excitation"])
         out.append(Excitation(name=e["name"], frequency=e["speed_rpm"] / 60.0,
                               orders=tuple(e["orders"])))
     return tuple(out)
@@ -251,7 +260,7 @@ def _array(source: str, data: dict, table: str) -> list:
 
 
 def _support(source: str, i: int, t: dict) -> Support:
-    table = f"support[{i}]"
+    table = entry("support", i, t)
     t = validate_table(source, table, t, SCHEMA["support"])
     springs = ("radial_stiffness_n_per_mm", "axial_stiffness_n_per_mm",
                "tilting_stiffness_nmm_per_rad")
@@ -277,14 +286,15 @@ def _support(source: str, i: int, t: dict) -> Support:
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:
-    t = validate_table(source, f"attachment[{i}]", t, SCHEMA["attachment"])
+    table = entry("attachment", i, t)
+    t = validate_table(source, table, t, SCHEMA["attachment"])
     polar, diametral = t["polar_inertia_kg_m2"], t["diametral_inertia_kg_m2"]
     if t["mass_kg"] == 0 and polar + diametral > 0:
-        raise SceneError(f"{where(source, f'attachment[{i}]', 'mass_kg')} = 0: a part with "
+        raise SceneError(f"{where(source, table, 'mass_kg')} = 0: a part with "
                          "moments of inertia has a mass")
     if diametral < polar / 2 * (1 - 1e-12):
         raise SceneError(
-            f"{where(source, f'attachment[{i}]', 'diametral_inertia_kg_m2')} = {diametral:g}: "
+            f"{where(source, table, 'diametral_inertia_kg_m2')} = {diametral:g}: "
             f"a rigid part's moment about a diameter is at least half its polar moment "
             f"({polar / 2:g} kg m^2; a thin disk has exactly half)")
     return Attachment(name=t["name"] or f"attachment {i + 1}", position=t["position_mm"] * MM,

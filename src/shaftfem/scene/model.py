@@ -293,6 +293,7 @@ class Scene:
     damping_ratio: float = DEFAULT_DAMPING_PERCENT / 100  # modal, fraction of critical
     response_point: float | None = None  # z of the point whose response is shown, m
     criterion: str = "flat"  # resonance margin: "flat" or "api684" (shaftfem.checks.resonance)
+    free_free_intended: bool = False  # [resonance] free_free: the check is meant free-free
     # the supports left off (free-free), their seats kept in the mesh
     hanging_free: bool = False
 

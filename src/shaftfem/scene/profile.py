@@ -16,7 +16,7 @@ from shaftfem.errors import SceneError
 from shaftfem.scene.keyway_sizes import keyway_size
 from shaftfem.scene.model import MM, Keyway, Section, Shaft, StepSolid
 from shaftfem.scene.schema import SCHEMA
-from shaftfem.scene.toml_reading import validate_table, where
+from shaftfem.scene.toml_reading import entry, validate_table, where
 
 
 def shaft_from_tables(source: str, shaft_t: dict, sections: list, keyways: list,
@@ -64,7 +64,7 @@ def _not_bar(s: Section) -> bool:
 
 
 def _section(source: str, i: int, raw: object) -> Section:
-    table = f"section[{i}]"
+    table = entry("section", i)
     t = validate_table(source, table, raw, SCHEMA["section"])
     cone = (t["diameter_start_mm"], t["diameter_end_mm"])
     if t["diameter_mm"] is not None:
@@ -92,7 +92,7 @@ def _check_steps(source: str, profile: tuple[Section, ...]) -> None:
     drawn = Shaft(length=sum(s.length for s in profile), diameter=0.0, sections=profile)
     bounds = drawn.section_bounds()
     for i, (a, b) in enumerate(zip(profile, profile[1:] + (None,))):
-        table = f"section[{i}]"
+        table = entry("section", i)
         if b is None:
             for key, value in (("fillet_mm", a.fillet), ("chamfer_mm", a.chamfer)):
                 if value:
@@ -149,7 +149,7 @@ def _check_end_chamfer(source: str, profile: tuple[Section, ...], c: float) -> N
 
 
 def _keyway(source: str, i: int, raw: object, shaft: Shaft) -> Keyway:
-    table = f"keyway[{i}]"
+    table = entry("keyway", i)
     t = validate_table(source, table, raw, SCHEMA["keyway"])
     centre, length = t["position_mm"] * MM, t["length_mm"] * MM
     start, end = centre - length / 2, centre + length / 2

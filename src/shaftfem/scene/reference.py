@@ -37,7 +37,7 @@ def unit(key: str) -> str:
 
 
 def _type(k: Key) -> str:
-    names = {float: "number", int: "integer", str: "text"}
+    names = {float: "number", int: "integer", str: "text", bool: "true or false"}
     if isinstance(k.kind, tuple):
         return f"list of {names[k.kind[1]]}"
     return names[k.kind]

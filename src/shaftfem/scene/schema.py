@@ -33,7 +33,7 @@ DEFAULT_DAMPING_PERCENT = 2.0
 class Key:
     """One scene key: its type, what it means (with its unit), and what it must satisfy."""
 
-    kind: type | tuple  # float, int, str, or ("list", str)
+    kind: type | tuple  # float, int, str, bool, or ("list", str)
     doc: str
     check: Callable[[Any], bool] | None = None
     allowed: str = ""
@@ -289,6 +289,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "17 (1 - 1 / (AF - 1.5)) %, none below AF = 2.5), zeta from [response]",
             lambda v: v in ("flat", "api684"), '"flat" or "api684"', default="flat",
             required=False),
+        "free_free": Key(
+            bool, "true: the check is meant on the free-free shaft (a hammer test, a "
+            "paper's table), so its PASS exits 0; without it, a PASS of a scene with no "
+            "[[support]] exits 4, since in its bearings the shaft's modes lie lower",
+            default=False, required=False),
     },
     "modes": {
         "count": Key(int, f"elastic modes to compute (default {DEFAULT_MODE_COUNT})",

@@ -14,7 +14,19 @@ from shaftfem.scene.schema import SCHEMA, TABLES, Key
 
 
 def where(source: str, table: str, key: str) -> str:
+    """'file: table.key', or 'file: support 2 ("drive end"): key' for an entry of an
+    array of tables (see `entry`)."""
+    if " " in table:
+        return f"{source}: {table}: {key}"
     return f"{source}: {table + '.' if table else ''}{key}"
+
+
+def entry(table: str, i: int, raw: object = None) -> str:
+    """Entry i (from 0) of an array of tables as people count it, from 1, and by its
+    name when it has one: 'support 1 ("drive end")'."""
+    name = raw.get("name") if isinstance(raw, dict) else getattr(raw, "name", None)
+    label = f"{table} {i + 1}"
+    return label + (f' ("{name}")' if isinstance(name, str) and name and name != label else "")
 
 
 def _coerce(source: str, table: str, key: str, spec: Key, value: Any) -> Any:
@@ -28,6 +40,9 @@ def _coerce(source: str, table: str, key: str, spec: Key, value: Any) -> Any:
     elif spec.kind is int:
         if isinstance(value, bool) or not isinstance(value, int):
             raise SceneError(f"{at} = {value!r}: expected an integer ({spec.doc})")
+    elif spec.kind is bool:
+        if not isinstance(value, bool):
+            raise SceneError(f"{at} = {value!r}: expected true or false ({spec.doc})")
     elif spec.kind is str:
         if not isinstance(value, str):
             raise SceneError(f"{at} = {value!r}: expected a string ({spec.doc})")

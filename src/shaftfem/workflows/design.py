@@ -90,7 +90,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         say("exporting mode shapes, mesh and solid")
         files = write_mode_files(result, stage, est)
         say("rendering pictures")
-        pictures = render_into(result, stage)
+        pictures = render_into(result, stage, say)
         if response is not None:
             pictures.append(_response_picture(result, response, basis, stage / "response.png"))
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
