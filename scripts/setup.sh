@@ -65,11 +65,13 @@ fi
 
 [ "$kind" = test ] || exit 0
 # The tests' independent programs: CalculiX solves the same decks, ParaView (pvpython)
-# opens the exported modes headless, and xvfb-run gives the ParaView script a screen.
+# opens the exported modes headless, xvfb-run gives the ParaView script a screen, and
+# Chromium opens report.html headless as a reader would.
 missing=()
 command -v ccx >/dev/null 2>&1 || missing+=(calculix-ccx)
 command -v pvpython >/dev/null 2>&1 || missing+=(paraview)
 command -v xvfb-run >/dev/null 2>&1 || missing+=(xvfb)
+command -v chromium >/dev/null 2>&1 || missing+=(chromium)
 if [ ${#missing[@]} -gt 0 ]; then
     apt_install "the tests' cross-check programs: ${missing[*]}" "${missing[@]}" \
         || { echo "setup: could not install ${missing[*]}" >&2; exit 1; }

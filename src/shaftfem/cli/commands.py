@@ -152,7 +152,7 @@ def cmd_design(args) -> int:
 
     scene = _scene(args)
     d = run_design(scene, design_out(args, scene.name), margin=_margin(args),
-                   estimate=not args.no_estimate, options=_options(args))
+                   estimate=not args.no_estimate, options=_options(args), html=not args.no_html)
     if d.sizing is not None:
         print(sizing_text(d.sizing) + "\n")
     if d.adapted is not None:
@@ -164,7 +164,8 @@ def cmd_design(args) -> int:
         print(participation_text(d.result, d.participation) + "\n")
     print(verdict_text(d.verdict) if d.verdict is not None
           else verdict_line(None).replace("**", ""))
-    print(f"\nreport: {d.report}")
+    print(f"\nreport: {d.report}" + ("" if args.no_html else
+                                       f" and {d.report.with_suffix('.html')}"))
     status = d.verdict.exit_status if d.verdict is not None else 0
     return status or _accuracy_status(args, d.adapted)
 

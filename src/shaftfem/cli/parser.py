@@ -97,8 +97,12 @@ def build_parser() -> argparse.ArgumentParser:
                    "*FREQUENCY deck of the same mesh and material")
     _modal_command(sub, "render", "pictures: the shaft, every mode (PNG) and each mode moving "
                    "(GIF)", cmd.cmd_render, json=False, out="required")
-    _modal_command(sub, "design", "sizing, modes, resonance check, files, pictures and a report",
-                   cmd.cmd_design, json=False, out="optional", estimate=True, margin=True)
+    d = _modal_command(sub, "design", "sizing, modes, resonance check, files, pictures and a "
+                       "report (report.md, and report.html with a 3D view of every mode)",
+                       cmd.cmd_design, json=False, out="optional", estimate=True, margin=True)
+    d.add_argument("--no-html", action="store_true",
+                   help="leave out report.html (a self-contained page of about 3 MB with an "
+                   "interactive 3D view of every mode)")
     _modal_command(sub, "paper", "the paper's Table 2 and stated sizing beside ours",
                    cmd.cmd_paper, json=False)
     sw = _dask_command(sub, "sweep", "run many variants of a scene on Dask (resumable)",

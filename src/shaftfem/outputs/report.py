@@ -23,25 +23,10 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     free: ModalResult | None = None,
                     participation: Participation | None = None) -> str:
     """report.md's text; picture and file names are relative to the report's folder."""
-    scene, m = result.scene, result.modes
-    mat, g = scene.material, scene.grooves
+    scene = result.scene
     lines = [f"# Modal design report: {scene.name}", ""]
     lines += [x for line in tables.verdict_lines(verdict) for x in (line, "")]
-    lines += ["## Shaft", "",
-              f"- {scene.shaft.length * 1e3:g} mm long, {scene.shaft.diameter * 1e3:g} mm "
-              f"largest diameter, {mat.name} (E = {mat.youngs_modulus / 1e6:g} MPa, "
-              f"nu = {mat.poisson_ratio:g}, rho = {mat.density:g} kg/m^3)"]
-    lines += [f"- {line}" for line in tables.shape_lines(scene.shaft)]
-    if g:
-        hands = " and ".join("right" if h > 0 else "left" for h in g.hands)
-        lines.append(f"- grooves: {hands}-hand, pitch {g.pitch * 1e3:g} mm, width "
-                     f"{g.width * 1e3:g} mm (axial), depth {g.depth * 1e3:g} mm, root radius "
-                     f"{g.root_radius * 1e3:g} mm, over {g.length * 1e3:g} mm from "
-                     f"{g.start * 1e3:g} mm; removed volume "
-                     f"{result.shape.groove_volume_cad * 1e9:.1f} mm^3 (analytic "
-                     f"{result.shape.groove_volume_analytic * 1e9:.1f} mm^3)")
-    lines += [f"- mesh: P{scene.mesh.order}, {m.n_dofs} DOFs, {result.mesh.n_elements} elements",
-              ""]
+    lines += ["## Shaft", ""] + [f"- {line}" for line in shaft_facts(result)] + [""]
     if sizing is not None:
         lines += ["## Sizing (paper equations 1-9)", ""] + tables.sizing_markdown(sizing) + [""]
     if scene.supports or scene.attachments:
@@ -49,7 +34,7 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
         lines.append("")
     title = "installed" if scene.held else "free-free"
     lines += [f"## Natural frequencies ({title})", ""] + tables.modes_markdown(result, estimate)
-    lines += ["", f"Rigid-body modes: {m.n_rigid}."]
+    lines += ["", f"Rigid-body modes: {result.modes.n_rigid}."]
     if estimate is not None:
         lines += tables.estimate_notes(estimate)
     if free is not None:
@@ -69,6 +54,27 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
         lines += ["## Files", ""] + [f"- `{Path(f).name}`" for f in files] + [""]
     lines += ["## Run time", "", tables.timings_line(result), ""]
     return "\n".join(lines)
+
+
+def shaft_facts(result: ModalResult) -> list[str]:
+    """What the shaft is and how it was meshed, a line each."""
+    scene, m = result.scene, result.modes
+    mat, g = scene.material, scene.grooves
+    lines = [f"{scene.shaft.length * 1e3:g} mm long, {scene.shaft.diameter * 1e3:g} mm "
+             f"largest diameter, {mat.name} (E = {mat.youngs_modulus / 1e6:g} MPa, "
+             f"nu = {mat.poisson_ratio:g}, rho = {mat.density:g} kg/m^3)"]
+    lines += tables.shape_lines(scene.shaft)
+    if g:
+        hands = " and ".join("right" if h > 0 else "left" for h in g.hands)
+        lines.append(f"grooves: {hands}-hand, pitch {g.pitch * 1e3:g} mm, width "
+                     f"{g.width * 1e3:g} mm (axial), depth {g.depth * 1e3:g} mm, root radius "
+                     f"{g.root_radius * 1e3:g} mm, over {g.length * 1e3:g} mm from "
+                     f"{g.start * 1e3:g} mm; removed volume "
+                     f"{result.shape.groove_volume_cad * 1e9:.1f} mm^3 (analytic "
+                     f"{result.shape.groove_volume_analytic * 1e9:.1f} mm^3)")
+    lines.append(f"mesh: P{scene.mesh.order}, {m.n_dofs} DOFs, {result.mesh.n_elements} "
+                 "elements")
+    return lines
 
 
 def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdict | None,

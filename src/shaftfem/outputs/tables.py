@@ -245,11 +245,17 @@ FREE_FREE_CAVEAT = (
     "the check is for.")
 
 
+FREE_FREE_MEANT = (
+    "free-free, as the scene says ([resonance] free_free = true, or --free): these are the "
+    "shaft's modes hanging free. In its bearings they lie lower (the first bending mode about "
+    "half as high for a shaft on two bearings).")
+
+
 def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
     """The verdict line, and for a free-free shaft the caveat under it (Markdown bold)."""
     lines = [verdict_line(v)]
     if v is not None and v.free_free:
-        lines.append(FREE_FREE_CAVEAT)
+        lines.append(FREE_FREE_MEANT if v.free_free_intended else FREE_FREE_CAVEAT)
     return lines
 
 
@@ -289,24 +295,34 @@ def sizing_text(r: SizingResult) -> str:
     return "\n".join(lines)
 
 
+Rows = tuple[list[str], list[list[str]]]   # (header, rows of cells): a table's content
+
+
+def sizing_rows(r: SizingResult) -> Rows:
+    return (["eq.", "symbol", "value", "unit", "quantity"],
+            [[q.equation, q.symbol, f"{q.value:.4g}", q.unit, q.name] for q in r.quantities])
+
+
 def sizing_markdown(r: SizingResult) -> list[str]:
-    lines = markdown(["eq.", "symbol", "value", "unit", "quantity"],
-                     [[q.equation, q.symbol, f"{q.value:.4g}", q.unit, q.name]
-                      for q in r.quantities])
-    return lines + [""] + [f"- LIMIT BROKEN: {v}" for v in r.violations]
+    return markdown(*sizing_rows(r)) + [""] + [f"- LIMIT BROKEN: {v}" for v in r.violations]
 
 
-def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> list[str]:
+def modes_rows(result: ModalResult, est: ErrorEstimate | None = None) -> Rows:
+    """Each mode's frequency and kind, and with a bound where the true frequency lies."""
     m = result.modes
     rows = []
     for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
         bound = [] if est is None else [bound_text(est, i), interval_text(est, f, i)]
         rows.append([str(i + 1), f"{f:.2f}", kind] + bound)
-    return markdown(["mode", "frequency (Hz)", "kind"]
-                    + ([] if est is None else ["error bound", "true frequency in"]), rows)
+    return (["mode", "frequency (Hz)", "kind"]
+            + ([] if est is None else ["error bound", "true frequency in"]), rows)
 
 
-def side_by_side_markdown(installed: ModalResult, free: ModalResult) -> list[str]:
+def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> list[str]:
+    return markdown(*modes_rows(result, est))
+
+
+def side_by_side_rows(installed: ModalResult, free: ModalResult) -> Rows:
     """The installed modes beside the free-free ones, mode by mode."""
     a, b = installed.modes, free.modes
     rows = []
@@ -314,7 +330,11 @@ def side_by_side_markdown(installed: ModalResult, free: ModalResult) -> list[str
         left = [f"{a.frequencies[i]:.2f}", a.kinds[i]] if i < a.count else ["", ""]
         right = [f"{b.frequencies[i]:.2f}", b.kinds[i]] if i < b.count else ["", ""]
         rows.append([str(i + 1)] + left + right)
-    return markdown(["mode", "installed (Hz)", "kind", "free-free (Hz)", "kind"], rows)
+    return ["mode", "installed (Hz)", "kind", "free-free (Hz)", "kind"], rows
+
+
+def side_by_side_markdown(installed: ModalResult, free: ModalResult) -> list[str]:
+    return markdown(*side_by_side_rows(installed, free))
 
 
 def paper_text(result: ModalResult, sizing: SizingResult | None) -> str:

@@ -54,10 +54,12 @@ class DesignResult:
 
 
 def run_design(scene: Scene, out: str | Path, margin: float | None = None,
-               estimate: bool = True, options: RunOptions = RunOptions()) -> DesignResult:
+               estimate: bool = True, options: RunOptions = RunOptions(),
+               html: bool = True) -> DesignResult:
     """Everything a designer signs off: sizing, modes with bounds, resonance verdict,
-    files, pictures and report.md, published together into the folder `out`.
-    `margin`: required separation (fraction), default the scene's."""
+    files, pictures, report.md and (unless `html` is False) report.html, published
+    together into the folder `out`. `margin`: required separation (fraction), default
+    the scene's."""
     from shaftfem.checks.resonance import check_result
     from shaftfem.checks.sizing import size_from_scene
     from shaftfem.outputs.export import write_mode_files
@@ -95,6 +97,12 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
             pictures.append(_response_picture(result, response, basis, stage / "response.png"))
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
                      free=free, participation=part)
+        if html:
+            from shaftfem.outputs.report_html import write_report_html
+
+            say("report.html: the report with a 3D view of every mode")
+            write_report_html(stage / "report.html", result, verdict, sizing, pictures, est,
+                              free=free, participation=part)
     files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
     report = out / "report.md"
     say(f"report written: {report}")

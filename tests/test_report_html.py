@@ -1,0 +1,115 @@
+"""report.html opened as a reader would: in headless Chromium (Debian's package), from
+a file, with no server. The page must load without errors and without a single
+network request, its 3D view must show the shaft (not a blank canvas), and stepping to
+another mode must change the view. The screenshots are kept in out/test-report-html/
+to be looked at."""
+
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shaftfem.cli import main
+
+REPO = Path(__file__).resolve().parents[1]
+SHOTS = REPO / "out" / "test-report-html"
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed "
+                                "(scripts/setup.sh test installs it)")
+
+# Instrumentation put first into the test's copy of the page: Chromium logs every
+# console message at one level, so errors, warnings and exceptions are marked.
+WATCH = """<script>
+(function () {
+  for (const level of ["error", "warn"]) {
+    const real = console[level].bind(console);
+    console[level] = function () {
+      console.log("PAGE-" + level.toUpperCase() + ":", ...arguments);
+      real(...arguments);
+    };
+  }
+  window.addEventListener("error", (e) => console.log("PAGE-ERROR: " + e.message));
+  window.addEventListener("unhandledrejection", (e) => console.log("PAGE-ERROR: " + e.reason));
+})();
+</script>"""
+
+
+def _chromium(profile: Path, url: str, *flags: str) -> subprocess.CompletedProcess:
+    """Headless Chromium on `url`, WebGL in software (SwiftShader), nothing of its own
+    on the network, 10 s of the page's time to load and draw."""
+    return subprocess.run(
+        [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
+         "--enable-unsafe-swiftshader", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", "--disable-quic",
+         f"--user-data-dir={profile}", "--window-size=1200,900",
+         "--virtual-time-budget=10000", *flags, url],
+        capture_output=True, text=True, timeout=120)
+
+
+def _page_requests(netlog: Path) -> list[str]:
+    """URLs the page asked for that are not inside it (file:, data:, blob:), from
+    Chromium's NetLog: the requests whose network isolation key is the file's."""
+    text = netlog.read_text()
+    if not text.rstrip().endswith("}"):   # a log cut off at exit lacks its closing
+        text = text.rstrip().rstrip(",") + "]}"
+    log = json.loads(text)
+    start = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"]
+    urls = []
+    for e in log["events"]:
+        p = e.get("params", {})
+        if e["type"] == start and "file://" in p.get("network_isolation_key", ""):
+            urls.append(p["url"])
+    return [u for u in urls if not u.startswith(("file:", "data:", "blob:"))]
+
+
+def _coloured(img: np.ndarray) -> np.ndarray:
+    """Pixels of a saturated colour: the shaft's viridis colours and its glyphs (the
+    page's text, tables and pale boxes are grey or nearly white)."""
+    rgb = img[..., :3].astype(float)
+    top, low = rgb.max(axis=2), rgb.min(axis=2)
+    return (top - low) > 0.35 * np.maximum(top, 1)
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory) -> Path:
+    """design on a stepped shaft in two bearings with a sprocket, coarse and quick."""
+    out = tmp_path_factory.mktemp("design")
+    assert main(["design", str(REPO / "examples" / "stepped_shaft.toml"), "--out", str(out),
+                 "--mesh-size", "12", "--modes", "4", "--no-estimate", "-q"]) == 0
+    page = out / "report.html"
+    text = page.read_text()
+    assert text.count("<head>") == 1
+    page.write_text(text.replace("<head>", "<head>" + WATCH, 1))
+    return page
+
+
+def test_report_html_loads_offline_without_errors_and_its_3d_view_steps(report, tmp_path):
+    from PIL import Image
+
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    netlog = tmp_path / "net.json"
+    first = _chromium(tmp_path / "a", report.as_uri() + "#mode=1", "--enable-logging=stderr",
+                      "--v=0", f"--log-net-log={netlog}", f"--screenshot={SHOTS / 'mode1.png'}")
+    assert (SHOTS / "mode1.png").exists(), first.stderr[-2000:]
+    console = [line for line in first.stderr.splitlines() if ":CONSOLE" in line]
+    errors = [line for line in console if "PAGE-ERROR" in line or "PAGE-WARN" in line
+              or "Uncaught" in line]
+    assert not errors, errors
+    assert _page_requests(netlog) == []
+
+    _chromium(tmp_path / "b", report.as_uri() + "#mode=3", f"--screenshot={SHOTS / 'mode3.png'}")
+    dom = _chromium(tmp_path / "c", report.as_uri() + "#mode=3", "--dump-dom").stdout
+    assert 'data-ready="true"' in dom and 'data-mode="3"' in dom   # the view's script ran
+
+    one = np.asarray(Image.open(SHOTS / "mode1.png").convert("RGB"))
+    three = np.asarray(Image.open(SHOTS / "mode3.png").convert("RGB"))
+    a, b = _coloured(one), _coloured(three)
+    for shown in (a, b):
+        assert shown.mean() > 0.01   # the shaft drawn, not a blank canvas
+        cols = np.flatnonzero(shown.any(axis=0))
+        assert cols[-1] - cols[0] > 0.4 * shown.shape[1]   # and filling the view's width
+        assert one[shown].std() > 20   # shaded and coloured, not one flat colour
+    assert (a ^ b).sum() > 0.2 * (a | b).sum()   # mode 3 is not mode 1
