@@ -13,7 +13,12 @@ myst_enable_extensions = ["dollarmath"]
 
 html_theme = "furo"
 html_title = "shaftfem"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["console.css"]
+# a block without a language is program output, not Python
+highlight_language = "text"
+# "--accuracy" stays two hyphens: the docs name command-line flags
+smartquotes = False
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "signature"

@@ -78,3 +78,44 @@ def test_the_readme_is_short_and_its_links_resolve():
     assert local, "the README links into the docs"
     missing = [t for t in local if not (ROOT / t).exists()]
     assert not missing, missing
+
+
+def _public_docstrings():
+    """(where, text) of every public module, class and function docstring in shaftfem."""
+    import ast
+
+    for path in sorted((ROOT / "src" / "shaftfem").rglob("*.py")):
+        tree = ast.parse(path.read_text())
+        where = path.relative_to(ROOT)
+        if ast.get_docstring(tree):
+            yield f"{where}", ast.get_docstring(tree)
+        for node in ast.walk(tree):
+            if isinstance(node, (ast.FunctionDef, ast.ClassDef)) and not node.name.startswith("_"):
+                text = ast.get_docstring(node)
+                if text:
+                    yield f"{where}:{node.name}", text
+
+
+def test_docstrings_name_the_orders_and_flags_the_command_line_takes():
+    """A docstring that gives a range of element orders gives one the command line takes
+    (and all of it when it starts at the lowest), and a --flag it names is one of the
+    command line's (the ParaView script's own --png and --mode aside)."""
+    from shaftfem.cli.parser import build_parser
+    from shaftfem.scene.schema import ELEMENT_ORDERS
+
+    parser = build_parser()
+    flags = {o for a in parser._actions for o in a.option_strings}
+    for sub in parser._subcommands().values():
+        flags |= {o for a in sub._actions for o in a.option_strings}
+    low, high = min(ELEMENT_ORDERS), max(ELEMENT_ORDERS)
+    wrong = []
+    for where, text in _public_docstrings():
+        text = " ".join(text.split())
+        for a, b in re.findall(r"orders?\D{0,12}?(\d) to (\d)", text):
+            a, b = int(a), int(b)
+            if not low <= a <= b <= high or (a == low and b != high):
+                wrong.append(f"{where}: orders {a} to {b} (the command line takes {low} to {high})")
+        for flag in re.findall(r"(?<![\w-])--[a-z][a-z0-9-]*", text):
+            if flag not in flags and not where.startswith("src/shaftfem/outputs/paraview_script"):
+                wrong.append(f"{where}: {flag} is no flag of the command line")
+    assert not wrong, "\n".join(wrong)

@@ -22,6 +22,7 @@ PAPER = tomllib.loads((GEOMETRY_DIR / "paper2018.toml").read_text())
 FLOATS = [math.nan, math.inf, -math.inf, 1e300, -1e300, "text", True, [1.0], {"a": 1.0}]
 INTS = [2.5, math.nan, "text", True, -1, 10**12, [1]]
 STRINGS = [5, 1.5, True, ["a"]]
+BOOLS = [1, 0, "true", 1.5, [True]]
 LISTS = {"hands": ["right", [], ["up"], [1], ["left", "left"], ["right", "left", "right"]],
          "orders": [1, [], [0], [-2], [1.5], ["one"]],
          "axis_from_mm": [1.0, [], [0.0, 1.0], [0, 0, 0, 1], ["a", "b", "c"]],
@@ -66,6 +67,8 @@ def _mutations():
                 bad = INTS
             elif spec.kind is str:
                 bad = STRINGS
+            elif spec.kind is bool:
+                bad = BOOLS
             else:
                 bad = LISTS[key]
             cases += [(table, key, "value", v) for v in bad]

@@ -48,7 +48,7 @@ COLOUR_LABEL = "displacement / largest displacement of the mode"
 BEARING_COLOUR, PART_COLOUR = "#d08030", "#4a78c0"
 
 
-def _pyvista():
+def load_pyvista():
     if not os.environ.get("DISPLAY"):
         # no X server: go straight to EGL instead of trying X first
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
@@ -57,7 +57,7 @@ def _pyvista():
     return pv
 
 
-def _plotter(pv, size: tuple[int, int], samples: int = 4, **kwargs):
+def plotter(pv, size: tuple[int, int], samples: int = 4, **kwargs):
     """An off-screen plotter on white with `samples` x multi-sampling (pyvista's default
     of 8 costs half again the time in software rendering, for edges no one sees)."""
     theme = pv.themes.DocumentTheme()
@@ -134,7 +134,7 @@ def _plane(u: np.ndarray) -> np.ndarray:
     return d if d[np.argmax(np.abs(d))] > 0 else -d
 
 
-def _frame(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
+def frame_view(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
            margin: float = 1.08) -> None:
     """Parallel projection across the shaft (axis z, left to right), framed to fill the
     view with `points` (mm). `plane`: the lateral direction drawn upwards."""
@@ -150,7 +150,7 @@ def _frame(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None 
     plotter.camera.parallel_scale = margin * half
 
 
-def _draw_seats(pv, p, scene) -> np.ndarray:
+def draw_seats(pv, p, scene) -> np.ndarray:
     """Bearings (orange rings) and attached parts (blue disks, of the radius a solid
     disk of their mass and polar inertia would have), see-through, on their seats.
     Returns the corners of what was drawn (mm), for framing."""
@@ -175,17 +175,17 @@ def _draw_seats(pv, p, scene) -> np.ndarray:
 def render_geometry(result: ModalResult, path: str | Path) -> Path:
     """A PNG of the shaft's solid (its mesh surface) seen square from the side, with its
     bearings and parts, and its main dimensions in mm."""
-    pv = _pyvista()
+    pv = load_pyvista()
     surf = _surface(_grid(pv, result), 2)
-    p = _plotter(pv, GEOMETRY_SIZE)
+    p = plotter(pv, GEOMETRY_SIZE)
     p.add_mesh(surf, color="#b0b8c0", smooth_shading=True, specular=0.3)
-    seats = _draw_seats(pv, p, result.scene)
+    seats = draw_seats(pv, p, result.scene)
     shaft = result.scene.shaft
     p.add_text(f"{result.scene.name}: {shaft.length * 1e3:g} mm long, largest diameter "
                f"{shaft.diameter * 1e3:g} mm", font_size=12, color="black")
     labels = _dimensions(pv, p, result.scene)
     pts = np.vstack([np.asarray(surf.points), seats, labels])
-    _frame(p, pts, GEOMETRY_SIZE[0] / GEOMETRY_SIZE[1], margin=1.12)
+    frame_view(p, pts, GEOMETRY_SIZE[0] / GEOMETRY_SIZE[1], margin=1.12)
     with atomic_path(path) as tmp:
         p.screenshot(str(tmp))
     p.close()
@@ -251,23 +251,23 @@ def _draw_mode(pv, p, d: Drawing, k: int, scene, aspect: float):
     actor = p.add_mesh(moving, scalars=f"c{k + 1}", cmap=CMAP, clim=(0.0, 1.0),
                        show_scalar_bar=False)
     actor.prop.interpolation = "gouraud"   # with the surface's own normals
-    seats = _draw_seats(pv, p, scene)
+    seats = draw_seats(pv, p, scene)
     p.add_text(d.titles[k], position="upper_left", font_size=9, color="black")
     lo = d.moved(k, -1.0)
-    _frame(p, np.vstack([moving.points, lo, seats]), aspect, d.planes[k])
+    frame_view(p, np.vstack([moving.points, lo, seats]), aspect, d.planes[k])
     return moving
 
 
 def render_modes(result: ModalResult, path: str | Path, d: Drawing | None = None) -> Path:
     """One PNG with a panel per mode (two a row), deformed, coloured by |u| / max |u|,
     with one colour bar and the drawing scale stated below them."""
-    pv = _pyvista()
+    pv = load_pyvista()
     d = d or drawing(pv, result)
     n, cols = result.modes.count, 2
     rows = math.ceil(n / cols)
     w, h = PANEL_SIZE
     size = (cols * w, rows * h + BAR_HEIGHT)
-    p = _plotter(pv, size, shape=(rows + 1, cols), border=True, border_color="lightgrey",
+    p = plotter(pv, size, shape=(rows + 1, cols), border=True, border_color="lightgrey",
                  groups=[(rows, slice(None))], row_weights=[h] * rows + [BAR_HEIGHT])
     for k in range(n):
         p.subplot(k // cols, k % cols)
@@ -301,11 +301,11 @@ def render_mode_gifs(result: ModalResult, out: str | Path, frames: int = GIF_FRA
     window; `say(message)` after each."""
     from PIL import Image
 
-    pv = _pyvista()
+    pv = load_pyvista()
     d = d or drawing(pv, result)
     out = Path(out)
     written = []
-    p = _plotter(pv, GIF_SIZE, samples=1)   # quantised to GIF_COLOURS: edges alias anyway
+    p = plotter(pv, GIF_SIZE, samples=1)   # quantised to GIF_COLOURS: edges alias anyway
     for k in range(result.modes.count):
         moving = _draw_mode(pv, p, d, k, result.scene, GIF_SIZE[0] / GIF_SIZE[1])
         base, u = np.asarray(d.surface.points), np.asarray(d.surface.point_data[f"u{k + 1}"])
@@ -350,7 +350,7 @@ def render_into(result: ModalResult, folder: Path, say=None) -> list[Path]:
             say(f"picture {path.name}")
         return path
 
-    pv = _pyvista()
+    pv = load_pyvista()
     d = drawing(pv, result)
     return [done(render_geometry(result, folder / "geometry.png")),
             done(render_modes(result, folder / "modes.png", d)),

@@ -38,9 +38,9 @@ def mode_scene(result: ModalResult) -> tuple[bytes, dict]:
     carry."""
     from shaftfem.outputs import render
 
-    pv = render._pyvista()
+    pv = render.load_pyvista()
     d = render.drawing(pv, result, subdivision=0)   # enough for a screen, a fifth the size
-    p = render._plotter(pv, VIEW_SIZE, samples=1)
+    p = render.plotter(pv, VIEW_SIZE, samples=1)
     faces = d.surface.faces
     for k in range(result.modes.count + 1):   # the modes, then the surface at rest
         mesh = pv.PolyData(d.moved(k).astype(np.float32) if k < result.modes.count
@@ -52,8 +52,8 @@ def mode_scene(result: ModalResult) -> tuple[bytes, dict]:
         p.add_mesh(mesh, scalars="colour", cmap=render.CMAP, clim=(0.0, 1.0),
                    show_scalar_bar=False)
     p.add_mesh(d.rest, color="grey", opacity=0.25)
-    seats = render._draw_seats(pv, p, result.scene)
-    render._frame(p, np.vstack([d.moved(0), d.moved(0, -1.0), seats]),
+    seats = render.draw_seats(pv, p, result.scene)
+    render.frame_view(p, np.vstack([d.moved(0), d.moved(0, -1.0), seats]),
                   VIEW_SIZE[0] / VIEW_SIZE[1], d.planes[0])
     p.render()
     data = _serialised(p.render_window)

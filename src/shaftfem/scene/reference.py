@@ -50,6 +50,8 @@ def _default(k: Key) -> str:
         return "optional"
     if isinstance(k.default, str):
         return f'"{k.default}"'
+    if isinstance(k.default, bool):
+        return "true" if k.default else "false"   # as TOML writes it
     return f"{k.default:g}" if isinstance(k.default, float) else str(k.default)
 
 

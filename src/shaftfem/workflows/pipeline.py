@@ -53,7 +53,7 @@ class Stopwatch:
 def with_mesh(scene: Scene, size_mm: float | None = None, order: int | None = None,
               geometry_order: int | None = None) -> Scene:
     """The scene with another element size away from the grooves, mm (the groove sizes
-    scaled alike), element order (1 to 4) and/or geometry order (2, 3)."""
+    scaled alike), element order (1 to 5) and/or geometry order (2, 3)."""
     m = scene.mesh
     if size_mm is not None:
         if not 0 < size_mm <= (scene.shaft.length * 1e3 or math.inf):  # also refuses nan

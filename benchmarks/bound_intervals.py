@@ -1,0 +1,74 @@
+"""Where each printed interval puts the true frequency, against the NGSolve references of
+docs/verification.md, on the paper's shaft at orders 2 to 5 (the table in
+docs/accuracy.md, "How far each frequency is from converged").
+
+    .venv/bin/python benchmarks/bound_intervals.py
+
+Runs `shaftfem modes --json` with its bound for: P2 and order 3 on the default mesh
+(8/4/4 mm), orders 4 and 5 on cubic geometry at 16/12/12 mm (a scene of those sizes
+written next to the paper's). Each interval is [f (1 - bound), f (1 + upper)]: the
+discretisation error is one-sided, the geometry allowances count both ways. Prints a
+Markdown table; the cubic runs mesh for a minute or more the first time.
+"""
+
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+# NGSolve on its own curved mesh of the exported STEP (docs/verification.md)
+REFERENCES = {
+    "order 3, 1.06M DOFs": [432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
+                            3814.81, 3883.84, 4448.27],
+    "order 4, 448k DOFs": [432.14, 443.45, 1194.25, 1222.66, 2334.10, 2382.05, 2732.16,
+                           3815.81, 3884.44, 4448.99],
+}
+
+
+def held(modes: list[dict], reference: list[float]) -> int:
+    """How many reference frequencies lie inside their mode's interval."""
+    return sum(x["true_frequency_low_hz"] <= f <= x["true_frequency_high_hz"]
+               for x, f in zip(modes, reference))
+
+
+def coarse_scene(folder: Path) -> Path:
+    text = (ROOT / "geometry" / "paper2018.toml").read_text()
+    for key, value in (("element_size_mm", 16.0), ("groove_element_size_mm", 12.0),
+                       ("edge_element_size_mm", 12.0)):
+        lines = [f"{key} = {value}" if line.split("=")[0].strip() == key else line
+                 for line in text.splitlines()]
+        text = "\n".join(lines) + "\n"
+    path = folder / "paper2018_16_12_12.toml"
+    path.write_text(text)
+    return path
+
+
+def main() -> None:
+    with tempfile.TemporaryDirectory() as d:
+        coarse = str(coarse_scene(Path(d)))
+        cases = [("P2, 8/4/4 (the default)", ["paper2018"]),
+                 ("order 3, 8/4/4", ["paper2018", "--order", "3"]),
+                 ("order 4, cubic 16/12/12", [coarse, "--order", "4", "--geometry-order", "3"]),
+                 ("order 5, cubic 16/12/12", [coarse, "--order", "5", "--geometry-order", "3"])]
+        print("| run | DOFs | mode 1: f, interval (Hz) | widest upward allowance | "
+              "references inside the interval | f against the order-4 reference |")
+        print("|---|---|---|---|---|---|")
+        for name, args in cases:
+            out = Path(d) / "modes.json"
+            subprocess.run([sys.executable, "-m", "shaftfem", "modes", *args, "-q", "--json",
+                            str(out)], check=True, capture_output=True)
+            r = json.loads(out.read_text())
+            m = r["modes"]
+            inside = ", ".join(f"{held(m, ref)}/10 ({which})" for which, ref in REFERENCES.items())
+            off = [100 * (x["frequency_hz"] / f - 1)
+                   for x, f in zip(m, REFERENCES["order 4, 448k DOFs"])]
+            print(f"| {name} | {r['dofs']:,} | {m[0]['frequency_hz']:.2f}, "
+                  f"[{m[0]['true_frequency_low_hz']:.2f}, {m[0]['true_frequency_high_hz']:.2f}] | "
+                  f"{max(x['error_bound_upper_percent'] for x in m):.2g} % | {inside} | "
+                  f"{min(off):+.3f} to {max(off):+.3f} % |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
