@@ -152,3 +152,36 @@ def test_a_sweep_whose_scheduler_never_answers_leaves_nothing(tmp_path, capsys):
                  "-q"]) == 3
     assert "no Dask scheduler answers" in capsys.readouterr().err
     assert not out.exists()                       # no lock file, key or empty folder
+
+
+METRES = """name = "in_metres"
+[shaft]
+length_mm = 0.6
+diameter_mm = 0.04
+[material]
+name = "steel"
+youngs_modulus_mpa = 210000.0
+poisson_ratio = 0.3
+density_kg_m3 = 7850.0
+[mesh]
+element_size_mm = 0.01
+"""
+
+
+def test_a_shaft_given_in_metres_is_solved_with_warnings_naming_the_unit(tmp_path, capsys):
+    """0.6 m x 40 mm typed into the mm keys as metres: it solves (nothing in it is
+    invalid), and stderr says twice that lengths are in mm: for the 0.6 mm length, and
+    for the first frequency of some 500 kHz that follows from it."""
+    f = tmp_path / "in_metres.toml"
+    f.write_text(METRES)
+    assert main(["modes", str(f), "--no-estimate", "--modes", "2", "-q"]) == 0
+    err = capsys.readouterr().err
+    warnings = [line for line in err.splitlines() if line.startswith("shaftfem: warning:")]
+    assert len(warnings) == 2, err
+    assert "0.6 mm long: lengths are in mm" in warnings[0] and "metres" in warnings[0]
+    assert "kHz" in warnings[1] and "lengths are in mm" in warnings[1]
+
+
+def test_a_shaft_in_mm_gives_no_plausibility_warning(capsys):
+    assert main(["modes", "plain_cylinder", "--mesh-size", "16", "--no-estimate", "-q"]) == 0
+    assert "warning" not in capsys.readouterr().err

@@ -130,9 +130,9 @@ def test_a_rigid_ring_with_stiff_springs_is_a_clamped_seat(seat_mm):
 def test_a_clamped_seat_takes_no_coupling():
     from shaftfem.errors import SceneError
 
-    with pytest.raises(SceneError, match=r"support\[0\].coupling"):
+    with pytest.raises(SceneError, match=r"support 1: coupling"):
         _cylinder([dict(position_mm=100.0, width_mm=16.0, kind="clamped", coupling="rigid")])
-    with pytest.raises(SceneError, match=r"support\[0\].coupling"):
+    with pytest.raises(SceneError, match=r"support 1: coupling"):
         _cylinder([dict(position_mm=100.0, width_mm=16.0, kind="rigid", coupling="glued")])
 
 

@@ -56,6 +56,13 @@ def test_a_free_free_pass_says_so_in_its_verdict_and_exits_4(tmp_path, capsys):
     g.write_text(f.read_text().replace("[resonance]", "[resonance]\nfree_free = true", 1))
     assert main(["check", str(g), "-q"]) == 0
     assert "PASS (free-free)" in capsys.readouterr().out
+    # the design run says it too, in its verdict and in both reports, with the same status
+    out = tmp_path / "design"
+    assert main(["design", str(f), "--out", str(out), "--mesh-size", "16", "--modes", "3",
+                 "--no-estimate", "--no-html", "-q"]) == 4
+    assert "VERDICT: PASS (free-free)" in capsys.readouterr().out
+    report = (out / "report.md").read_text()
+    assert "**VERDICT: PASS (free-free)**" in report and "[[support]]" in report
 
 
 def test_check_bad_input_exits_2(tmp_path, capsys):

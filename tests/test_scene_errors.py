@@ -184,3 +184,20 @@ def test_a_mesh_beyond_the_dof_budget_is_refused_before_meshing(tmp_path, capsys
     assert main(["modes", str(scene), "-q"]) == 2
     assert "above the budget of 5000 DOFs" in capsys.readouterr().err
     assert main(["modes", str(scene), "--mesh-size", "12", "--max-dofs", "2000", "-q"]) == 2
+
+
+def test_every_modal_command_takes_the_modal_flags_and_an_unknown_one_points_to_its_help(
+        capsys):
+    """--no-estimate and --margin are accepted by every modal command (those that do not
+    use them say so in their help); an unknown flag names the command whose help to read."""
+    from shaftfem.cli.parser import build_parser
+
+    parser = build_parser()
+    for command in ("modes", "check", "export", "render", "design", "paper"):
+        args = parser.parse_args([command, "--no-estimate", "--margin", "20"]
+                                 + (["--out", "x"] if command in ("export", "render") else []))
+        assert args.no_estimate and args.margin == 20
+    assert main(["check", "--no-such-flag"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == ("shaftfem check: error: unrecognized arguments: --no-such-flag "
+                   "(see shaftfem check --help)")

@@ -9,7 +9,7 @@ motions its seats leave free; the shapes come back as displacements of every nod
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -135,7 +135,8 @@ def fixed_basis(pairs: Ritz, shapes: np.ndarray, mass_scalar: sp.csr_matrix) -> 
             _, V = np.linalg.eigh(ux.T @ (mass_scalar @ ux))
             Q[i:j, i:j] = V[:, ::-1]   # most x motion first
         i = j
-    out = pairs.combined(Q) if not np.array_equal(Q, np.eye(n)) else pairs
+    # the cluster's eigenvalues stay the solver's (sorted; equal within DEGENERATE_SPLIT)
+    out = pairs if np.array_equal(Q, np.eye(n)) else replace(pairs.combined(Q), lam=pairs.lam)
     full = shapes @ Q
     biggest = full[np.argmax(np.abs(full), axis=0), np.arange(n)]
     return out.scaled(np.where(biggest < 0, -1.0, 1.0))

@@ -103,7 +103,7 @@ def _check_steps(source: str, profile: tuple[Section, ...]) -> None:
         inner, outer = max(a.bore, b.bore), min(a.diameter_end, b.diameter_start)
         if inner >= outer:
             raise SceneError(
-                f"{where(source, f'section[{i + 1}]', 'bore_mm')}: sections {i + 1} and "
+                f"{where(source, entry('section', i + 1), 'bore_mm')}: sections {i + 1} and "
                 f"{i + 2} do not join: at their step the bore ({inner / MM:g} mm) is not "
                 f"smaller than the outer diameter ({outer / MM:g} mm)")
         step = abs(a.diameter_end - b.diameter_start) / 2

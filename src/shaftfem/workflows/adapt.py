@@ -83,8 +83,9 @@ class Adapted:
     what: str = "mesh"   # what was adapted: the mesh, or the element orders on one mesh
 
     def summary(self) -> str:
-        steps = " -> ".join(f"{r.dofs} DOFs +- {100 * r.max_bound:.2g} %" for r in self.rounds)
-        head = (f"adaptive {self.what} for +- {100 * self.target:g} %: "
+        steps = " -> ".join(f"{r.dofs} DOFs, bound {100 * r.max_bound:.2g} %"
+                            for r in self.rounds)
+        head = (f"adaptive {self.what} for bounds below {100 * self.target:g} %: "
                 f"{'reached' if self.reached else 'NOT reached'}"
                 f"{' (from cache)' if self.from_cache else ''}; {steps}")
         return head if self.reached else f"{head}\n{self.why}"
