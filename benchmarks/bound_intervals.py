@@ -33,8 +33,9 @@ def held(modes: list[dict], reference: list[float]) -> int:
                for x, f in zip(modes, reference))
 
 
-def coarse_scene(folder: Path) -> Path:
-    text = (ROOT / "geometry" / "paper2018.toml").read_text()
+def coarse_scene(folder: Path, tree: Path = ROOT) -> Path:
+    """The paper's scene of the source tree `tree` with 16/12/12 mm elements, in `folder`."""
+    text = (tree / "geometry" / "paper2018.toml").read_text()
     for key, value in (("element_size_mm", 16.0), ("groove_element_size_mm", 12.0),
                        ("edge_element_size_mm", 12.0)):
         lines = [f"{key} = {value}" if line.split("=")[0].strip() == key else line

@@ -251,3 +251,22 @@ def test_an_export_killed_anywhere_is_complete_or_vouched_for_by_no_manifest(tmp
     assert run(10**6) == 0 and manifest_complete(out, MANIFEST)
     assert not [p for p in out.iterdir() if p.name.startswith(STAGING)]
     assert len(list(out.iterdir())) == n_files + 1
+
+
+def test_the_resonance_table_stays_aligned_with_a_long_source_name():
+    """Columns are as wide as their contents: a source named "chain meshing" and a
+    32,497 % margin leave every column starting at one position in every row."""
+    from shaftfem.checks.resonance import check_resonance
+    from shaftfem.outputs.tables import verdict_text
+    from shaftfem.scene.model import Excitation
+
+    v = check_resonance(np.array([434.63, 1200.77]), ["bending", "bending"],
+                        [Excitation("chain meshing", 24.1667, (1, 2)),
+                         Excitation("shaft", 1.3333, (1,))])
+    lines = verdict_text(v).splitlines()
+    table = lines[:lines.index("")]
+    assert len(table) == 4 and "chain meshing" in table[1]
+    for column in ("excitation", "frequency", "margin", "required"):
+        end = table[0].index(column) + len(column)   # right-aligned: ends line up
+        assert all(row[end - 1] != " " and row[end:end + 1] in ("", " ") for row in table), column
+    assert "24.17 Hz" in table[1] or "48.33 Hz" in table[1]

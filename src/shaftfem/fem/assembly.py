@@ -299,7 +299,7 @@ def assemble(mesh, material: Material, mass_intorder: int | None = None,
                                mass_intorder or MASS_INTORDER[order], assembly_threads(threads))
     if order >= 3:  # hierarchical: values at the mesh's points come from the basis
         return hierarchical_system(mesh, k_basis, K, Ms)
-    M = sp.kron(Ms, sp.identity(3, format="csr"), format="csr")
+    M = vector_mass(Ms)
     nodes = np.ascontiguousarray(k_basis.doflocs.T)
     _check_translations(K, nodes)
     return System(K=K, M=M, mass_scalar=Ms, nodes=nodes,
@@ -332,7 +332,7 @@ def hierarchical_system(mesh, basis, K: sp.csr_matrix, Ms: sp.csr_matrix,
         constant, nodes, degrees = constant[keep], nodes[keep], degrees[keep]
         values, element_dofs = values[:, keep].tocsr(), None
     _check_translations(K, nodes, constant)
-    return System(K=K, M=sp.kron(Ms, sp.identity(3, format="csr"), format="csr"),
+    return System(K=K, M=vector_mass(Ms),
                   mass_scalar=Ms, nodes=nodes, point_dofs=np.zeros(0, np.int64),
                   order=order or mesh.order, point_values=values, constant=constant,
                   degrees=degrees, element_dofs=element_dofs)
@@ -373,15 +373,39 @@ def _check_translations(K: sp.csr_matrix, nodes: np.ndarray,
     """A rigid translation must cost no strain energy: K t = 0 to round-off. `constant`:
     the coefficients of the constant field (None: 1 on every DOF)."""
     one = np.ones(nodes.shape[0]) if constant is None else constant
-    scale = np.abs(K.data).max() * np.linalg.norm(one)
+    scale = max(K.data.max(), -K.data.min()) * np.linalg.norm(one)
+    T = np.zeros((K.shape[0], 3))
     for c in range(3):
-        t = np.zeros(K.shape[0])
-        t[c::3] = one
-        ratio = np.linalg.norm(K @ t) / scale
+        T[c::3, c] = one
+    ratios = np.linalg.norm(K @ T, axis=0) / scale   # one pass over K for all three
+    for c, ratio in enumerate(ratios):
         if ratio > 1e-9:
             raise AssemblyError(
                 f"the assembled stiffness resists a rigid translation along {'xyz'[c]} "
                 f"(|K t| / |K| = {ratio:.2g}): K is wrong")
+
+
+def vector_mass(Ms: sp.csr_matrix) -> sp.csr_matrix:
+    """M = Ms (x) I3, kg: the scalar mass on each of the three interleaved components
+    (the CSR arrays written directly: row 3 i + c holds row i's entries at 3 j + c)."""
+    Ms = Ms.tocsr()
+    Ms.sort_indices()
+    n, counts = Ms.shape[0], np.diff(Ms.indptr)
+    indptr = np.zeros(3 * n + 1, dtype=np.int64)
+    indptr[1:] = np.cumsum(np.repeat(counts, 3))
+    row_of = np.repeat(np.arange(n), counts)          # the scalar row of each entry
+    start = np.repeat(Ms.indptr[:-1], counts)         # and where its row starts
+    # entry k of row i goes to rows 3 i + c, at offset (k - start) after the row's start
+    within = np.arange(Ms.nnz) - start
+    indices = np.empty(3 * Ms.nnz, dtype=np.int64)
+    data = np.empty(3 * Ms.nnz)
+    for c in range(3):
+        at = indptr[3 * row_of + c] + within
+        indices[at] = 3 * Ms.indices + c
+        data[at] = Ms.data
+    index_type = np.int32 if 3 * n < 2**31 and 3 * Ms.nnz < 2**31 else np.int64
+    return sp.csr_matrix((data, indices.astype(index_type), indptr.astype(index_type)),
+                         shape=(3 * n, 3 * n))
 
 
 # --------------------------------------------------------------------------
