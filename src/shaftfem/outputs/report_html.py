@@ -32,7 +32,7 @@ body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1100px; pa
 h1 { font-size: 1.6em; } h2 { font-size: 1.25em; margin-top: 1.6em; }
 table { border-collapse: collapse; margin: 0.6em 0; font-variant-numeric: tabular-nums; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
-th { background: #f2f4f7; } td.text { text-align: left; }
+th { background: #f2f4f7; } td.text, th.text { text-align: left; }
 .verdict { font-size: 1.1em; padding: 0.6em 0.9em; border-radius: 4px; }
 .pass { background: #e6f4ea; } .fail { background: #fce8e6; } .none { background: #f2f4f7; }
 .caveat { background: #fff4e0; padding: 0.6em 0.9em; border-radius: 4px; }
@@ -47,8 +47,9 @@ img { max-width: 100%; border: 1px solid #eee; }
 def _table(rows: tuple[list[str], list[list[str]]], text_columns: Sequence[str] = ()) -> str:
     head, body = rows
     left = {k for k, h in enumerate(head) if h in text_columns}
-    out = ["<table><thead><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in head)
-           + "</tr></thead><tbody>"]
+    out = ["<table><thead><tr>" + "".join(
+        ('<th class="text">' if k in left else "<th>") + html.escape(h) + "</th>"
+        for k, h in enumerate(head)) + "</tr></thead><tbody>"]
     for r in body:
         cells = [('<td class="text">' if k in left else "<td>") + html.escape(c) + "</td>"
                  for k, c in enumerate(r)]
