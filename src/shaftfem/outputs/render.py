@@ -134,10 +134,21 @@ def _plane(u: np.ndarray) -> np.ndarray:
     return d if d[np.argmax(np.abs(d))] > 0 else -d
 
 
-def frame_view(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
-           margin: float = 1.08) -> None:
-    """Parallel projection across the shaft (axis z, left to right), framed to fill the
-    view with `points` (mm). `plane`: the lateral direction drawn upwards."""
+@dataclass(frozen=True)
+class Framing:
+    """A parallel-projection camera across the shaft: where it stands and looks (mm),
+    which way is up, and the half-height it shows (mm)."""
+
+    position: np.ndarray
+    focus: np.ndarray
+    up: np.ndarray
+    parallel_scale: float
+
+
+def framing(points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
+            margin: float = 1.08) -> Framing:
+    """The view across the shaft (axis z, left to right) that `points` (mm) fill, in a
+    window of `aspect` (width / height); `plane`: the lateral direction drawn upwards."""
     up = np.array([1.0, 0.0, 0.0]) if plane is None else np.array([plane[0], plane[1], 0.0])
     eye = np.array([-up[1], up[0], 0.0])
     height, along = points @ up, points[:, 2]
@@ -145,9 +156,17 @@ def frame_view(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | N
               + 0.5 * (height.min() + height.max()) * up)
     half = max(0.5 * (height.max() - height.min()), 0.5 * (along.max() - along.min()) / aspect)
     span = along.max() - along.min()
-    plotter.camera_position = [tuple(centre + 3 * span * eye), tuple(centre), tuple(up)]
+    return Framing(position=centre + 3 * span * eye, focus=centre, up=up,
+                   parallel_scale=margin * half)
+
+
+def frame_view(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
+               margin: float = 1.08) -> None:
+    """Set `plotter`'s camera to `framing(points, aspect, plane, margin)`."""
+    f = framing(points, aspect, plane, margin)
+    plotter.camera_position = [tuple(f.position), tuple(f.focus), tuple(f.up)]
     plotter.enable_parallel_projection()
-    plotter.camera.parallel_scale = margin * half
+    plotter.camera.parallel_scale = f.parallel_scale
 
 
 def draw_seats(pv, p, scene) -> np.ndarray:

@@ -14,6 +14,7 @@
   const play = document.getElementById("mode-play");
   const moves = [];
   let actors = null;
+  let scene = null;
   let base = null;
   let current = 0;
   let playing = false;
@@ -38,13 +39,7 @@
       return;
     }
     actors = found;
-    // seen square from the side, the shaft filling the view (as in modes.png)
-    const camera = renderer.getActiveCamera();
-    camera.setParallelProjection(true);
-    camera.setParallelScale(view3d.parallelScale * view.clientHeight / view3d.height
-                            * Math.max(1, view3d.width / view3d.height
-                                          / (view.clientWidth / view.clientHeight)));
-    renderer.resetCameraClippingRange();
+    scene = renderer;
     base = Float32Array.from(points(actors[n]));
     actors[n].setVisibility(false);
     for (let k = 0; k < n; k++) {
@@ -67,9 +62,24 @@
     data.modified();
   }
 
+  function look(k) {
+    // seen square from the side, across the mode's plane of motion, filling the view
+    // (as in modes.png); the reader turns it from there
+    const v = view3d.views[k];
+    const camera = scene.getActiveCamera();
+    camera.setParallelProjection(true);
+    camera.setFocalPoint(...v.focus);
+    camera.setPosition(...v.position);
+    camera.setViewUp(...v.up);
+    camera.setParallelScale(v.parallelScale * Math.max(
+      1, (view3d.width / view3d.height) / (view.clientWidth / view.clientHeight)));
+    scene.resetCameraClippingRange();
+  }
+
   function show(k) {
     if (actors === null) return;
     current = ((k % n) + n) % n;
+    look(current);
     for (let i = 0; i < n; i++) actors[i].setVisibility(i === current);
     place(1);
     label.textContent = modes[current];

@@ -33,9 +33,9 @@ def viewer_html() -> str:
 
 def mode_scene(result: ModalResult) -> tuple[bytes, dict]:
     """The zipped vtk.js scene (index.json) of the modes, the shaft at rest and its
-    bearings and parts, seen from the side as in modes.png; and the view's framing
-    (its size in pixels and parallel scale, mm), which the viewer's camera does not
-    carry."""
+    bearings and parts, seen from the side as in modes.png; and the framing of each
+    mode's view (the window's size in pixels, the camera of each mode, mm), which the
+    viewer's own camera does not carry."""
     from shaftfem.outputs import render
 
     pv = render.load_pyvista()
@@ -53,12 +53,18 @@ def mode_scene(result: ModalResult) -> tuple[bytes, dict]:
                    show_scalar_bar=False)
     p.add_mesh(d.rest, color="grey", opacity=0.25)
     seats = render.draw_seats(pv, p, result.scene)
-    render.frame_view(p, np.vstack([d.moved(0), d.moved(0, -1.0), seats]),
-                  VIEW_SIZE[0] / VIEW_SIZE[1], d.planes[0])
+    aspect = VIEW_SIZE[0] / VIEW_SIZE[1]
+    views = [render.framing(np.vstack([d.moved(k), d.moved(k, -1.0), seats]), aspect,
+                            d.planes[k]) for k in range(result.modes.count)]
+    render.frame_view(p, np.vstack([d.moved(0), d.moved(0, -1.0), seats]), aspect,
+                      d.planes[0])
     p.render()
     data = _serialised(p.render_window)
+    # each mode seen across its own plane of motion, as in modes.png
     framing = {"width": VIEW_SIZE[0], "height": VIEW_SIZE[1],
-               "parallelScale": p.camera.parallel_scale}
+               "views": [{"position": v.position.tolist(), "focus": v.focus.tolist(),
+                          "up": v.up.tolist(), "parallelScale": v.parallel_scale}
+                         for v in views]}
     p.close()
     buffer = io.BytesIO()
     with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as z:
