@@ -15,7 +15,7 @@ scene's modal damping, AF = 1 / (2 zeta) (2 %: AF 25, margin 16.3 %).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -144,9 +144,8 @@ def check_result(result: ModalResult, required: float | None = None) -> Resonanc
                     else scene.required_margin)
     v = check_resonance(result.modes.frequencies, result.modes.kinds, scene.excitations,
                         required, _lateral_amplification(result))
-    v.free_free = not scene.held
-    v.free_free_intended = scene.free_free_intended or scene.hanging_free
-    return v
+    return replace(v, free_free=not scene.held,
+                   free_free_intended=scene.free_free_intended or scene.hanging_free)
 
 
 def _lateral_amplification(result: ModalResult) -> Callable[[float], float] | None:

@@ -9,7 +9,7 @@ motions its seats leave free; the shapes come back as displacements of every nod
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -125,6 +125,7 @@ def fixed_basis(pairs: Ritz, shapes: np.ndarray, mass_scalar: sp.csr_matrix) -> 
     solver's start or shift. `shapes`: the vectors as displacements of every node."""
     n = pairs.lam.size
     Q = np.eye(n)
+    rotated = False
     i = 0
     while i < n:
         j = i + 1
@@ -134,9 +135,9 @@ def fixed_basis(pairs: Ritz, shapes: np.ndarray, mass_scalar: sp.csr_matrix) -> 
             ux = shapes[0::3, i:j]
             _, V = np.linalg.eigh(ux.T @ (mass_scalar @ ux))
             Q[i:j, i:j] = V[:, ::-1]   # most x motion first
+            rotated = True
         i = j
-    # the cluster's eigenvalues stay the solver's (sorted; equal within DEGENERATE_SPLIT)
-    out = pairs if np.array_equal(Q, np.eye(n)) else replace(pairs.combined(Q), lam=pairs.lam)
+    out = pairs.rotated(Q) if rotated else pairs
     full = shapes @ Q
     biggest = full[np.argmax(np.abs(full), axis=0), np.arange(n)]
     return out.scaled(np.where(biggest < 0, -1.0, 1.0))

@@ -53,11 +53,10 @@ class Ritz:
         return Ritz(np.concatenate([self.lam, other.lam]), np.hstack([self.X, other.X]),
                     np.hstack([self.KX, other.KX]), np.hstack([self.MX, other.MX]))
 
-    def combined(self, Q: np.ndarray) -> Ritz:
-        """The pairs of the vectors X Q (Q orthogonal), each with its Rayleigh quotient."""
-        X, KX, MX = self.X @ Q, self.KX @ Q, self.MX @ Q
-        lam = np.einsum("ij,ij->j", X, KX) / np.einsum("ij,ij->j", X, MX)
-        return Ritz(lam, X, KX, MX)
+    def rotated(self, Q: np.ndarray) -> Ritz:
+        """The vectors X Q, Q orthogonal and mixing only pairs of one eigenvalue (within
+        the solver's tolerance): the eigenvalues stay."""
+        return Ritz(self.lam, self.X @ Q, self.KX @ Q, self.MX @ Q)
 
     def scaled(self, c: np.ndarray) -> Ritz:
         """The same pairs with vector j scaled by c[j]."""

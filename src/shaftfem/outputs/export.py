@@ -49,6 +49,7 @@ def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
 def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[dict]:
     """One row per elastic mode: the content of modes.csv and of the record's "modes"."""
     m = result.modes
+    low, high = (None, None) if est is None else est.interval(m.frequencies)
     rows = []
     for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
         e = m.energy[i]
@@ -67,9 +68,8 @@ def modes_table(result: ModalResult, est: ErrorEstimate | None = None) -> list[d
             # one-sided, the geometry allowances (volume, straightening) move either way
             "error_bound_percent": None if est is None else float(100 * est.relative_error[i]),
             "error_bound_upper_percent": None if est is None else float(100 * est.upward[i]),
-            "true_frequency_low_hz": (None if est is None
-                                      else float(f * (1 - est.relative_error[i]))),
-            "true_frequency_high_hz": None if est is None else float(f * (1 + est.upward[i])),
+            "true_frequency_low_hz": None if low is None else float(low[i]),
+            "true_frequency_high_hz": None if high is None else float(high[i]),
             # an order-adaptive run computes it only where its rounds' drops leave a mode
             "recovery_estimate_percent": (None if est is None or not np.isfinite(est.recovery[i])
                                           else float(100 * est.recovery[i])),

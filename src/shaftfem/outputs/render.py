@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -85,13 +85,20 @@ def _grid(pv, result: ModalResult):
 @dataclass(frozen=True)
 class Drawing:
     """The shaft's outer surface (mm) with each mode's drawn displacement ("u1", ...)
-    and colour ("c1", ...) on it, the surface at rest, and each mode's plane of motion."""
+    and colour ("c1", ...) on it, the surface at rest, and each mode's plane of motion;
+    `grid`, the mesh they come from (`at` draws it with another subdivision)."""
 
+    grid: Any
     surface: Any
     rest: Any
     planes: list[np.ndarray]
     titles: list[str]
     length: float   # mm
+
+    def at(self, subdivision: int) -> Drawing:
+        """The same modes on the surface with its curved faces subdivided so often."""
+        surface, rest = _surfaces(self.grid, subdivision, self.length)
+        return replace(self, surface=surface, rest=rest)
 
     def moved(self, k: int, phase: float = 1.0) -> np.ndarray:
         """Mode k's surface points at `phase` (-1 to 1) of its drawn amplitude."""
@@ -112,6 +119,16 @@ def drawing(pv, result: ModalResult, subdivision: int = 1) -> Drawing:
         grid.point_data[f"u{k + 1}"] = u * (reach / mag.max())
         grid.point_data[f"c{k + 1}"] = mag / mag.max()
         planes.append(_plane(u))
+    surface, rest = _surfaces(grid, subdivision, length)
+    titles = [f"mode {k + 1}: {f:.1f} Hz, {kind}" for k, (f, kind)
+              in enumerate(zip(m.frequencies, m.kinds))]
+    return Drawing(grid=grid, surface=surface, rest=rest, planes=planes, titles=titles,
+                   length=length)
+
+
+def _surfaces(grid, subdivision: int, length: float):
+    """The drawn surface of `grid` with its normals, and the shaft at rest: the same a
+    hair thinner and shorter (where the two coincide the moving one is seen)."""
     # the normals of the surface at rest shade it moved as well (the drawn motion is a
     # few per cent): drawn without a normals filter, its points can move frame by frame
     surface = _surface(grid, subdivision).compute_normals(
@@ -121,9 +138,7 @@ def drawing(pv, result: ModalResult, subdivision: int = 1) -> Drawing:
     rest.points[:, :2] *= REST_SHRINK
     rest.points[:, 2] = 0.5 * length + (rest.points[:, 2] - 0.5 * length) * (
         1 - 0.2 * (1 - REST_SHRINK))
-    titles = [f"mode {k + 1}: {f:.1f} Hz, {kind}" for k, (f, kind)
-              in enumerate(zip(m.frequencies, m.kinds))]
-    return Drawing(surface=surface, rest=rest, planes=planes, titles=titles, length=length)
+    return surface, rest
 
 
 def _plane(u: np.ndarray) -> np.ndarray:
@@ -160,13 +175,24 @@ def framing(points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
                    parallel_scale=margin * half)
 
 
-def frame_view(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
-               margin: float = 1.08) -> None:
-    """Set `plotter`'s camera to `framing(points, aspect, plane, margin)`."""
-    f = framing(points, aspect, plane, margin)
+def aim(plotter, f: Framing) -> None:
+    """Set `plotter`'s camera to the framing `f`."""
     plotter.camera_position = [tuple(f.position), tuple(f.focus), tuple(f.up)]
     plotter.enable_parallel_projection()
     plotter.camera.parallel_scale = f.parallel_scale
+
+
+def frame_view(plotter, points: np.ndarray, aspect: float, plane: np.ndarray | None = None,
+               margin: float = 1.08) -> None:
+    """Set `plotter`'s camera to `framing(points, aspect, plane, margin)`."""
+    aim(plotter, framing(points, aspect, plane, margin))
+
+
+def _disk_radius(part, shaft_radius: float) -> float:
+    """An attached part's drawn radius, mm: that of a solid disk of its mass and polar
+    inertia, and at least 1.3 times the shaft's under it (`shaft_radius`, mm)."""
+    r = 1e3 * (2 * part.polar_inertia / part.mass) ** 0.5 if part.mass > 0 else 0.0
+    return max(r, 1.3 * shaft_radius)
 
 
 def draw_seats(pv, p, scene) -> np.ndarray:
@@ -179,10 +205,7 @@ def draw_seats(pv, p, scene) -> np.ndarray:
     corners = []
     for part, colour in ([(s, BEARING_COLOUR) for s in scene.held]
                          + [(a, PART_COLOUR) for a in scene.attachments]):
-        if colour == PART_COLOUR and part.mass > 0:
-            r = max(1e3 * (2 * part.polar_inertia / part.mass) ** 0.5, 1.3 * R(part))
-        else:
-            r = 1.6 * R(part)
+        r = _disk_radius(part, R(part)) if colour == PART_COLOUR else 1.6 * R(part)
         z, h = part.position * 1e3, part.width * 1e3
         p.add_mesh(pv.Cylinder(center=(0, 0, z), direction=(0, 0, 1), radius=r, height=h,
                                resolution=60), color=colour, opacity=0.45)
@@ -252,9 +275,8 @@ def _dimensions(pv, p, scene) -> np.ndarray:
         labels.append(part.name)
         points.append((overall - 1.2 * R, 0.0, part.position * 1e3))
     for a in scene.attachments:   # over its disk
-        r = 1e3 * (2 * a.polar_inertia / a.mass) ** 0.5 if a.mass > 0 else 0.0
         labels.append(a.name)
-        points.append((max(r, 1.3 * R) + 0.5 * R, 0.0, a.position * 1e3))
+        points.append((_disk_radius(a, R) + 0.5 * R, 0.0, a.position * 1e3))
     pts = np.array(points)
     p.add_point_labels(pts, labels, font_size=14, text_color="black", shape=None,
                        show_points=False, always_visible=True,
@@ -327,13 +349,12 @@ def render_mode_gifs(result: ModalResult, out: str | Path, frames: int = GIF_FRA
     p = plotter(pv, GIF_SIZE, samples=1)   # quantised to GIF_COLOURS: edges alias anyway
     for k in range(result.modes.count):
         moving = _draw_mode(pv, p, d, k, result.scene, GIF_SIZE[0] / GIF_SIZE[1])
-        base, u = np.asarray(d.surface.points), np.asarray(d.surface.point_data[f"u{k + 1}"])
         drawn: dict[float, Image.Image] = {}
         images = []
         for i in range(frames):
             phase = round(math.sin(2 * math.pi * i / frames), 12)
             if phase not in drawn:
-                moving.points = base + phase * u
+                moving.points = d.moved(k, phase)
                 p.render()
                 img = Image.fromarray(p.screenshot(return_img=True))
                 drawn[phase] = img.quantize(GIF_COLOURS, method=Image.Quantize.FASTOCTREE)
@@ -373,7 +394,7 @@ def render_into(result: ModalResult, folder: Path, say=None) -> list[Path]:
     d = drawing(pv, result)
     # the GIFs are 800 px wide and move: the curved faces unsubdivided do (a quarter of
     # the triangles, a fifth less time per frame)
-    coarse = drawing(pv, result, subdivision=0)
+    coarse = d.at(subdivision=0)
     return [done(render_geometry(result, folder / "geometry.png", d)),
             done(render_modes(result, folder / "modes.png", d)),
             *render_mode_gifs(result, folder, d=coarse, say=say)]

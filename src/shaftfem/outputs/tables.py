@@ -60,12 +60,11 @@ def bound_text(est: ErrorEstimate, i: int) -> str:
     return f"-{_percent(e)} +{_percent(est.upward[i])}{'' if est.reliable[i] else '*'}"
 
 
-def interval_text(est: ErrorEstimate, f: float, i: int) -> str:
-    """'[428.12, 434.64] Hz': where the true frequency lies."""
-    if not math.isfinite(est.relative_error[i]):
+def interval_text(low: float, high: float) -> str:
+    """'[428.12, 434.64] Hz': where the true frequency lies (ErrorEstimate.interval)."""
+    if not (math.isfinite(low) and math.isfinite(high)):
         return "n/a"
-    lo, hi = f * (1 - est.relative_error[i]), f * (1 + est.upward[i])
-    return f"[{lo:.2f}, {hi:.2f}] Hz"
+    return f"[{low:.2f}, {high:.2f}] Hz"
 
 
 def installation_lines(result: ModalResult) -> list[str]:
@@ -158,10 +157,9 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     rows = [["mode", "frequency", "kind"]
             + (["error bound", "true frequency in"] if est is not None else [])
             + ([f"f / {exc.name} {hz(exc.frequency)}"] if exc else [])]
+    bounds = _bound_cells(m.frequencies, est)
     for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
-        rows.append([str(i + 1), f"{f:.2f} Hz", kind]
-                    + ([bound_text(est, i), interval_text(est, f, i)] if est is not None
-                       else [])
+        rows.append([str(i + 1), f"{f:.2f} Hz", kind] + bounds[i]
                     + ([f"{f / exc.frequency:.2f}"] if exc else []))
     lines += aligned(rows, left={2})
     if est is not None:
@@ -307,13 +305,21 @@ def sizing_markdown(r: SizingResult) -> list[str]:
     return markdown(*sizing_rows(r)) + [""] + [f"- LIMIT BROKEN: {v}" for v in r.violations]
 
 
+def _bound_cells(frequencies, est: ErrorEstimate | None) -> list[list[str]]:
+    """Per mode, the bound's cells: '-1.5 % +0.037 %' and the interval (none without)."""
+    if est is None:
+        return [[] for _ in frequencies]
+    low, high = est.interval(frequencies)
+    return [[bound_text(est, i), interval_text(lo, hi)]
+            for i, (lo, hi) in enumerate(zip(low, high))]
+
+
 def modes_rows(result: ModalResult, est: ErrorEstimate | None = None) -> Rows:
     """Each mode's frequency and kind, and with a bound where the true frequency lies."""
     m = result.modes
-    rows = []
-    for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
-        bound = [] if est is None else [bound_text(est, i), interval_text(est, f, i)]
-        rows.append([str(i + 1), f"{f:.2f}", kind] + bound)
+    bounds = _bound_cells(m.frequencies, est)
+    rows = [[str(i + 1), f"{f:.2f}", kind] + bounds[i]
+            for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds))]
     return (["mode", "frequency (Hz)", "kind"]
             + ([] if est is None else ["error bound", "true frequency in"]), rows)
 

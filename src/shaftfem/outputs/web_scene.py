@@ -56,8 +56,7 @@ def mode_scene(result: ModalResult) -> tuple[bytes, dict]:
     aspect = VIEW_SIZE[0] / VIEW_SIZE[1]
     views = [render.framing(np.vstack([d.moved(k), d.moved(k, -1.0), seats]), aspect,
                             d.planes[k]) for k in range(result.modes.count)]
-    render.frame_view(p, np.vstack([d.moved(0), d.moved(0, -1.0), seats]), aspect,
-                      d.planes[0])
+    render.aim(p, views[0])
     p.render()
     data = _serialised(p.render_window)
     # each mode seen across its own plane of motion, as in modes.png

@@ -46,11 +46,27 @@ def run_bounded(scene: Scene, estimate: bool = True,
             from shaftfem.workflows.adapt import run_adaptive as run
 
         a = run(scene, scene.target_error, scene.max_dofs, options)
-        return Bounded(a.result, a.estimate, a)
-    from shaftfem.workflows.pipeline import run_modes
+        bounded = Bounded(a.result, a.estimate, a)
+    else:
+        from shaftfem.workflows.pipeline import run_modes
 
-    result = run_modes(scene, options)
-    return Bounded(result, estimate_errors(result, options) if estimate else None)
+        result = run_modes(scene, options)
+        bounded = Bounded(result, estimate_errors(result, options) if estimate else None)
+    _warn_if_implausible(bounded.result)
+    return bounded
+
+
+def _warn_if_implausible(result: ModalResult) -> None:
+    """A first frequency no machine shaft has, said once per run (on stderr from the
+    command line): most often lengths given in metres."""
+    import warnings
+
+    from shaftfem.scene.checks import PlausibilityWarning, implausible_frequency
+
+    if result.modes.count:
+        for message in implausible_frequency(result.scene.source,
+                                             float(result.modes.frequencies[0])):
+            warnings.warn(message, PlausibilityWarning, stacklevel=3)
 
 
 def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),

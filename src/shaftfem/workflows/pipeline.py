@@ -285,13 +285,6 @@ def scene_warnings(scene: Scene, modes: Modes | None = None) -> tuple[str, ...]:
     if scene.grooves is not None and m.groove_size > scene.grooves.width:
         out.append(f"groove element size {m.groove_size * 1e3:g} mm exceeds the groove width "
                    f"({scene.grooves.width * 1e3:g} mm): the grooves are barely resolved")
-    if modes is not None and modes.count:
-        import warnings
-
-        from shaftfem.scene.checks import PlausibilityWarning, implausible_frequency
-
-        for message in implausible_frequency(scene.source, float(modes.frequencies[0])):
-            warnings.warn(message, PlausibilityWarning, stacklevel=2)
     fmax = scene.modes.max_frequency
     if modes is not None and fmax is not None and modes.frequencies[0] >= fmax:
         out.append(f"no elastic mode below {fmax:g} Hz; the lowest "
