@@ -69,8 +69,10 @@ def _sample(gmsh, dim: int, tag: int, n: int = 3) -> np.ndarray:
     return np.asarray(gmsh.model.getValue(dim, tag, params)).reshape(-1, 3)
 
 
-def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], list[int], float]:
-    """Boundary faces of the grooves, and the helical curves along their floor edges."""
+def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves
+                     ) -> tuple[list[int], dict[int, np.ndarray]]:
+    """Boundary faces of the grooves, and the helical curves along their floor edges
+    with their sampled points."""
     L = shaft.length
     R = shaft.profile[shaft.section_at(grooves.start + grooves.length / 2) or 0].diameter_start / 2
     floor = R - grooves.depth
@@ -91,16 +93,15 @@ def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves) -> tuple[list[int], l
         ) or not in_zone(xyz[:, 2]):
             continue
         faces.append(s)
-    edges, longest = [], 0.0
+    edges = {}
     for _, c in gmsh.model.getEntities(1):
         xyz = _sample(gmsh, 1, c, 5)
         r = np.hypot(xyz[:, 0], xyz[:, 1])
         # every curve on the floor radius: the helical floor edges, and the arcs where
         # the grooves' flat ends meet the floor (sharp re-entrant edges)
         if np.all(np.abs(r - floor) < tol) and in_zone(xyz[:, 2]):
-            edges.append(c)
-            longest = max(longest, float(np.sum(np.linalg.norm(np.diff(xyz, axis=0), axis=1))))
-    return faces, edges, longest * 6 / 5
+            edges[c] = xyz
+    return faces, edges
 
 
 def _near(gmsh, entities: str, tags: list[int], sampling: int, small: float, large: float,
@@ -124,17 +125,26 @@ def _near(gmsh, entities: str, tags: list[int], sampling: int, small: float, lar
     return t
 
 
+def _edge_field(gmsh, curves: dict[int, np.ndarray], s: MeshSettings,
+                local: bool = False) -> int:
+    """edge_size along `curves` (tag: sampled points), graded to groove_size; the
+    distance to them sampled about twice per element along the longest (its 5 sampled
+    points make it a fifth short at most)."""
+    longest = max(float(np.sum(np.linalg.norm(np.diff(xyz, axis=0), axis=1)))
+                  for xyz in curves.values()) * 6 / 5
+    return _near(gmsh, "CurvesList", list(curves), max(20, math.ceil(2 * longest / s.edge_size)),
+                 s.edge_size, s.groove_size, EDGE_GRADING, local)
+
+
 def _groove_fields(gmsh, shaft: Shaft, grooves: Grooves, s: MeshSettings) -> list[int]:
     """Size fields: groove_size at the groove faces, edge_size at the floor curves."""
-    faces, edges, longest = _groove_entities(gmsh, shaft, grooves)
+    faces, edges = _groove_entities(gmsh, shaft, grooves)
     fields = []
     if faces:
         fields.append(_near(gmsh, "SurfacesList", faces, 60, s.groove_size, s.size,
                             FACE_GRADING))
     if edges and s.edge_size < s.groove_size:
-        fields.append(_near(gmsh, "CurvesList", edges,
-                            max(20, math.ceil(2 * longest / s.edge_size)), s.edge_size,
-                            s.groove_size, EDGE_GRADING))
+        fields.append(_edge_field(gmsh, edges, s))
     return fields
 
 
@@ -186,11 +196,7 @@ def _profile_fields(gmsh, shaft: Shaft, s: MeshSettings) -> list[int]:
     curves = {t: _sample(gmsh, 1, t, 5) for _, t in gmsh.model.getEntities(1)}
     edges = singular_edges(shaft, curves)
     if edges and s.edge_size < s.groove_size:
-        longest = max(float(np.sum(np.linalg.norm(np.diff(curves[t], axis=0), axis=1)))
-                      for t in edges) * 6 / 5
-        fields.append(_near(gmsh, "CurvesList", edges,
-                            max(20, math.ceil(2 * longest / s.edge_size)), s.edge_size,
-                            s.groove_size, EDGE_GRADING, local=True))
+        fields.append(_edge_field(gmsh, {t: curves[t] for t in edges}, s, local=True))
     return fields
 
 
