@@ -1,10 +1,10 @@
 """Quadratic against cubic geometry: the paper's shaft on coarse meshes whose elements
 are curved to order 2 or to order 3 (shaftfem's mesher at [mesh] geometry_order 2 and 3:
-gmsh's 20-node tetrahedra, boundary nodes at their CAD parameters, gmsh's high-order
-optimisers, the boundary's curving carried inside, elements still folded straightened),
-with hierarchical elements of order 3 and 4 on each.
+gmsh's 20-node tetrahedra, boundary nodes at their CAD parameters, the boundary's
+curving carried inside, elements still folded partly straightened), with hierarchical
+elements of orders 3 and 4 (or --orders) on each.
 
-    .venv/bin/python benchmarks/cubic_geometry.py [--geometry 2,3] [SIZES ...]
+    .venv/bin/python benchmarks/cubic_geometry.py [--geometry 2,3] [--orders 3,4] [SIZES ...]
 
 SIZES is away/grooves/floor edges in mm (default 16/8/8 12/8/8). For each mesh: the
 volume the elements hold against the solid's, and the largest and smallest true error
@@ -98,6 +98,7 @@ def main(args: list[str]) -> None:
           "geometry\n")
     flags = {a: b for a, b in zip(args, args[1:]) if a.startswith("--")}
     geometries = [int(g) for g in flags.get("--geometry", "2,3").split(",")]
+    orders = tuple(int(p) for p in flags.get("--orders", "3,4").split(","))
     specs = [a for a in args if not a.startswith("--") and a not in flags.values()]
     print("| sizes (mm) | geometry | elements | volume, mesh / solid - 1 | order | DOFs "
           "| largest true error | smallest true error | straightened elements | meshing (s) |\n"
@@ -105,7 +106,7 @@ def main(args: list[str]) -> None:
     for spec in specs or ["16/8/8", "12/8/8"]:
         mm = tuple(float(x) for x in spec.split("/"))
         for geometry in geometries:
-            r = in_fresh_process(one, mm, geometry, (3, 4))
+            r = in_fresh_process(one, mm, geometry, orders)
             for row in r["rows"]:
                 print(f"| {spec} | {'quadratic' if geometry == 2 else 'cubic'} | "
                       f"{r['elements']} | {r['volume']:+.1e} | {row['order']} | {row['dofs']} | "

@@ -34,8 +34,9 @@ from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_ar
 
 # Bump when the meshing or the cache entry changes, so old cached meshes are not reused
 # (2: entries carry checksums; 3: the checksum covers the arrays in name order; 4: they
-# keep the points from before the straightening).
-MESH_VERSION = 4
+# keep the points from before the straightening; 5: cubic meshes without gmsh's
+# high-order optimiser).
+MESH_VERSION = 5
 
 
 @dataclass(frozen=True)
@@ -138,9 +139,9 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
              hubs: tuple[tuple[float, float], ...] = ()) -> str:
     """A hash of everything the mesh depends on: its sizes and the degree of its map,
     not the element order on it (orders 2 to 5 share a quadratic mesh, 3 to 5 a cubic
-    one, whose optimisers take minutes)."""
+    one)."""
     from shaftfem.cad.cubic import KEPT_CURVING, KEPT_RATIO
-    from shaftfem.cad.mesher import EDGE_GRADING, HIGH_ORDER_OPTIMISERS, HUB_SIZE
+    from shaftfem.cad.mesher import EDGE_GRADING, HUB_SIZE
     from shaftfem.cad.session import gmsh_version
 
     geometry = {k: v for k, v in asdict(settings).items() if k != "geometry_order"}
@@ -148,7 +149,7 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     payload = {
         "version": MESH_VERSION, "gmsh": gmsh_version(),
         "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
-        **({"optimisers": list(HIGH_ORDER_OPTIMISERS), "nodes": "parametric",
+        **({"nodes": "parametric", "inside": "harmonic",
             "folds": ["partly straightened, each on its own", list(KEPT_CURVING), KEPT_RATIO]}
            if geometry["order"] == 3 else {}),
         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,

@@ -19,7 +19,6 @@ import numpy as np
 
 from shaftfem.cad.session import session, translated
 from shaftfem.errors import MeshError
-from shaftfem.runtime import cores
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 
 # Under an attached part's hub, and one shaft radius beyond each end, elements are
@@ -28,14 +27,6 @@ from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 # tests/test_parts.py, the joint then on the slice under the hub) came 0.60 % from a
 # beam's at the default 8 mm, 0.41 % with 4 mm there, at 1.4 times the DOFs.
 HUB_SIZE = 0.5
-
-# gmsh's high-order optimisers, in turn, on a mesh curved to order 3: the elastic one
-# untangles folded elements quickly, the direct one most of the rest. The paper's shaft
-# at 16/8/8 mm: 9 elements left to straighten and order 4 0.149 % off, against 256 and
-# 1.94 % with neither and 185 and 1.97 % with the elastic one alone (each straightened
-# element loses its curving). They run in a child process: they have aborted the
-# process on this geometry (an uncaught C++ exception).
-HIGH_ORDER_OPTIMISERS = ("HighOrderElastic", "HighOrder")
 
 # A bored section's elements are at most this many times its wall thickness: a 1.5 mm
 # wall under 12 mm elements left gmsh no valid surface mesh (its faces intersected).
@@ -279,27 +270,6 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
     element-size field (points, tets, size at each point, m) in place of the
     settings' groove, edge and hub sizes; `cuts`: z (m) of planes the mesh must
     follow; `hubs`: (z0, z1) (m) of the parts' seats, meshed finer."""
-    if settings.geometry_order == 3:
-        return _in_child(_mesh_solid, brep, shaft, grooves, settings, sizes, cuts, hubs)
-    return _mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs)
-
-
-def _in_child(function, *args):
-    """function(*args) in a child process, a crash of it a MeshError."""
-    from shaftfem.cad.child import ChildCrashed, call_in_child
-
-    try:
-        return call_in_child(function, *args)
-    except ChildCrashed as exc:
-        raise MeshError(f"gmsh stopped while curving the mesh to cubic geometry ({exc}); "
-                        "use [mesh] geometry_order = 2 or another element size") from exc
-
-
-def _mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
-                settings: MeshSettings,
-                sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
-                cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = ()
-                ) -> tuple[np.ndarray, np.ndarray]:
     import meshio
 
     with session("mesh") as s, translated(MeshError, "gmsh could not mesh the solid"):
@@ -333,19 +303,10 @@ def _mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
         try:
             gmsh.model.mesh.generate(3)
             if settings.geometry_order == 3:
+                # no high-order optimiser: cad.cubic carries the boundary's curving
+                # inside and straightens what still folds (see there for why)
                 gmsh.model.mesh.setOrder(3)
                 _even_on_cad(gmsh)
-                if grooves is not None:  # a plain shaft's cubic elements do not fold
-                    # a patch the direct optimiser cannot lift above its critical quality
-                    # is a gmsh error, thrown inside an OpenMP region: the process ends
-                    # (std::terminate). Logged instead, it leaves that patch as it was,
-                    # and the elements still folded are straightened after.
-                    s.option("General.AbortOnError", 0)
-                    # gmsh's own default is one thread; the direct optimiser works its
-                    # patches in parallel (16/12/12 mm on 2 cores: 125 s -> 67 s)
-                    s.option("General.NumThreads", cores())
-                    for method in HIGH_ORDER_OPTIMISERS:
-                        gmsh.model.mesh.optimize(method)
                 return _cubic_cells(gmsh)
             if settings.order >= 2:  # curved: the geometry is quadratic for P2 and up
                 gmsh.model.mesh.setOrder(2)
