@@ -119,3 +119,26 @@ def test_docstrings_name_the_orders_and_flags_the_command_line_takes():
             if flag not in flags and not where.startswith("src/shaftfem/outputs/paraview_script"):
                 wrong.append(f"{where}: {flag} is no flag of the command line")
     assert not wrong, "\n".join(wrong)
+
+
+def test_every_benchmark_script_makes_a_table_named_after_it():
+    """benchmarks/tables.py lists each docs table with its script: every script there
+    exists and is its key's name, every script in benchmarks/ is one of them (but the
+    entry point, its helpers and the bit-for-bit check), and the docs cite no script
+    that is gone."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("tables", ROOT / "benchmarks" / "tables.py")
+    assert spec is not None and spec.loader is not None
+    tables = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tables)
+    scripts = {command[0] for _, command in tables.TABLES.values()}
+    for key, (_, command) in tables.TABLES.items():
+        assert command[0] == key.replace("-", "_").replace(".", "_") + ".py", key
+    present = {p.name for p in (ROOT / "benchmarks").glob("*.py")}
+    helpers = {"_common.py", "tables.py", "ngsolve_reference.py", "frequency_bits.py"}
+    assert present - helpers == scripts
+    cited = set()
+    for page in [ROOT / "README.md", *(ROOT / "docs").glob("*.md")]:
+        cited |= set(re.findall(r"benchmarks/(\w+\.py)", page.read_text()))
+    assert cited <= present, cited - present

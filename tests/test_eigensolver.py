@@ -114,7 +114,7 @@ def test_rigid_motions_are_rigid(cylinder):
 
 def test_other_start_vectors_give_the_same_modes_with_small_residuals(paper, monkeypatch):
     """The paper's shaft from three other Krylov starts: every elastic residual below
-    1e-8 and the same frequencies (benchmarks/repeatability.py does 20)."""
+    1e-8 and the same frequencies."""
     s = paper.system
     for seed in (1, 2, 3):
         monkeypatch.setattr(eigen, "START_SEED", 7919 * seed)

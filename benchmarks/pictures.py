@@ -1,7 +1,7 @@
 """`shaftfem design` from cold: where its time goes, the pictures above all, this tree
 against an earlier revision in the same run.
 
-    .venv/bin/python benchmarks/design_pictures.py [--baseline REV] [--repeat N] [SCENE]
+    .venv/bin/python benchmarks/pictures.py [--baseline REV] [--repeat N] [SCENE]
 
 Each run is a fresh process with an empty cache and a new output folder, the two trees
 alternating (REV, default 52e128d, is checked out into a temporary folder and run with

@@ -1,6 +1,6 @@
 """Sweep speed-up from one to two Dask worker processes (same variants, same machine).
 
-    .venv/bin/python benchmarks/sweep_speedup.py [MESH_SIZE_MM]
+    .venv/bin/python benchmarks/sweeps.py [MESH_SIZE_MM]
 """
 
 import sys

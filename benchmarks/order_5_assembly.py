@@ -1,7 +1,7 @@
 """Order-5 assembly at about 250k DOFs: K and M of the paper's shaft on its cubic
 16/12/12 mm mesh, this tree against an earlier revision in the same run.
 
-    .venv/bin/python benchmarks/high_order_assembly.py [--baseline REV] [--repeat N]
+    .venv/bin/python benchmarks/order_5_assembly.py [--baseline REV] [--repeat N]
 
 Each measurement is a fresh process timing `discretise` (the basis and the sparsity) and
 `assemble` (K, M and the rigid-translation guard) on the cached cubic mesh (meshed once

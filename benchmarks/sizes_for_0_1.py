@@ -1,6 +1,6 @@
 """How the paper shaft's frequencies converge with the element size at the grooves.
 
-    .venv/bin/python benchmarks/accuracy.py [GROOVE_SIZES_MM, e.g. 4,3,2.5,2,1.6] [ROOT_RADIUS_MM]
+    .venv/bin/python benchmarks/sizes_for_0_1.py [GROOVE_SIZES_MM, e.g. 4,3,2.5,2,1.6] [ROOT_RADIUS_MM]
 
 Each run keeps 8 mm away from the grooves (6 mm there changes nothing: +0.1 Hz
 on mode 1) and sets the groove-face and floor-edge sizes to the given value.

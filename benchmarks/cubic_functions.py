@@ -1,6 +1,7 @@
 """What cubic elements buy on the paper's shaft: P3 everywhere, or only where the error is.
 
-    .venv/bin/python benchmarks/higher_order.py [GROOVE_SIZES_MM, e.g. 4,3,4/2] [SHARES, e.g. 0.5,0.8,0.95,1]
+    .venv/bin/python benchmarks/cubic_functions.py [GROOVE_SIZES_MM, e.g. 4,3,4/2]
+                                                [SHARES, e.g. 0.5,0.8,0.95,1]
                                                [ROOT_RADIUS_MM]
 
 On each mesh (8 mm away from the grooves, the given size on the groove faces and,
