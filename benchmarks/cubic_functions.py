@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/cubic_functions.py [GROOVE_SIZES_MM, e.g. 4,3,4/2]
                                                 [SHARES, e.g. 0.5,0.8,0.95,1]
-                                               [ROOT_RADIUS_MM]
+                                                [ROOT_RADIUS_MM]
 
 On each mesh (8 mm away from the grooves, the given size on the groove faces and,
 after a slash, at the floor edges) the
