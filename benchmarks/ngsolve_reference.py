@@ -30,7 +30,7 @@ import time
 
 import numpy as np
 import scipy.sparse as sp
-from netgen.occ import Glue, OCCGeometry
+from netgen.occ import Glue, OCCGeometry, Pnt
 from ngsolve import BilinearForm, Grad, InnerProduct, Mesh, Sym, VectorH1, div, dx
 from scipy.sparse.linalg import LinearOperator, eigsh
 
@@ -70,7 +70,8 @@ def main() -> None:
     hp_levels = int(sys.argv[5]) if len(sys.argv) > 5 else 0
     mu, lam = E / (2 * (1 + NU)), E * NU / ((1 + NU) * (1 - 2 * NU))
     t0 = time.perf_counter()
-    shape = Glue(list(OCCGeometry(path).shape.solids))  # one conforming body
+    # one conforming body; OpenCASCADE reads STEP in mm, the material is in SI
+    shape = Glue(list(OCCGeometry(path).shape.solids)).Scale(Pnt(0, 0, 0), 1e-3)
     for face in shape.faces:
         if math.hypot(face.center.x, face.center.y) < RADIUS - 1e-5:
             face.maxh = groove

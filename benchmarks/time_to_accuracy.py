@@ -2,6 +2,7 @@
 order 3 on its own mesh of the same STEP, in one run, alternating, repeated.
 
     .venv/bin/python benchmarks/time_to_accuracy.py [--repeat 3] [OURS ...] [--own S/G:P:SAFETY]
+                                                    [--cli SCENE]
 
 OURS is away/grooves/floor edges in mm, the order and the geometry's order
 (default 16/12/12:5:3: order 5 on the cubic mesh). Each shaftfem case is a fresh
@@ -10,11 +11,19 @@ factorisation, eigensolve, with nothing from an earlier solve; no bound. Each NG
 case (default 16/8:3:0.25, the work-precision benchmark's) is a fresh process of the
 NGSolve venv timed from the STEP file to the frequencies. True errors are the largest of
 the ten frequencies against the NGSolve order-3 reference of docs/verification.md.
+With --cli, each round also runs `shaftfem modes SCENE` as a user would, from an empty
+cache (the CAD solid built, the bound included), timed from the command to its exit.
 Prints a Markdown table of medians and the ratio of the medians.
 """
 
+import json
+import os
+import resource
 import statistics
+import subprocess
 import sys
+import tempfile
+import time
 from pathlib import Path
 
 HERE = Path(__file__).parent
@@ -25,8 +34,8 @@ import ngsolve_same_mesh as same  # noqa: E402
 
 
 def main(argv: list) -> None:
-    opts, ours = options(argv, {"--repeat": "3", "--own": "16/8:3:0.25"})
-    repeat, own = int(opts["--repeat"]), opts["--own"]
+    opts, ours = options(argv, {"--repeat": "3", "--own": "16/8:3:0.25", "--cli": ""})
+    repeat, own, cli = int(opts["--repeat"]), opts["--own"], opts["--cli"]
     ours = ours or ["16/12/12:5:3"]
     print(f"machine: {machine()}; paper2018, {repeat} runs each, alternating\n")
     step = str(same.step_file())
@@ -40,6 +49,11 @@ def main(argv: list) -> None:
             runs.setdefault(("shaftfem", spec), []).append(r)
             print(f"shaftfem {spec}: {r['wall']:.1f} s, {r['dofs']:,} DOFs, "
                   f"{100 * same.error(r['f']):.3f} %", flush=True)
+        if cli:
+            r = cli_run(cli)
+            runs.setdefault(("shaftfem modes", cli), []).append(r)
+            print(f"shaftfem modes {cli}: {r['wall']:.1f} s, {r['dofs']:,} DOFs, "
+                  f"{100 * same.error(r['f']):.3f} %, bounds {r['bounds']}", flush=True)
         r = same.ngsolve_own_mesh(step, own)
         runs.setdefault(("NGSolve", own), []).append(r)
         print(f"NGSolve {own}: {r['wall']:.1f} s, {r['dofs']:,} DOFs, "
@@ -57,6 +71,28 @@ def main(argv: list) -> None:
     for spec in ours:
         print(f"\nNGSolve {own} / shaftfem {spec}: "
               f"{medians['NGSolve', own] / medians['shaftfem', spec]:.2f}")
+    if cli:
+        print(f"NGSolve {own} / shaftfem modes {cli}: "
+              f"{medians['NGSolve', own] / medians['shaftfem modes', cli]:.2f}; its peak "
+              f"memory {max(r['peak'] for r in runs['shaftfem modes', cli]):.0f} MB")
+
+
+def cli_run(scene: str) -> dict:
+    """`shaftfem modes SCENE --json` from an empty cache: wall time, DOFs, frequencies,
+    the bounds' range and the peak memory (MB) of the process."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "modes.json"
+        t = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "shaftfem", "modes", scene, "-q", "--json",
+                        str(out)], check=True, capture_output=True,
+                       env={**os.environ, "SHAFTFEM_CACHE": str(Path(tmp) / "c")})
+        wall = time.perf_counter() - t
+        data = json.loads(out.read_text())
+    modes = data["modes"]
+    bounds = [m["error_bound_percent"] for m in modes]
+    return {"wall": wall, "dofs": data["dofs"], "f": [m["frequency_hz"] for m in modes],
+            "bounds": f"{min(bounds):.2f}-{max(bounds):.2f} %",
+            "peak": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}
 
 
 if __name__ == "__main__":
