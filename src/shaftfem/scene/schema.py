@@ -320,7 +320,7 @@ SCHEMA: dict[str, dict[str, Key]] = {
                      default=2, required=False),
         "geometry_order": Key(int, "how the elements follow the CAD surfaces: 2 (curved "
                               "quadratically) or 3 (cubically: closer on coarse elements; "
-                              "element orders 3 to 5; meshing takes a minute or more, once per design)",
+                              "element orders 3 to 5; the mesh takes seconds more)",
                               lambda v: v in GEOMETRY_ORDERS, "2 or 3", default=2,
                               required=False),
         "target_error_percent": Key(
