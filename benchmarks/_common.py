@@ -29,6 +29,28 @@ def peak_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
+def run_measured(command: list[str], env: dict[str, str] | None = None) -> dict:
+    """A command run to its end: its stdout and stderr (text), exit code, wall time (s)
+    and peak memory (MB) of that process and the children it waited for (wait4's own
+    usage: RUSAGE_CHILDREN would give the largest of every child so far)."""
+    import os
+    import subprocess
+    import tempfile
+    import time
+
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        t = time.perf_counter()
+        proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=out, stderr=err,
+                                env=env)
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - t
+        proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
+        out.seek(0)
+        err.seek(0)
+        return {"stdout": out.read(), "stderr": err.read(), "returncode": proc.returncode,
+                "wall": wall, "peak": usage.ru_maxrss / 1024}
+
+
 def options(args: list[str], defaults: dict[str, str]) -> tuple[dict[str, str], list[str]]:
     """The values of the `--flag value` pairs in `args` for the flags of `defaults` (else
     their defaults), and the other arguments in order."""

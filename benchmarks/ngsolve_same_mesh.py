@@ -85,6 +85,7 @@ def ours_to_accuracy(sizes_mm: tuple, order: int, geometry_order: int = 2) -> di
     as the first."""
     from dataclasses import replace
 
+    from _common import peak_mb
     from shaftfem.cad.mesh import mesh_shape
     from shaftfem.cad.solid import build_shape
     from shaftfem.runtime import RunOptions
@@ -101,31 +102,24 @@ def ours_to_accuracy(sizes_mm: tuple, order: int, geometry_order: int = 2) -> di
     mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=False)
     r = solve_mesh(scene, shape, mesh, RunOptions(use_cache=False), Stopwatch())
     return {"dofs": r.modes.n_dofs, "wall": time.perf_counter() - t,
-            "f": list(map(float, r.modes.frequencies)), "peak": peak()}
-
-
-def peak() -> float:
-    import resource
-
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+            "f": list(map(float, r.modes.frequencies)), "peak": peak_mb()}
 
 
 def ngsolve_own_mesh(step: str, spec: str) -> dict:
     """NGSolve on its own mesh of `step` (benchmarks/ngsolve_reference.py), timed from
     the file to the frequencies in a fresh process of the NGSolve venv."""
+    from _common import run_measured
+
     sizes, order, safety = spec.split(":")
     away, groove = sizes.split("/")
-    t = time.perf_counter()
-    done = subprocess.run([NGSOLVE_PYTHON, str(HERE / "ngsolve_reference.py"), step, away,
-                           groove, order], capture_output=True, text=True, check=False,
-                          env={**os.environ, "NETGEN_CURVATURESAFETY": safety})
-    wall = time.perf_counter() - t
-    if done.returncode:
-        raise SystemExit(done.stderr[-3000:])
-    row = [x.strip() for x in done.stdout.strip().splitlines()[-1].strip("|").split("|")]
-    tets = done.stdout.split("netgen: ")[1].split(" elements")[0]
-    return {"dofs": int(row[1]), "wall": wall, "f": [float(x) for x in row[3:]],
-            "tets": int(tets)}
+    done = run_measured([NGSOLVE_PYTHON, str(HERE / "ngsolve_reference.py"), step, away,
+                         groove, order], env={**os.environ, "NETGEN_CURVATURESAFETY": safety})
+    if done["returncode"]:
+        raise SystemExit(done["stderr"][-3000:])
+    row = [x.strip() for x in done["stdout"].strip().splitlines()[-1].strip("|").split("|")]
+    tets = done["stdout"].split("netgen: ")[1].split(" elements")[0]
+    return {"dofs": int(row[1]), "wall": done["wall"], "f": [float(x) for x in row[3:]],
+            "tets": int(tets), "peak": done["peak"]}
 
 
 # --- the NGSolve side (the NGSolve venv) ------------------------------------------------

@@ -13,22 +13,20 @@ NGSolve venv timed from the STEP file to the frequencies. True errors are the la
 the ten frequencies against the NGSolve order-3 reference of docs/verification.md.
 With --cli, each round also runs `shaftfem modes SCENE` as a user would, from an empty
 cache (the CAD solid built, the bound included), timed from the command to its exit.
-Prints a Markdown table of medians and the ratio of the medians.
+Prints a Markdown table of medians, with each case's largest peak memory (a process's
+own, measured by wait4), and the ratio of the medians.
 """
 
 import json
 import os
-import resource
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
-from _common import in_fresh_process, machine, options  # noqa: E402, I001  (before NumPy)
+from _common import in_fresh_process, machine, options, run_measured  # noqa: E402, I001
 
 import ngsolve_same_mesh as same  # noqa: E402
 
@@ -58,8 +56,9 @@ def main(argv: list) -> None:
         runs.setdefault(("NGSolve", own), []).append(r)
         print(f"NGSolve {own}: {r['wall']:.1f} s, {r['dofs']:,} DOFs, "
               f"{100 * same.error(r['f']):.3f} %", flush=True)
-    print("\n| code | case | DOFs | wall, median (s) | walls (s) | largest true error |")
-    print("|---|---|---|---|---|---|")
+    print("\n| code | case | DOFs | wall, median (s) | walls (s) | largest true error "
+          "| peak memory, largest (MB) |")
+    print("|---|---|---|---|---|---|---|")
     medians = {}
     for (code, spec), rs in runs.items():
         walls = [r["wall"] for r in rs]
@@ -67,32 +66,30 @@ def main(argv: list) -> None:
         errors = sorted(100 * same.error(r["f"]) for r in rs)
         print(f"| {code} | {spec} | {rs[0]['dofs']:,} | {medians[code, spec]:.1f} | "
               f"{', '.join(f'{w:.1f}' for w in walls)} | "
-              f"{errors[0]:.3f}-{errors[-1]:.3f} % |")
+              f"{errors[0]:.3f}-{errors[-1]:.3f} % | {max(r['peak'] for r in rs):.0f} |")
     for spec in ours:
         print(f"\nNGSolve {own} / shaftfem {spec}: "
               f"{medians['NGSolve', own] / medians['shaftfem', spec]:.2f}")
     if cli:
         print(f"NGSolve {own} / shaftfem modes {cli}: "
-              f"{medians['NGSolve', own] / medians['shaftfem modes', cli]:.2f}; its peak "
-              f"memory {max(r['peak'] for r in runs['shaftfem modes', cli]):.0f} MB")
+              f"{medians['NGSolve', own] / medians['shaftfem modes', cli]:.2f}")
 
 
 def cli_run(scene: str) -> dict:
     """`shaftfem modes SCENE --json` from an empty cache: wall time, DOFs, frequencies,
-    the bounds' range and the peak memory (MB) of the process."""
+    the bounds' range and the peak memory (MB) of the command."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "modes.json"
-        t = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "shaftfem", "modes", scene, "-q", "--json",
-                        str(out)], check=True, capture_output=True,
-                       env={**os.environ, "SHAFTFEM_CACHE": str(Path(tmp) / "c")})
-        wall = time.perf_counter() - t
+        done = run_measured([sys.executable, "-m", "shaftfem", "modes", scene, "-q",
+                             "--json", str(out)],
+                            env={**os.environ, "SHAFTFEM_CACHE": str(Path(tmp) / "c")})
+        if done["returncode"]:
+            raise SystemExit(done["stderr"][-3000:])
         data = json.loads(out.read_text())
     modes = data["modes"]
     bounds = [m["error_bound_percent"] for m in modes]
-    return {"wall": wall, "dofs": data["dofs"], "f": [m["frequency_hz"] for m in modes],
-            "bounds": f"{min(bounds):.2f}-{max(bounds):.2f} %",
-            "peak": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}
+    return {"wall": done["wall"], "dofs": data["dofs"], "f": [m["frequency_hz"] for m in modes],
+            "bounds": f"{min(bounds):.2f}-{max(bounds):.2f} %", "peak": done["peak"]}
 
 
 if __name__ == "__main__":
