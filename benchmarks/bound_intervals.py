@@ -8,7 +8,7 @@ Runs `shaftfem modes --json` with its bound for: P2 and order 3 on the default m
 (8/4/4 mm), orders 4 and 5 on cubic geometry at 16/12/12 mm (a scene of those sizes
 written next to the paper's). Each interval is [f (1 - bound), f (1 + upper)]: the
 discretisation error is one-sided, the geometry allowances count both ways. Prints a
-Markdown table; the cubic runs mesh for a minute or more the first time.
+Markdown table.
 """
 
 import json
