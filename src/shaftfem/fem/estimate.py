@@ -171,6 +171,17 @@ def recovery_estimate(mesh: ShaftMesh, material: Material, modes: Modes,
     return Recovery(relative=elements.sum(axis=1), elements=elements, volume=float(w.sum()))
 
 
+def mesh_volume(mesh: ShaftMesh) -> float:
+    """The mesh's volume, m^3, by the quadrature recovery_estimate integrates with (the
+    same value, without its projection)."""
+    from skfem import Basis, ElementTetP0
+
+    from shaftfem.fem.assembly import POSITIVE_INTORDER
+
+    return float(Basis(mesh.to_skfem(), ElementTetP0(),
+                       intorder=POSITIVE_INTORDER[mesh.order]).dx.ravel().sum())
+
+
 # --------------------------------------------------------------------------
 # Straightened elements
 

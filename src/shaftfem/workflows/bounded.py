@@ -111,11 +111,14 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
     3 on quadratic geometry and order 4 on cubic have only one order below them, whose
     recovery estimate gives the ratio of the errors (combine). (Order 3 on cubic geometry
     has none: estimate_errors confirms it on a coarser mesh.)"""
+    import numpy as np
+
     from shaftfem.fem.estimate import (
         combine,
         geometry_allowances,
         hierarchy_estimate,
         matched,
+        mesh_volume,
         recovery_estimate,
         with_straightening,
     )
@@ -126,18 +129,23 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
     below = min(2, p - result.mesh.geometry_order)
     options.say(f"error estimate: order{'s' if below > 1 else ''} "
                 f"{', '.join(str(p - k) for k in range(below, 0, -1))} inside order {p}'s space")
-    fine = recovery_estimate(result.mesh, scene.material, m)
     geometry, straightened = geometry_allowances(result.mesh, result.shape, scene.shaft,
-                                                 scene.material, m, fine.volume)
+                                                 scene.material, m, mesh_volume(result.mesh))
     lower, keep = lower_order(system)
     first = _solve_lower(lower, result, options)
     f1 = matched(m.kinds, first.kinds, first.frequencies)
     if below == 2:
         second = _solve_lower(lower_order(lower)[0], result, options)
-        f2 = matched(m.kinds, second.kinds, second.frequencies)
-        return with_straightening(
-            hierarchy_estimate((f2, f1, m.frequencies), (second.n_dofs, first.n_dofs, m.n_dofs),
-                               fine.relative, geometry), m.frequencies, straightened)
+        f = (matched(m.kinds, second.kinds, second.frequencies), f1, m.frequencies)
+        dofs = (second.n_dofs, first.n_dofs, m.n_dofs)
+        # the recovery estimate (seconds at order 5) is only the fallback of a mode
+        # whose rate the three orders do not measure
+        est = hierarchy_estimate(f, dofs, np.full(m.count, np.nan), geometry)
+        if not np.isfinite(est.two_mesh).all():
+            est = hierarchy_estimate(f, dofs, recovery_estimate(result.mesh, scene.material,
+                                                                m).relative, geometry)
+        return with_straightening(est, m.frequencies, straightened)
+    fine = recovery_estimate(result.mesh, scene.material, m)
     low = replace(first, shapes=raised(first.shapes, keep, system.nodes.shape[0]))
     ceta = recovery_estimate(result.mesh, scene.material, low).relative
     return with_straightening(
