@@ -6,7 +6,7 @@ NGSolve (docs/verification.md), the plain cylinder's torsion mode against c_t / 
 
 CASE is shaft:sizes:order[:geometry], shaft one of paper, sharp, cylinder, sizes
 away/grooves/floor edges in mm, geometry the degree of the elements' map (2, the
-default, or 3: cubic; a cold cubic mesh takes minutes, and is cached). Default: the
+default, or 3: cubic), both cached. Default: the
 table of docs/accuracy.md. Each run is a fresh process: a
 `run_bounded` on the scene's fixed mesh, bound included (wall time, warm solid).
 """

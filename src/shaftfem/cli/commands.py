@@ -70,10 +70,17 @@ def _bounded(args, estimate: bool = False):
     """(result, bound or None, adaptation or None) as the command line asks."""
     from shaftfem.workflows.bounded import run_bounded
 
-    b = run_bounded(_scene(args), estimate, _options(args))
+    b = run_bounded(_scene(args), estimate, _options(args), choose=_chooses(args))
     if b.adapted is not None:
         print(b.adapted.summary(), file=sys.stdout if b.adapted.reached else sys.stderr)
     return b.result, b.estimate, b.adapted
+
+
+def _chooses(args) -> bool:
+    """--accuracy with no --mesh-size, --order or --geometry-order: the discretisation
+    is shaftfem's to choose (workflows.route)."""
+    return args.accuracy is not None and all(
+        getattr(args, k, None) is None for k in ("mesh_size", "order", "geometry_order"))
 
 
 def _accuracy_status(args, adapted) -> int:
@@ -152,7 +159,8 @@ def cmd_design(args) -> int:
 
     scene = _scene(args)
     d = run_design(scene, design_out(args, scene.name), margin=_margin(args),
-                   estimate=not args.no_estimate, options=_options(args), html=not args.no_html)
+                   estimate=not args.no_estimate, options=_options(args), html=not args.no_html,
+                   choose=_chooses(args))
     if d.sizing is not None:
         print(sizing_text(d.sizing) + "\n")
     if d.adapted is not None:

@@ -169,9 +169,13 @@ def _modal_command(sub, name: str, help: str, func, json: bool = True, out: str 
 
 def _accuracy_arguments(c: argparse.ArgumentParser) -> None:
     c.add_argument("--accuracy", type=_accuracy, metavar="PERCENT",
-                   help="adapt the mesh (order 2) or the element orders (orders 3 to 5) "
-                   "until every frequency's error bound is below PERCENT (default: the "
-                   "scene's [mesh] target_error_percent, else the fixed mesh)")
+                   help="bound every frequency's error below PERCENT. Alone, the "
+                   "discretisation is chosen from costs measured on grooved shafts (the "
+                   "default mesh, order 5 on cubic elements, or meshes adapted at order 2), "
+                   "and a PERCENT beyond the budget stops at once (exit 2); with "
+                   "--mesh-size, --order or --geometry-order, the mesh (order 2) or the "
+                   "element orders (3 to 5) are adapted from there (default: the scene's "
+                   "[mesh] target_error_percent, else the fixed mesh)")
     c.add_argument("--max-dofs", type=_max_dofs, metavar="N",
                    help="DOF budget of the adapted space (default: the scene's, else "
                    f"{DEFAULT_MAX_DOFS})")

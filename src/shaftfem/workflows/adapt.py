@@ -81,13 +81,18 @@ class Adapted:
     why: str             # why the adaptation stopped short ('' when reached)
     from_cache: bool
     what: str = "mesh"   # what was adapted: the mesh, or the element orders on one mesh
+    chosen: str = ""     # the route --accuracy chose, and why (workflows.route); '' if none
 
     def summary(self) -> str:
         steps = " -> ".join(f"{r.dofs} DOFs, bound {100 * r.max_bound:.2g} %"
                             for r in self.rounds)
-        head = (f"adaptive {self.what} for bounds below {100 * self.target:g} %: "
-                f"{'reached' if self.reached else 'NOT reached'}"
-                f"{' (from cache)' if self.from_cache else ''}; {steps}")
+        state = (f"{'reached' if self.reached else 'NOT reached'}"
+                 f"{' (from cache)' if self.from_cache else ''}; {steps}")
+        if self.chosen:
+            head = (f"accuracy {100 * self.target:g} %: chose {self.chosen}\n"
+                    f"bounds below {100 * self.target:g} %: {state}")
+        else:
+            head = f"adaptive {self.what} for bounds below {100 * self.target:g} %: {state}"
         return head if self.reached else f"{head}\n{self.why}"
 
 

@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.result import ModalResult
     from shaftfem.workflows.adapt import Adapted
+    from shaftfem.workflows.route import Route
 
 COARSER = 1.5        # size ratio of the coarser mesh behind a fixed mesh's estimate
 
@@ -34,12 +35,18 @@ class Bounded:
 
 
 def run_bounded(scene: Scene, estimate: bool = True,
-                options: RunOptions = RunOptions()) -> Bounded:
+                options: RunOptions = RunOptions(), choose: bool = False) -> Bounded:
     """The modes with their error bounds (`Bounded.estimate.relative_error`, fractions
     of each frequency): adapted to the scene's target_error when it has one (the mesh at
     order 2, the element orders up to the scene's order 3 to 5), else on its fixed mesh
-    (bounded when `estimate`)."""
-    if scene.target_error is not None:
+    (bounded when `estimate`). `choose`: an order-2 scene's target may be met on another
+    discretisation, the one workflows.route chooses."""
+    if (choose and scene.target_error is not None and scene.mesh.order == 2
+            and scene.mesh.geometry_order == 2):
+        from shaftfem.workflows.route import choose_route
+
+        bounded = run_route(choose_route(scene, scene.target_error, scene.max_dofs), options)
+    elif scene.target_error is not None:
         if scene.mesh.order >= 3:
             from shaftfem.workflows.order_adapt import run_order_adaptive as run
         else:
@@ -54,6 +61,38 @@ def run_bounded(scene: Scene, estimate: bool = True,
         bounded = Bounded(result, estimate_errors(result, options) if estimate else None)
     _warn_if_implausible(bounded.result)
     return bounded
+
+
+def run_route(route: Route, options: RunOptions = RunOptions()) -> Bounded:
+    """A route chosen for an accuracy: adapted at order 2, or its fixed mesh bounded,
+    the target reached when every bound is below it."""
+    import time
+
+    import numpy as np
+
+    from shaftfem.workflows.adapt import Adapted, Round, run_adaptive
+    from shaftfem.workflows.pipeline import run_modes
+
+    scene = route.scene
+    target = scene.target_error
+    assert target is not None  # a route is chosen for a target
+    options.say(f"accuracy {100 * target:g} %: {route.why}")
+    if route.adaptive:
+        a = run_adaptive(scene, target, scene.max_dofs, options)
+        return Bounded(a.result, a.estimate, replace(a, chosen=route.why))
+    t = time.perf_counter()
+    result = run_modes(replace(scene, target_error=None), options)
+    est = estimate_errors(result, options)
+    largest = float(np.max(est.relative_error))
+    reached = largest <= target
+    why = "" if reached else (
+        f"the largest bound is {100 * largest:.2g} %, above {100 * target:g} %: this route "
+        f"bounds no better on this shaft; --order 2 --accuracy {100 * target:g} adapts the "
+        "mesh instead, at more DOFs")
+    rounds = (Round(result.modes.n_dofs, largest, time.perf_counter() - t),)
+    return Bounded(result, est, Adapted(result, est, target, scene.max_dofs, rounds, reached,
+                                        why, from_cache=False, what="discretisation",
+                                        chosen=route.why))
 
 
 def _warn_if_implausible(result: ModalResult) -> None:

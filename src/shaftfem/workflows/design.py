@@ -55,11 +55,11 @@ class DesignResult:
 
 def run_design(scene: Scene, out: str | Path, margin: float | None = None,
                estimate: bool = True, options: RunOptions = RunOptions(),
-               html: bool = True) -> DesignResult:
+               html: bool = True, choose: bool = False) -> DesignResult:
     """Everything a designer signs off: sizing, modes with bounds, resonance verdict,
     files, pictures, report.md and (unless `html` is False) report.html, published
     together into the folder `out`. `margin`: required separation (fraction), default
-    the scene's."""
+    the scene's; `choose`: as run_bounded's."""
     from shaftfem.checks.resonance import check_result
     from shaftfem.checks.sizing import size_from_scene
     from shaftfem.outputs.export import write_mode_files
@@ -74,7 +74,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     if scene.sizing is not None:
         say("sizing (equations 1-9)")
         sizing = size_from_scene(scene)
-    bounded = run_bounded(scene, estimate, options)
+    bounded = run_bounded(scene, estimate, options, choose)
     result, est = bounded.result, bounded.estimate
     verdict = check_result(result, margin)
     free, part, response, basis = None, None, None, None
