@@ -224,3 +224,16 @@ def test_a_warm_bounded_run_refines_each_kept_solve_without_lanczos(runs, monkey
     assert warm.modes.residuals.max() < 1e-8
     assert warm.modes.inertia_count == r.modes.inertia_count == 16
     assert np.max(np.abs(again.relative_error / cold.relative_error - 1)) < 1e-6
+
+
+def test_the_solvers_analysis_reads_the_upper_triangle_of_k_as_assembled(runs):
+    """The sparsity the solver's analysis starts from (built from the blocks' pattern,
+    before any value) is the upper triangle of K as assembled, entry for entry."""
+    from shaftfem.fem.assembly import discretise
+    from shaftfem.fem.factor import upper_triangle
+
+    for r in (runs[2], runs[4]):
+        d = discretise(r.mesh)
+        got, want = d.upper_structure(), upper_triangle(r.system.K)
+        assert np.array_equal(got.indptr, want.indptr)
+        assert np.array_equal(got.indices, want.indices)

@@ -185,6 +185,39 @@ class Pattern:
                                 shape=(m, len(row)))
         return touched, scatter @ v
 
+    def upper(self, size: int) -> sp.csr_matrix:
+        """The upper triangle (diagonal included) of the sparsity of `matrix(_, size)`,
+        values ones, built from the blocks' pattern: scalar row size I + a holds the
+        diagonal block's columns size I + a .. size I + size - 1, then the columns of
+        the row's blocks right of the diagonal (the pattern holds every diagonal block)."""
+        n, k = self.n_nodes, size
+        rows = np.repeat(np.arange(n, dtype=np.int32), np.diff(self.indptr))
+        if np.count_nonzero(self.indices == rows) != n:
+            raise ValueError("upper: a block row without its diagonal block")
+        right = self.indices > rows
+        m = np.bincount(rows[right], minlength=n)            # blocks right of the diagonal
+        del rows
+        # each block row's right columns, once: k m_I entries, ascending
+        cols = (k * self.indices[right][:, None] + np.arange(k, dtype=np.int32)).ravel()
+        lengths = (np.arange(k, 0, -1)[None, :] + k * m[:, None]).ravel()
+        indptr = np.zeros(n * k + 1, dtype=np.int64)
+        np.cumsum(lengths, out=indptr[1:])
+        indices = np.empty(int(indptr[-1]), dtype=np.int32)
+        starts = indptr[:-1].reshape(n, k)
+        for a in range(k):
+            for t in range(k - a):       # the diagonal block's part of row (I, a)
+                indices[starts[:, a] + t] = k * np.arange(n, dtype=np.int32) + a + t
+        # the right part of row (I, a) starts after its k - a diagonal entries; the
+        # right columns of block row I lie contiguously in `cols`, in the same order
+        owner = np.repeat(np.arange(n), k * m)         # the block row of each entry of cols
+        before = k * np.concatenate([[0], np.cumsum(m)[:-1]])
+        for a in range(k):
+            # entry j of cols, of block row I, goes to at[I] + j
+            at = starts[:, a] + (k - a) - before
+            indices[at[owner] + np.arange(cols.size)] = cols
+        return sp.csr_matrix((np.ones(indptr[-1]), indices, indptr.astype(np.int32)
+                              if indptr[-1] < 2**31 else indptr), shape=(n * k, n * k))
+
     def matrix(self, blocks: np.ndarray, size: int) -> sp.csr_matrix:
         """The CSR matrix of (n_blocks, size * size) summed blocks."""
         shape = (size * self.n_nodes,) * 2
@@ -251,9 +284,10 @@ class Discretisation:
     def n_dofs(self) -> int:
         return 3 * self.pattern.n_nodes
 
-    def structure(self) -> sp.csr_matrix:
-        """K's sparsity (values: ones), as `assemble` stores K."""
-        return self.pattern.matrix(np.ones((self.pattern.n_blocks, 9)), 3)
+    def upper_structure(self) -> sp.csr_matrix:
+        """The upper triangle (diagonal included) of K's sparsity as `assemble` stores K
+        (3x3 blocks), values ones: what the solver's analysis reads."""
+        return self.pattern.upper(3)
 
 
 def discretise(mesh) -> Discretisation:

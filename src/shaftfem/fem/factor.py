@@ -260,12 +260,13 @@ def uses_pardiso(backend: str, n: int, nnz: int) -> bool:
     return _resolve(backend, n, nnz) == "pardiso"
 
 
-def analyse_in_background(structure: sp.csr_matrix) -> Future:
-    """PARDISO's analysis of a symmetric matrix's sparsity (`structure`), started in a
-    thread: it needs no values, so it runs while they are assembled (ctypes releases
-    the GIL for the call). The future's result is a `Pardiso` awaiting `refactor`."""
+def analyse_in_background(upper: sp.csr_matrix) -> Future:
+    """PARDISO's analysis of a symmetric matrix's sparsity (`upper`: its upper triangle,
+    diagonal included), started in a thread: it needs no values, so it runs while they
+    are assembled (ctypes releases the GIL for the call). The future's result is a
+    `Pardiso` awaiting `refactor`."""
     pool = ThreadPoolExecutor(1, thread_name_prefix="pardiso-analysis")
-    future = pool.submit(Pardiso, upper_triangle(structure), False)
+    future = pool.submit(Pardiso, upper, False)
     pool.shutdown(wait=False)
     return future
 

@@ -136,7 +136,7 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
         # The solver's ordering needs only the sparsity: it runs while K and M are filled
         # (a free shaft's: seats change the sparsity).
         pardiso = uses_pardiso(options.factoriser, d.n_dofs, 9 * d.pattern.n_blocks)
-        analysis = (analyse_in_background(d.structure())
+        analysis = (analyse_in_background(d.upper_structure())
                     if not scene.installed and pardiso else None)
         system = assemble(mesh, scene.material, threads=options.threads, discretisation=d)
         installed = None
