@@ -237,3 +237,31 @@ def test_the_solvers_analysis_reads_the_upper_triangle_of_k_as_assembled(runs):
         got, want = d.upper_structure(), upper_triangle(r.system.K)
         assert np.array_equal(got.indptr, want.indptr)
         assert np.array_equal(got.indices, want.indices)
+
+
+def test_a_lower_order_is_proven_complete_under_the_count_of_the_space_around_it(
+        runs, monkeypatch):
+    """Order 3 inside order 4 has no more eigenvalues below a shift than order 4 (min-max):
+    its pairs are proven complete by order 4's count, with no inertia factorisation,
+    and are the pairs an inertia count proves. A ceiling the pairs do not meet falls
+    back to the count."""
+    from shaftfem.fem import factor
+    from shaftfem.fem.hierarchy import lower_order
+    from shaftfem.fem.modes import modal_analysis
+
+    r = runs[4]
+    lower, _ = lower_order(r.system)
+    counted = modal_analysis(lower, r.scene.modes)
+    shifts: list[float] = []
+    count = factor.ShiftedFactor.count_below
+    monkeypatch.setattr(factor.ShiftedFactor, "count_below",
+                        lambda self, s: shifts.append(s) or count(self, s))
+    top = (r.modes.inertia_shift, r.modes.inertia_count)
+    nested = modal_analysis(lower, r.scene.modes, ceiling=top)
+    assert not shifts and nested.inertia_count == r.modes.inertia_count
+    # the same pairs, to the round-off of MKL's threads from one factorisation to the next
+    np.testing.assert_allclose(nested.frequencies, counted.frequencies, rtol=1e-11)
+    assert np.all(nested.frequencies >= r.modes.frequencies)
+    wrong = modal_analysis(lower, r.scene.modes, ceiling=(top[0], top[1] - 1))
+    assert shifts and wrong.inertia_count == counted.inertia_count
+    np.testing.assert_allclose(wrong.frequencies, counted.frequencies, rtol=1e-11)

@@ -29,7 +29,13 @@ from scipy.sparse.linalg import eigsh
 
 from shaftfem.errors import SolverError
 from shaftfem.fem.factor import Pencil, ShiftedFactor, uses_pardiso
-from shaftfem.fem.inertia import ACCEPT_RESIDUAL, count_below, unproven, verified_gap
+from shaftfem.fem.inertia import (
+    ACCEPT_RESIDUAL,
+    INERTIA_GAP,
+    count_below,
+    unproven,
+    verified_gap,
+)
 from shaftfem.fem.ritz import Ritz, rayleigh_ritz
 from shaftfem.scene.model import ModeRequest
 from shaftfem.scene.schema import MAX_MODE_COUNT
@@ -139,8 +145,8 @@ class Problem:
 
 def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRequest(),
                 rigid: np.ndarray | None = None, settings: SolverSettings = SolverSettings(),
-                shift_hint: float | None = None, start: np.ndarray | None = None
-                ) -> EigenSolution:
+                shift_hint: float | None = None, start: np.ndarray | None = None,
+                ceiling: tuple[float, int] | None = None) -> EigenSolution:
     """The lowest pairs: the rigid ones and the `wanted` elastic ones above them (the
     lowest count, or every one below max_frequency, Hz), proven complete.
 
@@ -149,7 +155,8 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRe
     `shift_hint` (rad^2/s^2): where an earlier solve of a pencil like this one proved
     its modes complete (PARDISO only); a hint that does not serve falls back to the
     search. `start` (n_dofs, m): vectors spanning (nearly) the elastic pairs below the
-    hint, tried before Lanczos."""
+    hint, tried before Lanczos. `ceiling` (s, n): at most n eigenvalues lie below s, as
+    in a subspace of a space whose count that was (see search)."""
     scale = float(np.median(K.diagonal() / M.diagonal()))
     extra = RIGID_BODY_MODES if rigid is None else 0
     fixed = _rigid_pairs(K, M, rigid) if rigid is not None and rigid.shape[1] else None
@@ -166,19 +173,31 @@ def solve_modes(K: sp.csr_matrix, M: sp.csr_matrix, wanted: ModeRequest = ModeRe
         factor.shift_to(p.sigma)
     else:
         factor = shifted_factor(pencil, p.sigma, settings)
-    return search(p, factor, wanted.max_frequency, settings)
+    return search(p, factor, wanted.max_frequency, settings, ceiling)
 
 
 def search(p: Problem, factor: ShiftedFactor, max_frequency: float | None,
-           settings: SolverSettings) -> EigenSolution:
+           settings: SolverSettings, ceiling: tuple[float, int] | None = None
+           ) -> EigenSolution:
     """Lanczos about sigma < 0, proven by the inertia at a gap above the pairs found;
     repeated from another start with a Krylov space twice as large if a mode was
-    skipped, and refused if the count still differs."""
+    skipped, and refused if the count still differs.
+
+    With a `ceiling` (s, n), at most n eigenvalues lie below s: a subspace's i-th
+    eigenvalue is never below the whole space's (min-max), so a lower order inside a
+    hierarchical space has no more below s than the space's own proven count. n Ritz
+    values below s then mean at least n eigenvalues there (the i-th Ritz value is
+    never below the i-th eigenvalue), so exactly n, and the pairs, eigenpairs to their
+    residuals, are all of them: no inertia count, no second factorisation."""
     k, ncv, extra = p.k, settings.ncv, EXTRA_RITZ
     for attempt in range(INERTIA_RETRIES + 1):
         pairs, k, ncv_used = _enough_pairs(p, factor, k, max_frequency, settings.tol, ncv,
                                            attempt, extra)
         good, found, s_top = verified_gap(pairs, p.r + k, p.zero, p.r)
+        if ceiling is not None and _under_ceiling(pairs, good, ceiling, p.r + k):
+            s, n = ceiling
+            return EigenSolution(pairs=good.first(p.r + k), scale=p.scale,
+                                 factoriser=factor.backend, inertia_count=n, inertia_shift=s)
         counted = count_below(factor, s_top) if found else 0
         if counted == found >= p.r + k:
             return EigenSolution(pairs=good.first(p.r + k), scale=p.scale,
@@ -191,6 +210,15 @@ def search(p: Problem, factor: ShiftedFactor, max_frequency: float | None,
         ncv = min(p.K.shape[0] - p.r - 1, max(2 * ncv_used, 2 * (p.r + k + extra) + 1))
         factor.shift_to(p.sigma)
     raise SolverError(unproven(pairs, found, counted, s_top, p.r, ncv_used, p.zero))
+
+
+def _under_ceiling(pairs: Ritz, good: Ritz, ceiling: tuple[float, int], wanted: int) -> bool:
+    """Whether the Ritz pairs prove the count under a ceiling (s, n) (see search): n of
+    them below s, each an eigenpair to its residual, and no fewer than wanted. A margin
+    of INERTIA_GAP below s keeps round-off of the Ritz values out of the count."""
+    s, n = ceiling
+    below = int(np.sum(pairs.lam < s * (1 - INERTIA_GAP)))
+    return below == n == int(np.sum(good.lam < s * (1 - INERTIA_GAP))) and n >= wanted
 
 
 def _enough_pairs(p: Problem, factor: ShiftedFactor, k: int, max_frequency: float | None,

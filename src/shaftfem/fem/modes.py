@@ -79,14 +79,16 @@ class Modes:
 def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
                    settings: SolverSettings = SolverSettings(),
                    installed: Installed | None = None,
-                   shift_hint: float | None = None, start: np.ndarray | None = None) -> Modes:
+                   shift_hint: float | None = None, start: np.ndarray | None = None,
+                   ceiling: tuple[float, int] | None = None) -> Modes:
     """Solve, separate the rigid-body modes, check and classify the elastic ones: the
     lowest `wanted.count`, or every one below `wanted.max_frequency` (at least one).
     `shift_hint`, `start`: see eigen.solve_modes (a Modes' inertia_shift and shapes from
-    an earlier solve of the same free system)."""
+    an earlier solve of the same free system); `ceiling`: the (inertia_shift,
+    inertia_count) of a space that contains this one."""
     K, M, rigid, what = _pencil(system, installed)
     sol = solve_modes(K, M, wanted, rigid=rigid, settings=settings, shift_hint=shift_hint,
-                      start=start)
+                      start=start, ceiling=ceiling)
     n_given = rigid.shape[1]
     _check_zero_modes(sol, n_given, what)
     lam = sol.eigenvalues

@@ -195,7 +195,8 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
 
 def _solve_lower(system, result: ModalResult, options: RunOptions):
     """The modes of a lower order's system, as many as the run's (with the cache,
-    refined from this order's last solve on the mesh, like any solve)."""
+    refined from this order's last solve on the mesh, like any solve), their count
+    proven under the run's own: the lower order's space lies inside the run's."""
     from shaftfem.fem.eigen import SolverSettings
     from shaftfem.workflows.pipeline import solve_system
 
@@ -203,7 +204,8 @@ def _solve_lower(system, result: ModalResult, options: RunOptions):
     request = replace(scene.modes, count=result.modes.count, max_frequency=None)
     lower = replace(scene, modes=request, mesh=replace(scene.mesh, order=system.order))
     return solve_system(lower, result.mesh, system, options, SolverSettings(options.factoriser),
-                        space=f"inside order {result.system.order}")
+                        space=f"inside order {result.system.order}",
+                        ceiling=(result.modes.inertia_shift, result.modes.inertia_count))
 
 
 def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | None = None,

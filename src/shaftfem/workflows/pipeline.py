@@ -160,7 +160,7 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
 
 def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOptions,
                  settings: SolverSettings, installed: Installed | None = None,
-                 space: str = "") -> Modes:
+                 space: str = "", ceiling: tuple[float, int] | None = None) -> Modes:
     """The scene's modes of `system` on `mesh` (`scene.mesh.order` its order; `space`
     names its basis where another of that order on the mesh differs from it, as a lower
     order inside a hierarchical space does from a Lagrange one).
@@ -168,7 +168,7 @@ def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOpti
     With the cache: factorised first at the shift where the last solve of this scene on
     this mesh proved its modes complete, and its shapes refined there instead of a new
     search (none kept: the last proven shift of the scene on any mesh); this solve's
-    kept in turn (unless the options say not to)."""
+    kept in turn (unless the options say not to). `ceiling`: see fem.eigen.search."""
     from shaftfem.fem.modes import modal_analysis
 
     path = (_solve_path(scene, mesh, space) if options.use_cache and installed is None
@@ -176,7 +176,7 @@ def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOpti
     last = last_solve(path, system.n_dofs, scene.modes.count) if path else None
     hint = last[0] if last else (shift_hint(scene) if options.use_cache else None)
     modes = modal_analysis(system, scene.modes, settings, installed=installed,
-                           shift_hint=hint, start=last[1] if last else None)
+                           shift_hint=hint, start=last[1] if last else None, ceiling=ceiling)
     if options.use_cache and modes.inertia_shift != hint:
         keep_shift(scene, modes.inertia_shift)
     if path and options.keep_solves and (last is None or modes.inertia_shift != hint):
