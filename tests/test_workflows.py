@@ -133,3 +133,15 @@ def test_exit_status_says_what_failed(monkeypatch, capsys, raised, code):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "injected failure second line" in err
     assert "Traceback" not in err
+
+
+def test_the_run_time_counts_the_bound(tmp_path, capsys):
+    """The time line and the record's timings give the bound's own wall time, and a
+    total that holds it: the steps add up to no more than the total."""
+    out = tmp_path / "modes.json"
+    assert main(["modes", "plain_cylinder", "--mesh-size", "16", "-q", "--json", str(out)]) == 0
+    t = json.loads(out.read_text())["timings_s"]
+    assert list(t) == ["cad", "mesh", "assembly", "solve", "bound", "total"]
+    assert t["bound"] > 0 and sum(v for k, v in t.items() if k != "total") <= t["total"] + 1e-9
+    line = [s for s in capsys.readouterr().out.splitlines() if s.startswith("time: ")]
+    assert len(line) == 1 and f"bound {t['bound']:.1f} s" in line[0]

@@ -92,6 +92,7 @@ class ErrorEstimate:
     notes: tuple[str, ...] = ()
     # each mode's allowance for the straightened elements' faces (None: none straightened)
     straightening: np.ndarray | None = None
+    seconds: float = 0.0    # wall time the bound took after the run's own solve (0: not timed)
 
     @property
     def upward(self) -> np.ndarray:

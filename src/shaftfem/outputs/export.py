@@ -21,6 +21,8 @@ if TYPE_CHECKING:
 
 def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
     """The JSON form of a modal run (units in the key names): `modes --json` and modes.json."""
+    from shaftfem.outputs import tables
+
     m, scene = result.modes, result.scene
     return {
         "scene": scene.name,
@@ -42,7 +44,7 @@ def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
             "cad": result.shape.groove_volume_cad * 1e9,
             "analytic": result.shape.groove_volume_analytic * 1e9,
         },
-        "timings_s": dict(result.timings.items()),
+        "timings_s": tables.timings(result, est),
     }
 
 

@@ -52,7 +52,7 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
         lines.append("")
     if files:
         lines += ["## Files", ""] + [f"- `{Path(f).name}`" for f in files] + [""]
-    lines += ["## Run time", "", tables.timings_line(result), ""]
+    lines += ["## Run time", "", tables.timings_line(result, estimate), ""]
     return "\n".join(lines)
 
 

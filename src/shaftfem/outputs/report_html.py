@@ -136,7 +136,7 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     pngs = [p for p in pictures if Path(p).suffix == ".png"]
     if pngs:
         parts += ["<h2>Pictures</h2>"] + [_picture(Path(p)) for p in pngs]
-    parts += ["<h2>Run time</h2>", _paragraphs([tables.timings_line(result)])]
+    parts += ["<h2>Run time</h2>", _paragraphs([tables.timings_line(result, estimate)])]
     body = "\n".join(parts)
     script = (Path(__file__).with_name("report_view.js")).read_text(encoding="utf-8")
     # the viewer puts vtk.js's favicons from the web into the page's head: a page that

@@ -31,8 +31,18 @@ def aligned(rows: list[list[str]], left: frozenset[int] | set[int] = frozenset()
                       for k, (c, w) in enumerate(zip(r, widths))).rstrip() for r in rows]
 
 
-def timings_line(result: ModalResult) -> str:
-    return ", ".join(f"{k} {v:.1f} s" for k, v in result.timings.items())
+def timings(result: ModalResult, est: ErrorEstimate | None = None) -> dict[str, float]:
+    """Each step's wall time, s: the run's own, then the bound's where it was timed, and
+    the total of both."""
+    out = dict(result.timings.items())
+    if est is not None and est.seconds > 0:
+        total = out.pop("total")
+        out.update(bound=est.seconds, total=total + est.seconds)
+    return out
+
+
+def timings_line(result: ModalResult, est: ErrorEstimate | None = None) -> str:
+    return ", ".join(f"{k} {v:.1f} s" for k, v in timings(result, est).items())
 
 
 def estimate_notes(est: ErrorEstimate) -> list[str]:
@@ -165,7 +175,7 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     if est is not None:
         lines += [""] + estimate_notes(est)
     lines += [f"WARNING: {w}" for w in result.warnings]
-    lines += ["", "time: " + timings_line(result)]
+    lines += ["", "time: " + timings_line(result, est)]
     return "\n".join(lines)
 
 

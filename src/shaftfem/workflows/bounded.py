@@ -58,7 +58,7 @@ def run_bounded(scene: Scene, estimate: bool = True,
         from shaftfem.workflows.pipeline import run_modes
 
         result = run_modes(scene, options)
-        bounded = Bounded(result, estimate_errors(result, options) if estimate else None)
+        bounded = Bounded(result, timed_estimate(result, options) if estimate else None)
     _warn_if_implausible(bounded.result)
     return bounded
 
@@ -82,7 +82,7 @@ def run_route(route: Route, options: RunOptions = RunOptions()) -> Bounded:
         return Bounded(a.result, a.estimate, replace(a, chosen=route.why))
     t = time.perf_counter()
     result = run_modes(replace(scene, target_error=None), options)
-    est = estimate_errors(result, options)
+    est = timed_estimate(result, options)
     largest = float(np.max(est.relative_error))
     reached = largest <= target
     why = "" if reached else (
@@ -106,6 +106,15 @@ def _warn_if_implausible(result: ModalResult) -> None:
         for message in implausible_frequency(result.scene.source,
                                              float(result.modes.frequencies[0])):
             warnings.warn(message, PlausibilityWarning, stacklevel=3)
+
+
+def timed_estimate(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
+    """estimate_errors, with the wall time it took (`ErrorEstimate.seconds`)."""
+    import time
+
+    t = time.perf_counter()
+    est = estimate_errors(result, options)
+    return replace(est, seconds=time.perf_counter() - t)
 
 
 def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
