@@ -9,7 +9,7 @@ the bound, 2 cores), its DOFs scaled by the bar's volume:
   1 / N, from 1.46 % at 86k DOFs (1.21 % at 125k, 0.75 % at 151k, 0.32 % at 390k),
   at about 0.66 ms a DOF over the rounds;
 * fixed meshes: the default one at order 2 (bounded on a coarser mesh), and order 5
-  on cubically curved elements (free shafts only), whose largest bound (0.51-0.59 %)
+  on cubically curved elements (free shafts only), whose largest bound (0.45-0.59 %)
   is a floor set by the elements straightened at the root fillets.
 
 Shafts of another family (steps, bores, keyways, STEP files, or none of the grooves)
@@ -34,7 +34,7 @@ P2_SECONDS_PER_DOF = 0.66e-3          # cold, every round included (390k DOFs: 2
 
 @dataclass(frozen=True)
 class FixedRoute:
-    """A fixed mesh of high order measured on the reference shaft: sizes away / grooves /
+    """A fixed mesh measured on the reference shaft: sizes away / grooves /
     floor edges (mm), its DOFs, largest bound (fraction) and cold seconds with the bound."""
 
     sizes_mm: tuple[float, float, float]
