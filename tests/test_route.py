@@ -31,9 +31,13 @@ def test_an_accuracy_beyond_the_budget_stops_before_any_computation(capsys, tmp_
     assert "--accuracy 0.1" in err and "400,000 DOFs" in err and "--max-dofs" in err
     assert "Traceback" not in err
     assert not any(tmp_path.rglob("*.npz"))      # nothing meshed or solved
-    # what it says can be asked for is not refused
+    # what it says can be asked for is not refused, with this budget or a smaller one
     floor = float(err.split("Ask for ")[1].split(" %")[0])
     assert choose_route(load_scene("paper2018"), floor / 100, 400_000) is not None
+    with pytest.raises(SceneError) as small:
+        choose_route(load_scene("paper2018"), 0.004, 100_000)
+    floor = float(str(small.value).split("Ask for ")[1].split(" %")[0])
+    assert choose_route(load_scene("paper2018"), floor / 100, 100_000) is not None
 
 
 def test_a_larger_budget_takes_the_same_target(paper):

@@ -91,8 +91,7 @@ def run_route(route: Route, options: RunOptions = RunOptions()) -> Bounded:
         "mesh instead, at more DOFs")
     rounds = (Round(result.modes.n_dofs, largest, time.perf_counter() - t),)
     return Bounded(result, est, Adapted(result, est, target, scene.max_dofs, rounds, reached,
-                                        why, from_cache=False, what="discretisation",
-                                        chosen=route.why))
+                                        why, from_cache=False, chosen=route.why))
 
 
 def _warn_if_implausible(result: ModalResult) -> None:

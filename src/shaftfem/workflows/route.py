@@ -92,12 +92,12 @@ def choose_route(scene: Scene, target: float, max_dofs: int) -> Route:
     SceneError (before any computation) when the model puts the target beyond the budget."""
     from shaftfem.workflows.pipeline import with_mesh
 
-    percent = f"{100 * target:g} %"
     if not modelled(scene):
         return Route(scene, True, 0, math.nan,
                      f"order 2, the mesh adapted: no cost model has been measured for "
                      f"this shaft ({_family(scene)}), only for free grooved round bars")
     n2, k = p2_dofs(scene, target), scale(scene)
+    floor = min(r.bound for r in FIXED if r.order > 2)   # the best order 5 bounds
     fits = [r for r in FIXED if r.bound <= target and r.dofs * k <= max_dofs]
     if fits and (n2 > max_dofs or min(r.seconds for r in fits) < n2 * P2_SECONDS_PER_DOF):
         r = min(fits, key=lambda r: r.seconds)
@@ -115,16 +115,17 @@ def choose_route(scene: Scene, target: float, max_dofs: int) -> Route:
         return Route(scene, True, n2, target,
                      f"order 2, the mesh adapted: about {_dofs(n2)} DOFs and "
                      f"{n2 * P2_SECONDS_PER_DOF:.0f} s on the paper's shaft (order 5 on cubic "
-                     f"elements bounds no better than "
-                     f"{100 * min(r.bound for r in FIXED if r.order > 2):.3g} %)")
-    reach = P2_BOUND * (P2_DOFS * k / max_dofs) ** P2_RATE
-    floor = min(r.bound for r in FIXED if r.order > 2)
+                     f"elements bounds no better than {100 * floor:.3g} %)")
+    # the smallest bound some route reaches within the budget: adapted meshes at the
+    # budget's DOFs, or a fixed mesh that fits it
+    lowest = min([P2_BOUND * (P2_DOFS * k / max_dofs) ** P2_RATE]
+                 + [r.bound for r in FIXED if r.dofs * k <= max_dofs])
     raise SceneError(
-        f"--accuracy {100 * target:g}: a bound of {percent} lies beyond the budget of "
+        f"--accuracy {100 * target:g}: a bound of {100 * target:g} % lies beyond the budget of "
         f"{max_dofs:,} DOFs on this shaft. Measured on the paper's shaft, order 2 on adapted "
         f"meshes would need about {_dofs(n2)} DOFs (its bound falls as 1/N from "
         f"{100 * P2_BOUND:.3g} % at {P2_DOFS:,} DOFs), and order 5 on cubic elements "
-        f"bounds {100 * floor:.3g} % at best. Ask for {_up(100 * min(reach, floor)):g} % or more, "
+        f"bounds {100 * floor:.3g} % at best. Ask for {_up(100 * lowest):g} % or more, "
         f"or raise the budget (--max-dofs; order 2 takes about 17 GB a million DOFs)")
 
 
