@@ -148,8 +148,8 @@ def seat_restraints(support: Support, nodes: np.ndarray, weights: np.ndarray
     on = np.flatnonzero(weights > 1e-12 * weights.max())  # nodes off the band get ~1e-33
     w = weights[on]
     seen = _seen(nodes[on], w @ nodes[on, 2])   # about the band's centre
-    radial, _, axial, tilting, _, _ = ring_stiffness(support)
-    means = [("x", 0, 0, radial), ("y", 1, 0, radial), ("z", 2, 0, axial),
+    kx, ky, axial, tilting, _, _ = ring_stiffness(support)
+    means = [("x", 0, 0, kx), ("y", 1, 0, ky), ("z", 2, 0, axial),
              ("tilt about x", 1, 1, tilting), ("tilt about y", 0, 1, tilting)]
     return [Restraint(f"{support.name}: {what}", 3 * on + c, weighted_mean(w, seen[c], own), k)
             for what, c, own, k in means if k > 0]
@@ -251,8 +251,12 @@ def tie_rows(nodes: np.ndarray, idx: np.ndarray, centre: np.ndarray) -> np.ndarr
 def ring_stiffness(s: Support) -> tuple[float, ...]:
     """What a seat resists along its (U_x, U_y, U_z, Theta_x, Theta_y, Theta_z), a
     rigid ring's or a distributing seat's means: N/m, N m/rad, math.inf where held, 0
-    where free."""
+    where free (a bearing: its kxx and kyy at standstill; what it adds turning, the
+    rotor model adds: fem.rotor)."""
     rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
-    radial, axial = rigid.get(s.kind, (s.radial, s.axial))
-    tilting = s.tilting if s.kind == "springs" else 0.0
-    return (radial, radial, axial, tilting, tilting, 0.0)
+    if s.kind in rigid:
+        radial, axial = rigid[s.kind]
+        return (radial, radial, axial, 0.0, 0.0, 0.0)
+    tilting = s.tilting if s.kind in ("springs", "bearing") else 0.0
+    kx, ky = s.radial_xy
+    return (kx, ky, s.axial, tilting, tilting, 0.0)

@@ -7,6 +7,7 @@ in SI units (m, Pa, kg/m^3, W, rad/s), which is all the solver ever sees.
 
 from __future__ import annotations
 
+import math
 import tomllib
 import warnings
 from dataclasses import dataclass
@@ -17,17 +18,19 @@ from shaftfem.scene.checks import PlausibilityWarning, check_grooves, check_seat
 from shaftfem.scene.model import (
     MM,
     Attachment,
+    BearingCoefficients,
     Excitation,
     Grooves,
     Material,
     MeshSettings,
     ModeRequest,
+    Rotor,
     Scene,
     Shaft,
     Support,
 )
 from shaftfem.scene.profile import shaft_from_tables
-from shaftfem.scene.schema import SCHEMA
+from shaftfem.scene.schema import DEFAULT_SPEED_HEADROOM, SCHEMA
 from shaftfem.scene.toml_reading import (
     entry,
     read_toml,
@@ -43,6 +46,7 @@ GEOMETRY_DIR = _PACKAGED if _PACKAGED.is_dir() else Path(__file__).resolve().par
 DEFAULT_SCENE = "paper2018"
 
 MPA = 1e6
+RPM = 2 * math.pi / 60  # rad/s per r/min
 
 
 
@@ -188,7 +192,8 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                  max_dofs=mesh_t["max_dofs"], supports=supports, attachments=attachments,
                  damping_ratio=t["response"]["damping_ratio_percent"] / 100,
                  response_point=None if point is None else point * MM,
-                 criterion=res_t["criterion"], free_free_intended=res_t["free_free"])
+                 criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
+                 rotor=_rotor(source, data))
 
 
 def _check_tables(source: str, data: dict) -> None:
@@ -259,20 +264,76 @@ def _array(source: str, data: dict, table: str) -> list:
     return items
 
 
+BEARING_KEYS = ("kxx_n_per_mm", "kxy_n_per_mm", "kyx_n_per_mm", "kyy_n_per_mm",
+                "cxx_n_s_per_mm", "cxy_n_s_per_mm", "cyx_n_s_per_mm", "cyy_n_s_per_mm")
+
+
+def _as_lists(t: dict, keys: tuple[str, ...]) -> dict:
+    """The table with each of `keys` given as one number made a list of it: such keys
+    take one number or a list."""
+    if not isinstance(t, dict):
+        return t
+    return {k: [v] if k in keys and isinstance(v, (int, float)) and not isinstance(v, bool)
+            else v for k, v in t.items()}
+
+
+def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
+    """A bearing's coefficients in SI (N/m, N s/m, rad/s), each a constant or one value
+    per entry of speeds_rpm."""
+    if t["kxx_n_per_mm"] is None:
+        raise SceneError(f"{where(source, table, 'kxx_n_per_mm')}: missing (kind = \"bearing\" "
+                         "needs at least its direct stiffness kxx, N/mm)")
+    speeds = t["speeds_rpm"] or []
+    values: dict[str, list[float]] = {}
+    for key in BEARING_KEYS:
+        v = t[key]
+        if v is None:
+            default = {"kyy_n_per_mm": "kxx_n_per_mm", "cyy_n_s_per_mm": "cxx_n_s_per_mm"}
+            v = values.get(default.get(key, ""))
+            v = [0.0] if v is None else v
+        elif len(v) != 1 and len(v) != len(speeds):
+            raise SceneError(f"{where(source, table, key)} = {v!r}: give one number, or one "
+                             f"value for each of the {len(speeds)} speeds of speeds_rpm")
+        values[key] = v
+    if speeds and all(len(values[k]) == 1 for k in BEARING_KEYS):
+        raise SceneError(f"{where(source, table, 'speeds_rpm')}: no coefficient is a list; "
+                         "give lists of values against these speeds, or leave speeds_rpm out")
+    per_mm = {k: tuple(x * 1e3 for x in v) for k, v in values.items()}
+    return BearingCoefficients(
+        speeds=tuple(n * RPM for n in speeds), kxx=per_mm["kxx_n_per_mm"],
+        kxy=per_mm["kxy_n_per_mm"], kyx=per_mm["kyx_n_per_mm"], kyy=per_mm["kyy_n_per_mm"],
+        cxx=per_mm["cxx_n_s_per_mm"], cxy=per_mm["cxy_n_s_per_mm"],
+        cyx=per_mm["cyx_n_s_per_mm"], cyy=per_mm["cyy_n_s_per_mm"])
+
+
 def _support(source: str, i: int, t: dict) -> Support:
     table = entry("support", i, t)
-    t = validate_table(source, table, t, SCHEMA["support"])
+    t = validate_table(source, table, _as_lists(t, BEARING_KEYS), SCHEMA["support"])
     springs = ("radial_stiffness_n_per_mm", "axial_stiffness_n_per_mm",
                "tilting_stiffness_nmm_per_rad")
+    bearing = None
     if t["kind"] == "springs":
         if t["radial_stiffness_n_per_mm"] is None:
             raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: missing "
                              "(kind = \"springs\" needs the bearing's radial stiffness, N/mm)")
+    elif t["kind"] == "bearing":
+        if t["radial_stiffness_n_per_mm"] is not None:
+            raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: not with "
+                             "kind = \"bearing\"; give kxx_n_per_mm (and kyy_n_per_mm)")
+        if t["coupling"] == "rigid":
+            raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": kind = "
+                             "\"bearing\" acts on the seat's mean motion; leave coupling out")
+        bearing = _bearing(source, table, t)
     else:
         for key in springs:
             if t[key] is not None:
                 raise SceneError(f"{where(source, table, key)} = {t[key]:g}: only with kind = "
-                                 f"\"springs\" (this support is {t['kind']!r})")
+                                 f"\"springs\" or \"bearing\" (this support is {t['kind']!r})")
+    if t["kind"] != "bearing":
+        for key in (*BEARING_KEYS, "speeds_rpm"):
+            if t[key] is not None:
+                raise SceneError(f"{where(source, table, key)} = {t[key]!r}: only with kind = "
+                                 f"\"bearing\" (this support is {t['kind']!r})")
     if t["kind"] == "clamped" and t["coupling"] == "rigid":
         raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a clamped seat "
                          "already holds every point of its band; leave coupling out")
@@ -282,7 +343,22 @@ def _support(source: str, i: int, t: dict) -> Support:
                    width=width, kind=t["kind"], radial=radial,
                    axial=(t["axial_stiffness_n_per_mm"] or 0.0) * 1e3,
                    tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3,
-                   coupling=t["coupling"])
+                   coupling=t["coupling"], bearing=bearing)
+
+
+def _rotor(source: str, data: dict) -> Rotor | None:
+    """[rotor] in SI (rad/s), or None when the scene has none."""
+    if "rotor" not in data:
+        return None
+    t = validate_table(source, "rotor", _as_lists(data["rotor"], ("speed_rpm",)), SCHEMA["rotor"])
+    top = max(t["speed_rpm"])
+    end = t["max_speed_rpm"] if t["max_speed_rpm"] is not None else DEFAULT_SPEED_HEADROOM * top
+    if end < top:
+        raise SceneError(f"{where(source, 'rotor', 'max_speed_rpm')} = {end:g}: must reach the "
+                         f"highest operating speed ({top:g} r/min)")
+    return Rotor(speeds=tuple(n * RPM for n in t["speed_rpm"]), max_speed=end * RPM,
+                 frame=t["frame"], points=t["campbell_points"],
+                 basis_modes=t["basis_modes"] or 0)
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:

@@ -224,6 +224,65 @@ class ModeRequest:
 
 
 @dataclass(frozen=True)
+class BearingCoefficients:
+    """A rotor bearing's stiffness (N/m) and damping (N s/m) coefficients on the seat's
+    mean radial motion (q_x, q_y), as rotor engineers give them: the force on the shaft
+    is -[[kxx, kxy], [kyx, kyy]] q - [[cxx, cxy], [cyx, cyy]] dq/dt. Each coefficient
+    holds one value per speed of `speeds` (rad/s, ascending), or one value when
+    `speeds` is empty; between speeds interpolated linearly, outside them the nearest
+    end's value."""
+
+    speeds: tuple[float, ...]
+    kxx: tuple[float, ...]
+    kxy: tuple[float, ...]
+    kyx: tuple[float, ...]
+    kyy: tuple[float, ...]
+    cxx: tuple[float, ...]
+    cxy: tuple[float, ...]
+    cyx: tuple[float, ...]
+    cyy: tuple[float, ...]
+
+    def _at(self, values: tuple[float, ...], omega: float) -> float:
+        if len(values) == 1:
+            return values[0]
+        import numpy as np
+
+        return float(np.interp(omega, self.speeds, values))
+
+    def stiffness(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
+        """[[kxx, kxy], [kyx, kyy]] at the speed omega (rad/s), N/m."""
+        return ((self._at(self.kxx, omega), self._at(self.kxy, omega)),
+                (self._at(self.kyx, omega), self._at(self.kyy, omega)))
+
+    def damping(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
+        """[[cxx, cxy], [cyx, cyy]] at the speed omega (rad/s), N s/m."""
+        return ((self._at(self.cxx, omega), self._at(self.cxy, omega)),
+                (self._at(self.cyx, omega), self._at(self.cyy, omega)))
+
+    @property
+    def isotropic(self) -> bool:
+        """Whether the bearing looks the same from every angle about the axis (kxx = kyy,
+        kxy = -kyx, and so for damping) at every speed: what a rotating frame needs."""
+        return (self.kxx == self.kyy and self.cxx == self.cyy
+                and all(a == -b for a, b in zip(self.kxy, self.kyx))
+                and all(a == -b for a, b in zip(self.cxy, self.cyx)))
+
+
+@dataclass(frozen=True)
+class Rotor:
+    """The shaft turning about its axis: its operating speeds and the end of the
+    Campbell diagram (rad/s), the frame its motion is written in ("auto",
+    "stationary", "rotating"), the Campbell diagram's number of speeds, and how many
+    standstill modes the whirl is solved on (0: the default)."""
+
+    speeds: tuple[float, ...]
+    max_speed: float
+    frame: str = "auto"
+    points: int = 31
+    basis_modes: int = 0
+
+
+@dataclass(frozen=True)
 class Support:
     """A bearing seat: the band of shaft surface from z = position -+ width / 2 (m).
 
@@ -239,6 +298,16 @@ class Support:
     axial: float = 0.0
     tilting: float = 0.0
     coupling: str = "distributing"   # or "rigid": the band moves as a rigid ring
+    bearing: BearingCoefficients | None = None   # kind "bearing": its coefficients
+
+    @property
+    def radial_xy(self) -> tuple[float, float]:
+        """The radial stiffness along x and y at standstill, N/m (a bearing's kxx and kyy
+        at speed 0; the springs' radial stiffness on both)."""
+        if self.bearing is not None:
+            (kxx, _), (_, kyy) = self.bearing.stiffness(0.0)
+            return kxx, kyy
+        return self.radial, self.radial
 
     @property
     def seat(self) -> tuple[float, float]:
@@ -296,11 +365,18 @@ class Scene:
     free_free_intended: bool = False  # [resonance] free_free: the check is meant free-free
     # the supports left off (free-free), their seats kept in the mesh
     hanging_free: bool = False
+    rotor: Rotor | None = None  # [rotor]: the shaft turns (None: it stands still)
 
     @property
     def held(self) -> tuple[Support, ...]:
         """The supports that hold the shaft (none when it hangs free)."""
         return () if self.hanging_free else self.supports
+
+    @property
+    def axisymmetric(self) -> bool:
+        """Whether the shaft is a solid of revolution: a profile without keyways or
+        grooves (a STEP solid is not taken as one)."""
+        return self.grooves is None and not self.shaft.keyways and self.shaft.step is None
 
     @property
     def installed(self) -> bool:

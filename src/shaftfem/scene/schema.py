@@ -22,7 +22,11 @@ MAX_DOFS_LIMIT = 20_000_000
 # element orders (1, 2: Lagrange; 3 on: hierarchical) and degrees of the elements' map
 ELEMENT_ORDERS = (1, 2, 3, 4, 5)
 GEOMETRY_ORDERS = (2, 3)
-SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs")
+SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs", "bearing")
+ROTOR_FRAMES = ("auto", "stationary", "rotating")
+# The Campbell diagram's end when [rotor] does not give one: this much above the
+# highest operating speed.
+DEFAULT_SPEED_HEADROOM = 1.5
 COUPLINGS = ("distributing", "rigid")
 KEYWAY_FORMS = ("rounded", "sled")
 # Modal damping of a steel shaft in rolling bearings: 1-3 % of critical is usual.
@@ -66,6 +70,17 @@ def upto(high: float, why: str, low: float = 0.0,
     def check(v: float) -> bool:
         return (low <= v if closed_low else low < v) and v <= high
     return check, f"in {'[' if closed_low else '('}{low:g}, {high:g}] ({why})"
+
+
+BEARING_DOC = "{} : one number, or a list with one value per speeds_rpm entry"
+
+
+def _finite(v: list) -> bool:
+    return len(v) >= 1
+
+
+def _finite_nonneg(v: list) -> bool:
+    return len(v) >= 1 and all(x >= 0 for x in v)
 
 
 SCHEMA: dict[str, dict[str, Key]] = {
@@ -196,8 +211,38 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "kind": Key(str, "how the seat is held: \"rigid\" (its mean radial and axial "
                     "displacement), \"rigid-radial\" (radial only: a floating bearing), "
                     "\"clamped\" (every point of it, in every direction), \"springs\" (the "
-                    "stiffnesses below); rigid and springs let the shaft tilt and turn",
+                    "stiffnesses below), \"bearing\" (a rotor bearing's stiffness and damping "
+                    "coefficients kxx ... cyx, constant or against speed); rigid, springs and "
+                    "bearing let the shaft tilt and turn",
                     lambda v: v in SUPPORT_KINDS, ", ".join(f'"{k}"' for k in SUPPORT_KINDS)),
+        "kxx_n_per_mm": Key(("list", float), BEARING_DOC.format(
+            "direct stiffness along x, N/mm (kind = \"bearing\")"), _finite_nonneg, "numbers >= 0",
+            required=False),
+        "kyy_n_per_mm": Key(("list", float), BEARING_DOC.format(
+            "direct stiffness along y, N/mm (default: kxx)"), _finite_nonneg, "numbers >= 0",
+            required=False),
+        "kxy_n_per_mm": Key(("list", float), BEARING_DOC.format(
+            "cross-coupled stiffness, the x force per y displacement, N/mm (default 0)"),
+            _finite, "numbers", required=False),
+        "kyx_n_per_mm": Key(("list", float), BEARING_DOC.format(
+            "cross-coupled stiffness, the y force per x displacement, N/mm (default 0)"),
+            _finite, "numbers", required=False),
+        "cxx_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
+            "direct damping along x, N s/mm (default 0)"), _finite_nonneg, "numbers >= 0",
+            required=False),
+        "cyy_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
+            "direct damping along y, N s/mm (default: cxx)"), _finite_nonneg, "numbers >= 0",
+            required=False),
+        "cxy_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
+            "cross-coupled damping, N s/mm (default 0)"), _finite, "numbers", required=False),
+        "cyx_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
+            "cross-coupled damping, N s/mm (default 0)"), _finite, "numbers", required=False),
+        "speeds_rpm": Key(("list", float), "the speeds, r/min, at which the bearing's "
+                          "coefficients are given as lists (kind = \"bearing\"; between them "
+                          "interpolated linearly, outside them the nearest end's value)",
+                          lambda v: len(v) >= 1 and all(x >= 0 for x in v)
+                          and all(b > a for a, b in zip(v, v[1:])),
+                          "ascending numbers >= 0", required=False),
         "radial_stiffness_n_per_mm": Key(
             float, "radial stiffness of the bearing, N/mm (kind = \"springs\")",
             *upto(1e12, "up to 10^12 N/mm", closed_low=True), required=False),
@@ -236,6 +281,27 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "part as one rigid body) or \"distributing\" (a slip or keyed fit: the part's "
             "mass and inertia act on the mean motion of the shaft's cross-section at the hub's "
             "centre, as a beam model's disk, and add no stiffness)", "rigid"),
+    },
+    "rotor": {  # the shaft turning: whirl, Campbell diagram, critical speeds (fem.rotor)
+        "speed_rpm": Key(("list", float), "operating speed of the shaft, r/min: one number, "
+                         "or a list of them", lambda v: len(v) >= 1 and all(0 < x <= 1e6 for x in v),
+                         "numbers in (0, 10^6]"),
+        "max_speed_rpm": Key(float, "end of the Campbell diagram, r/min (default "
+                             f"{DEFAULT_SPEED_HEADROOM:g} times the highest operating speed)",
+                             *upto(1e6, "up to 10^6 r/min"), required=False),
+        "frame": Key(str, "the frame the shaft's motion is written in: \"stationary\" (a "
+                     "shaft of revolution: gyroscopic moments; bearings may be anisotropic), "
+                     "\"rotating\" (any shaft, turning with it: Coriolis and spin softening; "
+                     "bearings must be isotropic), \"auto\" (stationary for a shaft of "
+                     "revolution, else rotating)", lambda v: v in ROTOR_FRAMES,
+                     ", ".join(f'"{f}"' for f in ROTOR_FRAMES), default="auto", required=False),
+        "campbell_points": Key(int, "speeds of the Campbell diagram, from 0 to max_speed_rpm",
+                               lambda v: 2 <= v <= 1001, "in [2, 1001]", default=31,
+                               required=False),
+        "basis_modes": Key(int, "undamped standstill modes the whirl is solved on (default: "
+                           "3 times [modes] count, at least 30)",
+                           lambda v: 2 <= v <= MAX_MODE_COUNT, f"in [2, {MAX_MODE_COUNT}]",
+                           required=False),
     },
     "response": {  # base excitation at the supports (shaftfem.fem.response)
         "damping_ratio_percent": Key(
@@ -365,6 +431,10 @@ TABLES: dict[str, Table] = {
     "attachment": Table(
         "A part keyed or shrunk on the shaft (gear, sprocket, pulley), modelled by its mass "
         "and inertias on a joint to the band under its hub.", repeated=True),
+    "rotor": Table(
+        "The shaft turning: its operating speed(s) and the speed range of the Campbell "
+        "diagram. With it, `shaftfem campbell` gives the whirl frequencies against speed "
+        "(forward and backward), the critical speeds and the log decrements."),
     "response": Table(
         "Response to harmonic base motion through the supports (installed shafts)."),
     "sizing": Table(

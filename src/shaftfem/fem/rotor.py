@@ -1,0 +1,251 @@
+"""What the shaft's spin Omega (rad/s, about +z) adds to M q'' + K q = 0, on a basis
+of its undamped standstill modes Phi (mass-normalised: Phi^T M Phi = I,
+Phi^T K Phi = diag(w^2)):
+
+    q'' + (Omega G + C_b) q' + (diag(w^2) + Omega^2 K_2 + dK_b + Omega K_c) q = 0.
+
+Stationary frame (a shaft of revolution: the material flows through a mesh that
+does not move, and the bearings may be anisotropic). With d_theta = x d/dy - y d/dx,
+the velocity of the material is u_t + Omega d_theta u, whose kinetic energy gives
+
+    G = Phi^T (A - A^T) Phi,   A = int rho N^T d_theta N dV        (the solid)
+
+and, for a rigid part, I_p on its tilts (I_d th_x'' + Omega I_p th_y' = 0). The
+centrifugal softening (Omega d_theta u)^2 and the stiffening by the centrifugal
+prestress are left out: on a solid of revolution they cancel exactly on rigid tilts
+(the virial of the spin stress) and on a shaft's bending modes they are of order
+(Omega r / c)^2, below 1e-6 for steel shafts at their speeds.
+
+Rotating frame (any shaft, coordinates turning with it; isotropic bearings):
+
+    G = 2 Phi^T (M_s x S) Phi,   K_2 = -Phi^T (M_s x P) Phi       (the solid)
+
+with S = [e]x, P = I - e e^T, and for a rigid part 2 m S and -m P on its
+translations, (I_p - 2 I_d) S and (I_p - I_d) on its tilts (its Euler equations in
+the turning frame). A bearing's damping seen from the turning shaft adds
+Omega C_b S to the stiffness.
+
+Bearings: K_b(Omega) and C_b(Omega) act on each seat's mean radial motion
+(q_x, q_y) = (c_x . u, c_y . u) (fem.supports); the standstill modes already hold
+kxx(0) and kyy(0), dK_b is the rest.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+import scipy.sparse as sp
+
+from shaftfem.errors import SolverError
+from shaftfem.scene.model import Attachment, BearingCoefficients
+
+if TYPE_CHECKING:
+    from shaftfem.fem.result import ModalResult
+
+FRAMES = ("stationary", "rotating")
+# The rotating-frame skew of the xy plane: S q = e x q for q = (q_x, q_y).
+S2 = np.array([[0.0, -1.0], [1.0, 0.0]])
+
+
+@dataclass(frozen=True)
+class BearingModal:
+    """One bearing on the modal basis: its seat's mean radial motions in each mode
+    (2, N), m / sqrt(kg), its coefficients, and what the standstill modes hold of
+    them (kxx(0), kyy(0), N/m)."""
+
+    name: str
+    beta: np.ndarray
+    coefficients: BearingCoefficients
+    standstill: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class RotorModel:
+    """The turning shaft on N standstill modes (see the module's equation): each
+    mode's w^2 (rad^2/s^2), G per rad/s, K_2 per (rad/s)^2, the bearings, the
+    whirl forms (the xy kinetic energy `lateral` and its turning part `turning`:
+    the whirl index of a complex shape y is y^H turning y / y^H lateral y) and each
+    mode's kind."""
+
+    frame: str
+    omega2: np.ndarray
+    G: np.ndarray
+    K2: np.ndarray
+    bearings: tuple[BearingModal, ...]
+    lateral: np.ndarray
+    turning: np.ndarray
+    kinds: tuple[str, ...]
+
+    @property
+    def size(self) -> int:
+        return self.omega2.size
+
+    def truncated(self, n: int) -> RotorModel:
+        """The same rotor on its first n modes."""
+        return replace(self, omega2=self.omega2[:n], G=self.G[:n, :n], K2=self.K2[:n, :n],
+                       bearings=tuple(replace(b, beta=b.beta[:, :n]) for b in self.bearings),
+                       lateral=self.lateral[:n, :n], turning=self.turning[:n, :n],
+                       kinds=self.kinds[:n])
+
+    def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
+        """(D, K) of q'' + D q' + K q = 0 at the spin omega (rad/s)."""
+        D = omega * self.G
+        K = np.diag(self.omega2) + omega**2 * self.K2
+        for b in self.bearings:
+            Kb = np.array(b.coefficients.stiffness(omega)) - np.diag(b.standstill)
+            Cb = np.array(b.coefficients.damping(omega))
+            D = D + b.beta.T @ Cb @ b.beta
+            K = K + b.beta.T @ Kb @ b.beta
+            if self.frame == "rotating":
+                K = K + omega * (b.beta.T @ (Cb @ S2) @ b.beta)
+        return D, K
+
+
+@dataclass(frozen=True)
+class Roots:
+    """The complex modes at one spin: eigenvalues lam (s^-1, Im > 0: one of each
+    conjugate pair, ascending in Im) and their modal coordinates y (N, m)."""
+
+    lam: np.ndarray
+    y: np.ndarray
+
+
+def roots(model: RotorModel, omega: float) -> Roots:
+    """The eigenvalues of q'' + D q' + K q = 0 at the spin omega (rad/s), from its
+    first-order form [[0, I], [-K, -D]]: the oscillating ones (Im lam > 0), lowest
+    frequency first. Real ones (overdamped, or a divergence) are left out."""
+    D, K = model.matrices(omega)
+    n = model.size
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -D]])
+    lam, V = np.linalg.eig(A)
+    scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
+    keep = lam.imag > 1e-9 * scale
+    lam, V = lam[keep], V[:n, keep]
+    order = np.argsort(lam.imag)
+    return Roots(lam=lam[order], y=V[:, order])
+
+
+def whirl_index(model: RotorModel, y: np.ndarray) -> np.ndarray:
+    """Each complex shape's whirl index (m,): +1 a forward circular orbit (turning
+    with the shaft), -1 backward, between for ellipses and mixed motion; the
+    kinetic-energy-weighted share of the forward minus the backward component."""
+    num = np.einsum("im,ij,jm->m", y.conj(), model.turning, y).real
+    den = np.einsum("im,ij,jm->m", y.conj(), model.lateral, y).real
+    return np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
+
+
+def dominant_kinds(model: RotorModel, y: np.ndarray) -> list[str]:
+    """The kind of the standstill mode each complex shape holds most of."""
+    return [model.kinds[int(np.argmax(np.abs(y[:, k])))] for k in range(y.shape[1])]
+
+
+# --------------------------------------------------------------------------
+# Building the model from a standstill modal run
+
+
+def rotor_model(result: ModalResult, frame: str) -> RotorModel:
+    """The turning shaft of `result` (an order-1 or order-2 modal run, its elastic
+    modes the basis) in `frame` ("stationary" or "rotating")."""
+    if frame not in FRAMES:
+        raise ValueError(f"frame {frame!r}: one of {FRAMES}")
+    system, modes = result.system, result.modes
+    if system.order > 2:
+        raise SolverError("the turning shaft takes element orders 1 and 2")
+    Phi = modes.shapes                                     # (3 n, N)
+    Ms = system.mass_scalar
+    X, Y = Phi[0::3], Phi[1::3]
+    MX, MY = Ms @ X, Ms @ Y
+    Mxy = X.T @ MY
+    lateral = X.T @ MX + Y.T @ MY
+    turning = 1j * (Mxy - Mxy.T)
+    if frame == "stationary":
+        A = spin_derivative(result)
+        G = sum(P.T @ (A @ P) - (A @ P).T @ P for P in (X, Y, Phi[2::3]))
+        K2 = np.zeros_like(G)
+    else:
+        G = 2.0 * (Y.T @ MX - X.T @ MY)
+        K2 = -lateral.copy()
+    for psi, part in part_motions(result):
+        Gp, Kp = part_matrices(part.mass, part.polar_inertia, part.diametral_inertia, frame)
+        G = G + psi.T @ Gp @ psi
+        K2 = K2 + psi.T @ Kp @ psi
+    return RotorModel(frame=frame, omega2=(2 * math.pi * modes.frequencies) ** 2,
+                      G=0.5 * (G - G.T), K2=0.5 * (K2 + K2.T),
+                      bearings=bearing_modal(result), lateral=lateral,
+                      turning=0.5 * (turning + turning.conj().T), kinds=tuple(modes.kinds))
+
+
+def spin_derivative(result: ModalResult) -> sp.csr_matrix:
+    """A = int rho phi_a (x d/dy - y d/dx) phi_b dV on the scalar basis (kg / s per
+    rad/s): the material's flow through the mesh of a shaft that turns (scikit-fem,
+    at the mass's quadrature)."""
+    from skfem import Basis, BilinearForm
+
+    from shaftfem.fem.assembly import MASS_INTORDER, scalar_basis
+
+    base = scalar_basis(result.mesh)
+    basis = Basis(base.mesh, base.elem, intorder=MASS_INTORDER[result.system.order])
+
+    @BilinearForm
+    def flow(u, v, w):
+        return v * (w.x[0] * u.grad[1] - w.x[1] * u.grad[0])
+
+    return (result.scene.material.density * flow.assemble(basis)).tocsr()
+
+
+def part_matrices(mass: float, polar: float, diametral: float, frame: str
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """A rigid part's (G per rad/s, K_2 per (rad/s)^2) on its (U, Theta), 6x6."""
+    G, K = np.zeros((6, 6)), np.zeros((6, 6))
+    if frame == "stationary":
+        G[3, 4], G[4, 3] = polar, -polar
+        return G, K
+    G[0, 1], G[1, 0] = -2 * mass, 2 * mass
+    G[3, 4], G[4, 3] = polar - 2 * diametral, -(polar - 2 * diametral)
+    K[0, 0] = K[1, 1] = -mass
+    K[3, 3] = K[4, 4] = polar - diametral
+    return G, K
+
+
+def part_motions(result: ModalResult) -> list[tuple[np.ndarray, Attachment]]:
+    """Each part's (U, Theta) in each mode, (6, N), and the part: on a distributing
+    joint its section's means, on a rigid one the rigid motion its slice follows."""
+    from shaftfem.fem.supports import tie_rows
+
+    inst = result.installed
+    if inst is None:
+        return []
+    Phi = result.modes.shapes
+    out = [(c.C @ Phi[c.dofs], c.part) for c in inst.carried]
+    nodes = result.system.nodes
+    for idx, part in zip(inst.tied, inst.parts):
+        B = tie_rows(nodes, idx, np.array([0.0, 0.0, part.position])).reshape(-1, 6)
+        U = Phi[(3 * idx[:, None] + np.arange(3)).ravel()]
+        out.append((np.linalg.lstsq(B, U, rcond=None)[0], part))
+    return out
+
+
+def bearing_modal(result: ModalResult) -> tuple[BearingModal, ...]:
+    """The scene's bearings (kind "bearing") on the modal basis."""
+    from shaftfem.fem.installation import seat_radius
+    from shaftfem.fem.supports import seat_restraints, surface_weights
+
+    scene, system = result.scene, result.system
+    out = []
+    skmesh = None
+    for s in scene.held:
+        if s.bearing is None:
+            continue
+        if skmesh is None:
+            skmesh = result.mesh.to_skfem()
+        radius = seat_radius(scene, system.nodes, s.seat)
+        w = surface_weights(skmesh, system.order, radius, s.seat)
+        unit = replace(s, kind="springs", radial=1.0, axial=0.0, tilting=0.0, bearing=None)
+        x, y = seat_restraints(unit, system.nodes, w)[:2]
+        Phi = result.modes.shapes
+        beta = np.vstack([x.coeffs @ Phi[x.dofs], y.coeffs @ Phi[y.dofs]])
+        out.append(BearingModal(s.name, beta, s.bearing, s.radial_xy))
+    return tuple(out)

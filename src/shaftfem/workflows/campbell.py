@@ -1,0 +1,316 @@
+"""The turning shaft: whirl frequencies against speed (the Campbell diagram), the
+critical speeds where they cross the excitation orders, and how far the modal basis
+they are solved on moves them.
+
+One standstill modal run gives the basis (fem.rotor); every speed is then a small
+dense eigenproblem on it. Frequencies are always given in the stationary frame, as a
+vibration probe on the housing sees them: a rotating-frame mode at f_r is seen at
+f_r + n (forward component) and |f_r - n| (backward component), n the spin in Hz;
+each is reported at its larger component, the other beside it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.errors import SceneError
+from shaftfem.runtime import RunOptions
+from shaftfem.scene.model import Scene
+
+if TYPE_CHECKING:
+    from shaftfem.fem.result import ModalResult
+    from shaftfem.fem.rotor import RotorModel
+
+RPM = 2 * math.pi / 60           # rad/s per r/min
+# A whirl index beyond these is forward (backward); between, the orbit is mixed.
+FORWARD = 0.1
+# Kinds of mode that whirl: bending; torsion and axial modes do not orbit.
+WHIRLING = ("bending", "mixed")
+# Of the basis, the whirl solved on this share too: its change is the truncation check.
+CHECK_SHARE = 2 / 3
+# Basis size when [rotor] does not give one: this many times the modes asked for ...
+BASIS_FACTOR = 3
+# ... and at least this many.
+BASIS_MIN = 30
+
+
+@dataclass(frozen=True)
+class Whirl:
+    """One complex mode at one speed, in the stationary frame: speed (r/min), its
+    number at that speed (from 1, by frequency), damped frequency (Hz), the whirl
+    ("forward", "backward", "mixed"), the whirl index (+1 forward circular, -1
+    backward), the log decrement and damping ratio, the kind of standstill mode it is
+    most of, its frequency in the rotating frame (Hz; the same as frequency_hz in the
+    stationary frame) and the other component's frequency (Hz; rotating frame, or
+    None)."""
+
+    speed_rpm: float
+    mode: int
+    frequency_hz: float
+    whirl: str
+    whirl_index: float
+    log_dec: float
+    damping_ratio: float
+    kind: str
+    rotating_frame_hz: float
+    companion_hz: float | None = None
+
+    def as_dict(self) -> dict:
+        return {"speed_rpm": self.speed_rpm, "mode": self.mode,
+                "frequency_hz": self.frequency_hz, "whirl": self.whirl,
+                "whirl_index": self.whirl_index, "log_dec": self.log_dec,
+                "damping_ratio": self.damping_ratio, "kind": self.kind,
+                "rotating_frame_hz": self.rotating_frame_hz, "companion_hz": self.companion_hz}
+
+
+@dataclass(frozen=True)
+class CriticalSpeed:
+    """Where a whirl curve crosses the excitation order line f = order x n / 60: the
+    order, the whirl, the speed (r/min), the frequency there (Hz), and which curve
+    (its number among the curves of that whirl, from 1)."""
+
+    order: int
+    whirl: str
+    speed_rpm: float
+    frequency_hz: float
+    mode: int
+
+    def as_dict(self) -> dict:
+        return {"order": self.order, "whirl": self.whirl, "speed_rpm": self.speed_rpm,
+                "frequency_hz": self.frequency_hz, "mode": self.mode}
+
+
+@dataclass(frozen=True)
+class Truncation:
+    """The modal basis' check: the whirl frequencies of the reported modes solved on
+    the whole basis (`size` modes) and on its first `smaller`, at each checked speed;
+    `change` the largest relative move between the two (a fraction)."""
+
+    size: int
+    smaller: int
+    speeds_rpm: tuple[float, ...]
+    change: float
+
+
+@dataclass(frozen=True)
+class Campbell:
+    """The whirl of the turning shaft: the frame and why, the speeds (r/min) of the
+    diagram, every mode at each (`whirl`), the operating speeds' rows (`operating`),
+    the critical speeds, the excitation orders, the basis check, and the standstill
+    run behind it."""
+
+    frame: str
+    why: str
+    speeds_rpm: tuple[float, ...]
+    whirl: tuple[Whirl, ...]
+    operating: tuple[Whirl, ...]
+    operating_rpm: tuple[float, ...]
+    critical_speeds: tuple[CriticalSpeed, ...]
+    orders: tuple[int, ...]
+    truncation: Truncation
+    result: ModalResult
+    notes: tuple[str, ...] = field(default=())
+
+    def as_dict(self) -> dict:
+        """The JSON of `shaftfem campbell` (its names are read by scripts)."""
+        t = self.truncation
+        return {"frame": self.frame, "frame_reason": self.why,
+                "operating_speeds_rpm": list(self.operating_rpm), "orders": list(self.orders),
+                "whirl": [w.as_dict() for w in self.whirl],
+                "operating": [w.as_dict() for w in self.operating],
+                "critical_speeds": [c.as_dict() for c in self.critical_speeds],
+                "basis": {"modes": t.size, "checked_against": t.smaller,
+                          "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
+                "notes": list(self.notes)}
+
+    def curves(self, whirl: str) -> list[tuple[np.ndarray, np.ndarray]]:
+        """The diagram's curves of one whirl: (speeds r/min, frequencies Hz) of the
+        k-th lowest mode of that whirl at each speed, for k = 1, 2, ..."""
+        by_speed: dict[float, list[float]] = {}
+        for w in self.whirl:
+            if w.whirl == whirl:
+                by_speed.setdefault(w.speed_rpm, []).append(w.frequency_hz)
+        n = max((len(v) for v in by_speed.values()), default=0)
+        out = []
+        for k in range(n):
+            pts = [(s, sorted(v)[k]) for s, v in sorted(by_speed.items()) if len(v) > k]
+            out.append((np.array([p[0] for p in pts]), np.array([p[1] for p in pts])))
+        return out
+
+
+def choose_frame(scene: Scene) -> tuple[str, str]:
+    """The frame the scene's rotor is solved in, and why; a shaft that is not a solid of
+    revolution in bearings that are not isotropic is refused (its equations have
+    coefficients periodic in time in either frame)."""
+    rotor = scene.rotor
+    if rotor is None:
+        raise SceneError(f"{scene.source}: no [rotor] table: give the operating speed "
+                         "([rotor] speed_rpm) to see the shaft turn")
+    anisotropic = [s.name for s in scene.held if s.bearing is not None
+                   and not s.bearing.isotropic]
+    shape = ("a solid of revolution" if scene.axisymmetric else
+             "not a solid of revolution (" + ", ".join(
+                 w for w, on in (("keyways", bool(scene.shaft.keyways)),
+                                 ("grooves", scene.grooves is not None),
+                                 ("a STEP solid", scene.shaft.step is not None)) if on) + ")")
+    if rotor.frame == "stationary" and not scene.axisymmetric:
+        raise SceneError(f"{scene.source}: rotor.frame = \"stationary\": the shaft is {shape}; "
+                         "the stationary frame takes shafts of revolution only: use \"rotating\" "
+                         "or \"auto\"")
+    if rotor.frame == "rotating" and anisotropic:
+        raise SceneError(f"{scene.source}: rotor.frame = \"rotating\": bearing(s) "
+                         f"{', '.join(anisotropic)} differ along x and y; the rotating frame "
+                         "takes isotropic bearings only (kxx = kyy, kxy = -kyx, likewise c): "
+                         "use \"stationary\" or \"auto\"")
+    if not scene.axisymmetric and anisotropic:
+        raise SceneError(f"{scene.source}: the shaft is {shape} and bearing(s) "
+                         f"{', '.join(anisotropic)} differ along x and y: its equations are "
+                         "periodic in time in either frame, which shaftfem does not solve; "
+                         "make the bearings isotropic (kxx = kyy, kxy = -kyx, likewise c) or the "
+                         "shaft one of revolution")
+    if rotor.frame != "auto":
+        return rotor.frame, f"as [rotor] frame asks; the shaft is {shape}"
+    if scene.axisymmetric:
+        return "stationary", (f"auto: the shaft is {shape}, so its modes are solved in the "
+                              "stationary frame, gyroscopic moments included")
+    return "rotating", (f"auto: the shaft is {shape}, so its modes are solved in the frame "
+                        "turning with it (Coriolis and spin softening), its bearings isotropic")
+
+
+def basis_size(scene: Scene) -> int:
+    """How many standstill modes the whirl is solved on."""
+    assert scene.rotor is not None
+    return scene.rotor.basis_modes or max(BASIS_FACTOR * scene.modes.count, BASIS_MIN)
+
+
+def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
+    """The lowest `count` modes at the spin omega (rad/s), in the stationary frame."""
+    from shaftfem.fem.rotor import dominant_kinds, roots, whirl_index
+
+    r = roots(model, omega)
+    W = whirl_index(model, r.y)
+    kinds = dominant_kinds(model, r.y)
+    n = omega / (2 * math.pi)
+    rows = []
+    for lam, w, kind in zip(r.lam, W, kinds):
+        f_r = lam.imag / (2 * math.pi)
+        f, index, other = f_r, float(w), None
+        if model.frame == "rotating" and kind in WHIRLING:
+            forward, backward = f_r + n, f_r - n
+            if w >= 0:
+                f, other = forward, abs(backward)
+            else:   # the backward component: seen backward above n, forward below it
+                f, other, index = abs(backward), forward, (w if backward > 0 else -w)
+        direction = ("forward" if index > FORWARD else "backward" if index < -FORWARD
+                     else "mixed")
+        rows.append((f, direction, index, kind, f_r, other, -lam.real))
+    rows.sort(key=lambda row: row[0])
+    out = []
+    for k, (f, direction, index, kind, f_r, other, decay) in enumerate(rows[:count]):
+        wd = 2 * math.pi * f
+        out.append(Whirl(speed_rpm=omega / RPM, mode=k + 1, frequency_hz=f, whirl=direction,
+                         whirl_index=index, log_dec=2 * math.pi * decay / wd if wd > 0 else 0.0,
+                         damping_ratio=decay / math.hypot(decay, wd), kind=kind,
+                         rotating_frame_hz=f_r, companion_hz=other))
+    return out
+
+
+def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
+              orders: tuple[int, ...], count: int) -> list[CriticalSpeed]:
+    """Every crossing of a forward or backward whirl curve with an order line, found
+    on the diagram's speeds and refined by root finding on the reduced model."""
+    from scipy.optimize import brentq
+
+    def curve(omega: float, whirl: str, k: int) -> float:
+        f = sorted(w.frequency_hz for w in whirl_at(model, omega, count) if w.whirl == whirl)
+        return f[k] if k < len(f) else math.nan
+
+    out = []
+    for whirl in ("forward", "backward"):
+        per_speed = [sorted(w.frequency_hz for w in r if w.whirl == whirl) for r in rows]
+        n_curves = min((len(f) for f in per_speed), default=0)
+        for k in range(n_curves):
+            f = np.array([p[k] for p in per_speed])
+            for order in orders:
+                g = f - order * speeds / (2 * math.pi)
+                for i in np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0):
+                    def gap(om: float, k: int = k, order: int = order, whirl: str = whirl
+                            ) -> float:
+                        return curve(om, whirl, k) - order * om / (2 * math.pi)
+                    try:
+                        om = brentq(gap, speeds[i], speeds[i + 1], xtol=1e-10 * speeds[i + 1])
+                    except ValueError:   # the curve's numbering changed inside the bracket
+                        continue
+                    out.append(CriticalSpeed(order=order, whirl=whirl, speed_rpm=om / RPM,
+                                             frequency_hz=order * om / (2 * math.pi), mode=k + 1))
+    return sorted(out, key=lambda c: (c.speed_rpm, c.order))
+
+
+def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Truncation:
+    """The whirl frequencies of the `count` reported modes on the whole basis against
+    its first CHECK_SHARE, at `speeds` (rad/s): the largest relative change."""
+    smaller = max(count + 1, math.ceil(CHECK_SHARE * model.size))
+    smaller = min(smaller, model.size)
+    change = 0.0
+    for omega in speeds:
+        full = whirl_at(model, omega, count)
+        part = whirl_at(model.truncated(smaller), omega, count)
+        for a, b in zip(full, part):
+            change = max(change, abs(b.frequency_hz - a.frequency_hz) / a.frequency_hz)
+    return Truncation(size=model.size, smaller=smaller,
+                      speeds_rpm=tuple(o / RPM for o in speeds), change=change)
+
+
+def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
+                 speeds_rpm: np.ndarray | None = None) -> Campbell:
+    """The scene's shaft turning: its standstill modes, then the whirl at every speed of
+    the Campbell diagram (`speeds_rpm`, default 0 to [rotor] max_speed_rpm at
+    [rotor] campbell_points) and at the operating speeds, the critical speeds and the
+    basis check."""
+    from shaftfem.fem.rotor import rotor_model
+    from shaftfem.workflows.pipeline import run_modes, with_modes
+
+    frame, why = choose_frame(scene)
+    rotor = scene.rotor
+    assert rotor is not None
+    if scene.mesh.order > 2:
+        raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the turning shaft "
+                         "takes orders 1 and 2")
+    count = scene.modes.count
+    result = run_modes(with_modes(scene, count=basis_size(scene)), options)
+    options.say(f"whirl on {result.modes.count} standstill modes, {frame} frame")
+    model = rotor_model(result, frame)
+    grid = (np.linspace(0.0, rotor.max_speed, rotor.points) if speeds_rpm is None
+            else np.asarray(speeds_rpm, dtype=float) * RPM)
+    rows = [whirl_at(model, om, count) for om in grid]
+    orders = rotor_orders(scene)
+    critical = crossings(model, grid, rows, orders, count)
+    operating = [w for om in rotor.speeds for w in whirl_at(model, om, count)]
+    check = truncation(model, (*rotor.speeds, float(grid.max())), count)
+    notes = []
+    if not scene.held:
+        notes.append("the shaft hangs free (no [[support]]): its whirl is a free rotor's")
+    if not any(s.bearing is not None for s in scene.held):
+        notes.append("no bearing has damping (kind = \"bearing\" with cxx ...): the log "
+                     "decrements are zero and no amplification factor can be given")
+    return Campbell(frame=frame, why=why, speeds_rpm=tuple(grid / RPM),
+                    whirl=tuple(w for r in rows for w in r), operating=tuple(operating),
+                    operating_rpm=tuple(om / RPM for om in rotor.speeds),
+                    critical_speeds=tuple(critical), orders=orders, truncation=check,
+                    result=replace(result), notes=tuple(notes))
+
+
+def rotor_orders(scene: Scene) -> tuple[int, ...]:
+    """The excitation orders of the shaft's own speed: 1x always, and the orders of
+    every [[excitation]] that runs at an operating speed of the shaft."""
+    rotor = scene.rotor
+    assert rotor is not None
+    orders = {1}
+    for e in scene.excitations:
+        if any(abs(e.frequency * 2 * math.pi - om) <= 1e-9 * om for om in rotor.speeds):
+            orders.update(e.orders)
+    return tuple(sorted(orders))
