@@ -110,9 +110,38 @@ def cmd_modes(args) -> int:
         from shaftfem.outputs.tables import participation_text
 
         print("\n" + participation_text(result, participation(modal_basis(result))))
+    if args.speed_rpm is not None:
+        from shaftfem.outputs.tables import whirl_text
+        from shaftfem.workflows.campbell import whirl_table
+
+        c = whirl_table(result.scene, args.speed_rpm, _options(args))
+        print(f"\nframe: {c.frame} ({c.why})")
+        print(whirl_text(c.operating, f"the shaft turning at {args.speed_rpm:,.0f} r/min "
+                         f"({args.speed_rpm / 60:.2f} Hz), stationary frame:"))
+        t = c.truncation
+        print(f"modal basis: {t.size} standstill modes; on {t.smaller} the whirl frequencies "
+              f"move by at most {t.change * 100:.2g} %")
     if args.json:
         _write_json(args.json, modes_record(result, est))
     return _accuracy_status(args, adapted)
+
+
+def cmd_campbell(args) -> int:
+    from shaftfem.outputs.tables import campbell_text
+    from shaftfem.workflows.campbell import run_campbell, speed_grid
+
+    scene = _scene(args)
+    grid = speed_grid(*args.speeds_rpm) if args.speeds_rpm else None
+    c = run_campbell(scene, _options(args), grid)
+    print(campbell_text(c))
+    if args.out:
+        from shaftfem.outputs.campbell_plot import campbell_figure
+        from shaftfem.outputs.plots import save_png
+
+        print(f"wrote {save_png(campbell_figure(c), Path(args.out) / 'campbell.png', dpi=130)}")
+    if args.json:
+        _write_json(args.json, {"scene": scene.name, **c.as_dict()})
+    return 0
 
 
 def cmd_check(args) -> int:

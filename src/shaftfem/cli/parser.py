@@ -54,6 +54,20 @@ def _sizes(text: str) -> list[float]:
     return v
 
 
+def _speed_range(text: str) -> tuple[float, float, int]:
+    """START:STOP:N, r/min: N speeds from START to STOP."""
+    try:
+        a, b, n = text.split(":")
+        start, stop, count = float(a), float(b), int(n)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected START:STOP:N, e.g. 0:12000:31 "
+                                         "(r/min, and how many speeds)") from None
+    if not (0 <= start < stop <= 1e6 and 2 <= count <= 1001):
+        raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= START < STOP <= 1e6 r/min and "
+                                         "N in [2, 1001]")
+    return start, stop, count
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, with its errors on one line like every other error (exit 2)."""
 
@@ -84,8 +98,12 @@ def build_parser() -> argparse.ArgumentParser:
         "in the bearings of the scene's [[support]] tables.",
     )
     sub = p.add_subparsers(dest="command", required=True)
-    _modal_command(sub, "modes", "natural frequencies with their error bounds (in the scene's "
-                   "supports if it has any, else free-free)", cmd.cmd_modes, estimate=True)
+    m = _modal_command(sub, "modes", "natural frequencies with their error bounds (in the "
+                       "scene's supports if it has any, else free-free)", cmd.cmd_modes,
+                       estimate=True)
+    m.add_argument("--speed-rpm", type=_number(float, 1e6), metavar="N",
+                   help="also the whirl table of the shaft turning at N r/min (needs [rotor] "
+                   "for the frame, or takes the default one)")
     _modal_command(sub, "check", "resonance check against the scene's excitations (exit 1 if "
                    "a margin is violated, 4 if it holds on a free-free shaft)", cmd.cmd_check,
                    margin=True)
@@ -103,6 +121,12 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--no-html", action="store_true",
                    help="leave out report.html (a self-contained page of about 3 MB with an "
                    "interactive 3D view of every mode)")
+    cb = _modal_command(sub, "campbell", "the shaft turning ([rotor]): whirl frequencies "
+                        "against speed, forward and backward, critical speeds, log decrements; "
+                        "campbell.png in --out", cmd.cmd_campbell, out="optional")
+    cb.add_argument("--speeds-rpm", type=_speed_range, metavar="START:STOP:N",
+                    help="the diagram's speeds, r/min (default: 0 to [rotor] max_speed_rpm at "
+                    "[rotor] campbell_points)")
     _modal_command(sub, "paper", "the paper's Table 2 and stated sizing beside ours",
                    cmd.cmd_paper, json=False)
     sw = _dask_command(sub, "sweep", "run many variants of a scene on Dask (resumable)",

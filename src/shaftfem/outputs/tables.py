@@ -381,3 +381,40 @@ def paper_text(result: ModalResult, sizing: SizingResult | None) -> str:
             lines.append(f"  {c.symbol:<3} equations {c.ours_mm:>8.2f} mm, paper "
                          f"{c.paper_mm:>7.2f} mm ({said})")
     return "\n".join(lines)
+
+
+def whirl_text(rows, title: str) -> str:
+    """A whirl table (workflows.campbell.Whirl rows) under `title`."""
+    lines = [title, "mode   frequency  whirl     index  log dec  kind"]
+    for w in rows:
+        other = (f"  (also seen at {w.companion_hz:.2f} Hz)"
+                 if w.companion_hz is not None else "")
+        lines.append(f"{w.mode:4d} {w.frequency_hz:9.2f} Hz  {w.whirl:8s} {w.whirl_index:+.2f} "
+                     f"{w.log_dec:8.3f}  {w.kind}{other}")
+    return "\n".join(lines)
+
+
+def campbell_text(c) -> str:
+    """What `shaftfem campbell` prints: the frame, the whirl at each operating speed,
+    the critical speeds and the basis check (a workflows.campbell.Campbell)."""
+    r = c.result
+    t = c.truncation
+    lines = [f"scene {r.scene.name}: P{r.scene.mesh.order}, {r.modes.n_dofs} DOFs, "
+             f"{r.mesh.n_elements} elements", f"frame: {c.frame} ({c.why})"]
+    for n in c.operating_rpm:
+        rows = [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n]
+        lines += ["", whirl_text(rows, f"at {n:,.0f} r/min ({n / 60:.2f} Hz), stationary frame:")]
+    lines += ["", f"critical speeds, 0 to {max(c.speeds_rpm):,.0f} r/min "
+              f"(orders {', '.join(f'{o}x' for o in c.orders)}):"]
+    if not c.critical_speeds:
+        lines.append("  none: no whirl curve crosses an order line in this range")
+    for cs in c.critical_speeds:
+        near = min(c.operating_rpm, key=lambda n: abs(n - cs.speed_rpm))
+        lines.append(f"  {cs.order}x {cs.whirl:8s} {cs.speed_rpm:10,.0f} r/min "
+                     f"({cs.frequency_hz:.2f} Hz, curve {cs.mode}): "
+                     f"{(cs.speed_rpm - near) / near * 100:+.1f} % from {near:,.0f} r/min")
+    lines += ["", f"modal basis: {t.size} standstill modes; on {t.smaller} of them the "
+              f"reported whirl frequencies move by at most {t.change * 100:.2g} % "
+              f"(at {', '.join(f'{s:,.0f}' for s in t.speeds_rpm)} r/min)"]
+    lines += [f"note: {n}" for n in c.notes]
+    return "\n".join(lines)

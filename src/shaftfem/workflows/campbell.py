@@ -32,6 +32,8 @@ FORWARD = 0.1
 WHIRLING = ("bending", "mixed")
 # Of the basis, the whirl solved on this share too: its change is the truncation check.
 CHECK_SHARE = 2 / 3
+# The spin, as a share of the lowest frequency, that stands for standstill in whirl_at.
+STANDSTILL = 1e-5
 # Basis size when [rotor] does not give one: this many times the modes asked for ...
 BASIS_FACTOR = 3
 # ... and at least this many.
@@ -128,11 +130,12 @@ class Campbell:
                 "notes": list(self.notes)}
 
     def curves(self, whirl: str) -> list[tuple[np.ndarray, np.ndarray]]:
-        """The diagram's curves of one whirl: (speeds r/min, frequencies Hz) of the
-        k-th lowest mode of that whirl at each speed, for k = 1, 2, ..."""
+        """The diagram's curves of one whirl ("forward", "backward", "mixed", or "none"
+        for the modes that do not orbit: torsion, axial): (speeds r/min, frequencies Hz)
+        of the k-th lowest mode of that whirl at each speed, for k = 1, 2, ..."""
         by_speed: dict[float, list[float]] = {}
         for w in self.whirl:
-            if w.whirl == whirl:
+            if category(w) == whirl:
                 by_speed.setdefault(w.speed_rpm, []).append(w.frequency_hz)
         n = max((len(v) for v in by_speed.values()), default=0)
         out = []
@@ -140,6 +143,11 @@ class Campbell:
             pts = [(s, sorted(v)[k]) for s, v in sorted(by_speed.items()) if len(v) > k]
             out.append((np.array([p[0] for p in pts]), np.array([p[1] for p in pts])))
         return out
+
+
+def category(w: Whirl) -> str:
+    """How a mode is drawn: its whirl, or "none" for a mode that does not orbit."""
+    return w.whirl if w.kind in WHIRLING else "none"
 
 
 def choose_frame(scene: Scene) -> tuple[str, str]:
@@ -188,9 +196,15 @@ def basis_size(scene: Scene) -> int:
 
 
 def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
-    """The lowest `count` modes at the spin omega (rad/s), in the stationary frame."""
+    """The lowest `count` modes at the spin omega (rad/s), in the stationary frame. At
+    standstill a shaft of revolution's bending pairs are double and their orbit any:
+    there they are solved at a spin of STANDSTILL times the lowest frequency, the limit
+    from above, so that each pair is seen whirling as it starts to (its frequencies
+    move by about that share of the gyroscopic split)."""
     from shaftfem.fem.rotor import dominant_kinds, roots, whirl_index
 
+    if omega == 0.0:
+        omega = STANDSTILL * math.sqrt(float(model.omega2[0]))
     r = roots(model, omega)
     W = whirl_index(model, r.y)
     kinds = dominant_kinds(model, r.y)
@@ -210,9 +224,10 @@ def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
         rows.append((f, direction, index, kind, f_r, other, -lam.real))
     rows.sort(key=lambda row: row[0])
     out = []
+    speed_rpm = 0.0 if omega == STANDSTILL * math.sqrt(float(model.omega2[0])) else omega / RPM
     for k, (f, direction, index, kind, f_r, other, decay) in enumerate(rows[:count]):
         wd = 2 * math.pi * f
-        out.append(Whirl(speed_rpm=omega / RPM, mode=k + 1, frequency_hz=f, whirl=direction,
+        out.append(Whirl(speed_rpm=speed_rpm, mode=k + 1, frequency_hz=f, whirl=direction,
                          whirl_index=index, log_dec=2 * math.pi * decay / wd if wd > 0 else 0.0,
                          damping_ratio=decay / math.hypot(decay, wd), kind=kind,
                          rotating_frame_hz=f_r, companion_hz=other))
@@ -226,12 +241,13 @@ def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
     from scipy.optimize import brentq
 
     def curve(omega: float, whirl: str, k: int) -> float:
-        f = sorted(w.frequency_hz for w in whirl_at(model, omega, count) if w.whirl == whirl)
+        f = sorted(w.frequency_hz for w in whirl_at(model, omega, count)
+                   if category(w) == whirl)
         return f[k] if k < len(f) else math.nan
 
     out = []
     for whirl in ("forward", "backward"):
-        per_speed = [sorted(w.frequency_hz for w in r if w.whirl == whirl) for r in rows]
+        per_speed = [sorted(w.frequency_hz for w in r if category(w) == whirl) for r in rows]
         n_curves = min((len(f) for f in per_speed), default=0)
         for k in range(n_curves):
             f = np.array([p[k] for p in per_speed])
@@ -302,6 +318,23 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
                     critical_speeds=tuple(critical), orders=orders, truncation=check,
                     result=replace(result), notes=tuple(notes))
+
+
+def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
+                ) -> Campbell:
+    """The shaft turning at one speed (r/min): the scene's [rotor] with that speed as its
+    operating one (a scene without [rotor] takes its defaults)."""
+    from shaftfem.scene.model import Rotor
+
+    omega = speed_rpm * RPM
+    rotor = scene.rotor or Rotor(speeds=(omega,), max_speed=omega)
+    scene = replace(scene, rotor=replace(rotor, speeds=(omega,), max_speed=omega))
+    return run_campbell(scene, options, np.array([0.0, speed_rpm]))
+
+
+def speed_grid(start_rpm: float, stop_rpm: float, count: int) -> np.ndarray:
+    """`count` speeds from start to stop, r/min."""
+    return np.linspace(start_rpm, stop_rpm, count)
 
 
 def rotor_orders(scene: Scene) -> tuple[int, ...]:

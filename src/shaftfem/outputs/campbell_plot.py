@@ -1,0 +1,60 @@
+"""The Campbell diagram as a matplotlib Figure: whirl frequency against speed,
+forward and backward told apart, the excitation order lines, the critical speeds
+marked and the operating speeds shaded."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from shaftfem.outputs.plots import _figure
+
+if TYPE_CHECKING:
+    from shaftfem.workflows.campbell import Campbell
+
+COLOURS = {"forward": "tab:red", "backward": "tab:blue", "mixed": "tab:purple",
+           "none": "tab:grey"}
+LABELS = {"forward": "forward whirl", "backward": "backward whirl", "mixed": "mixed whirl",
+          "none": "torsion, axial (no whirl)"}
+# An operating speed's band on the diagram: this share of it on either side.
+BAND = 0.05
+
+
+def campbell_figure(c: Campbell):
+    """Whirl frequency (Hz) against speed (r/min)."""
+    import numpy as np
+
+    fig, ax = _figure((8, 5.5))
+    top_rpm = max(c.speeds_rpm)
+    fmax = max(w.frequency_hz for w in c.whirl) * 1.05
+    for n in c.operating_rpm:
+        ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
+        ax.axvline(n, color="goldenrod", lw=1)
+    for whirl in ("forward", "backward", "mixed", "none"):
+        for k, (s, f) in enumerate(c.curves(whirl)):
+            ax.plot(s, f, "-" if whirl != "none" else ":", color=COLOURS[whirl], lw=1.6,
+                    label=LABELS[whirl] if k == 0 else None)
+    speeds = np.array([0.0, top_rpm])
+    for order in c.orders:
+        ax.plot(speeds, order * speeds / 60.0, "--", color="black", lw=0.9)
+        end = min(top_rpm, fmax * 60.0 / order)
+        ax.annotate(f"{order}x", (end, order * end / 60.0), fontsize=8,
+                    textcoords="offset points", xytext=(-14, 4))
+    for cs in c.critical_speeds:
+        ax.plot(cs.speed_rpm, cs.frequency_hz, "o", mfc="white", color=COLOURS[cs.whirl], ms=7,
+                mew=1.8)
+        # forward labels above and left, backward below and right: a pair's two crossings
+        # lie close together
+        up = cs.whirl == "forward"
+        ax.annotate(f"{cs.speed_rpm:,.0f} r/min", (cs.speed_rpm, cs.frequency_hz), fontsize=7,
+                    color=COLOURS[cs.whirl], textcoords="offset points",
+                    xytext=(-52, 6) if up else (6, -12))
+    ax.plot([], [], "o", mfc="white", color="black", label="critical speed")
+    ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed")
+    ax.set_xlim(0, top_rpm)
+    ax.set_ylim(0, fmax)
+    ax.set_xlabel("shaft speed, r/min")
+    ax.set_ylabel("whirl frequency, Hz (stationary frame)")
+    ax.set_title(f"Campbell diagram: {c.result.scene.name} ({c.frame} frame)", fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    return fig
