@@ -139,6 +139,10 @@ def cmd_campbell(args) -> int:
         from shaftfem.outputs.plots import save_png
 
         print(f"wrote {save_png(campbell_figure(c), Path(args.out) / 'campbell.png', dpi=130)}")
+        if c.unbalance is not None:
+            from shaftfem.outputs.campbell_plot import bode_figure
+
+            print(f"wrote {save_png(bode_figure(c), Path(args.out) / 'bode.png', dpi=130)}")
     if args.json:
         _write_json(args.json, {"scene": scene.name, **c.as_dict()})
     return 0

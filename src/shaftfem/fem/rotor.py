@@ -249,3 +249,50 @@ def bearing_modal(result: ModalResult) -> tuple[BearingModal, ...]:
         beta = np.vstack([x.coeffs @ Phi[x.dofs], y.coeffs @ Phi[y.dofs]])
         out.append(BearingModal(s.name, beta, s.bearing, s.radial_xy))
     return tuple(out)
+
+
+def section_motion(result: ModalResult, z: float) -> np.ndarray:
+    """The mean radial motion (x, y) of the shaft's cross-section at z (m) in each
+    mode, (2, N), m / sqrt(kg): where a beam model reads its node (the mesh follows
+    the planes of the scene's parts and unbalances)."""
+    from shaftfem.fem.supports import carried, section_weights
+
+    system = result.system
+    w = section_weights(system.nodes, z, system.mass_scalar.diagonal())
+    probe = Attachment(name="probe", position=z, width=0.0, mass=0.0, polar_inertia=0.0,
+                       diametral_inertia=0.0, joint="distributing")
+    c = carried(probe, system.nodes, w)
+    return c.C[:2] @ result.modes.shapes[c.dofs]
+
+
+def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.ndarray, complex]]
+                       ) -> np.ndarray:
+    """The modal coordinates (N,) of the steady response to unbalances turning at omega
+    (rad/s): each (beta, U) its plane's motion (2, N) and U = m e exp(i phase) (kg m).
+
+    Stationary frame: the force m e omega^2 (cos(omega t + phase), sin(...)) is
+    U omega^2 (1, -i) exp(i omega t), solved from (K - omega^2 I + i omega D) y = F.
+    Rotating frame: it stands still there, omega^2 (Re U, Im U), and K y = F."""
+    D, K = model.matrices(omega)
+    F = np.zeros(model.size, dtype=complex)
+    for beta, U in forces:
+        if model.frame == "stationary":
+            F += omega**2 * U * (beta[0] - 1j * beta[1])
+        else:
+            F += omega**2 * (U.real * beta[0] + U.imag * beta[1])
+    if model.frame == "stationary":
+        return np.linalg.solve(K - omega**2 * np.eye(model.size) + 1j * omega * D, F)
+    return np.linalg.solve(K.astype(complex), F)
+
+
+def orbit(model: RotorModel, beta: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
+    """The orbit of a section (its motion beta, (2, N)) in the response y: the
+    amplitudes along x and the orbit's major semi-axis (m), and the phase of x (rad).
+    In the rotating frame the response stands still there: a circle in the stationary
+    frame, of the radius of its displacement."""
+    x, yv = beta[0] @ y, beta[1] @ y
+    if model.frame == "rotating":
+        r = float(abs(math.hypot(abs(x), abs(yv))))
+        return r, r, float(np.angle(x + 1j * yv))
+    major = 0.5 * (abs(x + 1j * yv) + abs(x - 1j * yv))
+    return float(abs(x)), float(major), float(np.angle(x))

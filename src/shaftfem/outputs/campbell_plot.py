@@ -58,3 +58,42 @@ def campbell_figure(c: Campbell):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     return fig
+
+
+def bode_figure(c: Campbell):
+    """Amplitude (um) and phase (deg) of the unbalance response against speed at every
+    probe, its peaks marked and the operating speeds shaded."""
+    from matplotlib.figure import Figure
+
+    assert c.unbalance is not None
+    fig = Figure(figsize=(8, 6))
+    amp, phase = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+    for n in c.operating_rpm:
+        for ax in (amp, phase):
+            ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
+    labelled = set()
+    for b in c.unbalance.bode:
+        line, = amp.semilogy(b.speeds_rpm, b.amplitude * 1e6, lw=1.5,
+                             label=f"{b.name} ({b.z * 1e3:g} mm)")
+        phase.plot(b.speeds_rpm, b.phase_deg, lw=1.2, color=line.get_color())
+        for p in c.unbalance.peaks:
+            if p.probe == b.name:
+                amp.plot(p.speed_rpm, p.amplitude * 1e6, "o", mfc="white",
+                         color=line.get_color())
+                if round(p.speed_rpm, -1) in labelled:   # another probe's peak says it
+                    continue
+                labelled.add(round(p.speed_rpm, -1))
+                af = f", AF {p.amplification:.1f}" if p.amplification else ""
+                amp.annotate(f"{p.speed_rpm:,.0f} r/min{af}", (p.speed_rpm, p.amplitude * 1e6),
+                             fontsize=7, textcoords="offset points", xytext=(5, 3))
+    top = max(float(b.amplitude.max()) for b in c.unbalance.bode) * 1e6
+    amp.set_ylim(top * 1e-4, top * 3)   # four decades: the slow end's tiny response aside
+    amp.set_ylabel("amplitude along x, um")
+    amp.set_title(f"Unbalance response: {c.result.scene.name}", fontsize=10)
+    amp.grid(True, which="both", alpha=0.3)
+    amp.legend(fontsize=8)
+    phase.set_ylabel("phase, deg")
+    phase.set_xlabel("shaft speed, r/min")
+    phase.set_yticks([-180, -90, 0, 90, 180])
+    phase.grid(True, alpha=0.3)
+    return fig

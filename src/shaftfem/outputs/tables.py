@@ -416,5 +416,18 @@ def campbell_text(c) -> str:
     lines += ["", f"modal basis: {t.size} standstill modes; on {t.smaller} of them the "
               f"reported whirl frequencies move by at most {t.change * 100:.2g} % "
               f"(at {', '.join(f'{s:,.0f}' for s in t.speeds_rpm)} r/min)"]
+    if c.unbalance is not None:
+        lines += ["", "unbalance response peaks (half-power amplification factor, API 684 "
+                  "separation margin):"]
+        if not c.unbalance.peaks:
+            lines.append("  none in the speed range")
+        for p in c.unbalance.peaks:
+            af = (f"AF {p.amplification:.1f}" if p.amplification is not None
+                  else "AF not measurable (a half-power point lies outside the range)")
+            need = ("no margin required (AF < 2.5)" if p.required_margin is None else
+                    f"required {p.required_margin * 100:.1f} %: "
+                    f"{'ok' if p.ok else 'NOT MET'}")
+            lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min, {p.amplitude * 1e6:.3g} um, "
+                         f"{af}, margin {p.margin * 100:.1f} %, {need}")
     lines += [f"note: {n}" for n in c.notes]
     return "\n".join(lines)

@@ -28,6 +28,7 @@ from shaftfem.scene.model import (
     Scene,
     Shaft,
     Support,
+    Unbalance,
 )
 from shaftfem.scene.profile import shaft_from_tables
 from shaftfem.scene.schema import DEFAULT_SPEED_HEADROOM, SCHEMA
@@ -193,7 +194,7 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                  damping_ratio=t["response"]["damping_ratio_percent"] / 100,
                  response_point=None if point is None else point * MM,
                  criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
-                 rotor=_rotor(source, data))
+                 rotor=_rotor(source, data), unbalances=_unbalances(source, data, shaft))
 
 
 def _check_tables(source: str, data: dict) -> None:
@@ -344,6 +345,24 @@ def _support(source: str, i: int, t: dict) -> Support:
                    axial=(t["axial_stiffness_n_per_mm"] or 0.0) * 1e3,
                    tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3,
                    coupling=t["coupling"], bearing=bearing)
+
+
+def _unbalances(source: str, data: dict, shaft: Shaft) -> tuple[Unbalance, ...]:
+    """[[unbalance]] in SI (m, kg m, rad); they need [rotor]."""
+    out = []
+    for i, e in enumerate(_array(source, data, "unbalance")):
+        table = entry("unbalance", i, e)
+        t = validate_table(source, table, e, SCHEMA["unbalance"])
+        if "rotor" not in data:
+            raise SceneError(f"{source}: {table}: an unbalance needs the shaft turning: add "
+                             "[rotor] with its speed_rpm")
+        if shaft.step is None and t["position_mm"] > shaft.length / MM:
+            raise SceneError(f"{where(source, table, 'position_mm')} = {t['position_mm']:g}: "
+                             f"must lie on the shaft, 0 to {shaft.length / MM:g} mm")
+        out.append(Unbalance(name=t["name"] or f"unbalance {i + 1}",
+                             position=t["position_mm"] * MM, amount=t["amount_g_mm"] * 1e-6,
+                             phase=math.radians(t["phase_deg"])))
+    return tuple(out)
 
 
 def _rotor(source: str, data: dict) -> Rotor | None:

@@ -283,6 +283,17 @@ class Rotor:
 
 
 @dataclass(frozen=True)
+class Unbalance:
+    """A residual unbalance: its plane z = position (m), its amount (kg m: mass times
+    radius) and its angle about the axis at t = 0 (rad, 0 towards +x)."""
+
+    name: str
+    position: float
+    amount: float
+    phase: float = 0.0
+
+
+@dataclass(frozen=True)
 class Support:
     """A bearing seat: the band of shaft surface from z = position -+ width / 2 (m).
 
@@ -366,6 +377,7 @@ class Scene:
     # the supports left off (free-free), their seats kept in the mesh
     hanging_free: bool = False
     rotor: Rotor | None = None  # [rotor]: the shaft turns (None: it stands still)
+    unbalances: tuple[Unbalance, ...] = ()  # [[unbalance]]: what drives it at 1x
 
     @property
     def held(self) -> tuple[Support, ...]:
@@ -384,11 +396,12 @@ class Scene:
         return bool(self.held or self.attachments)
 
     def seat_cuts(self) -> tuple[float, ...]:
-        """The axial positions (m) where a seat band begins or ends, and the centres of
-        parts on distributing joints (they act on that cross-section): the mesh follows
-        them."""
+        """The axial positions (m) where a seat band begins or ends, the centres of parts
+        on distributing joints and the planes of unbalances (they act on that
+        cross-section): the mesh follows them."""
         zs = {z for part in self.supports + self.attachments for z in part.seat}
         zs |= {a.position for a in self.attachments if a.joint == "distributing"}
+        zs |= {u.position for u in self.unbalances}
         return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))
 
     def hubs(self) -> tuple[tuple[float, float], ...]:

@@ -303,6 +303,16 @@ SCHEMA: dict[str, dict[str, Key]] = {
                            lambda v: 2 <= v <= MAX_MODE_COUNT, f"in [2, {MAX_MODE_COUNT}]",
                            required=False),
     },
+    "unbalance": {  # an array of tables: [[unbalance]], a mass off the axis (workflows.unbalance)
+        "name": Key(str, "name of the unbalance, e.g. wheel", required=False),
+        "position_mm": Key(float, "axial position of its plane from the shaft's left end, mm",
+                           *upto(20_000, "up to 20 m", closed_low=True)),
+        "amount_g_mm": Key(float, "the unbalance, mass times its distance from the axis, g mm",
+                           *upto(1e9, "up to 10^9 g mm")),
+        "phase_deg": Key(float, "its angle about the axis at t = 0, deg (0: towards +x)",
+                         lambda v: -360 <= v <= 360, "in [-360, 360]", default=0.0,
+                         required=False),
+    },
     "response": {  # base excitation at the supports (shaftfem.fem.response)
         "damping_ratio_percent": Key(
             float, f"modal damping ratio zeta, % (default {DEFAULT_DAMPING_PERCENT:g}: "
@@ -435,6 +445,10 @@ TABLES: dict[str, Table] = {
         "The shaft turning: its operating speed(s) and the speed range of the Campbell "
         "diagram. With it, `shaftfem campbell` gives the whirl frequencies against speed "
         "(forward and backward), the critical speeds and the log decrements."),
+    "unbalance": Table(
+        "A residual unbalance of the turning shaft (needs [rotor]): `shaftfem campbell` gives "
+        "the response to it against speed (Bode plot), its peaks, their amplification "
+        "factors and separation margins (API 684).", repeated=True),
     "response": Table(
         "Response to harmonic base motion through the supports (installed shafts)."),
     "sizing": Table(

@@ -24,6 +24,7 @@ from shaftfem.scene.model import Scene
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
     from shaftfem.fem.rotor import RotorModel
+    from shaftfem.workflows.unbalance import UnbalanceResponse
 
 RPM = 2 * math.pi / 60           # rad/s per r/min
 # A whirl index beyond these is forward (backward); between, the orbit is mixed.
@@ -116,6 +117,7 @@ class Campbell:
     truncation: Truncation
     result: ModalResult
     notes: tuple[str, ...] = field(default=())
+    unbalance: UnbalanceResponse | None = None
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem campbell` (its names are read by scripts)."""
@@ -127,6 +129,7 @@ class Campbell:
                 "critical_speeds": [c.as_dict() for c in self.critical_speeds],
                 "basis": {"modes": t.size, "checked_against": t.smaller,
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
+                "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
                 "notes": list(self.notes)}
 
     def curves(self, whirl: str) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -281,43 +284,56 @@ def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Trun
                       speeds_rpm=tuple(o / RPM for o in speeds), change=change)
 
 
+def turning(scene: Scene, options: RunOptions = RunOptions()
+            ) -> tuple[ModalResult, RotorModel, str]:
+    """The scene's standstill modes (the basis), the turning shaft on them, and why its
+    frame."""
+    from shaftfem.fem.rotor import rotor_model
+    from shaftfem.workflows.pipeline import run_modes, with_modes
+
+    frame, why = choose_frame(scene)
+    if scene.mesh.order > 2:
+        raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the turning shaft "
+                         "takes orders 1 and 2")
+    result = run_modes(with_modes(scene, count=basis_size(scene)), options)
+    options.say(f"whirl on {result.modes.count} standstill modes, {frame} frame")
+    return result, rotor_model(result, frame), why
+
+
 def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
                  speeds_rpm: np.ndarray | None = None) -> Campbell:
     """The scene's shaft turning: its standstill modes, then the whirl at every speed of
     the Campbell diagram (`speeds_rpm`, default 0 to [rotor] max_speed_rpm at
     [rotor] campbell_points) and at the operating speeds, the critical speeds and the
     basis check."""
-    from shaftfem.fem.rotor import rotor_model
-    from shaftfem.workflows.pipeline import run_modes, with_modes
-
-    frame, why = choose_frame(scene)
     rotor = scene.rotor
     assert rotor is not None
-    if scene.mesh.order > 2:
-        raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the turning shaft "
-                         "takes orders 1 and 2")
+    result, model, why = turning(scene, options)
+    frame = model.frame
     count = scene.modes.count
-    result = run_modes(with_modes(scene, count=basis_size(scene)), options)
-    options.say(f"whirl on {result.modes.count} standstill modes, {frame} frame")
-    model = rotor_model(result, frame)
     grid = (np.linspace(0.0, rotor.max_speed, rotor.points) if speeds_rpm is None
             else np.asarray(speeds_rpm, dtype=float) * RPM)
     rows = [whirl_at(model, om, count) for om in grid]
     orders = rotor_orders(scene)
     critical = crossings(model, grid, rows, orders, count)
     operating = [w for om in rotor.speeds for w in whirl_at(model, om, count)]
-    check = truncation(model, (*rotor.speeds, float(grid.max())), count)
+    check = truncation(model, tuple(sorted({*rotor.speeds, float(grid.max())})), count)
     notes = []
     if not scene.held:
         notes.append("the shaft hangs free (no [[support]]): its whirl is a free rotor's")
     if not any(s.bearing is not None for s in scene.held):
         notes.append("no bearing has damping (kind = \"bearing\" with cxx ...): the log "
                      "decrements are zero and no amplification factor can be given")
+    response = None
+    if scene.unbalances:
+        from shaftfem.workflows.unbalance import unbalance_response
+
+        response = unbalance_response(scene, result, model)
     return Campbell(frame=frame, why=why, speeds_rpm=tuple(grid / RPM),
                     whirl=tuple(w for r in rows for w in r), operating=tuple(operating),
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
                     critical_speeds=tuple(critical), orders=orders, truncation=check,
-                    result=replace(result), notes=tuple(notes))
+                    result=result, notes=tuple(notes), unbalance=response)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()

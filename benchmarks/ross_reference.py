@@ -1,0 +1,144 @@
+"""The rotors of Friswell et al., *Dynamics of Rotating Machines* (section 5.9), solved
+with ross-rotordynamics 2.3, an independent 1D Timoshenko rotor model: the reference
+values the rotating-shaft tests compare the 3D solid with (tests/data/ross_rotors.json).
+
+ross is not one of shaftfem's dependencies (it needs plotly < 6 and brings about 1 GB
+of packages): run this in an environment of its own,
+
+    python3 -m venv .venv-ross && .venv-ross/bin/pip install "ross-rotordynamics==2.3.*" "plotly<6"
+    .venv-ross/bin/python benchmarks/ross_reference.py tests/data/ross_rotors.json
+
+Every rotor is written as ross's own tests write it (ross/tests/test_examples.py), on
+48 shaft elements; speeds are rad/s, frequencies rad/s (ross's units).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import numpy as np
+
+N_EL = 48
+RPM = np.pi / 30
+# The cross-coupled stiffness kxy = -kyx grows with speed at this rate, N s/m.
+SLOPE = 150.0
+
+
+def shaft(rs, steel, length=1.5):
+    return [rs.ShaftElement(L=length / N_EL, material=steel, n=i, idl=0, odl=0.05)
+            for i in range(N_EL)]
+
+
+def disk(rs, steel, node, od):
+    return rs.DiskElement.from_geometry(n=node, material=steel, width=0.07, i_d=0.05, o_d=od)
+
+
+def example_591(rs, steel, c=0.0, cross=None):
+    """5.9.1: 1 MN/m bearings at the ends, disks at 0.5 and 1.0 m; `c` bearing damping
+    (N s/m); `cross` (speeds rad/s, kxy N/m) a cross-coupled stiffness against speed."""
+    kw = {}
+    if cross is not None:
+        speeds, kxy = cross
+        kw = dict(kxx=[1e6] * len(speeds), kyy=[1e6] * len(speeds), kxy=list(kxy),
+                  kyx=[-k for k in kxy], cxx=[c] * len(speeds), cyy=[c] * len(speeds),
+                  frequency=list(speeds))
+    else:
+        kw = dict(kxx=1e6, kyy=1e6, cxx=c, cyy=c)
+    return rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL // 3, 0.28),
+                                       disk(rs, steel, 2 * N_EL // 3, 0.35)],
+                    [rs.BearingElement(n=0, **kw), rs.BearingElement(n=N_EL, **kw)])
+
+
+def example_592(rs, steel):
+    """5.9.2: 5.9.1 with kyy = 0.8 MN/m."""
+    return rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL // 3, 0.28),
+                                       disk(rs, steel, 2 * N_EL // 3, 0.35)],
+                    [rs.BearingElement(n=0, kxx=1e6, kyy=8e5, cxx=0, cyy=0),
+                     rs.BearingElement(n=N_EL, kxx=1e6, kyy=8e5, cxx=0, cyy=0)])
+
+
+def example_599(rs, steel):
+    """5.9.9, overhung: 10 MN/m bearings at 0 and 1.0 m, the 350 mm disk at 1.5 m."""
+    return rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL, 0.35)],
+                    [rs.BearingElement(n=0, kxx=10e6, kyy=10e6, cxx=0, cyy=0),
+                     rs.BearingElement(n=2 * N_EL // 3, kxx=10e6, kyy=10e6, cxx=0, cyy=0)])
+
+
+def whirl(rotor, speed, n=8):
+    m = rotor.run_modal(speed, num_modes=2 * n + 4)
+    return m.wd[:n], list(m.whirl_direction()[:n]), m.log_dec[:n]
+
+
+def first_of(rotor, speed, direction):
+    wd, dirs, _ = whirl(rotor, speed)
+    return next(w for w, d in zip(wd, dirs) if d == direction)
+
+
+def critical(rotor, direction, lo, hi):
+    """The speed (rad/s) where the first `direction` whirl meets 1x, by bisection."""
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if first_of(rotor, mid, direction) > mid:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def main(path: str) -> None:
+    import ross as rs
+    from ross.materials import steel
+
+    out: dict = {"source": "ross-rotordynamics " + rs.__version__ + ", " + str(N_EL)
+                 + " shaft elements; rad/s"}
+    r1 = example_591(rs, steel)
+    r2 = example_592(rs, steel)
+    for name, rotor in (("5.9.1", r1), ("5.9.2", r2)):
+        out[name] = {}
+        for rpm in (0, 4000):
+            wd, dirs, _ = whirl(rotor, rpm * RPM)
+            out[name][str(rpm)] = {"wd": list(map(float, wd)), "whirl": dirs}
+    r9 = example_599(rs, steel)
+    wd, dirs, _ = whirl(r9, 4000 * RPM)
+    out["5.9.9"] = {"4000": {"wd": list(map(float, wd)), "whirl": dirs},
+                    "critical_1x": {"backward": critical(r9, "Backward", 10.0, 200.0),
+                                    "forward": critical(r9, "Forward", 10.0, 200.0)}}
+    # Unbalance response of 5.9.1 with 500 N s/m in each bearing: 100 g mm at the 350 mm
+    # disk, the response of that disk's node along x
+    c = 500.0
+    rd = example_591(rs, steel, c=c)
+    speeds = np.linspace(60.0, 120.0, 601)
+    resp = rd.run_unbalance_response(2 * N_EL // 3, 1e-4, 0.0, speeds)
+    x = np.abs(resp.forced_resp[6 * (2 * N_EL // 3)])
+    i = int(np.argmax(x))
+    fine = np.linspace(speeds[max(i - 2, 0)], speeds[min(i + 2, len(speeds) - 1)], 401)
+    xf = np.abs(rd.run_unbalance_response(2 * N_EL // 3, 1e-4, 0.0, fine)
+                .forced_resp[6 * (2 * N_EL // 3)])
+    j = int(np.argmax(xf))
+    out["5.9.1 unbalance"] = {"bearing_damping_n_s_per_m": c, "unbalance_kg_m": 1e-4,
+                              "node_z_m": 1.0, "peak_speed": float(fine[j]),
+                              "peak_amplitude_m": float(xf[j])}
+    # Cross-coupled stiffness growing with speed, kxy = -kyx = 150 N s/m x speed, with
+    # 500 N s/m of damping: the first forward mode's log decrement falls to zero
+    table = np.linspace(0.0, 2000.0, 21)
+    rc = example_591(rs, steel, c=c, cross=(table, SLOPE * table))
+
+    def logdec(speed):
+        wd, dirs, ld = whirl(rc, speed)
+        return next(v for v, d in zip(ld, dirs) if d == "Forward")
+
+    lo, hi = 1.0, 1990.0
+    assert logdec(lo) > 0 > logdec(hi), (logdec(lo), logdec(hi))
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if logdec(mid) > 0 else (lo, mid)
+    out["5.9.1 cross-coupled"] = {"bearing_damping_n_s_per_m": c, "kxy_per_speed": SLOPE,
+                                  "onset_speed": 0.5 * (lo + hi)}
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps(out, indent=1))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")

@@ -1,0 +1,147 @@
+"""The turning shaft's steady response to its unbalances against speed (a Bode plot
+at each probe), its peaks, each peak's amplification factor by the half-power method
+and its separation margin from the operating speeds against API 684's.
+
+The probes are the unbalances' planes and the bearings' seats (the mean motion of
+the section, as a proximity probe reads a shaft): amplitude along x, and the orbit's
+major semi-axis.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaftfem.errors import SceneError
+from shaftfem.scene.model import Scene
+from shaftfem.workflows.campbell import RPM
+
+# The Bode plot's speeds, from 0 to the Campbell diagram's end.
+BODE_POINTS = 400
+# API 684: no margin is required of a peak with an amplification factor below this.
+AF_CRITICALLY_DAMPED = 2.5
+
+
+@dataclass(frozen=True)
+class Bode:
+    """One probe's response against speed: its name and plane (m), speeds (r/min),
+    amplitude along x (m), its phase (deg) and the orbit's major semi-axis (m)."""
+
+    name: str
+    z: float
+    speeds_rpm: np.ndarray
+    amplitude: np.ndarray
+    phase_deg: np.ndarray
+    major: np.ndarray
+
+
+@dataclass(frozen=True)
+class Peak:
+    """A resonance peak at a probe: its speed (r/min), amplitude (m), the half-power
+    speeds (r/min), the amplification factor N_c / (N_2 - N_1) (None where a half-power
+    point lies outside the speeds), and against the nearest operating speed the actual
+    and required separation margins (fractions; required None below AF 2.5)."""
+
+    probe: str
+    speed_rpm: float
+    amplitude: float
+    half_power_rpm: tuple[float, float] | None
+    amplification: float | None
+    margin: float
+    required_margin: float | None
+
+    @property
+    def ok(self) -> bool:
+        return self.required_margin is None or self.margin >= self.required_margin
+
+    def as_dict(self) -> dict:
+        return {"probe": self.probe, "speed_rpm": self.speed_rpm, "amplitude_m": self.amplitude,
+                "half_power_rpm": list(self.half_power_rpm) if self.half_power_rpm else None,
+                "amplification_factor": self.amplification, "separation_margin": self.margin,
+                "required_margin": self.required_margin, "ok": self.ok}
+
+
+@dataclass(frozen=True)
+class UnbalanceResponse:
+    """The response at every probe and its peaks."""
+
+    bode: tuple[Bode, ...]
+    peaks: tuple[Peak, ...]
+
+    def as_dict(self) -> dict:
+        return {"peaks": [p.as_dict() for p in self.peaks],
+                "probes": [{"name": b.name, "z_mm": b.z * 1e3,
+                            "speeds_rpm": b.speeds_rpm.tolist(),
+                            "amplitude_m": b.amplitude.tolist(),
+                            "phase_deg": b.phase_deg.tolist(),
+                            "major_m": b.major.tolist()} for b in self.bode]}
+
+
+def api684_required(af: float, below: bool) -> float | None:
+    """API 684's separation margin for a peak of amplification factor af, below or
+    above the operating speed (fraction): none below AF 2.5, else 17 (1 - 1/(AF - 1.5))
+    %, plus 10 % above it."""
+    if af < AF_CRITICALLY_DAMPED:
+        return None
+    return (0.0 if below else 0.10) + 0.17 * (1 - 1 / (af - 1.5))
+
+
+def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | None = None
+                       ) -> UnbalanceResponse:
+    """The response of the turning shaft (`model` on the standstill `result`) to the
+    scene's unbalances at every probe, from 0 to the Campbell diagram's end."""
+    from shaftfem.fem.rotor import orbit, section_motion
+    from shaftfem.fem.rotor import unbalance_response as solve
+
+    if not scene.unbalances:
+        raise SceneError(f"{scene.source}: no [[unbalance]] to respond to")
+    rotor = scene.rotor
+    assert rotor is not None
+    forces = [(section_motion(result, u.position), u.amount * complex(math.cos(u.phase),
+                                                                       math.sin(u.phase)))
+              for u in scene.unbalances]
+    probes = [(u.name, u.position, beta) for u, (beta, _) in zip(scene.unbalances, forces)]
+    probes += [(b.name, s.position, b.beta) for b, s in
+               zip(model.bearings, [s for s in scene.held if s.bearing is not None])]
+    grid = (np.linspace(0.0, rotor.max_speed / RPM, BODE_POINTS + 1)[1:]
+            if speeds_rpm is None else np.asarray(speeds_rpm, dtype=float))
+
+    def at(rpm: float, beta: np.ndarray) -> tuple[float, float, float]:
+        return orbit(model, beta, solve(model, rpm * RPM, forces))
+
+    bode, peaks = [], []
+    operating = [om / RPM for om in rotor.speeds]
+    for name, z, beta in probes:
+        rows = np.array([at(n, beta) for n in grid])
+        b = Bode(name, z, grid, rows[:, 0], np.degrees(rows[:, 2]), rows[:, 1])
+        bode.append(b)
+        peaks += find_peaks(name, b, lambda n, beta=beta: at(n, beta)[0], operating)
+    return UnbalanceResponse(tuple(bode), tuple(peaks))
+
+
+def find_peaks(name: str, b: Bode, amplitude, operating: list[float]) -> list[Peak]:
+    """The peaks of one probe's Bode curve, each refined on `amplitude` (r/min -> m), its
+    half-power speeds and amplification factor, and its margin from the nearest of the
+    `operating` speeds (r/min)."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    grid, a = b.speeds_rpm, b.amplitude
+    out = []
+    for i in np.flatnonzero((a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:])) + 1:
+        best = minimize_scalar(lambda n: -amplitude(n), bounds=(grid[i - 1], grid[i + 1]),
+                               method="bounded", options={"xatol": 1e-7 * grid[i]})
+        n_c, peak = float(best.x), -float(best.fun)
+        half = peak / math.sqrt(2)
+        lo = next((j for j in range(i, -1, -1) if a[j] < half), None)
+        hi = next((j for j in range(i, len(a)) if a[j] < half), None)
+        hp = None
+        if lo is not None and hi is not None:
+            hp = (brentq(lambda n, h=half: amplitude(n) - h, grid[lo], n_c),
+                  brentq(lambda n, h=half: amplitude(n) - h, n_c, grid[hi]))
+        af = n_c / (hp[1] - hp[0]) if hp else None
+        near = min(operating, key=lambda n: abs(n - n_c))
+        required = api684_required(af, n_c < near) if af is not None else None
+        out.append(Peak(name, n_c, peak, hp, af, abs(n_c - near) / near, required))
+    return out
