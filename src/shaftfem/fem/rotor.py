@@ -10,15 +10,15 @@ the velocity of the material is u_t + Omega d_theta u, whose kinetic energy give
 
     G = Phi^T (A - A^T) Phi,   A = int rho N^T d_theta N dV        (the solid)
 
-and, for a rigid part, I_p on its tilts (I_d th_x'' + Omega I_p th_y' = 0). The
-centrifugal softening (Omega d_theta u)^2 and the stiffening by the centrifugal
-prestress are left out: on a solid of revolution they cancel exactly on rigid tilts
-(the virial of the spin stress) and on a shaft's bending modes they are of order
-(Omega r / c)^2, below 1e-6 for steel shafts at their speeds.
+and, for a rigid part, I_p on its tilts (I_d th_x'' + Omega I_p th_y' = 0); the
+same energy's (Omega d_theta u)^2 softens, K_2 = Phi^T (K_sigma - B) Phi with
+B = int rho d_theta N^T d_theta N dV and K_sigma the stiffening by the stress of
+the spin itself (its centrifugal load, statically): on a rigid tilt or turn of a
+solid of revolution the two cancel, as they must.
 
 Rotating frame (any shaft, coordinates turning with it; isotropic bearings):
 
-    G = 2 Phi^T (M_s x S) Phi,   K_2 = -Phi^T (M_s x P) Phi       (the solid)
+    G = 2 Phi^T (M_s x S) Phi,   K_2 = Phi^T (K_sigma - M_s x P) Phi   (the solid)
 
 with S = [e]x, P = I - e e^T, and for a rigid part 2 m S and -m P on its
 translations, (I_p - 2 I_d) S and (I_p - I_d) on its tilts (its Euler equations in
@@ -161,13 +161,16 @@ def rotor_model(result: ModalResult, frame: str) -> RotorModel:
     Mxy = X.T @ MY
     lateral = X.T @ MX + Y.T @ MY
     turning = 1j * (Mxy - Mxy.T)
+    Ksig, B = spin_stiffness(result, with_flow=frame == "stationary")
+    components = (X, Y, Phi[2::3])
+    K2 = sum(P.T @ (Ksig @ P) for P in components)
     if frame == "stationary":
         A = spin_derivative(result)
-        G = sum(P.T @ (A @ P) - (A @ P).T @ P for P in (X, Y, Phi[2::3]))
-        K2 = np.zeros_like(G)
+        G = sum(P.T @ (A @ P) - (A @ P).T @ P for P in components)
+        K2 = K2 - sum(P.T @ (B @ P) for P in components)
     else:
         G = 2.0 * (Y.T @ MX - X.T @ MY)
-        K2 = -lateral.copy()
+        K2 = K2 - lateral
     for psi, part in part_motions(result):
         Gp, Kp = part_matrices(part.mass, part.polar_inertia, part.diametral_inertia, frame)
         G = G + psi.T @ Gp @ psi
@@ -194,6 +197,85 @@ def spin_derivative(result: ModalResult) -> sp.csr_matrix:
         return v * (w.x[0] * u.grad[1] - w.x[1] * u.grad[0])
 
     return (result.scene.material.density * flow.assemble(basis)).tocsr()
+
+
+def spin_stiffness(result: ModalResult, with_flow: bool
+                   ) -> tuple[sp.csr_matrix, sp.csr_matrix | None]:
+    """Per (rad/s)^2, on the scalar basis: the stiffening by the stress of the shaft's
+    own spin, int sigma_ij d_i phi_a d_j phi_b dV with sigma from K u = int rho P x
+    (the centrifugal load of a unit spin, its rigid part taken out), and, with
+    `with_flow`, the stationary frame's softening int rho d_theta phi_a d_theta phi_b
+    dV. On a solid of revolution the two cancel on a rigid tilt or turn (the spin
+    stress's virial is its centrifugal load's moment)."""
+    from skfem import Basis, BilinearForm, ElementVector
+
+    from shaftfem.fem.assembly import MASS_INTORDER, scalar_basis
+
+    system = result.system
+    u = _spin_displacement(result)
+    base = scalar_basis(result.mesh)
+    basis = Basis(base.mesh, base.elem, intorder=MASS_INTORDER[system.order])
+    grad = Basis(base.mesh, ElementVector(base.elem),
+                 intorder=MASS_INTORDER[system.order]).interpolate(u).grad   # (3, 3, E, Q)
+    eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
+    lam, mu = result.scene.material.lame
+    sigma = 2 * mu * eps
+    for i in range(3):
+        sigma[i, i] += lam * (eps[0, 0] + eps[1, 1] + eps[2, 2])
+    fields = {f"s{i}{j}": sigma[i, j] for i in range(3) for j in range(3)}
+
+    @BilinearForm
+    def prestress(u, v, w):
+        return sum(w[f"s{i}{j}"] * u.grad[i] * v.grad[j] for i in range(3) for j in range(3))
+
+    Ksig = prestress.assemble(basis, **fields).tocsr()
+    if not with_flow:
+        return Ksig, None
+
+    @BilinearForm
+    def flow(u, v, w):
+        du = w.x[0] * u.grad[1] - w.x[1] * u.grad[0]
+        dv = w.x[0] * v.grad[1] - w.x[1] * v.grad[0]
+        return du * dv
+
+    rho = result.scene.material.density
+    return Ksig, (rho * flow.assemble(basis)).tocsr()
+
+
+# The static solve of the spin load: shifted by this share of the lowest elastic
+# eigenvalue and iterated (each step gains about this factor) ...
+STATIC_SHIFT = 1e-2
+# ... this many times.
+STATIC_STEPS = 8
+
+
+def _spin_displacement(result: ModalResult) -> np.ndarray:
+    """The shaft's displacement under the centrifugal load of a unit spin (m per
+    (rad/s)^2) on every node, its rigid motions taken out: (K + s M) u_k+1 = f + s M u_k
+    from the run's pencil (installed or free), which converges to K u = f on the
+    elastic modes without a singular factorisation."""
+    from shaftfem.fem.factor import factorise
+    from shaftfem.fem.supports import rigid_body_modes
+
+    system, inst = result.system, result.installed
+    f = np.zeros(system.n_dofs)
+    for c in (0, 1):
+        f[c::3] = system.mass_scalar @ system.nodes[:, c]
+    if inst is not None:
+        K, M, R, f = inst.K, inst.M, inst.rigid, inst.T.T @ f
+    else:
+        K, M, R = system.K, system.M, rigid_body_modes(system.nodes)
+    if R.shape[1]:
+        lam, V = np.linalg.eigh(R.T @ (M @ R))
+        R = R @ (V / np.sqrt(lam))               # M-orthonormal
+    s = STATIC_SHIFT * (2 * math.pi * result.modes.frequencies[0]) ** 2
+    solve, _ = factorise((K + s * M).tocsr())
+    f = f - M @ (R @ (R.T @ f))
+    u = np.zeros_like(f)
+    for _ in range(STATIC_STEPS):
+        u = solve(f + s * (M @ u))
+        u = u - R @ (R.T @ (M @ u))
+    return inst.T @ u if inst is not None else u
 
 
 def part_matrices(mass: float, polar: float, diametral: float, frame: str
