@@ -416,6 +416,9 @@ def campbell_text(c) -> str:
     lines += ["", f"modal basis: {t.size} standstill modes; on {t.smaller} of them the "
               f"reported whirl frequencies move by at most {t.change * 100:.2g} % "
               f"(at {', '.join(f'{s:,.0f}' for s in t.speeds_rpm)} r/min)"]
+    for o in c.onsets:
+        lines.append(f"UNSTABLE from {o.speed_rpm:,.0f} r/min: {o.whirl} whirl curve {o.mode} "
+                     f"({o.frequency_hz:.2f} Hz), its log decrement falls below zero")
     if c.unbalance is not None:
         lines += ["", "unbalance response peaks (half-power amplification factor, API 684 "
                   "separation margin):"]

@@ -92,14 +92,20 @@ def read_scene_text(scene: str | Path | SceneText | None = None) -> SceneText:
     return out
 
 
-def load_scene(scene: str | Path | SceneText | None = None,
+def load_scene(scene: str | Path | SceneText | dict | None = None,
                overrides: dict | None = None) -> Scene:
-    """Read and check a scene (a file, a shipped scene's name, or a SceneText) and
-    return it in SI. `overrides` maps 'table.key' (or 'table[i].key' for entry i of a
-    repeated table) to a value in file units. A bad value raises SceneError naming the
+    """Read and check a scene (a file, a shipped scene's name, a SceneText, or a dict
+    of the file's tables and keys, in its units) and return it in SI. `overrides` maps
+    'table.key' (or 'table[i].key' for entry i of a repeated table) to a value in file
+    units. A bad value raises SceneError naming the
     file, the key, the value and what is allowed."""
     folder = None
-    if isinstance(scene, SceneText):
+    if isinstance(scene, dict):
+        import copy
+
+        data = copy.deepcopy(scene)
+        source = f"scene {data['name']!r}" if isinstance(data.get("name"), str) else "<scene>"
+    elif isinstance(scene, SceneText):
         data, source = tomllib.loads(scene.text), scene.source
     else:
         path = resolve_scene_path(scene)

@@ -88,6 +88,22 @@ class CriticalSpeed:
 
 
 @dataclass(frozen=True)
+class Onset:
+    """Where a whirl curve's log decrement falls through zero: the speed (r/min) from
+    which that mode grows, its whirl, its curve (from 1 among that whirl's) and its
+    frequency there (Hz)."""
+
+    speed_rpm: float
+    whirl: str
+    mode: int
+    frequency_hz: float
+
+    def as_dict(self) -> dict:
+        return {"speed_rpm": self.speed_rpm, "whirl": self.whirl, "mode": self.mode,
+                "frequency_hz": self.frequency_hz}
+
+
+@dataclass(frozen=True)
 class Truncation:
     """The modal basis' check: the whirl frequencies of the reported modes solved on
     the whole basis (`size` modes) and on its first `smaller`, at each checked speed;
@@ -118,6 +134,7 @@ class Campbell:
     result: ModalResult
     notes: tuple[str, ...] = field(default=())
     unbalance: UnbalanceResponse | None = None
+    onsets: tuple[Onset, ...] = ()
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem campbell` (its names are read by scripts)."""
@@ -127,6 +144,7 @@ class Campbell:
                 "whirl": [w.as_dict() for w in self.whirl],
                 "operating": [w.as_dict() for w in self.operating],
                 "critical_speeds": [c.as_dict() for c in self.critical_speeds],
+                "instability_onsets": [o.as_dict() for o in self.onsets],
                 "basis": {"modes": t.size, "checked_against": t.smaller,
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
@@ -201,13 +219,19 @@ def basis_size(scene: Scene) -> int:
 def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     """The lowest `count` modes at the spin omega (rad/s), in the stationary frame. At
     standstill a shaft of revolution's bending pairs are double and their orbit any:
-    there they are solved at a spin of STANDSTILL times the lowest frequency, the limit
-    from above, so that each pair is seen whirling as it starts to (its frequencies
-    move by about that share of the gyroscopic split)."""
+    there each mode takes the whirl it has at a spin of STANDSTILL times the lowest
+    frequency (the limit from above), its frequency and damping those at rest."""
+    if omega == 0.0:
+        rest = _whirl_rows(model, 0.0, count)
+        start = _whirl_rows(model, STANDSTILL * math.sqrt(float(model.omega2[0])), count)
+        return [replace(r, whirl=s.whirl, whirl_index=s.whirl_index)
+                for r, s in zip(rest, start)]
+    return _whirl_rows(model, omega, count)
+
+
+def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     from shaftfem.fem.rotor import dominant_kinds, roots, whirl_index
 
-    if omega == 0.0:
-        omega = STANDSTILL * math.sqrt(float(model.omega2[0]))
     r = roots(model, omega)
     W = whirl_index(model, r.y)
     kinds = dominant_kinds(model, r.y)
@@ -216,7 +240,7 @@ def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     for lam, w, kind in zip(r.lam, W, kinds):
         f_r = lam.imag / (2 * math.pi)
         f, index, other = f_r, float(w), None
-        if model.frame == "rotating" and kind in WHIRLING:
+        if model.frame == "rotating" and kind in WHIRLING and omega > 0:
             forward, backward = f_r + n, f_r - n
             if w >= 0:
                 f, other = forward, abs(backward)
@@ -227,10 +251,9 @@ def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
         rows.append((f, direction, index, kind, f_r, other, -lam.real))
     rows.sort(key=lambda row: row[0])
     out = []
-    speed_rpm = 0.0 if omega == STANDSTILL * math.sqrt(float(model.omega2[0])) else omega / RPM
     for k, (f, direction, index, kind, f_r, other, decay) in enumerate(rows[:count]):
         wd = 2 * math.pi * f
-        out.append(Whirl(speed_rpm=speed_rpm, mode=k + 1, frequency_hz=f, whirl=direction,
+        out.append(Whirl(speed_rpm=omega / RPM, mode=k + 1, frequency_hz=f, whirl=direction,
                          whirl_index=index, log_dec=2 * math.pi * decay / wd if wd > 0 else 0.0,
                          damping_ratio=decay / math.hypot(decay, wd), kind=kind,
                          rotating_frame_hz=f_r, companion_hz=other))
@@ -267,6 +290,37 @@ def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
                     out.append(CriticalSpeed(order=order, whirl=whirl, speed_rpm=om / RPM,
                                              frequency_hz=order * om / (2 * math.pi), mode=k + 1))
     return sorted(out, key=lambda c: (c.speed_rpm, c.order))
+
+
+def onsets(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]], count: int
+           ) -> list[Onset]:
+    """Every speed where a whirl curve's log decrement changes from positive to negative
+    (the mode starts to grow), on the diagram's speeds, refined by root finding."""
+    from scipy.optimize import brentq
+
+    def curve(omega: float, whirl: str, k: int) -> Whirl | None:
+        ws = sorted((w for w in whirl_at(model, omega, count) if category(w) == whirl),
+                    key=lambda w: w.frequency_hz)
+        return ws[k] if k < len(ws) else None
+
+    out = []
+    for whirl in ("forward", "backward", "mixed"):
+        per_speed = [sorted((w for w in r if category(w) == whirl), key=lambda w: w.frequency_hz)
+                     for r in rows]
+        for k in range(min((len(p) for p in per_speed), default=0)):
+            d = np.array([p[k].log_dec for p in per_speed])
+            for i in np.flatnonzero((d[:-1] > 0) & (d[1:] <= 0)):
+                def logdec(om: float, k: int = k, whirl: str = whirl) -> float:
+                    w = curve(om, whirl, k)
+                    return math.nan if w is None else w.log_dec
+                try:
+                    om = brentq(logdec, speeds[i], speeds[i + 1], xtol=1e-10 * speeds[i + 1])
+                except ValueError:
+                    continue
+                w = curve(om, whirl, k)
+                assert w is not None
+                out.append(Onset(om / RPM, whirl, k + 1, w.frequency_hz))
+    return sorted(out, key=lambda o: o.speed_rpm)
 
 
 def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Truncation:
@@ -324,6 +378,7 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
     if not any(s.bearing is not None for s in scene.held):
         notes.append("no bearing has damping (kind = \"bearing\" with cxx ...): the log "
                      "decrements are zero and no amplification factor can be given")
+    unstable = onsets(model, grid, rows, count)
     response = None
     if scene.unbalances:
         from shaftfem.workflows.unbalance import unbalance_response
@@ -333,7 +388,8 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
                     whirl=tuple(w for r in rows for w in r), operating=tuple(operating),
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
                     critical_speeds=tuple(critical), orders=orders, truncation=check,
-                    result=result, notes=tuple(notes), unbalance=response)
+                    result=result, notes=tuple(notes), unbalance=response,
+                    onsets=tuple(unstable))
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
