@@ -161,11 +161,12 @@ def rotor_model(result: ModalResult, frame: str) -> RotorModel:
     Mxy = X.T @ MY
     lateral = X.T @ MX + Y.T @ MY
     turning = 1j * (Mxy - Mxy.T)
-    Ksig, B = spin_stiffness(result, with_flow=frame == "stationary")
+    basis = spin_basis(result)
+    Ksig, B = spin_stiffness(result, basis, with_flow=frame == "stationary")
     components = (X, Y, Phi[2::3])
     K2 = sum(P.T @ (Ksig @ P) for P in components)
     if frame == "stationary":
-        A = spin_derivative(result)
+        A = spin_derivative(result, basis)
         G = sum(P.T @ (A @ P) - (A @ P).T @ P for P in components)
         K2 = K2 - sum(P.T @ (B @ P) for P in components)
     else:
@@ -181,16 +182,22 @@ def rotor_model(result: ModalResult, frame: str) -> RotorModel:
                       turning=0.5 * (turning + turning.conj().T), kinds=tuple(modes.kinds))
 
 
-def spin_derivative(result: ModalResult) -> sp.csr_matrix:
+def spin_basis(result: ModalResult):
+    """scikit-fem's scalar basis of the run's mesh at the mass's quadrature: what the
+    spin's matrices are integrated on."""
+    from skfem import Basis
+
+    from shaftfem.fem.assembly import MASS_INTORDER
+    from shaftfem.fem.elements import element
+
+    return Basis(result.mesh.to_skfem(), element(result.system.order),
+                 intorder=MASS_INTORDER[result.system.order])
+
+
+def spin_derivative(result: ModalResult, basis) -> sp.csr_matrix:
     """A = int rho phi_a (x d/dy - y d/dx) phi_b dV on the scalar basis (kg / s per
-    rad/s): the material's flow through the mesh of a shaft that turns (scikit-fem,
-    at the mass's quadrature)."""
-    from skfem import Basis, BilinearForm
-
-    from shaftfem.fem.assembly import MASS_INTORDER, scalar_basis
-
-    base = scalar_basis(result.mesh)
-    basis = Basis(base.mesh, base.elem, intorder=MASS_INTORDER[result.system.order])
+    rad/s): the material's flow through the mesh of a shaft that turns."""
+    from skfem import BilinearForm
 
     @BilinearForm
     def flow(u, v, w):
@@ -199,7 +206,7 @@ def spin_derivative(result: ModalResult) -> sp.csr_matrix:
     return (result.scene.material.density * flow.assemble(basis)).tocsr()
 
 
-def spin_stiffness(result: ModalResult, with_flow: bool
+def spin_stiffness(result: ModalResult, basis, with_flow: bool
                    ) -> tuple[sp.csr_matrix, sp.csr_matrix | None]:
     """Per (rad/s)^2, on the scalar basis: the stiffening by the stress of the shaft's
     own spin, int sigma_ij d_i phi_a d_j phi_b dV with sigma from K u = int rho P x
@@ -207,16 +214,10 @@ def spin_stiffness(result: ModalResult, with_flow: bool
     `with_flow`, the stationary frame's softening int rho d_theta phi_a d_theta phi_b
     dV. On a solid of revolution the two cancel on a rigid tilt or turn (the spin
     stress's virial is its centrifugal load's moment)."""
-    from skfem import Basis, BilinearForm, ElementVector
+    from skfem import BilinearForm
 
-    from shaftfem.fem.assembly import MASS_INTORDER, scalar_basis
-
-    system = result.system
     u = _spin_displacement(result)
-    base = scalar_basis(result.mesh)
-    basis = Basis(base.mesh, base.elem, intorder=MASS_INTORDER[system.order])
-    grad = Basis(base.mesh, ElementVector(base.elem),
-                 intorder=MASS_INTORDER[system.order]).interpolate(u).grad   # (3, 3, E, Q)
+    grad = np.stack([basis.interpolate(u[c::3]).grad for c in range(3)])   # (3, 3, E, Q)
     eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
     lam, mu = result.scene.material.lame
     sigma = 2 * mu * eps
