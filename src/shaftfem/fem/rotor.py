@@ -111,21 +111,27 @@ class Roots:
 
     lam: np.ndarray
     y: np.ndarray
+    divergence: float = 0.0   # the largest growth rate of a non-oscillating root, 1/s
 
 
 def roots(model: RotorModel, omega: float) -> Roots:
     """The eigenvalues of q'' + D q' + K q = 0 at the spin omega (rad/s), from its
     first-order form [[0, I], [-K, -D]]: the oscillating ones (Im lam > 0), lowest
-    frequency first. Real ones (overdamped, or a divergence) are left out."""
+    frequency first. Real ones (overdamped, or a divergence) are left out, the fastest
+    growth among them kept (a shaft stiffer across one diameter than across the other
+    diverges in the frame that turns with it between its pair's frequencies)."""
     D, K = model.matrices(omega)
     n = model.size
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -D]])
     lam, V = np.linalg.eig(A)
     scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
     keep = lam.imag > 1e-9 * scale
+    still = np.abs(lam.imag) <= 1e-9 * scale
+    divergence = float(max(0.0, lam.real[still].max())) if still.any() else 0.0
     lam, V = lam[keep], V[:n, keep]
     order = np.argsort(lam.imag)
-    return Roots(lam=lam[order], y=V[:, order])
+    return Roots(lam=lam[order], y=V[:, order],
+                 divergence=divergence if divergence > 1e-9 * scale else 0.0)
 
 
 def whirl_index(model: RotorModel, y: np.ndarray) -> np.ndarray:

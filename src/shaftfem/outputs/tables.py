@@ -416,6 +416,10 @@ def campbell_text(c) -> str:
     lines += ["", f"modal basis: {t.size} standstill modes; on {t.smaller} of them the "
               f"reported whirl frequencies move by at most {t.change * 100:.2g} % "
               f"(at {', '.join(f'{s:,.0f}' for s in t.speeds_rpm)} r/min)"]
+    for lo, hi in c.divergent:
+        lines.append(f"UNSTABLE between {lo:,.0f} and {hi:,.0f} r/min: a mode locks to the "
+                     "shaft and grows (divergence; the shaft is stiffer across one diameter "
+                     "than across the other)")
     for o in c.onsets:
         lines.append(f"UNSTABLE from {o.speed_rpm:,.0f} r/min: {o.whirl} whirl curve {o.mode} "
                      f"({o.frequency_hz:.2f} Hz), its log decrement falls below zero")

@@ -135,6 +135,7 @@ class Campbell:
     notes: tuple[str, ...] = field(default=())
     unbalance: UnbalanceResponse | None = None
     onsets: tuple[Onset, ...] = ()
+    divergent: tuple[tuple[float, float], ...] = ()   # speed bands (r/min) where it diverges
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem campbell` (its names are read by scripts)."""
@@ -145,6 +146,7 @@ class Campbell:
                 "operating": [w.as_dict() for w in self.operating],
                 "critical_speeds": [c.as_dict() for c in self.critical_speeds],
                 "instability_onsets": [o.as_dict() for o in self.onsets],
+                "divergent_rpm": [list(band) for band in self.divergent],
                 "basis": {"modes": t.size, "checked_against": t.smaller,
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
@@ -323,6 +325,37 @@ def onsets(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]], count
     return sorted(out, key=lambda o: o.speed_rpm)
 
 
+def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, float]]:
+    """The speed bands (r/min) where a root grows without oscillating, their edges found
+    by bisection between the diagram's speeds (to 1e-9 of the speed)."""
+    from shaftfem.fem.rotor import roots
+
+    def grows(omega: float) -> bool:
+        return roots(model, omega).divergence > 0
+
+    flags = [grows(om) for om in speeds]
+
+    def edge(lo: float, hi: float, inside_high: bool) -> float:
+        while hi - lo > 1e-9 * hi:
+            mid = 0.5 * (lo + hi)
+            if grows(mid) == inside_high:
+                hi = mid
+            else:
+                lo = mid
+        return 0.5 * (lo + hi)
+
+    bands, start = [], None
+    for i, flag in enumerate(flags):
+        if flag and start is None:
+            start = speeds[0] if i == 0 else edge(speeds[i - 1], speeds[i], True)
+        if not flag and start is not None:
+            bands.append((start / RPM, edge(speeds[i - 1], speeds[i], False) / RPM))
+            start = None
+    if start is not None:
+        bands.append((start / RPM, speeds[-1] / RPM))
+    return bands
+
+
 def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Truncation:
     """The whirl frequencies of the `count` reported modes on the whole basis against
     its first CHECK_SHARE, at `speeds` (rad/s): the largest relative change."""
@@ -379,6 +412,7 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
         notes.append("no bearing has damping (kind = \"bearing\" with cxx ...): the log "
                      "decrements are zero and no amplification factor can be given")
     unstable = onsets(model, grid, rows, count)
+    bands = divergent_bands(model, grid)
     response = None
     if scene.unbalances:
         from shaftfem.workflows.unbalance import unbalance_response
@@ -389,7 +423,7 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
                     critical_speeds=tuple(critical), orders=orders, truncation=check,
                     result=result, notes=tuple(notes), unbalance=response,
-                    onsets=tuple(unstable))
+                    onsets=tuple(unstable), divergent=tuple(bands))
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
