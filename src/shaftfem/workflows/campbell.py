@@ -391,11 +391,17 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
                  speeds_rpm: np.ndarray | None = None) -> Campbell:
     """The scene's shaft turning: its standstill modes, then the whirl at every speed of
     the Campbell diagram (`speeds_rpm`, default 0 to [rotor] max_speed_rpm at
-    [rotor] campbell_points) and at the operating speeds, the critical speeds and the
-    basis check."""
+    [rotor] campbell_points) and at the operating speeds, the critical speeds, the
+    stability and the basis check, and the unbalance response."""
+    result, model, why = turning(scene, options)
+    return campbell_of(scene, result, model, why, speeds_rpm)
+
+
+def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
+                speeds_rpm: np.ndarray | None = None) -> Campbell:
+    """run_campbell's diagram of the turning shaft `model` on the standstill `result`."""
     rotor = scene.rotor
     assert rotor is not None
-    result, model, why = turning(scene, options)
     frame = model.frame
     count = scene.modes.count
     grid = (np.linspace(0.0, rotor.max_speed, rotor.points) if speeds_rpm is None
