@@ -135,6 +135,21 @@ def main(path: str) -> None:
         lo, hi = (mid, hi) if logdec(mid) > 0 else (lo, mid)
     out["5.9.1 cross-coupled"] = {"bearing_damping_n_s_per_m": c, "kxy_per_speed": SLOPE,
                                   "onset_speed": 0.5 * (lo + hi)}
+    # The examples: the grinding spindle and the motor shaft with its fan
+    # (examples/overhung_spindle.toml, examples/motor_fan.toml), on 10 mm elements
+    for name, (length, od, brgs, k, (node, m, ip, idm), rpm, top) in {
+            "overhung_spindle": (0.5, 0.04, (5, 35), 2e8, (48, 7.4, 0.037, 0.019), 9000, 15000),
+            "motor_fan": (0.42, 0.035, (6, 30), 1e8, (40, 4.0, 0.03, 0.016), 2950, 30000),
+    }.items():
+        n = round(length / 0.01)
+        elements = [rs.ShaftElement(L=length / n, material=steel, n=i, idl=0, odl=od)
+                    for i in range(n)]
+        rotor = rs.Rotor(elements, [rs.DiskElement(n=node, m=m, Id=idm, Ip=ip)],
+                         [rs.BearingElement(n=b, kxx=k, kyy=k, cxx=0, cyy=0) for b in brgs])
+        wd, dirs, _ = whirl(rotor, rpm * RPM, 4)
+        out[name] = {str(rpm): {"wd": list(map(float, wd)), "whirl": dirs},
+                     "critical_1x": {"backward": critical(rotor, "Backward", 10.0, top * RPM),
+                                     "forward": critical(rotor, "Forward", 10.0, top * RPM)}}
     with open(path, "w") as f:
         json.dump(out, f, indent=1)
     print(json.dumps(out, indent=1))

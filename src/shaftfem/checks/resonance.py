@@ -62,6 +62,8 @@ class ResonanceVerdict:
     free_free: bool = False
     # ... and the scene (or --free) says free-free is what the check is meant on
     free_free_intended: bool = False
+    # the shaft turning ([rotor]): what the verdict rests on (None: standstill modes)
+    turning: str | None = None
 
     @property
     def ok(self) -> bool:
@@ -95,6 +97,7 @@ class ResonanceVerdict:
             "free_free": self.free_free,
             "exit_status": self.exit_status,
             "required_margin": self.required,
+            "turning": self.turning,
             "approaches": [
                 {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,
                  "order": a.order, "excitation_hz": a.excitation, "margin": a.margin,

@@ -135,14 +135,10 @@ def cmd_campbell(args) -> int:
     c = run_campbell(scene, _options(args), grid)
     print(campbell_text(c))
     if args.out:
-        from shaftfem.outputs.campbell_plot import campbell_figure
-        from shaftfem.outputs.plots import save_png
+        from shaftfem.workflows.design import campbell_pictures
 
-        print(f"wrote {save_png(campbell_figure(c), Path(args.out) / 'campbell.png', dpi=130)}")
-        if c.unbalance is not None:
-            from shaftfem.outputs.campbell_plot import bode_figure
-
-            print(f"wrote {save_png(bode_figure(c), Path(args.out) / 'bode.png', dpi=130)}")
+        for path in campbell_pictures(c, Path(args.out)):
+            print(f"wrote {path}")
     if args.json:
         _write_json(args.json, {"scene": scene.name, **c.as_dict()})
     return 0
@@ -152,6 +148,23 @@ def cmd_check(args) -> int:
     from shaftfem.checks.resonance import check_result
     from shaftfem.outputs.tables import verdict_text
 
+    scene = _scene(args)
+    if scene.rotor is not None:
+        from shaftfem.checks.whirl_check import check_whirl
+        from shaftfem.outputs.tables import campbell_text
+        from shaftfem.workflows.campbell import run_campbell
+
+        c = run_campbell(scene, _options(args))
+        turning = check_whirl(c, _margin(args))
+        if turning is None:
+            raise SceneError(f"{scene.source}: no [[excitation]] sources and no critical speed "
+                             "to check against")
+        print(campbell_text(c) + "\n")
+        print(verdict_text(turning))
+        if args.json:
+            _write_json(args.json, {"scene": scene.name, **turning.as_dict(),
+                                    "campbell": c.as_dict()})
+        return turning.exit_status
     result, _, adapted = _bounded(args)
     verdict = check_result(result, _margin(args))
     if verdict is None:
@@ -182,6 +195,11 @@ def cmd_render(args) -> int:
 
     result, _, adapted = _bounded(args)
     files = render_all(result, args.out, _options(args).say)
+    if result.scene.rotor is not None:
+        from shaftfem.workflows.campbell import run_campbell
+        from shaftfem.workflows.design import campbell_pictures
+
+        files += campbell_pictures(run_campbell(result.scene, _options(args)), Path(args.out))
     print(f"wrote {len(files)} pictures to {args.out}: " + ", ".join(f.name for f in files))
     return _accuracy_status(args, adapted)
 

@@ -20,10 +20,17 @@ BAND = 0.05
 
 
 def campbell_figure(c: Campbell):
-    """Whirl frequency (Hz) against speed (r/min)."""
+    """Whirl frequency (Hz) against speed (r/min); below it the log decrement of each
+    curve when the bearings damp."""
     import numpy as np
+    from matplotlib.figure import Figure
 
-    fig, ax = _figure((8, 5.5))
+    damped = any(abs(w.log_dec) > 1e-9 for w in c.whirl)
+    if damped:
+        fig = Figure(figsize=(8, 7.5))
+        ax, dec = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+    else:
+        fig, ax = _figure((8, 5.5))
     top_rpm = max(c.speeds_rpm)
     fmax = max(w.frequency_hz for w in c.whirl) * 1.05
     for n in c.operating_rpm:
@@ -52,7 +59,16 @@ def campbell_figure(c: Campbell):
     ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed")
     ax.set_xlim(0, top_rpm)
     ax.set_ylim(0, fmax)
-    ax.set_xlabel("shaft speed, r/min")
+    if damped:
+        for whirl in ("forward", "backward", "mixed"):
+            for s, d in c.decrements(whirl):
+                dec.plot(s, d, "-", color=COLOURS[whirl], lw=1.2)
+        dec.axhline(0.0, color="black", lw=0.8)
+        dec.set_ylabel("log decrement")
+        dec.set_xlabel("shaft speed, r/min")
+        dec.grid(True, alpha=0.3)
+    else:
+        ax.set_xlabel("shaft speed, r/min")
     ax.set_ylabel("whirl frequency, Hz (stationary frame)")
     ax.set_title(f"Campbell diagram: {c.result.scene.name} ({c.frame} frame)", fontsize=10)
     ax.grid(True, alpha=0.3)

@@ -21,8 +21,10 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                     files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                     free: ModalResult | None = None,
-                    participation: Participation | None = None) -> str:
-    """report.md's text; picture and file names are relative to the report's folder."""
+                    participation: Participation | None = None,
+                    turning: str | None = None) -> str:
+    """report.md's text; picture and file names are relative to the report's folder;
+    `turning`: what `shaftfem campbell` prints, for a shaft with [rotor]."""
     scene = result.scene
     lines = [f"# Modal design report: {scene.name}", ""]
     lines += [x for line in tables.verdict_lines(verdict) for x in (line, "")]
@@ -43,6 +45,8 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
     if participation is not None:
         lines += ["", "### Effective modal mass for base motion at the supports", ""]
         lines += tables.participation_markdown(result, participation)
+    if turning is not None:
+        lines += ["", "## The shaft turning", "", "```text", turning, "```"]
     lines += ["", "## Resonance check", ""]
     lines += (tables.verdict_markdown(verdict) if verdict is not None
               else ["No [[excitation]] sources in the scene: nothing to check against."])
@@ -81,6 +85,6 @@ def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdic
                  sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                  files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                  free: ModalResult | None = None,
-                 participation: Participation | None = None) -> Path:
+                 participation: Participation | None = None, turning: str | None = None) -> Path:
     return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,
-                                            free, participation))
+                                            free, participation, turning))

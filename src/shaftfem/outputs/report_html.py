@@ -101,8 +101,9 @@ The motion is drawn large (a mode shape has no amplitude of its own).</p>
 def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
                 sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                 estimate: ErrorEstimate | None = None, free: ModalResult | None = None,
-                participation: Participation | None = None) -> str:
-    """report.html's text: the vtk.js viewer page with the report around its view."""
+                participation: Participation | None = None, turning: str | None = None) -> str:
+    """report.html's text: the vtk.js viewer page with the report around its view
+    (`turning`: what `shaftfem campbell` prints, for a shaft with [rotor])."""
     from shaftfem.outputs.report import shaft_facts
     from shaftfem.outputs.web_scene import viewer_html
 
@@ -129,6 +130,8 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     if participation is not None:
         parts += ["<h3>Effective modal mass for base motion at the supports</h3>",
                   _table(tables.participation_rows(result, participation))]
+    if turning is not None:
+        parts += ["<h2>The shaft turning</h2>", f"<pre>{html.escape(turning)}</pre>"]
     parts.append("<h2>Resonance check</h2>")
     parts.append(_table(tables.verdict_rows(verdict), ("source", "kind", "")) if verdict
                  is not None else _paragraphs(["No [[excitation]] sources in the scene: "
@@ -155,6 +158,7 @@ def write_report_html(path: str | Path, result: ModalResult,
                       verdict: ResonanceVerdict | None, sizing: SizingResult | None = None,
                       pictures: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                       free: ModalResult | None = None,
-                      participation: Participation | None = None) -> Path:
+                      participation: Participation | None = None,
+                      turning: str | None = None) -> Path:
     return write_text(path, report_html(result, verdict, sizing, pictures, estimate, free,
-                                        participation))
+                                        participation, turning))

@@ -262,6 +262,8 @@ FREE_FREE_MEANT = (
 def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
     """The verdict line, and for a free-free shaft the caveat under it (Markdown bold)."""
     lines = [verdict_line(v)]
+    if v is not None and v.turning:
+        lines.append(f"judged on {v.turning}")
     if v is not None and v.free_free:
         lines.append(FREE_FREE_MEANT if v.free_free_intended else FREE_FREE_CAVEAT)
     return lines
@@ -275,6 +277,11 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
     free = " (free-free)" if v.free_free else ""
     if v.ok:
         a = v.approaches[0]
+        if v.turning:
+            return (f"**VERDICT: PASS{free}** - every critical speed and whirl frequency "
+                    f"clears its required margin (closest: {a.kind}, "
+                    f"{100 * a.margin:.1f} % from {a.source} x{a.order}, "
+                    f"{100 * a.required:.3g} % required)")
         return (f"**VERDICT: PASS{free}** - no natural frequency within "
                 f"{100 * v.required:.3g} % of any excitation harmonic"
                 f"{' on the shaft hanging free' if free else ''} (closest: mode {a.mode}, "
@@ -431,7 +438,8 @@ def campbell_text(c) -> str:
         for p in c.unbalance.peaks:
             af = (f"AF {p.amplification:.1f}" if p.amplification is not None
                   else "AF not measurable (a half-power point lies outside the range)")
-            need = ("no margin required (AF < 2.5)" if p.required_margin is None else
+            need = ("margin not judged" if p.amplification is None else
+                    "no margin required (AF < 2.5)" if p.required_margin is None else
                     f"required {p.required_margin * 100:.1f} %: "
                     f"{'ok' if p.ok else 'NOT MET'}")
             lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min, {p.amplitude * 1e6:.3g} um, "

@@ -81,10 +81,11 @@ class CriticalSpeed:
     speed_rpm: float
     frequency_hz: float
     mode: int
+    log_dec: float = 0.0
 
     def as_dict(self) -> dict:
         return {"order": self.order, "whirl": self.whirl, "speed_rpm": self.speed_rpm,
-                "frequency_hz": self.frequency_hz, "mode": self.mode}
+                "frequency_hz": self.frequency_hz, "mode": self.mode, "log_dec": self.log_dec}
 
 
 @dataclass(frozen=True)
@@ -152,18 +153,24 @@ class Campbell:
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
                 "notes": list(self.notes)}
 
-    def curves(self, whirl: str) -> list[tuple[np.ndarray, np.ndarray]]:
+    def decrements(self, whirl: str) -> list[tuple[np.ndarray, np.ndarray]]:
+        """As `curves`, the log decrement of each curve instead of its frequency."""
+        return self.curves(whirl, "log_dec")
+
+    def curves(self, whirl: str, value: str = "frequency_hz"
+               ) -> list[tuple[np.ndarray, np.ndarray]]:
         """The diagram's curves of one whirl ("forward", "backward", "mixed", or "none"
         for the modes that do not orbit: torsion, axial): (speeds r/min, frequencies Hz)
         of the k-th lowest mode of that whirl at each speed, for k = 1, 2, ..."""
-        by_speed: dict[float, list[float]] = {}
+        by_speed: dict[float, list[Whirl]] = {}
         for w in self.whirl:
             if category(w) == whirl:
-                by_speed.setdefault(w.speed_rpm, []).append(w.frequency_hz)
+                by_speed.setdefault(w.speed_rpm, []).append(w)
         n = max((len(v) for v in by_speed.values()), default=0)
         out = []
         for k in range(n):
-            pts = [(s, sorted(v)[k]) for s, v in sorted(by_speed.items()) if len(v) > k]
+            pts = [(s, getattr(sorted(v, key=lambda w: w.frequency_hz)[k], value))
+                   for s, v in sorted(by_speed.items()) if len(v) > k]
             out.append((np.array([p[0] for p in pts]), np.array([p[1] for p in pts])))
         return out
 
@@ -268,10 +275,14 @@ def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
     on the diagram's speeds and refined by root finding on the reduced model."""
     from scipy.optimize import brentq
 
+    def row(omega: float, whirl: str, k: int) -> Whirl | None:
+        ws = sorted((w for w in whirl_at(model, omega, count) if category(w) == whirl),
+                    key=lambda w: w.frequency_hz)
+        return ws[k] if k < len(ws) else None
+
     def curve(omega: float, whirl: str, k: int) -> float:
-        f = sorted(w.frequency_hz for w in whirl_at(model, omega, count)
-                   if category(w) == whirl)
-        return f[k] if k < len(f) else math.nan
+        w = row(omega, whirl, k)
+        return math.nan if w is None else w.frequency_hz
 
     out = []
     for whirl in ("forward", "backward"):
@@ -289,8 +300,10 @@ def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
                         om = brentq(gap, speeds[i], speeds[i + 1], xtol=1e-10 * speeds[i + 1])
                     except ValueError:   # the curve's numbering changed inside the bracket
                         continue
+                    at = row(om, whirl, k)
                     out.append(CriticalSpeed(order=order, whirl=whirl, speed_rpm=om / RPM,
-                                             frequency_hz=order * om / (2 * math.pi), mode=k + 1))
+                                             frequency_hz=order * om / (2 * math.pi), mode=k + 1,
+                                             log_dec=at.log_dec if at is not None else 0.0))
     return sorted(out, key=lambda c: (c.speed_rpm, c.order))
 
 

@@ -77,6 +77,16 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     bounded = run_bounded(scene, estimate, options, choose)
     result, est = bounded.result, bounded.estimate
     verdict = check_result(result, margin)
+    campbell, turning = None, None
+    if scene.rotor is not None:
+        from shaftfem.checks.whirl_check import check_whirl
+        from shaftfem.outputs.tables import campbell_text
+        from shaftfem.workflows.campbell import run_campbell
+
+        say("the shaft turning: whirl, Campbell diagram, critical speeds")
+        campbell = run_campbell(scene, options)
+        verdict = check_whirl(campbell, margin)
+        turning = campbell_text(campbell)
     free, part, response, basis = None, None, None, None
     if scene.held:
         from shaftfem.fem.response import modal_basis, participation, response_sweep
@@ -95,20 +105,33 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         pictures = render_into(result, stage, say)
         if response is not None:
             pictures.append(_response_picture(result, response, basis, stage / "response.png"))
+        if campbell is not None:
+            pictures += campbell_pictures(campbell, stage)
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
-                     free=free, participation=part)
+                     free=free, participation=part, turning=turning)
         if html:
             from shaftfem.outputs.report_html import write_report_html
 
             say("report.html: the report with a 3D view of every mode")
             write_report_html(stage / "report.html", result, verdict, sizing, pictures, est,
-                              free=free, participation=part)
+                              free=free, participation=part, turning=turning)
     files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
     report = out / "report.md"
     say(f"report written: {report}")
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
                         files=files, pictures=pictures, report=report, adapted=bounded.adapted,
                         participation=part)
+
+
+def campbell_pictures(c, folder: Path) -> list[Path]:
+    """campbell.png, and bode.png when the scene has unbalances, in `folder`."""
+    from shaftfem.outputs.campbell_plot import bode_figure, campbell_figure
+    from shaftfem.outputs.plots import save_png
+
+    out = [save_png(campbell_figure(c), folder / "campbell.png", dpi=130)]
+    if c.unbalance is not None:
+        out.append(save_png(bode_figure(c), folder / "bode.png", dpi=130))
+    return out
 
 
 def _response_picture(result: ModalResult, response, basis, path: Path) -> Path:

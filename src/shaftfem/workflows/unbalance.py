@@ -125,7 +125,7 @@ def find_peaks(name: str, b: Bode, amplitude, operating: list[float]) -> list[Pe
     """The peaks of one probe's Bode curve, each refined on `amplitude` (r/min -> m), its
     half-power speeds and amplification factor, and its margin from the nearest of the
     `operating` speeds (r/min)."""
-    from scipy.optimize import brentq, minimize_scalar
+    from scipy.optimize import minimize_scalar
 
     grid, a = b.speeds_rpm, b.amplitude
     out = []
@@ -134,14 +134,33 @@ def find_peaks(name: str, b: Bode, amplitude, operating: list[float]) -> list[Pe
                                method="bounded", options={"xatol": 1e-7 * grid[i]})
         n_c, peak = float(best.x), -float(best.fun)
         half = peak / math.sqrt(2)
-        lo = next((j for j in range(i, -1, -1) if a[j] < half), None)
-        hi = next((j for j in range(i, len(a)) if a[j] < half), None)
         hp = None
-        if lo is not None and hi is not None:
-            hp = (brentq(lambda n, h=half: amplitude(n) - h, grid[lo], n_c),
-                  brentq(lambda n, h=half: amplitude(n) - h, n_c, grid[hi]))
-        af = n_c / (hp[1] - hp[0]) if hp else None
+        sides = [_half_power(amplitude, n_c, half, grid[0], -1),
+                 _half_power(amplitude, n_c, half, grid[-1], +1)]
+        if sides[0] is not None and sides[1] is not None:
+            hp = (sides[0], sides[1])
+        af = n_c / (hp[1] - hp[0]) if hp and hp[1] > hp[0] else None
         near = min(operating, key=lambda n: abs(n - n_c))
         required = api684_required(af, n_c < near) if af is not None else None
         out.append(Peak(name, n_c, peak, hp, af, abs(n_c - near) / near, required))
     return out
+
+
+def _half_power(amplitude, n_c: float, half: float, end: float, side: int) -> float | None:
+    """The speed (r/min) on one side of a peak at n_c where the amplitude falls to
+    `half`: stepping out from the peak by doubling steps (a lightly damped peak is
+    narrower than any grid), then by root finding; None when it does not fall there
+    before `end`."""
+    from scipy.optimize import brentq
+
+    step, near = 1e-7 * n_c, n_c
+    while True:
+        far = n_c + side * step
+        if (far - end) * side > 0:
+            far = end
+        if amplitude(far) < half:
+            lo, hi = sorted((near, far))
+            return float(brentq(lambda n: amplitude(n) - half, lo, hi))
+        if far == end:
+            return None
+        near, step = far, 2 * step
