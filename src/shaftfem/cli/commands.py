@@ -135,10 +135,14 @@ def cmd_campbell(args) -> int:
     c = run_campbell(scene, _options(args), grid)
     print(campbell_text(c))
     if args.out:
+        from shaftfem.outputs.whirl_files import write_whirl_files
         from shaftfem.workflows.design import campbell_pictures
 
         for path in campbell_pictures(c, Path(args.out)):
             print(f"wrote {path}")
+        files = write_whirl_files(c, Path(args.out))
+        print(f"wrote {len(files)} files of the whirl at the operating speed(s) for ParaView: "
+              f"{files[-1]} (real and imaginary parts of each mode)")
     if args.json:
         _write_json(args.json, {"scene": scene.name, **c.as_dict()})
     return 0

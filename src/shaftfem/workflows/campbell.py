@@ -137,6 +137,9 @@ class Campbell:
     unbalance: UnbalanceResponse | None = None
     onsets: tuple[Onset, ...] = ()
     divergent: tuple[tuple[float, float], ...] = ()   # speed bands (r/min) where it diverges
+    # at each operating speed, the reported modes' complex shapes on the standstill modes
+    # (N, count): u = Phi y, in the model's frame
+    operating_shapes: tuple[np.ndarray, ...] = ()
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem campbell` (its names are read by scripts)."""
@@ -267,6 +270,24 @@ def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
                          damping_ratio=decay / math.hypot(decay, wd), kind=kind,
                          rotating_frame_hz=f_r, companion_hz=other))
     return out
+
+
+def mode_shapes(model: RotorModel, omega: float, count: int) -> np.ndarray:
+    """The complex modal coordinates (N, count) of whirl_at's rows at the spin omega
+    (rad/s), in the same order, each scaled to a largest entry of 1."""
+    from shaftfem.fem.rotor import roots
+
+    r = roots(model, omega)
+    n = omega / (2 * math.pi)
+    freqs = r.lam.imag / (2 * math.pi)
+    if model.frame == "rotating":
+        from shaftfem.fem.rotor import dominant_kinds, whirl_index
+
+        W, kinds = whirl_index(model, r.y), dominant_kinds(model, r.y)
+        freqs = np.array([abs(f + (n if w >= 0 else -n)) if k in WHIRLING and omega > 0 else f
+                          for f, w, k in zip(freqs, W, kinds)])
+    y = r.y[:, np.argsort(freqs, kind="stable")[:count]]
+    return y / y[np.argmax(np.abs(y), axis=0), np.arange(y.shape[1])]
 
 
 def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
@@ -423,6 +444,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     orders = rotor_orders(scene)
     critical = crossings(model, grid, rows, orders, count)
     operating = [w for om in rotor.speeds for w in whirl_at(model, om, count)]
+    shapes = tuple(mode_shapes(model, om, count) for om in rotor.speeds)
     check = truncation(model, tuple(sorted({*rotor.speeds, float(grid.max())})), count)
     notes = []
     if not scene.held:
@@ -442,7 +464,8 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
                     critical_speeds=tuple(critical), orders=orders, truncation=check,
                     result=result, notes=tuple(notes), unbalance=response,
-                    onsets=tuple(unstable), divergent=tuple(bands))
+                    onsets=tuple(unstable), divergent=tuple(bands),
+                    operating_shapes=shapes)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()

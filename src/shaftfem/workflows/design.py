@@ -106,7 +106,10 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         if response is not None:
             pictures.append(_response_picture(result, response, basis, stage / "response.png"))
         if campbell is not None:
+            from shaftfem.outputs.whirl_files import write_whirl_files
+
             pictures += campbell_pictures(campbell, stage)
+            files += write_whirl_files(campbell, stage)
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
                      free=free, participation=part, turning=turning)
         if html:
@@ -124,13 +127,16 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
 
 
 def campbell_pictures(c, folder: Path) -> list[Path]:
-    """campbell.png, and bode.png when the scene has unbalances, in `folder`."""
+    """campbell.png, bode.png when the scene has unbalances, and orbits.png (the whirl at
+    the first operating speed), in `folder`."""
     from shaftfem.outputs.campbell_plot import bode_figure, campbell_figure
     from shaftfem.outputs.plots import save_png
+    from shaftfem.outputs.whirl_files import orbits_figure
 
     out = [save_png(campbell_figure(c), folder / "campbell.png", dpi=130)]
     if c.unbalance is not None:
         out.append(save_png(bode_figure(c), folder / "bode.png", dpi=130))
+    out.append(save_png(orbits_figure(c), folder / "orbits.png", dpi=130))
     return out
 
 
