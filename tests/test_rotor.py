@@ -123,6 +123,9 @@ def test_friswell_599_overhung_critical_speeds():
     # crossed from above: a critical speed lies where its curve meets the 1x line
     for cs in c.critical_speeds:
         assert cs.frequency_hz == pytest.approx(cs.order * cs.speed_rpm / 60, rel=1e-12)
+    # the crossings, found by root finding on the diagram, against the same critical
+    # speeds as one Hermitian eigenproblem in the speed squared (fem.rotor)
+    assert c.synchronous_check is not None and c.synchronous_check < 1e-8
 
 
 def test_friswell_591_unbalance_response():

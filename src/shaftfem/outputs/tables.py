@@ -420,6 +420,9 @@ def campbell_text(c) -> str:
         lines.append(f"  {cs.order}x {cs.whirl:8s} {cs.speed_rpm:10,.0f} r/min "
                      f"({cs.frequency_hz:.2f} Hz, curve {cs.mode}): "
                      f"{(cs.speed_rpm - near) / near * 100:+.1f} % from {near:,.0f} r/min")
+    if c.synchronous_check is not None:
+        lines.append(f"  the 1x crossings agree with the synchronous eigenproblem (critical "
+                     f"speeds found directly) to {c.synchronous_check:.1e}")
     lines += ["", f"modal basis: {t.size} standstill modes; on {t.smaller} of them the "
               f"reported whirl frequencies move by at most {t.change * 100:.2g} % "
               f"(at {', '.join(f'{s:,.0f}' for s in t.speeds_rpm)} r/min)"]

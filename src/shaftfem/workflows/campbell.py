@@ -140,6 +140,10 @@ class Campbell:
     # at each operating speed, the reported modes' complex shapes on the standstill modes
     # (N, count): u = Phi y, in the model's frame
     operating_shapes: tuple[np.ndarray, ...] = ()
+    # the 1x crossings against the synchronous eigenproblem (largest relative difference;
+    # None where that eigenproblem does not apply: rotating frame, speed-dependent or
+    # damped bearings)
+    synchronous_check: float | None = None
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem campbell` (its names are read by scripts)."""
@@ -151,6 +155,7 @@ class Campbell:
                 "critical_speeds": [c.as_dict() for c in self.critical_speeds],
                 "instability_onsets": [o.as_dict() for o in self.onsets],
                 "divergent_rpm": [list(band) for band in self.divergent],
+                "synchronous_check": self.synchronous_check,
                 "basis": {"modes": t.size, "checked_against": t.smaller,
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
@@ -270,6 +275,31 @@ def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
                          damping_ratio=decay / math.hypot(decay, wd), kind=kind,
                          rotating_frame_hz=f_r, companion_hz=other))
     return out
+
+
+def synchronous_check(model: RotorModel, critical: list[CriticalSpeed]) -> float | None:
+    """The largest relative difference between the 1x crossings found on the diagram and
+    the same critical speeds from the synchronous eigenproblem (fem.rotor), matched by
+    whirl and number; None where that eigenproblem does not apply (the rotating frame,
+    bearings that change with speed or damp)."""
+    from shaftfem.fem.rotor import synchronous_speeds
+
+    if model.frame != "stationary" or any(
+            len(b.coefficients.speeds) or np.any(np.array(b.coefficients.damping(0.0)))
+            for b in model.bearings):
+        return None
+    ones = [c for c in critical if c.order == 1]
+    if not ones:
+        return None
+    speeds, index = synchronous_speeds(model)
+    worst = 0.0
+    for whirl, sign in (("forward", 1), ("backward", -1)):
+        direct = speeds[sign * index > FORWARD]
+        for c in (c for c in ones if c.whirl == whirl):
+            if c.mode > direct.size:
+                return math.inf
+            worst = max(worst, abs(c.speed_rpm * RPM / direct[c.mode - 1] - 1))
+    return worst
 
 
 def mode_shapes(model: RotorModel, omega: float, count: int) -> np.ndarray:
@@ -452,6 +482,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     if not any(s.bearing is not None for s in scene.held):
         notes.append("no bearing has damping (kind = \"bearing\" with cxx ...): the log "
                      "decrements are zero and no amplification factor can be given")
+    synchronous = synchronous_check(model, critical)
     unstable = onsets(model, grid, rows, count)
     bands = divergent_bands(model, grid)
     response = None
@@ -465,7 +496,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     critical_speeds=tuple(critical), orders=orders, truncation=check,
                     result=result, notes=tuple(notes), unbalance=response,
                     onsets=tuple(unstable), divergent=tuple(bands),
-                    operating_shapes=shapes)
+                    operating_shapes=shapes, synchronous_check=synchronous)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
