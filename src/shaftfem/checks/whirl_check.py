@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 from shaftfem.checks.resonance import Approach, ResonanceVerdict, api684_margin
 
 if TYPE_CHECKING:
-    from shaftfem.workflows.campbell import Campbell
+    from shaftfem.fem.whirl import Campbell
 
 # API 684: above the operating speed a critical needs this much more margin.
 ABOVE = 0.10

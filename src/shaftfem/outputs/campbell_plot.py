@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 from shaftfem.outputs.plots import _figure
 
 if TYPE_CHECKING:
-    from shaftfem.workflows.campbell import Campbell
+    from shaftfem.fem.whirl import Campbell
 
 COLOURS = {"forward": "tab:red", "backward": "tab:blue", "mixed": "tab:purple",
            "none": "tab:grey"}

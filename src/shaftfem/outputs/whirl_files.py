@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from shaftfem.workflows.campbell import Campbell
+    from shaftfem.fem.whirl import Campbell
 
 # Stations along the shaft where orbits are drawn, and the share of the radius about the
 # axis whose nodes' mean motion stands for the axis there.

@@ -10,73 +10,17 @@ major semi-axis.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from shaftfem.errors import SceneError
+from shaftfem.fem.whirl import RPM, Bode, Peak, UnbalanceResponse
 from shaftfem.scene.model import Scene
-from shaftfem.workflows.campbell import RPM
 
 # The Bode plot's speeds, from 0 to the Campbell diagram's end.
 BODE_POINTS = 400
 # API 684: no margin is required of a peak with an amplification factor below this.
 AF_CRITICALLY_DAMPED = 2.5
-
-
-@dataclass(frozen=True)
-class Bode:
-    """One probe's response against speed: its name and plane (m), speeds (r/min),
-    amplitude along x (m), its phase (deg) and the orbit's major semi-axis (m)."""
-
-    name: str
-    z: float
-    speeds_rpm: np.ndarray
-    amplitude: np.ndarray
-    phase_deg: np.ndarray
-    major: np.ndarray
-
-
-@dataclass(frozen=True)
-class Peak:
-    """A resonance peak at a probe: its speed (r/min), amplitude (m), the half-power
-    speeds (r/min), the amplification factor N_c / (N_2 - N_1) (None where a half-power
-    point lies outside the speeds), and against the nearest operating speed the actual
-    and required separation margins (fractions; required None below AF 2.5)."""
-
-    probe: str
-    speed_rpm: float
-    amplitude: float
-    half_power_rpm: tuple[float, float] | None
-    amplification: float | None
-    margin: float
-    required_margin: float | None
-
-    @property
-    def ok(self) -> bool:
-        return self.required_margin is None or self.margin >= self.required_margin
-
-    def as_dict(self) -> dict:
-        return {"probe": self.probe, "speed_rpm": self.speed_rpm, "amplitude_m": self.amplitude,
-                "half_power_rpm": list(self.half_power_rpm) if self.half_power_rpm else None,
-                "amplification_factor": self.amplification, "separation_margin": self.margin,
-                "required_margin": self.required_margin, "ok": self.ok}
-
-
-@dataclass(frozen=True)
-class UnbalanceResponse:
-    """The response at every probe and its peaks."""
-
-    bode: tuple[Bode, ...]
-    peaks: tuple[Peak, ...]
-
-    def as_dict(self) -> dict:
-        return {"peaks": [p.as_dict() for p in self.peaks],
-                "probes": [{"name": b.name, "z_mm": b.z * 1e3,
-                            "speeds_rpm": b.speeds_rpm.tolist(),
-                            "amplitude_m": b.amplitude.tolist(),
-                            "phase_deg": b.phase_deg.tolist(),
-                            "major_m": b.major.tolist()} for b in self.bode]}
 
 
 def api684_required(af: float, below: bool) -> float | None:
