@@ -5,6 +5,7 @@
     run = shaftfem.run_bounded(scene)                 # modes and their error bounds
     run.result.modes.frequencies, run.estimate.relative_error
     shaftfem.run_design(scene, "out/paper2018")       # sizing, check, files, report
+    shaftfem.run_campbell(shaftfem.load_scene("examples/overhung_spindle.toml"))  # turning
 
 Importing the package is cheap: the names below load their modules on first use,
 and gmsh, scikit-fem, SciPy and pyvista only come with the steps that need them.
@@ -34,6 +35,8 @@ _LAZY = {
     "DesignResult": "shaftfem.workflows.design",
     "run_design": "shaftfem.workflows.design",
     "Modes": "shaftfem.fem.modes",
+    "run_campbell": "shaftfem.workflows.campbell",
+    "Campbell": "shaftfem.fem.whirl",
     "ErrorEstimate": "shaftfem.fem.estimate",
 }
 
@@ -58,9 +61,11 @@ if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.modes import Modes
     from shaftfem.fem.result import ModalResult
+    from shaftfem.fem.whirl import Campbell
     from shaftfem.runtime import RunOptions
     from shaftfem.scene.load import load_scene
     from shaftfem.scene.model import Scene
     from shaftfem.workflows.bounded import Bounded, run_bounded, with_accuracy
+    from shaftfem.workflows.campbell import run_campbell
     from shaftfem.workflows.design import DesignResult, run_design
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes

@@ -102,7 +102,8 @@ def bode_figure(c: Campbell):
                 af = f", AF {p.amplification:.1f}" if p.amplification else ""
                 amp.annotate(f"{p.speed_rpm:,.0f} r/min{af}", (p.speed_rpm, p.amplitude * 1e6),
                              fontsize=7, textcoords="offset points", xytext=(5, 3))
-    top = max(float(b.amplitude.max()) for b in c.unbalance.bode) * 1e6
+    top = max([float(b.amplitude.max()) for b in c.unbalance.bode]
+              + [p.amplitude for p in c.unbalance.peaks]) * 1e6
     amp.set_ylim(top * 1e-4, top * 3)   # four decades: the slow end's tiny response aside
     amp.set_ylabel("amplitude along x, um")
     amp.set_title(f"Unbalance response: {c.result.scene.name}", fontsize=10)

@@ -60,8 +60,18 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     for name, z, beta in probes:
         rows = np.array([at(n, beta) for n in grid])
         b = Bode(name, z, grid, rows[:, 0], np.degrees(rows[:, 2]), rows[:, 1])
+        found = find_peaks(name, b, lambda n, beta=beta: at(n, beta)[0], operating)
+        # a lightly damped peak is narrower than the grid: draw it through its own speeds
+        extra = np.array([p.speed_rpm + k * w for p in found for w in
+                          [(p.half_power_rpm[1] - p.half_power_rpm[0]) if p.half_power_rpm
+                           else 1e-3 * p.speed_rpm] for k in np.linspace(-4, 4, 33)])
+        extra = extra[(extra > grid[0]) & (extra < grid[-1])]
+        if extra.size:
+            speeds = np.unique(np.concatenate([grid, extra]))
+            rows = np.array([at(n, beta) for n in speeds])
+            b = Bode(name, z, speeds, rows[:, 0], np.degrees(rows[:, 2]), rows[:, 1])
         bode.append(b)
-        peaks += find_peaks(name, b, lambda n, beta=beta: at(n, beta)[0], operating)
+        peaks += found
     return UnbalanceResponse(tuple(bode), tuple(peaks))
 
 
