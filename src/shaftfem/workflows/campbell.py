@@ -38,6 +38,8 @@ if TYPE_CHECKING:
 
 # Of the basis, the whirl solved on this share too: its change is the truncation check.
 CHECK_SHARE = 2 / 3
+# Log decrements within this of zero are zero (an undamped model's round-off).
+ROUND_OFF = 1e-9
 # The spin, as a share of the lowest frequency, that stands for standstill in whirl_at.
 STANDSTILL = 1e-5
 # Basis size when [rotor] does not give one: this many times the modes asked for ...
@@ -128,6 +130,7 @@ def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     out = []
     for k, (f, direction, index, kind, f_r, other, decay) in enumerate(rows[:count]):
         wd = 2 * math.pi * f
+        decay = decay if abs(decay) > ROUND_OFF * wd else 0.0
         out.append(Whirl(speed_rpm=omega / RPM, mode=k + 1, frequency_hz=f, whirl=direction,
                          whirl_index=index, log_dec=2 * math.pi * decay / wd if wd > 0 else 0.0,
                          damping_ratio=decay / math.hypot(decay, wd), kind=kind,
@@ -233,7 +236,9 @@ def onsets(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]], count
                      for r in rows]
         for k in range(min((len(p) for p in per_speed), default=0)):
             d = np.array([p[k].log_dec for p in per_speed])
-            for i in np.flatnonzero((d[:-1] > 0) & (d[1:] <= 0)):
+            # an undamped model's decrements are zero to round-off: only a sign that
+            # changes beyond that is a change of stability
+            for i in np.flatnonzero((d[:-1] > ROUND_OFF) & (d[1:] < -ROUND_OFF)):
                 def logdec(om: float, k: int = k, whirl: str = whirl) -> float:
                     w = curve(om, whirl, k)
                     return math.nan if w is None else w.log_dec
