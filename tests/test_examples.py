@@ -139,8 +139,9 @@ def test_turning_examples_against_ross(tmp_path):
     for name in ("overhung_spindle", "motor_fan"):
         scene = str(EXAMPLES / f"{name}.toml")
         out = tmp_path / name
+        # 16 mm elements: 40 and 35 mm shafts, their first pairs within 0.05 % of 10 mm
         run = _shaftfem("campbell", scene, "--out", str(out), "--json", str(out / "c.json"),
-                        "-q", cwd=tmp_path)
+                        "--mesh-size", "16", "-q", cwd=tmp_path)
         assert run.returncode == 0, run.stderr[-2000:]
         c = json.loads((out / "c.json").read_text())
         assert {"whirl", "critical_speeds"} <= set(c)
@@ -155,7 +156,7 @@ def test_turning_examples_against_ross(tmp_path):
             assert first * math.pi / 30 == pytest.approx(ross[name]["critical_1x"][whirl],
                                                          rel=0.02)
         assert (out / "campbell.png").stat().st_size > 20_000
-        check = _shaftfem("check", scene, "-q", cwd=tmp_path)
+        check = _shaftfem("check", scene, "--mesh-size", "16", "-q", cwd=tmp_path)
         assert check.returncode == 0, check.stderr[-2000:]
         assert "judged on the shaft turning at" in check.stdout
         assert "VERDICT: PASS" in check.stdout

@@ -243,7 +243,8 @@ def test_paper_shaft_turning_in_its_own_frame():
     one diameter diverges (an asymmetric Jeffcott rotor: w1 < W < w2)."""
     scene = load_scene("paper2018", overrides={"rotor.speed_rpm": 80.0,
                                                "rotor.max_speed_rpm": 30000.0})
-    c = run_campbell(scene, speeds_rpm=np.array([0.0, 80.0, 25000.0, 26400.0, 28000.0]))
+    c = run_campbell(scene, speeds_rpm=np.array([0.0, 80.0, 10000.0, 25000.0, 26400.0,
+                                                 28000.0]))
     assert c.frame == "rotating" and "grooves" in c.why
     f = c.result.modes.frequencies
     w1, w2, spin = 2 * math.pi * f[0], 2 * math.pi * f[1], 80 * math.pi / 30
@@ -259,6 +260,13 @@ def test_paper_shaft_turning_in_its_own_frame():
     assert hi - lo == pytest.approx(60 * (f[1] - f[0]), rel=0.05)
     # the resonance check at 80 r/min is the standstill one: nothing moved by 0.1 %
     assert np.allclose([w.rotating_frame_hz for w in at80], f[:len(at80)], rtol=1e-3)
+    # at 10,000 r/min (167 Hz, far above the pair's 10.8 Hz split) Coriolis coupling makes
+    # the pair's orbits circular, seen near the two stiffnesses' root mean square
+    fast = [w for w in c.whirl if w.speed_rpm == 10000.0][:2]
+    assert [w.whirl for w in fast] == ["backward", "forward"]
+    assert all(abs(w.whirl_index) > 0.95 for w in fast)
+    rms = math.sqrt((f[0] ** 2 + f[1] ** 2) / 2)
+    assert all(w.frequency_hz == pytest.approx(rms, rel=0.005) for w in fast)
 
 
 def test_keyed_shaft_whirls_at_its_mean_stiffness():

@@ -31,6 +31,7 @@ from shaftfem.fem.whirl import (
 )
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
+from shaftfem.scene.schema import MAX_MODE_COUNT
 
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
@@ -42,6 +43,10 @@ CHECK_SHARE = 2 / 3
 ROUND_OFF = 1e-9
 # The spin, as a share of the lowest frequency, that stands for standstill in whirl_at.
 STANDSTILL = 1e-5
+# The whirl frequencies may move by at most this (relative) between the basis and two
+# thirds of it; else the basis is doubled (up to the largest mode count). Far below the
+# discretisation's own bounds (0.1 % and more).
+TRUNCATION = 1e-4
 # Basis size when [rotor] does not give one: this many times the modes asked for ...
 BASIS_FACTOR = 3
 # ... and at least this many.
@@ -301,7 +306,8 @@ def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Trun
 def turning(scene: Scene, options: RunOptions = RunOptions()
             ) -> tuple[ModalResult, RotorModel, str]:
     """The scene's standstill modes (the basis), the turning shaft on them, and why its
-    frame."""
+    frame. A basis that [rotor] basis_modes does not fix is doubled while the reported
+    whirl still moves by more than TRUNCATION on it."""
     from shaftfem.fem.rotor import rotor_model
     from shaftfem.workflows.pipeline import run_modes, with_modes
 
@@ -309,9 +315,20 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
     if scene.mesh.order > 2:
         raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the turning shaft "
                          "takes orders 1 and 2")
-    result = run_modes(with_modes(scene, count=basis_size(scene)), options)
-    options.say(f"whirl on {result.modes.count} standstill modes, {frame} frame")
-    return result, rotor_model(result, frame), why
+    size = basis_size(scene)
+    rotor = scene.rotor
+    assert rotor is not None
+    speeds = tuple(sorted({*rotor.speeds, rotor.max_speed}))
+    while True:
+        result = run_modes(with_modes(scene, count=size), options)
+        options.say(f"whirl on {result.modes.count} standstill modes, {frame} frame")
+        model = rotor_model(result, frame)
+        # the basis is enlarged while the whirl still moves on it (from two thirds of it)
+        if (rotor.basis_modes or size >= MAX_MODE_COUNT
+                or truncation(model, speeds, scene.modes.count).change <= TRUNCATION):
+            return result, model, why
+        size = min(2 * size, MAX_MODE_COUNT)
+        options.say(f"the whirl still moves on the basis: {size} standstill modes")
 
 
 def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
