@@ -434,8 +434,10 @@ def campbell_text(c) -> str:
         lines.append(f"UNSTABLE from {o.speed_rpm:,.0f} r/min: {o.whirl} whirl curve {o.mode} "
                      f"({o.frequency_hz:.2f} Hz), its log decrement falls below zero")
     if c.unbalance is not None:
+        verdict = ("the verdict follows these margins" if c.result.scene.criterion == "api684"
+                   else "for information: the verdict takes [resonance]'s flat margin")
         lines += ["", "unbalance response peaks (half-power amplification factor, API 684 "
-                  "separation margin):"]
+                  f"separation margin; {verdict}):"]
         if not c.unbalance.peaks:
             lines.append("  none in the speed range")
         for p in c.unbalance.peaks:
