@@ -186,6 +186,15 @@ def mode_shapes(model: RotorModel, omega: float, count: int) -> np.ndarray:
     return y / y[np.argmax(np.abs(y), axis=0), np.arange(y.shape[1])]
 
 
+def curve_row(model: RotorModel, omega: float, whirl: str, k: int, count: int
+              ) -> Whirl | None:
+    """The k-th lowest mode of one whirl (a curve of the diagram) at the spin omega, or
+    None where that whirl has fewer modes among the lowest `count`."""
+    ws = sorted((w for w in whirl_at(model, omega, count) if category(w) == whirl),
+                key=lambda w: w.frequency_hz)
+    return ws[k] if k < len(ws) else None
+
+
 def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
               orders: tuple[int, ...], count: int) -> list[CriticalSpeed]:
     """Every crossing of a forward or backward whirl curve with an order line, found
@@ -193,9 +202,7 @@ def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
     from scipy.optimize import brentq
 
     def row(omega: float, whirl: str, k: int) -> Whirl | None:
-        ws = sorted((w for w in whirl_at(model, omega, count) if category(w) == whirl),
-                    key=lambda w: w.frequency_hz)
-        return ws[k] if k < len(ws) else None
+        return curve_row(model, omega, whirl, k, count)
 
     def curve(omega: float, whirl: str, k: int) -> float:
         w = row(omega, whirl, k)
@@ -231,9 +238,7 @@ def onsets(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]], count
     from scipy.optimize import brentq
 
     def curve(omega: float, whirl: str, k: int) -> Whirl | None:
-        ws = sorted((w for w in whirl_at(model, omega, count) if category(w) == whirl),
-                    key=lambda w: w.frequency_hz)
-        return ws[k] if k < len(ws) else None
+        return curve_row(model, omega, whirl, k, count)
 
     out = []
     for whirl in ("forward", "backward", "mixed"):
