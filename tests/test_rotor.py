@@ -134,12 +134,17 @@ def test_friswell_591_unbalance_response():
     ref = ROSS["5.9.1 unbalance"]
     scene = load_scene(friswell(
         ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=ref["bearing_damping_n_s_per_m"] / 1e3),
-        two_disks(), {"speed_rpm": 1200.0, "max_speed_rpm": 1500.0, "campbell_points": 2},
-        unbalance=[{"name": "disk 2", "position_mm": 1000.0,
-                    "amount_g_mm": ref["unbalance_kg_m"] * 1e6}]))
+        two_disks(), {"speed_rpm": 1200.0, "max_speed_rpm": 1500.0, "campbell_points": 2,
+                      "probes_mm": [750.0]},
+        unbalance=[{"part": "disk 2", "amount_g_mm": ref["unbalance_kg_m"] * 1e6}]))
+    assert scene.unbalances[0].position == pytest.approx(1.0)
     c = run_campbell(scene)
     assert c.unbalance is not None
     peak = min((p for p in c.unbalance.peaks if p.probe == "disk 2"), key=lambda p: p.speed_rpm)
+    # a probe of one's own choice sees the same resonance
+    mid = min((p for p in c.unbalance.peaks if p.probe == "probe at 750 mm"),
+              key=lambda p: p.speed_rpm)
+    assert mid.speed_rpm == pytest.approx(peak.speed_rpm, rel=1e-3)
     assert peak.speed_rpm * math.pi / 30 == pytest.approx(ref["peak_speed"], rel=0.01)
     assert peak.amplitude == pytest.approx(ref["peak_amplitude_m"], rel=0.05)
     assert peak.amplification is not None and peak.amplification > 2.5
@@ -187,6 +192,12 @@ def test_scene_refuses_what_no_frame_solves(tmp_path):
         load_scene({**keyed, "support": [bearing(30.0, "a", kxx_n_per_mm=[1.0, 2.0])]})
     with pytest.raises(SceneError, match=r"rotor\.max_speed_rpm"):
         load_scene({**keyed, "rotor": {"speed_rpm": 3000.0, "max_speed_rpm": 1000.0}})
+    with pytest.raises(SceneError, match=r"part = 'wheel': no \[\[attachment\]\]"):
+        load_scene({**keyed, "unbalance": [{"part": "wheel", "amount_g_mm": 10.0}]})
+    with pytest.raises(SceneError, match="either position_mm or part"):
+        load_scene({**keyed, "unbalance": [{"amount_g_mm": 10.0}]})
+    with pytest.raises(SceneError, match="off the shaft"):
+        load_scene({**keyed, "rotor": {"speed_rpm": 3000.0, "probes_mm": [400.0]}})
 
 
 def stepped_rotor(frame: str) -> dict:

@@ -200,7 +200,8 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                  damping_ratio=t["response"]["damping_ratio_percent"] / 100,
                  response_point=None if point is None else point * MM,
                  criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
-                 rotor=_rotor(source, data), unbalances=_unbalances(source, data, shaft))
+                 rotor=_rotor(source, data, shaft),
+                 unbalances=_unbalances(source, data, shaft, attachments))
 
 
 def _check_tables(source: str, data: dict) -> None:
@@ -353,8 +354,10 @@ def _support(source: str, i: int, t: dict) -> Support:
                    coupling=t["coupling"], bearing=bearing)
 
 
-def _unbalances(source: str, data: dict, shaft: Shaft) -> tuple[Unbalance, ...]:
-    """[[unbalance]] in SI (m, kg m, rad); they need [rotor]."""
+def _unbalances(source: str, data: dict, shaft: Shaft,
+                attachments: tuple[Attachment, ...]) -> tuple[Unbalance, ...]:
+    """[[unbalance]] in SI (m, kg m, rad), each at its position or its part's centre;
+    they need [rotor]."""
     out = []
     for i, e in enumerate(_array(source, data, "unbalance")):
         table = entry("unbalance", i, e)
@@ -362,16 +365,27 @@ def _unbalances(source: str, data: dict, shaft: Shaft) -> tuple[Unbalance, ...]:
         if "rotor" not in data:
             raise SceneError(f"{source}: {table}: an unbalance needs the shaft turning: add "
                              "[rotor] with its speed_rpm")
-        if shaft.step is None and t["position_mm"] > shaft.length / MM:
-            raise SceneError(f"{where(source, table, 'position_mm')} = {t['position_mm']:g}: "
+        if (t["position_mm"] is None) == (t["part"] is None):
+            raise SceneError(f"{where(source, table, 'position_mm')}: give either position_mm "
+                             "or part (the name of an [[attachment]]), not both nor neither")
+        position = t["position_mm"]
+        if t["part"] is not None:
+            named = [a for a in attachments if a.name == t["part"]]
+            if not named:
+                raise SceneError(f"{where(source, table, 'part')} = {t['part']!r}: no "
+                                 "[[attachment]] of that name; the scene's parts: "
+                                 + (", ".join(repr(a.name) for a in attachments) or "none"))
+            position = named[0].position / MM
+        if shaft.step is None and position > shaft.length / MM:
+            raise SceneError(f"{where(source, table, 'position_mm')} = {position:g}: "
                              f"must lie on the shaft, 0 to {shaft.length / MM:g} mm")
-        out.append(Unbalance(name=t["name"] or f"unbalance {i + 1}",
-                             position=t["position_mm"] * MM, amount=t["amount_g_mm"] * 1e-6,
+        out.append(Unbalance(name=t["name"] or t["part"] or f"unbalance {i + 1}",
+                             position=position * MM, amount=t["amount_g_mm"] * 1e-6,
                              phase=math.radians(t["phase_deg"])))
     return tuple(out)
 
 
-def _rotor(source: str, data: dict) -> Rotor | None:
+def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
     """[rotor] in SI (rad/s), or None when the scene has none."""
     if "rotor" not in data:
         return None
@@ -381,9 +395,14 @@ def _rotor(source: str, data: dict) -> Rotor | None:
     if end < top:
         raise SceneError(f"{where(source, 'rotor', 'max_speed_rpm')} = {end:g}: must reach the "
                          f"highest operating speed ({top:g} r/min)")
+    for z in t["probes_mm"]:
+        if shaft.step is None and z > shaft.length / MM:
+            raise SceneError(f"{where(source, 'rotor', 'probes_mm')} = {t['probes_mm']!r}: "
+                             f"{z:g} mm is off the shaft, 0 to {shaft.length / MM:g} mm")
     return Rotor(speeds=tuple(n * RPM for n in t["speed_rpm"]), max_speed=end * RPM,
                  frame=t["frame"], points=t["campbell_points"],
-                 basis_modes=t["basis_modes"] or 0)
+                 basis_modes=t["basis_modes"] or 0,
+                 probes=tuple(z * MM for z in t["probes_mm"]))
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:

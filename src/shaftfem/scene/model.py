@@ -280,6 +280,7 @@ class Rotor:
     frame: str = "auto"
     points: int = 31
     basis_modes: int = 0
+    probes: tuple[float, ...] = ()   # z (m) of points whose unbalance response is shown
 
 
 @dataclass(frozen=True)
@@ -397,11 +398,12 @@ class Scene:
 
     def seat_cuts(self) -> tuple[float, ...]:
         """The axial positions (m) where a seat band begins or ends, the centres of parts
-        on distributing joints and the planes of unbalances (they act on that
-        cross-section): the mesh follows them."""
+        on distributing joints, the planes of unbalances and the rotor's probes (they act
+        on, or read, that cross-section): the mesh follows them."""
         zs = {z for part in self.supports + self.attachments for z in part.seat}
         zs |= {a.position for a in self.attachments if a.joint == "distributing"}
         zs |= {u.position for u in self.unbalances}
+        zs |= set(self.rotor.probes if self.rotor is not None else ())
         return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))
 
     def hubs(self) -> tuple[tuple[float, float], ...]:

@@ -298,6 +298,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "campbell_points": Key(int, "speeds of the Campbell diagram, from 0 to max_speed_rpm",
                                lambda v: 2 <= v <= 1001, "in [2, 1001]", default=31,
                                required=False),
+        "probes_mm": Key(("list", float), "axial positions of the points whose unbalance "
+                         "response is plotted, mm (besides the unbalances' planes and the "
+                         "bearings)", lambda v: all(0 <= x <= 20_000 for x in v),
+                         "numbers in [0, 20000]", default=[], required=False),
         "basis_modes": Key(int, "undamped standstill modes the whirl is solved on (default: "
                            "3 times [modes] count, at least 30)",
                            lambda v: 2 <= v <= MAX_MODE_COUNT, f"in [2, {MAX_MODE_COUNT}]",
@@ -305,8 +309,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
     },
     "unbalance": {  # an array of tables: [[unbalance]], a mass off the axis (workflows.unbalance)
         "name": Key(str, "name of the unbalance, e.g. wheel", required=False),
-        "position_mm": Key(float, "axial position of its plane from the shaft's left end, mm",
-                           *upto(20_000, "up to 20 m", closed_low=True)),
+        "position_mm": Key(float, "axial position of its plane from the shaft's left end, mm "
+                           "(or `part`)", *upto(20_000, "up to 20 m", closed_low=True),
+                           required=False),
+        "part": Key(str, "the [[attachment]] it sits on, by name: its plane is the part's "
+                    "centre (instead of position_mm)", required=False),
         "amount_g_mm": Key(float, "the unbalance, mass times its distance from the axis, g mm",
                            *upto(1e9, "up to 10^9 g mm")),
         "phase_deg": Key(float, "its angle about the axis at t = 0, deg (0: towards +x)",

@@ -2,9 +2,9 @@
 at each probe), its peaks, each peak's amplification factor by the half-power method
 and its separation margin from the operating speeds against API 684's.
 
-The probes are the unbalances' planes and the bearings' seats (the mean motion of
-the section, as a proximity probe reads a shaft): amplitude along x, and the orbit's
-major semi-axis.
+The probes are the unbalances' planes, the bearings' seats and [rotor] probes_mm (the
+mean motion of the section, as a proximity probe reads a shaft): amplitude along x,
+and the orbit's major semi-axis.
 """
 
 from __future__ import annotations
@@ -49,6 +49,7 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     probes = [(u.name, u.position, beta) for u, (beta, _) in zip(scene.unbalances, forces)]
     probes += [(b.name, s.position, b.beta) for b, s in
                zip(model.bearings, [s for s in scene.held if s.bearing is not None])]
+    probes += [(f"probe at {z * 1e3:g} mm", z, section_motion(result, z)) for z in rotor.probes]
     grid = (np.linspace(0.0, rotor.max_speed / RPM, BODE_POINTS + 1)[1:]
             if speeds_rpm is None else np.asarray(speeds_rpm, dtype=float))
 
