@@ -303,3 +303,19 @@ def test_keyed_shaft_whirls_at_its_mean_stiffness():
     rms = math.sqrt((f[0] ** 2 + f[1] ** 2) / 2)
     for w in fast:
         assert w.frequency_hz == pytest.approx(rms, rel=0.005)
+
+
+def test_an_interval_says_what_it_covers():
+    """Printed under every bounded table (terminal, report.md, report.html) and in the
+    JSON: the discretisation and the mesh's geometry, for the model as given; not this
+    scene's bearings, joints, material, nor, standing still, its rotation."""
+    from shaftfem.outputs.tables import bound_coverage
+
+    free = load_scene("paper2018")
+    said = bound_coverage(free)
+    assert said.startswith("the interval covers the discretisation and the mesh's geometry")
+    assert "bearings" not in said and "material" in said and "[rotor]" in said
+    turning = load_scene(friswell(ends(kxx_n_per_mm=1000.0), two_disks(), {"speed_rpm": 4000.0}))
+    said = bound_coverage(turning)
+    assert "bearings' stiffness" in said and "parts' joints" in said
+    assert "`shaftfem campbell` turns them" in said

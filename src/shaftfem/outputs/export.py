@@ -39,6 +39,7 @@ def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
         "rigid_body_modes": m.n_rigid,
         "rigid_body_frequencies_hz": m.rigid_frequencies,
         "modes": modes_table(result, est),
+        "bound_covers": None if est is None else tables.bound_coverage(scene),
         "mass_orthonormality_error": m.orthonormality_error,
         "groove_volume_mm3": {
             "cad": result.shape.groove_volume_cad * 1e9,

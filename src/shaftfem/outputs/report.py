@@ -38,7 +38,7 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
     lines += [f"## Natural frequencies ({title})", ""] + tables.modes_markdown(result, estimate)
     lines += ["", f"Rigid-body modes: {result.modes.n_rigid}."]
     if estimate is not None:
-        lines += tables.estimate_notes(estimate)
+        lines += tables.estimate_notes(estimate, scene)
     if free is not None:
         lines += ["", "### Installed beside free-free (same mesh)", ""]
         lines += tables.side_by_side_markdown(result, free)

@@ -123,7 +123,8 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     parts += [f"<h2>Natural frequencies ({title})</h2>",
               _table(tables.modes_rows(result, estimate), ("kind",)),
               _paragraphs([f"Rigid-body modes: {result.modes.n_rigid}."]
-                          + (tables.estimate_notes(estimate) if estimate is not None else []))]
+                          + (tables.estimate_notes(estimate, scene) if estimate is not None
+                             else []))]
     if free is not None:
         parts += ["<h3>Installed beside free-free (same mesh)</h3>",
                   _table(tables.side_by_side_rows(result, free), ("kind",))]

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
+    from shaftfem.scene.model import Scene
 
 
 def markdown(head: list[str], rows: list[list[str]]) -> list[str]:
@@ -45,16 +46,33 @@ def timings_line(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     return ", ".join(f"{k} {v:.1f} s" for k, v in timings(result, est).items())
 
 
-def estimate_notes(est: ErrorEstimate) -> list[str]:
-    """How the bounds were made, how to read them, and where they rest on less."""
+def estimate_notes(est: ErrorEstimate, scene: Scene | None = None) -> list[str]:
+    """How the bounds were made, how to read them, where they rest on less, and (given
+    the scene) what they cover and what they do not."""
     straightened = ("" if est.straightening is None else
                     ", and each mode's shift from the straightened elements' faces, up to "
                     f"{100 * float(est.straightening.max()):.2g} %")
-    return [f"error bound: the true frequency lies between f (1 - lower) and f (1 + upper). "
-            f"The computed frequencies converge from above, so the discretisation error "
-            f"({est.method}) counts downwards only; the geometry allowances count both "
-            f"ways: the mesh's volume difference from the solid, {100 * est.geometry:.1g} %"
-            f"{straightened}."] + list(est.notes)
+    return ([f"error bound: the true frequency lies between f (1 - lower) and f (1 + upper). "
+             f"The computed frequencies converge from above, so the discretisation error "
+             f"({est.method}) counts downwards only; the geometry allowances count both "
+             f"ways: the mesh's volume difference from the solid, {100 * est.geometry:.1g} %"
+             f"{straightened}."] + list(est.notes)
+            + ([bound_coverage(scene)] if scene is not None else []))
+
+
+def bound_coverage(scene: Scene) -> str:
+    """What an interval covers (the discretisation and the mesh's geometry, for the model
+    as given) and what of this scene's model it does not."""
+    outside = ["the material's values"]
+    if scene.held:
+        outside.append("the bearings' stiffness and how the seats hold the shaft")
+    if scene.attachments:
+        outside.append("the parts' joints (rigid or distributing)")
+    outside.append("rotation: the shaft stands still here (with [rotor], `shaftfem campbell` "
+                   "gives its whirl)" if scene.rotor is None else
+                   "rotation: these are standstill modes (`shaftfem campbell` turns them)")
+    return ("the interval covers the discretisation and the mesh's geometry, for the model "
+            "as given; not " + "; nor ".join(outside) + ".")
 
 
 def _percent(x: float) -> str:
@@ -173,7 +191,7 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
                     + ([f"{f / exc.frequency:.2f}"] if exc else []))
     lines += aligned(rows, left={2})
     if est is not None:
-        lines += [""] + estimate_notes(est)
+        lines += [""] + estimate_notes(est, scene)
     lines += [f"WARNING: {w}" for w in result.warnings]
     lines += ["", "time: " + timings_line(result, est)]
     return "\n".join(lines)
