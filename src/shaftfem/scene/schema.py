@@ -72,15 +72,14 @@ def upto(high: float, why: str, low: float = 0.0,
     return check, f"in {'[' if closed_low else '('}{low:g}, {high:g}] ({why})"
 
 
-BEARING_DOC = "{} : one number, or a list with one value per speeds_rpm entry"
-
-
-def _finite(v: list) -> bool:
-    return len(v) >= 1
-
-
-def _finite_nonneg(v: list) -> bool:
-    return len(v) >= 1 and all(x >= 0 for x in v)
+def coefficient(what: str, direct: bool) -> Key:
+    """A bearing coefficient's key: one number, or one per speeds_rpm entry; a direct
+    stiffness or damping is not negative."""
+    def check(v: list) -> bool:
+        return len(v) >= 1 and (not direct or all(x >= 0 for x in v))
+    return Key(("list", float), f"{what} : one number, or a list with one value per "
+               "speeds_rpm entry", check, "numbers >= 0" if direct else "numbers",
+               required=False)
 
 
 SCHEMA: dict[str, dict[str, Key]] = {
@@ -215,28 +214,20 @@ SCHEMA: dict[str, dict[str, Key]] = {
                     "coefficients kxx ... cyx, constant or against speed); rigid, springs and "
                     "bearing let the shaft tilt and turn",
                     lambda v: v in SUPPORT_KINDS, ", ".join(f'"{k}"' for k in SUPPORT_KINDS)),
-        "kxx_n_per_mm": Key(("list", float), BEARING_DOC.format(
-            "direct stiffness along x, N/mm (kind = \"bearing\")"), _finite_nonneg, "numbers >= 0",
-            required=False),
-        "kyy_n_per_mm": Key(("list", float), BEARING_DOC.format(
-            "direct stiffness along y, N/mm (default: kxx)"), _finite_nonneg, "numbers >= 0",
-            required=False),
-        "kxy_n_per_mm": Key(("list", float), BEARING_DOC.format(
-            "cross-coupled stiffness, the x force per y displacement, N/mm (default 0)"),
-            _finite, "numbers", required=False),
-        "kyx_n_per_mm": Key(("list", float), BEARING_DOC.format(
-            "cross-coupled stiffness, the y force per x displacement, N/mm (default 0)"),
-            _finite, "numbers", required=False),
-        "cxx_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
-            "direct damping along x, N s/mm (default 0)"), _finite_nonneg, "numbers >= 0",
-            required=False),
-        "cyy_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
-            "direct damping along y, N s/mm (default: cxx)"), _finite_nonneg, "numbers >= 0",
-            required=False),
-        "cxy_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
-            "cross-coupled damping, N s/mm (default 0)"), _finite, "numbers", required=False),
-        "cyx_n_s_per_mm": Key(("list", float), BEARING_DOC.format(
-            "cross-coupled damping, N s/mm (default 0)"), _finite, "numbers", required=False),
+        "kxx_n_per_mm": coefficient(
+            "direct stiffness along x, N/mm (kind = \"bearing\")", direct=True),
+        "kyy_n_per_mm": coefficient("direct stiffness along y, N/mm (default: kxx)", direct=True),
+        "kxy_n_per_mm": coefficient(
+            "cross-coupled stiffness, the x force per y displacement, N/mm (default 0)",
+            direct=False),
+        "kyx_n_per_mm": coefficient(
+            "cross-coupled stiffness, the y force per x displacement, N/mm (default 0)",
+            direct=False),
+        "cxx_n_s_per_mm": coefficient("direct damping along x, N s/mm (default 0)", direct=True),
+        "cyy_n_s_per_mm": coefficient("direct damping along y, N s/mm (default: cxx)",
+                                      direct=True),
+        "cxy_n_s_per_mm": coefficient("cross-coupled damping, N s/mm (default 0)", direct=False),
+        "cyx_n_s_per_mm": coefficient("cross-coupled damping, N s/mm (default 0)", direct=False),
         "speeds_rpm": Key(("list", float), "the speeds, r/min, at which the bearing's "
                           "coefficients are given as lists (kind = \"bearing\"; between them "
                           "interpolated linearly, outside them the nearest end's value)",
