@@ -126,12 +126,19 @@ def check_resonance(frequencies: np.ndarray, kinds: list[str],
     return ResonanceVerdict(approaches=out, required=required)
 
 
-def api684_margin(amplification_factor: float) -> float:
+# API 684: no margin below this amplification factor (a critically damped mode) ...
+AF_CRITICALLY_DAMPED = 2.5
+# ... and this much more for a critical speed above the operating speed.
+API684_ABOVE = 0.10
+
+
+def api684_margin(amplification_factor: float, above: bool = False) -> float:
     """API 684's separation margin (fraction) for a mode of amplification factor AF:
-    none below AF = 2.5, else 0.17 (1 - 1 / (AF - 1.5))."""
-    if amplification_factor < 2.5:
+    none below AF = 2.5, else 0.17 (1 - 1 / (AF - 1.5)), and 0.10 more for a critical
+    speed above the operating speed (`above`). An infinite AF (no damping) needs 0.17."""
+    if amplification_factor < AF_CRITICALLY_DAMPED:
         return 0.0
-    return 0.17 * (1 - 1 / (amplification_factor - 1.5))
+    return 0.17 * (1 - 1 / (amplification_factor - 1.5)) + (API684_ABOVE if above else 0.0)
 
 
 def check_result(result: ModalResult, required: float | None = None) -> ResonanceVerdict | None:

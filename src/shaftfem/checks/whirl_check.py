@@ -26,8 +26,12 @@ from shaftfem.checks.resonance import Approach, ResonanceVerdict, api684_margin
 if TYPE_CHECKING:
     from shaftfem.fem.whirl import Campbell
 
-# API 684: above the operating speed a critical needs this much more margin.
-ABOVE = 0.10
+
+
+def amplification(log_dec: float) -> float:
+    """A mode's amplification factor from its log decrement, pi / delta (infinite
+    undamped)."""
+    return math.pi / log_dec if log_dec > 0 else math.inf
 
 
 def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict | None:
@@ -50,11 +54,7 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict 
     for n in speeds:
         for cs in judged:
             below = cs.speed_rpm < n
-            need = flat
-            if api:
-                af = math.pi / cs.log_dec if cs.log_dec > 0 else math.inf
-                need = (api684_margin(af) if math.isfinite(af) else 0.17) + (
-                    0.0 if below else ABOVE)
+            need = api684_margin(amplification(cs.log_dec), above=not below) if api else flat
             out.append(Approach(mode=cs.mode, frequency=cs.frequency_hz,
                                 kind=f"{cs.whirl} whirl, critical at {cs.speed_rpm:,.0f} r/min",
                                 source=f"shaft at {n:,.0f} r/min", order=cs.order,
@@ -67,10 +67,7 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict 
             for e in others + (own if still else []):
                 for k in e.orders:
                     fk = k * e.frequency
-                    need = flat
-                    if api:
-                        af = math.pi / w.log_dec if w.log_dec > 0 else math.inf
-                        need = api684_margin(af) if math.isfinite(af) else 0.17
+                    need = api684_margin(amplification(w.log_dec)) if api else flat
                     kind = w.kind if still else f"{w.kind}, {w.whirl} whirl at {n:,.0f} r/min"
                     out.append(Approach(mode=w.mode, frequency=w.frequency_hz, kind=kind,
                                         source=e.name, order=k, excitation=fk,

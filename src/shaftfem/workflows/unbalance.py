@@ -13,23 +13,21 @@ import math
 
 import numpy as np
 
+from shaftfem.checks.resonance import AF_CRITICALLY_DAMPED, api684_margin
 from shaftfem.errors import SceneError
 from shaftfem.fem.whirl import RPM, Bode, Peak, UnbalanceResponse
 from shaftfem.scene.model import Scene
 
 # The Bode plot's speeds, from 0 to the Campbell diagram's end.
 BODE_POINTS = 400
-# API 684: no margin is required of a peak with an amplification factor below this.
-AF_CRITICALLY_DAMPED = 2.5
 
 
 def api684_required(af: float, below: bool) -> float | None:
     """API 684's separation margin for a peak of amplification factor af, below or
-    above the operating speed (fraction): none below AF 2.5, else 17 (1 - 1/(AF - 1.5))
-    %, plus 10 % above it."""
+    above the operating speed (fraction); None (no margin required) below AF 2.5."""
     if af < AF_CRITICALLY_DAMPED:
         return None
-    return (0.0 if below else 0.10) + 0.17 * (1 - 1 / (af - 1.5))
+    return api684_margin(af, above=not below)
 
 
 def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | None = None
@@ -66,10 +64,11 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
         extra = np.array([p.speed_rpm + k * w for p in found for w in
                           [(p.half_power_rpm[1] - p.half_power_rpm[0]) if p.half_power_rpm
                            else 1e-3 * p.speed_rpm] for k in np.linspace(-4, 4, 33)])
-        extra = extra[(extra > grid[0]) & (extra < grid[-1])]
+        extra = np.setdiff1d(extra[(extra > grid[0]) & (extra < grid[-1])], grid)
         if extra.size:
-            speeds = np.unique(np.concatenate([grid, extra]))
-            rows = np.array([at(n, beta) for n in speeds])
+            order = np.argsort(np.concatenate([grid, extra]), kind="stable")
+            rows = np.vstack([rows, [at(n, beta) for n in extra]])[order]
+            speeds = np.concatenate([grid, extra])[order]
             b = Bode(name, z, speeds, rows[:, 0], np.degrees(rows[:, 2]), rows[:, 1])
         bode.append(b)
         peaks += found
