@@ -173,7 +173,8 @@ def rotor_model(result: ModalResult, frame: str) -> RotorModel:
     K2 = sum(P.T @ (Ksig @ P) for P in components)
     if frame == "stationary":
         A = spin_derivative(result, basis)
-        G = sum(P.T @ (A @ P) - (A @ P).T @ P for P in components)
+        AP = [A @ P for P in components]
+        G = sum(P.T @ Q - Q.T @ P for P, Q in zip(components, AP))
         K2 = K2 - sum(P.T @ (B @ P) for P in components)
     else:
         G = 2.0 * (Y.T @ MX - X.T @ MY)

@@ -35,7 +35,7 @@ from shaftfem.scene.schema import MAX_MODE_COUNT
 
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
-    from shaftfem.fem.rotor import RotorModel
+    from shaftfem.fem.rotor import Roots, RotorModel
 
 # Of the basis, the whirl solved on this share too: its change is the truncation check.
 CHECK_SHARE = 2 / 3
@@ -111,7 +111,10 @@ def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     return _whirl_rows(model, omega, count)
 
 
-def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
+def _seen(model: RotorModel, omega: float) -> tuple[Roots, list[tuple]]:
+    """The roots at the spin omega and each as the stationary frame sees it, lowest
+    first: (frequency Hz, whirl, whirl index, kind, rotating-frame Hz, other component's
+    Hz or None, decay rate 1/s, its column among the roots)."""
     from shaftfem.fem.rotor import dominant_kinds, roots, whirl_index
 
     r = roots(model, omega)
@@ -119,7 +122,7 @@ def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     kinds = dominant_kinds(model, r.y)
     n = omega / (2 * math.pi)
     rows = []
-    for lam, w, kind in zip(r.lam, W, kinds):
+    for j, (lam, w, kind) in enumerate(zip(r.lam, W, kinds)):
         f_r = lam.imag / (2 * math.pi)
         f, index, other = f_r, float(w), None
         if model.frame == "rotating" and kind in WHIRLING and omega > 0:
@@ -130,10 +133,15 @@ def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
                 f, other, index = abs(backward), forward, (w if backward > 0 else -w)
         direction = ("forward" if index > FORWARD else "backward" if index < -FORWARD
                      else "mixed")
-        rows.append((f, direction, index, kind, f_r, other, -lam.real))
+        rows.append((f, direction, index, kind, f_r, other, -lam.real, j))
     rows.sort(key=lambda row: row[0])
+    return r, rows
+
+
+def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     out = []
-    for k, (f, direction, index, kind, f_r, other, decay) in enumerate(rows[:count]):
+    for k, (f, direction, index, kind, f_r, other, decay, _) in enumerate(
+            _seen(model, omega)[1][:count]):
         wd = 2 * math.pi * f
         decay = decay if abs(decay) > ROUND_OFF * wd else 0.0
         out.append(Whirl(speed_rpm=omega / RPM, mode=k + 1, frequency_hz=f, whirl=direction,
@@ -171,18 +179,8 @@ def synchronous_check(model: RotorModel, critical: list[CriticalSpeed]) -> float
 def mode_shapes(model: RotorModel, omega: float, count: int) -> np.ndarray:
     """The complex modal coordinates (N, count) of whirl_at's rows at the spin omega
     (rad/s), in the same order, each scaled to a largest entry of 1."""
-    from shaftfem.fem.rotor import roots
-
-    r = roots(model, omega)
-    n = omega / (2 * math.pi)
-    freqs = r.lam.imag / (2 * math.pi)
-    if model.frame == "rotating":
-        from shaftfem.fem.rotor import dominant_kinds, whirl_index
-
-        W, kinds = whirl_index(model, r.y), dominant_kinds(model, r.y)
-        freqs = np.array([abs(f + (n if w >= 0 else -n)) if k in WHIRLING and omega > 0 else f
-                          for f, w, k in zip(freqs, W, kinds)])
-    y = r.y[:, np.argsort(freqs, kind="stable")[:count]]
+    r, rows = _seen(model, omega)
+    y = r.y[:, [row[-1] for row in rows[:count]]]
     return y / y[np.argmax(np.abs(y), axis=0), np.arange(y.shape[1])]
 
 
