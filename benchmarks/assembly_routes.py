@@ -20,8 +20,6 @@ from _common import machine  # noqa: E402
 def main(size_mm: float, repeat: int) -> None:
     import numpy as np
 
-    from shaftfem.cad.mesh import mesh_shape
-    from shaftfem.cad.solid import build_shape
     from shaftfem.fem.assembly import (
         STIFFNESS_INTORDER,
         _gradients,
@@ -32,11 +30,12 @@ def main(size_mm: float, repeat: int) -> None:
     )
     from shaftfem.runtime import assembly_threads
     from shaftfem.scene.load import load_scene
+    from shaftfem.workflows import stages
     from shaftfem.workflows.pipeline import with_mesh
 
     scene = with_mesh(load_scene("paper2018"), size_mm)
-    shape = build_shape(scene.shaft, scene.grooves)
-    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh)
+    shape = stages.solid(scene)[1]
+    mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh)
     lam, mu = scene.material.lame
 
     def blocks():

@@ -61,19 +61,18 @@ def one(sizes_mm: tuple, geometry: int, orders: tuple) -> dict:
 
     from skfem import Basis
 
-    from shaftfem.cad.mesh import mesh_shape
-    from shaftfem.cad.solid import build_shape
     from shaftfem.fem.elements import element
     from shaftfem.scene.load import load_scene
+    from shaftfem.workflows import stages
 
     s, g, e = (x * 1e-3 for x in sizes_mm)
     scene = load_scene("paper2018")
     scene = replace(scene, max_dofs=5_000_000,
                     mesh=replace(scene.mesh, size=s, groove_size=g, edge_size=e, order=3,
                                  geometry_order=geometry))
-    shape = build_shape(scene.shaft, scene.grooves)
+    shape = stages.solid(scene)[1]
     t = time.perf_counter()
-    shaft_mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=False)
+    shaft_mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=False)
     mesh, straightened = shaft_mesh.to_skfem(), shaft_mesh.straightened
     # the signed volume on a rule exact for det J of a cubic map (degree 6, positive weights)
     b = Basis(mesh, element(3), intorder=7)

@@ -86,10 +86,9 @@ def ours_to_accuracy(sizes_mm: tuple, order: int, geometry_order: int = 2) -> di
     from dataclasses import replace
 
     from _common import peak_mb
-    from shaftfem.cad.mesh import mesh_shape
-    from shaftfem.cad.solid import build_shape
     from shaftfem.runtime import RunOptions
     from shaftfem.scene.load import load_scene
+    from shaftfem.workflows import stages
     from shaftfem.workflows.pipeline import Stopwatch, solve_mesh
 
     s, g, e = (x * 1e-3 for x in sizes_mm)
@@ -97,9 +96,9 @@ def ours_to_accuracy(sizes_mm: tuple, order: int, geometry_order: int = 2) -> di
     scene = replace(scene, max_dofs=2_000_000, mesh=replace(
         scene.mesh, size=s, groove_size=g, edge_size=e, order=order,
         geometry_order=geometry_order))
-    shape = build_shape(scene.shaft, scene.grooves)
+    shape = stages.solid(scene)[1]
     t = time.perf_counter()
-    mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=False)
+    mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh, use_cache=False)
     r = solve_mesh(scene, shape, mesh, RunOptions(use_cache=False), Stopwatch())
     return {"dofs": r.modes.n_dofs, "wall": time.perf_counter() - t,
             "f": list(map(float, r.modes.frequencies)), "peak": peak_mb()}

@@ -26,15 +26,14 @@ RUN = """
 import json, sys, time
 import shaftfem.runtime
 shaftfem.runtime.configure_threads()
-from shaftfem.cad.mesh import mesh_shape
-from shaftfem.cad.solid import build_shape
+from shaftfem.workflows import stages
 from shaftfem.fem.assembly import assemble, discretise
 from shaftfem.scene.load import load_scene
 from shaftfem.workflows.pipeline import with_mesh
 
 scene = with_mesh(load_scene(sys.argv[1]), order=5, geometry_order=3)
-shape = build_shape(scene.shaft, scene.grooves)
-mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh)
+shape = stages.solid(scene)[1]
+mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh)
 t0 = time.perf_counter()
 d = discretise(mesh)
 t1 = time.perf_counter()

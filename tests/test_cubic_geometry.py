@@ -291,16 +291,15 @@ def test_a_cubic_mesh_of_the_grooved_shaft_is_the_same_every_time():
     thread timing), every element valid."""
     from dataclasses import replace
 
-    from shaftfem.cad.mesh import mesh_shape
-    from shaftfem.cad.solid import build_shape
     from shaftfem.cad.tetrahedra import MIN_JACOBIAN_RATIO
     from shaftfem.scene.load import load_scene
+    from shaftfem.workflows import stages
 
     scene = load_scene("paper2018")
     settings = replace(scene.mesh, size=16e-3, groove_size=12e-3, edge_size=12e-3, order=4,
                        geometry_order=3)
-    shape = build_shape(scene.shaft, scene.grooves)
-    a, b = (mesh_shape(shape, scene.shaft, scene.grooves, settings, use_cache=False)
+    _, shape = stages.solid(scene)
+    a, b = (stages.mesh(shape, scene.shaft, scene.grooves, settings, use_cache=False)
             for _ in range(2))
     assert a.cells.shape[1] == 20 and a.n_elements > 1000
     assert np.array_equal(a.cells, b.cells)

@@ -71,3 +71,17 @@ def test_every_module_imports_only_what_the_layout_lists_above_it():
                 if rank[other] > rank[me]:
                     upward.append(f"{me} imports {other}")
     assert not upward, upward
+
+
+def test_the_cad_and_fem_stages_leave_the_cache_to_the_workflows():
+    """The stages are pure functions of their inputs: the cache (shaftfem.store) is a layer
+    around them (workflows.stages), never imported inside cad/ or fem/."""
+    inside = []
+    for path in sorted((SRC / "cad").glob("*.py")) + sorted((SRC / "fem").glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [node.module or ""] + [f"{node.module}.{a.name}" for a in node.names]
+                     if isinstance(node, ast.ImportFrom) else [])
+            if any(n == "shaftfem.store" for n in names):
+                inside.append(str(path.relative_to(SRC)))
+    assert not inside, inside

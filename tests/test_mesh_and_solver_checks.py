@@ -95,23 +95,22 @@ def test_the_retried_search_recovers_the_modes_a_bad_shift_skipped(cylinder, mon
 def test_mesh_cache_returns_the_same_mesh_and_misses_on_a_change(tmp_path, monkeypatch):
     from dataclasses import replace
 
-    from shaftfem.cad.mesh import mesh_shape
-    from shaftfem.cad.solid import build_shape
     from shaftfem.scene.load import load_scene
+    from shaftfem.workflows import stages
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")
     coarse = replace(scene.mesh, size=16e-3, groove_size=16e-3, edge_size=16e-3)
-    shape = build_shape(scene.shaft, None)
-    first = mesh_shape(shape, scene.shaft, None, coarse)
-    again = mesh_shape(shape, scene.shaft, None, coarse)
+    _, shape = stages.solid(scene)
+    first = stages.mesh(shape, scene.shaft, None, coarse)
+    again = stages.mesh(shape, scene.shaft, None, coarse)
     assert not first.from_cache and again.from_cache
     assert np.array_equal(first.points, again.points) and np.array_equal(first.cells, again.cells)
     assert again.straightened == first.straightened
-    finer = mesh_shape(shape, scene.shaft, None, replace(coarse, size=12e-3))
+    finer = stages.mesh(shape, scene.shaft, None, replace(coarse, size=12e-3))
     assert not finer.from_cache and finer.n_elements > first.n_elements
     short = replace(scene.shaft, length=0.5)
-    other = mesh_shape(build_shape(short, None), short, None, coarse)
+    other = stages.mesh(stages.solid(replace(scene, shaft=short))[1], short, None, coarse)
     assert not other.from_cache and other.points[:, 2].max() == pytest.approx(0.5)
     assert len(list((tmp_path / "meshes").glob("*.npz"))) == 3
 
@@ -122,15 +121,14 @@ def test_threaded_assembly_equals_one_piece(order, tmp_path, monkeypatch):
     cached mapping yet) they must equal scikit-fem's one-piece assembly."""
     from dataclasses import replace
 
-    from shaftfem.cad.mesh import mesh_shape
-    from shaftfem.cad.solid import build_shape
     from shaftfem.fem.assembly import MASS_INTORDER, scalar_mass, stiffness
     from shaftfem.scene.load import load_scene
+    from shaftfem.workflows import stages
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     scene = load_scene("plain_cylinder")
     settings = replace(scene.mesh, size=12e-3, groove_size=12e-3, edge_size=12e-3, order=order)
-    mesh = mesh_shape(build_shape(scene.shaft, None), scene.shaft, None, settings)
+    mesh = stages.mesh(stages.solid(scene)[1], scene.shaft, None, settings)
     mat = scene.material
     system = assemble(mesh, mat)
     one = mesh.to_skfem()

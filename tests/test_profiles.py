@@ -256,9 +256,9 @@ def test_a_step_file_from_another_cad_kernel_gives_the_parametric_frequencies():
     from cylinders, edge fillets and chamfers and a slot: imported, its frequencies lie
     within the two bounds of the same shaft's parametric scene."""
     import shaftfem
-    from shaftfem.cad.step import placed
+    from shaftfem.workflows import stages
 
-    step = placed(load_scene(EXAMPLES / "step_shaft.toml"))
+    step, _ = stages.solid(load_scene(EXAMPLES / "step_shaft.toml"))
     assert step.shaft.length == pytest.approx(0.300, abs=1e-9)
     # what the import prints: build123d's own volume of its solid, 249135.62 mm^3
     assert "300 mm long, 249136 mm^3, outer radius 12.5 to 17.5 mm" in step.shaft.step.summary
@@ -267,6 +267,26 @@ def test_a_step_file_from_another_cad_kernel_gives_the_parametric_frequencies():
     fa, fb = a.result.modes.frequencies, b.result.modes.frequencies
     allowed = a.estimate.relative_error + b.estimate.relative_error
     assert np.all(np.abs(fa / fb - 1) <= allowed), (fa / fb - 1, allowed)
+
+
+def test_a_step_file_is_imported_once_cold_and_never_warm(tmp_path, monkeypatch):
+    """What the import found is kept with the solid: a warm run places the scene and meshes
+    it without reading the STEP file again."""
+    import shaftfem.cad.step as step
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
+
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
+    calls = []
+    real = step.import_step
+    monkeypatch.setattr(step, "import_step", lambda *a, **k: calls.append(a) or real(*a, **k))
+    scene = with_mesh(load_scene(EXAMPLES / "step_shaft.toml"), size_mm=16)
+    cold = run_modes(scene)
+    assert len(calls) == 1 and not cold.shape.from_cache
+    warm = run_modes(scene)
+    assert len(calls) == 1 and warm.shape.from_cache and warm.mesh.from_cache
+    assert warm.scene.shaft == cold.scene.shaft and "300 mm long" in warm.scene.shaft.step.summary
+    # the warm solve starts from the kept shapes: the same modes to round-off
+    assert np.allclose(warm.modes.frequencies, cold.modes.frequencies, rtol=1e-9, atol=0)
 
 
 @pytest.mark.slow

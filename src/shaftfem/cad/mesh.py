@@ -1,4 +1,4 @@
-"""Tetrahedral meshes of the shaft's solid (cad.mesher meshes; this module checks and caches).
+"""Tetrahedral meshes of the shaft's solid (cad.mesher meshes; this module checks them).
 
 Second-order elements are curved onto the CAD surfaces; every element's
 Jacobian determinant is checked and a mesh with an inverted or degenerate
@@ -6,15 +6,15 @@ element is refused. A shaft without grooves is meshed as a 90-degree periodic
 sector and copied four times, so the mesh has the shaft's 4-fold symmetry and
 bending pairs come out exactly degenerate.
 
-Meshes are cached beside the shapes (``$SHAFTFEM_CACHE/meshes``), keyed by the
-solid's BREP, the shaft and groove parameters, the settings, the meshing
-constants and the gmsh version: a re-run of an unchanged scene (a new
-excitation, another margin) skips meshing and gets the very same nodes.
+A mesh is a function of the solid, the shaft and groove parameters and the
+settings; workflows.stages keeps it in the cache under a key of those (and the
+meshing constants and gmsh's version), so a re-run of an unchanged scene skips
+meshing and gets the very same nodes.
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -30,9 +30,9 @@ from shaftfem.cad.tetrahedra import (
 )
 from shaftfem.errors import BudgetError, MeshError
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
-from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
 
-# Bump when the meshing or the cache entry changes, so old cached meshes are not reused
+# Bump when the meshing or what is kept of a mesh changes, so that meshes made before are
+# not reused (workflows.stages keys them with it)
 # (2: entries carry checksums; 3: the checksum covers the arrays in name order; 4: they
 # keep the points from before the straightening; 5: cubic meshes without gmsh's
 # high-order optimiser).
@@ -134,51 +134,6 @@ def check_budget(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
     return n
 
 
-def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-             settings: MeshSettings, cuts: tuple[float, ...] = (),
-             hubs: tuple[tuple[float, float], ...] = ()) -> str:
-    """A hash of everything the mesh depends on: its sizes and the degree of its map,
-    not the element order on it (orders 2 to 5 share a quadratic mesh, 3 to 5 a cubic
-    one)."""
-    from shaftfem.cad.cubic import KEPT_CURVING, KEPT_RATIO
-    from shaftfem.cad.mesher import EDGE_GRADING, HUB_SIZE
-    from shaftfem.cad.session import gmsh_version
-
-    geometry = {k: v for k, v in asdict(settings).items() if k != "geometry_order"}
-    geometry["order"] = 1 if settings.order == 1 else settings.geometry_order
-    payload = {
-        "version": MESH_VERSION, "gmsh": gmsh_version(),
-        "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
-        **({"nodes": "parametric", "inside": "harmonic",
-            "folds": ["partly straightened, each on its own", list(KEPT_CURVING), KEPT_RATIO]}
-           if geometry["order"] == 3 else {}),
-        "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
-        "settings": geometry, **({"cuts": list(cuts)} if cuts else {}),
-        **({"hubs": [list(h) for h in hubs], "hub_size": HUB_SIZE} if hubs else {}),
-    }
-    return content_key(payload, files=() if shape.brep is None else (shape.brep,))
-
-
-def mesh_shape(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-               settings: MeshSettings, use_cache: bool = True,
-               cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = ()
-               ) -> ShaftMesh:
-    """Mesh the solid (or fetch the same mesh from the cache; without `use_cache` the
-    cache is neither read nor written); `cuts`: z (m) where the mesh must have faces
-    (the edges of seat bands); `hubs`: the parts' seats (z0, z1), meshed finer."""
-    key = mesh_key(shape, shaft, grooves, settings, cuts, hubs)
-    path = cache_dir() / "meshes" / f"{key}.npz"
-    if use_cache and path.exists():
-        fields, why = load_arrays(path, MESH_ARRAYS)
-        if fields is not None:  # the entry may be another element order's
-            return replace(mesh_from_arrays(fields), order=settings.order)
-        discard(f"mesh {key}", why, path)
-    mesh = _generate(shape, shaft, grooves, settings, cuts=cuts, hubs=hubs)
-    if use_cache:
-        save_arrays(path, mesh_arrays(mesh))
-    return mesh
-
-
 MESH_ARRAYS = ("points", "cells", "order", "ratio", "straightened", "unfolded")
 
 
@@ -198,17 +153,13 @@ def mesh_from_arrays(fields: dict) -> ShaftMesh:
                      from_cache=True, unfolded=fields["unfolded"] if len(fields["unfolded"]) else None)
 
 
-def remesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
-           sizes: tuple[np.ndarray, np.ndarray, np.ndarray],
-           cuts: tuple[float, ...] = ()) -> ShaftMesh:
-    """A new mesh of the solid following an element-size field (points (N, 3), tets
-    (E, 4), size at each point, m), not cached (shaftfem.workflows.adapt caches its last mesh)."""
-    return _generate(shape, shaft, grooves, settings, sizes, cuts)
-
-
-def _generate(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
-              settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = (),
-              hubs: tuple[tuple[float, float], ...] = ()) -> ShaftMesh:
+def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
+                  settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = (),
+                  hubs: tuple[tuple[float, float], ...] = ()) -> ShaftMesh:
+    """Mesh the solid and check every element's Jacobian. `cuts`: z (m) where the mesh
+    must have faces (the edges of seat bands); `hubs`: the parts' seats (z0, z1), meshed
+    finer; `sizes`: an element-size field to follow instead of the settings' (points
+    (N, 3), tets (E, 4), size at each point, m)."""
     from shaftfem.cad.mesher import mesh_solid
 
     points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts, hubs)

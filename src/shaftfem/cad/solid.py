@@ -1,4 +1,4 @@
-"""The shaft's solid: built once per set of parameters (occ.py), checked, cached.
+"""The shaft's solid: built from its parameters (cad.build) or imported (cad.step), checked.
 
 The check: the volume the grooves removed must match the analytic groove
 volume (profile.py) to 1 %; a boolean that went wrong fails here, loudly,
@@ -8,20 +8,19 @@ needs no CAD solid at all (its mesh is built from the parameters).
 
 from __future__ import annotations
 
-import json
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfem.cad.profile import groove_volume
+from shaftfem.cad.step import StepImport
 from shaftfem.errors import GeometryError
 from shaftfem.scene.model import Grooves, Shaft
-from shaftfem.store import atomic_path, cache_dir, checksum, content_key, discard, scratch_dir, write_json
 
-# Bump when the construction or the cache entry changes, so old cached shapes are not
-# reused (4: entries carry checksums; 5: profiles, keyways, STEP files and a reference
-# volume).
-CONSTRUCTION_VERSION = 5
+# Bump when the construction or what is kept of it changes, so that solids built before
+# are not reused (workflows.stages keys them with it; 5: profiles, keyways, STEP files
+# and a reference volume; 6: a STEP import's findings kept with its solid).
+CONSTRUCTION_VERSION = 6
 VOLUME_TOLERANCE = 0.01         # removed volume vs analytic groove volume
 PROFILE_TOLERANCE = 1e-6        # a revolved profile's volume vs its half-section's
 
@@ -41,6 +40,7 @@ class ShaftShape:
     n_volumes: int
     from_cache: bool
     reference_volume: float = 0.0
+    found: StepImport | None = None   # what a STEP import found (a STEP shaft's only)
 
     @property
     def groove_volume_error(self) -> float:
@@ -55,39 +55,29 @@ def plain_volume(shaft: Shaft, grooves_volume: float) -> float:
     return math.pi * shaft.radius**2 * shaft.length - grooves_volume
 
 
-def shape_key(shaft: Shaft, grooves: Grooves | None) -> str:
-    from shaftfem.cad.build import SECTIONS_PER_CELL
-
-    return content_key({"version": CONSTRUCTION_VERSION, "sections": SECTIONS_PER_CELL,
-                        "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None})
+def needs_cad(shaft: Shaft, grooves: Grooves | None) -> bool:
+    """Whether the shaft needs a CAD solid: a plain bar is meshed from its parameters."""
+    return not (grooves is None and shaft.plain)
 
 
-def build_shape(shaft: Shaft, grooves: Grooves | None, use_cache: bool = True) -> ShaftShape:
-    """Build (or fetch from the cache) the shaft's solid and check its volume; without
-    `use_cache` the cache is neither read nor written (the BREP lives in a scratch
-    folder for this process)."""
-    if grooves is None and shaft.plain:
+def make_shape(shaft: Shaft, grooves: Grooves | None, brep: Path | None,
+               step_key: str = "[shaft] step_file") -> ShaftShape:
+    """Build the shaft's solid into `brep` and check its volume (a plain bar: no file, its
+    volume analytic). A STEP solid is imported and placed once, and what the import found
+    comes with the shape (`step_key` names the scene key in its errors)."""
+    if not needs_cad(shaft, grooves):
         v = plain_volume(shaft, 0.0)
         return ShaftShape(brep=None, volume=v, groove_volume_analytic=0.0,
                           groove_volume_cad=0.0, n_volumes=1, from_cache=False,
                           reference_volume=v)
-    key = shape_key(shaft, grooves)
-    folder = (cache_dir() if use_cache else scratch_dir()) / "shapes"
-    brep, meta_file = folder / f"{key}.brep", folder / f"{key}.json"
-    if use_cache and (brep.exists() or meta_file.exists()):
-        meta, why = _verified(brep, meta_file)
-        if meta is not None:
-            return ShaftShape(brep=brep, from_cache=True, **meta)
-        discard(f"solid {key}", why, brep, meta_file)
-
-    with atomic_path(brep) as tmp:
-        meta = _built(shaft, grooves, tmp)
-    write_json(meta_file, {**meta, "brep_sha256": checksum(brep.read_bytes()),
-                           "sha256": _meta_checksum(meta)})
-    return ShaftShape(brep=brep, from_cache=False, **meta)
+    if brep is None:
+        raise ValueError("a shaft with grooves, a profile or a STEP file needs a BREP path")
+    meta, found = _built(shaft, grooves, brep, step_key)
+    return ShaftShape(brep=brep, from_cache=False, found=found, **meta)
 
 
-def _built(shaft: Shaft, grooves: Grooves | None, brep: Path) -> dict:
+def _built(shaft: Shaft, grooves: Grooves | None, brep: Path, step_key: str
+           ) -> tuple[dict, StepImport | None]:
     """Build the solid into `brep` and check it: the volume its grooves and keyways
     removed against theirs, analytic, to VOLUME_TOLERANCE; a profile's body, before them,
     against its revolved half-section to PROFILE_TOLERANCE. A STEP solid is imported and
@@ -95,9 +85,9 @@ def _built(shaft: Shaft, grooves: Grooves | None, brep: Path) -> dict:
     if shaft.step is not None:
         from shaftfem.cad.step import import_step
 
-        info = import_step(shaft.step, "[shaft] step_file", brep)
+        info = import_step(shaft.step, step_key, brep)
         return dict(volume=info.volume, groove_volume_analytic=0.0, groove_volume_cad=0.0,
-                    n_volumes=1, reference_volume=info.volume)
+                    n_volumes=1, reference_volume=info.volume), info
     from shaftfem.cad.build import build_solid
     from shaftfem.cad.outline import keyway_volume, outline, revolved_volume
 
@@ -127,29 +117,8 @@ def _built(shaft: Shaft, grooves: Grooves | None, brep: Path) -> dict:
             f"{body * 1e9:.1f} mm^3: the CAD construction went wrong")
     reference = plain_volume(shaft, v_grooves) if shaft.plain else volume
     return dict(volume=volume, groove_volume_analytic=v_grooves, groove_volume_cad=removed,
-                n_volumes=n_volumes, reference_volume=reference)
+                n_volumes=n_volumes, reference_volume=reference), None
 
 
 META_KEYS = ("volume", "groove_volume_analytic", "groove_volume_cad", "n_volumes",
              "reference_volume")
-
-
-def _meta_checksum(meta: dict) -> str:
-    return checksum(json.dumps({k: meta[k] for k in META_KEYS}, sort_keys=True).encode())
-
-
-def _verified(brep: Path, meta_file: Path) -> tuple[dict | None, str]:
-    """The cached solid's metadata if the entry is whole and unaltered, else (None, why).
-
-    The BREP's checksum is checked before anything reads it: OpenCASCADE can crash the
-    whole process on a damaged BREP."""
-    try:
-        stored = json.loads(meta_file.read_text())
-        meta = {k: stored[k] for k in META_KEYS}
-        if stored["sha256"] != _meta_checksum(meta):
-            return None, "its metadata do not match their checksum"
-        if stored["brep_sha256"] != checksum(brep.read_bytes()):
-            return None, "the BREP file does not match its checksum"
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        return None, f"{type(exc).__name__}: {exc}"
-    return meta, ""

@@ -8,7 +8,6 @@ wrong axis is seen at once.
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -33,6 +32,18 @@ class StepImport:
     volume: float
     outer_max: float
     outer_min: float
+
+    def as_dict(self) -> dict:
+        """The findings as JSON values (kept with the solid they were found on)."""
+        return {"axis": [list(p) for p in self.axis], "length": self.length,
+                "volume": self.volume, "outer_max": self.outer_max, "outer_min": self.outer_min}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> StepImport:
+        a, b = (tuple(float(v) for v in p) for p in d["axis"])
+        return cls(axis=(a, b), length=float(d["length"]),  # type: ignore[arg-type]
+                   volume=float(d["volume"]), outer_max=float(d["outer_max"]),
+                   outer_min=float(d["outer_min"]))
 
     def summary(self, name: str) -> str:
         a, b = (", ".join(f"{v * 1e3:.4g}" for v in p) for p in self.axis)
@@ -142,21 +153,14 @@ def _outer_radii(xyz: np.ndarray, length: float) -> tuple[float, float]:
     return float(outer.max()), float(outer.min())
 
 
-@functools.lru_cache(maxsize=8)
-def _imported(step: StepSolid, key: str) -> StepImport:
-    """One import per file and axis in a process (a bounded run places its scene twice)."""
-    return import_step(step, key)
-
-
-def placed(scene: Scene) -> Scene:
+def placed(scene: Scene, info: StepImport) -> Scene:
     """A scene whose shaft is a STEP file, with the solid's length and largest diameter as
-    its import finds them (the summary kept for the run's header), and the checks that
-    need them done: the seats and the response point on the shaft, the element size not
-    above its length. Any other scene as it is."""
+    its import found them (`info`; the summary kept for the run's header), and the checks
+    that need them done: the seats and the response point on the shaft, the element size
+    not above its length. Any other scene as it is."""
     shaft = scene.shaft
     if shaft.step is None or shaft.length > 0:
         return scene
-    info = _imported(shaft.step, where(scene.source, "shaft", "step_file"))
     step = replace(shaft.step, summary=info.summary(Path(shaft.step.path).name))
     shaft = replace(shaft, length=info.length, diameter=2 * info.outer_max, step=step)
     check_seats(scene.source, shaft, None, scene.supports, scene.attachments, scene.mesh)

@@ -93,6 +93,13 @@ class Shaft:
         """The largest outer radius, m."""
         return 0.5 * self.diameter
 
+    def unplaced(self) -> Shaft:
+        """A STEP shaft as its scene gives it, before its import measured it (length and
+        diameter 0, no summary); any other shaft as it is."""
+        if self.step is None:
+            return self
+        return replace(self, length=0.0, diameter=0.0, step=replace(self.step, summary=""))
+
     @property
     def plain(self) -> bool:
         """A solid round bar (grooved or not): no steps, bore, keyway, chamfer or STEP."""

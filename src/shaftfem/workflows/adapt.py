@@ -27,13 +27,11 @@ from shaftfem.cad.mesh import (
     MESH_ARRAYS,
     ShaftMesh,
     check_budget,
+    generate_mesh,
     mesh_arrays,
     mesh_from_arrays,
-    mesh_key,
-    mesh_shape,
-    remesh,
 )
-from shaftfem.cad.solid import ShaftShape, build_shape
+from shaftfem.cad.solid import ShaftShape
 from shaftfem.fem.estimate import (
     SAFETY,
     ErrorEstimate,
@@ -47,6 +45,7 @@ from shaftfem.fem.estimate import (
 from shaftfem.fem.result import ModalResult
 from shaftfem.runtime import RunOptions
 from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
+from shaftfem.workflows import stages
 from shaftfem.workflows.pipeline import Stopwatch, check_order, solve_mesh, with_modes
 
 if TYPE_CHECKING:
@@ -133,9 +132,9 @@ def size_field(mesh: ShaftMesh, shares: np.ndarray, target: float, largest: floa
 
 def adapt_key(scene: Scene, shape: ShaftShape, target: float, max_dofs: int) -> str:
     """A hash of everything the adapted mesh depends on."""
-    payload = {"version": ADAPT_VERSION, "mesh": mesh_key(shape, scene.shaft, scene.grooves,
-                                                           scene.mesh, scene.seat_cuts(),
-                                                           scene.hubs()),
+    mesh = stages.mesh_key(shape, scene.shaft, scene.grooves, scene.mesh, scene.seat_cuts(),
+                           scene.hubs())
+    payload = {"version": ADAPT_VERSION, "mesh": mesh,
                "order": scene.mesh.order,  # the mesh's key leaves the element order out
                "target": target, "max_dofs": max_dofs, "modes": scene.modes.count,
                "max_frequency": scene.modes.max_frequency,
@@ -176,23 +175,22 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int,
                  options: RunOptions = RunOptions()) -> Adapted:
     """Solve `scene` on meshes adapted until every frequency's bound is below `target`
     (fraction) or the next mesh would exceed `max_dofs`."""
-    from shaftfem.cad.step import placed
-
     watch = Stopwatch()
-    scene = placed(scene)
     check_order(scene)
     check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
     with watch.lap("cad"):
-        shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)
+        scene, shape = stages.solid(scene, use_cache=options.use_cache)
+    if scene.shaft.step is not None:  # its budget now that the import measured it
+        check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
     path = cache_dir() / "adapted" / f"{adapt_key(scene, shape, target, max_dofs)}.npz"
     if options.use_cache and path.exists():
         cached = _cached(path, scene, shape, target, max_dofs, options, watch)
         if cached is not None:
             return cached
     with watch.lap("mesh"):
-        mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
-                          use_cache=options.use_cache, cuts=scene.seat_cuts(),
-                          hubs=scene.hubs())
+        mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh,
+                           use_cache=options.use_cache, cuts=scene.seat_cuts(),
+                           hubs=scene.hubs())
     return _adapt(scene, shape, mesh, target, max_dofs, options, watch, path)
 
 
@@ -250,8 +248,8 @@ def _adapt(scene: Scene, shape: ShaftShape, mesh: ShaftMesh, target: float, max_
         options.say(f"adaptive round {len(rounds) + 1}: remeshing (about "
                     f"{min(predicted, max_dofs)} DOFs)")
         with watch.lap("mesh"):
-            mesh = remesh(shape, scene.shaft, scene.grooves, scene.mesh,
-                          (mesh.points, mesh.cells[:, :4], sizes), scene.seat_cuts())
+            mesh = generate_mesh(shape, scene.shaft, scene.grooves, scene.mesh,
+                                 (mesh.points, mesh.cells[:, :4], sizes), scene.seat_cuts())
     if est is None or prev is None:
         raise AssertionError("an adaptive run ends with a bounded round")
     if options.use_cache:

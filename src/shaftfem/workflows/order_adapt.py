@@ -87,15 +87,13 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
                        options: RunOptions = RunOptions()) -> Adapted:
     """Solve `scene` (order 3 to 5) with element orders raised until every frequency's
     bound is below `target` (fraction) or the next space would exceed `max_dofs`."""
-    from shaftfem.cad.mesh import BYTES_PER_DOF, check_budget, estimate_dofs, mesh_shape
-    from shaftfem.cad.solid import build_shape
-    from shaftfem.cad.step import placed
+    from shaftfem.cad.mesh import BYTES_PER_DOF, check_budget, estimate_dofs
     from shaftfem.errors import BudgetError, SceneError
     from shaftfem.store import cache_dir
+    from shaftfem.workflows import stages
     from shaftfem.workflows.pipeline import Stopwatch, check_order
 
     watch = Stopwatch()
-    scene = placed(scene)
     check_order(scene)
     if scene.mesh.geometry_order == 3:
         # order 3 is the lowest that moves a cubic map rigidly, and the first rounds'
@@ -119,10 +117,12 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
             f"times the budget of {max_dofs} DOFs; use a larger --mesh-size, a lower "
             "--order, or raise the budget (--max-dofs)")
     with watch.lap("cad"):
-        shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)
+        scene, shape = stages.solid(scene, use_cache=options.use_cache)
+    if scene.shaft.step is not None:  # its budget now that the import measured it
+        check_budget(scene.shaft, scene.grooves, replace(scene.mesh, order=2), max_dofs)
     with watch.lap("mesh"):
-        mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
-                          use_cache=options.use_cache)
+        mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh,
+                           use_cache=options.use_cache)
     path = (cache_dir() / "adapted"
             / f"orders-{adapt_key(scene, shape, target, max_dofs)}.npz")
     z = _load(path, mesh.n_elements) if options.use_cache and path.exists() else None

@@ -94,26 +94,33 @@ def with_modes(scene: Scene, count: int | None = None,
     return replace(scene, modes=req)
 
 
+def check_buildable(scene: Scene) -> None:
+    """The scene's element orders and DOF budget, checked before anything is built (a
+    STEP shaft's budget again once its import has measured it: before, its length is 0)."""
+    from shaftfem.cad.mesh import check_budget
+
+    check_order(scene)
+    check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
+
+
 def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
     """Build, mesh, assemble and solve `scene`: the modes without a bound, with every
     intermediate result. Raises GeometryError, MeshError or SolverError, each naming
     what failed."""
-    from shaftfem.cad.mesh import check_budget, mesh_shape
-    from shaftfem.cad.solid import build_shape
-    from shaftfem.cad.step import placed
+    from shaftfem.workflows import stages
 
     watch = Stopwatch()
-    scene = placed(scene)
-    check_order(scene)
-    check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
+    check_buildable(scene)
     options.say("building the shaft's solid (CAD)")
     with watch.lap("cad"):
-        shape = build_shape(scene.shaft, scene.grooves, use_cache=options.use_cache)
+        scene, shape = stages.solid(scene, use_cache=options.use_cache)
+    if scene.shaft.step is not None:
+        check_buildable(scene)
     options.say(f"CAD done ({'from cache' if shape.from_cache else 'built'}), meshing")
     with watch.lap("mesh"):
-        mesh = mesh_shape(shape, scene.shaft, scene.grooves, scene.mesh,
-                          use_cache=options.use_cache, cuts=scene.seat_cuts(),
-                          hubs=scene.hubs())
+        mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh,
+                           use_cache=options.use_cache, cuts=scene.seat_cuts(),
+                           hubs=scene.hubs())
     options.say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
                 "assembling K and M")
     return solve_mesh(scene, shape, mesh, options, watch)
