@@ -21,9 +21,9 @@ faster because it touches each scalar gradient once instead of 30 vector ones
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
-from threading import Lock
 from typing import Any
 
 import numpy as np
@@ -246,27 +246,34 @@ def _gradients(basis) -> np.ndarray:
 def _sum_over_chunks(kernel, n_elements: int, n_local: int, width: int, pattern: Pattern,
                      threads: int) -> np.ndarray:
     """The (n_blocks, width) sum of kernel(chunk), (E, n_local, n_local, width), over
-    chunks of elements, in `threads` threads (NumPy's products release the GIL) adding
-    into one array. The kernels only read arrays made before: scikit-fem fills a mesh's
-    mapping lazily and not thread-safely (a cold P1 stiffness once came out 18 % wrong),
-    so no scikit-fem call runs in the threads."""
+    chunks of elements: the chunks' block sums made on `threads` threads (NumPy's products
+    release the GIL), added in the chunks' order, so that K and M come out the same to the
+    last bit on every run. The kernels only read arrays made before: scikit-fem fills a
+    mesh's mapping lazily and not thread-safely (a cold P1 stiffness once came out 18 %
+    wrong), so no scikit-fem call runs in the threads."""
     size = max(1, CHUNK_PAIRS // n_local**2)
     chunks = [slice(i, min(i + size, n_elements)) for i in range(0, n_elements, size)]
     total = np.zeros((pattern.n_blocks + 1, width))  # the last row: the pairs left out
-    lock = Lock()
 
-    def work(part):
-        for c in part:
-            touched, sums = pattern.sum_blocks(kernel(c), c)
-            with lock:
-                total[touched] += sums
+    def sums(c: slice) -> tuple[np.ndarray | slice, np.ndarray]:
+        return pattern.sum_blocks(kernel(c), c)
 
-    parts = [chunks[i::threads] for i in range(threads) if chunks[i::threads]]
-    if len(parts) == 1:
-        work(parts[0])
-    else:
-        with ThreadPoolExecutor(len(parts)) as pool:
-            list(pool.map(work, parts))
+    def add(touched: np.ndarray | slice, block_sums: np.ndarray) -> None:
+        total[touched] += block_sums
+
+    if threads <= 1 or len(chunks) == 1:
+        for c in chunks:
+            add(*sums(c))
+        return total[:pattern.n_blocks]
+    # a few chunks ahead at most, so that the sums waiting to be added stay small
+    with ThreadPoolExecutor(threads) as pool:
+        waiting: deque[Future] = deque()
+        for c in chunks:
+            waiting.append(pool.submit(sums, c))
+            if len(waiting) > 2 * threads:
+                add(*waiting.popleft().result())
+        while waiting:
+            add(*waiting.popleft().result())
     return total[:pattern.n_blocks]
 
 
