@@ -2,8 +2,9 @@
 
     import shaftfem
     scene = shaftfem.load_scene("paper2018")          # a shipped scene, or a file
-    run = shaftfem.run_bounded(scene)                 # modes and their error bounds
-    run.result.modes.frequencies, run.estimate.relative_error
+    run = shaftfem.solve(scene)                       # modes and their error bounds
+    run.frequencies, run.bounds, run.table()          # Hz, fractions, one row per mode
+    run.plot_mode(1); run.plot_frequencies(); run.save("out/run")
     shaftfem.run_design(scene, "out/paper2018")       # sizing, check, files, report
     shaftfem.run_campbell(shaftfem.load_scene("examples/overhung_spindle.toml"))  # turning
 
@@ -24,6 +25,10 @@ __version__ = "0.1.0"
 _LAZY = {
     "Scene": "shaftfem.scene.model",
     "load_scene": "shaftfem.scene.load",
+    **{name: "shaftfem.scene.builders" for name in (
+        "make_scene", "vary", "Shaft", "Section", "Keyway", "Material", "Mesh", "Grooves",
+        "Support", "Attachment", "Excitation", "Rotor", "Unbalance", "Resonance",
+        "ModesWanted", "Response")},
     "RunOptions": "shaftfem.runtime",
     "ModalResult": "shaftfem.fem.result",
     "run_modes": "shaftfem.workflows.pipeline",
@@ -36,6 +41,9 @@ _LAZY = {
     "run_design": "shaftfem.workflows.design",
     "Modes": "shaftfem.fem.modes",
     "run_campbell": "shaftfem.workflows.campbell",
+    "Run": "shaftfem.workflows.results",
+    "solve": "shaftfem.workflows.results",
+    "load_run": "shaftfem.workflows.results",
     "Campbell": "shaftfem.fem.whirl",
     "ErrorEstimate": "shaftfem.fem.estimate",
 }
@@ -63,9 +71,28 @@ if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
     from shaftfem.fem.whirl import Campbell
     from shaftfem.runtime import RunOptions
+    from shaftfem.scene.builders import (
+        Attachment,
+        Excitation,
+        Grooves,
+        Keyway,
+        Material,
+        Mesh,
+        ModesWanted,
+        Resonance,
+        Response,
+        Rotor,
+        Section,
+        Shaft,
+        Support,
+        Unbalance,
+        make_scene,
+        vary,
+    )
     from shaftfem.scene.load import load_scene
     from shaftfem.scene.model import Scene
     from shaftfem.workflows.bounded import Bounded, run_bounded, with_accuracy
     from shaftfem.workflows.campbell import run_campbell
     from shaftfem.workflows.design import DesignResult, run_design
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
+    from shaftfem.workflows.results import Run, load_run, solve

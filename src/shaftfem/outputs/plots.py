@@ -129,3 +129,36 @@ def response_figure(fr, marks: list[tuple[str, float, float]], title: str = ""):
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
+
+
+def modes_figure(frequencies, low, high, kinds: list[str],
+                 harmonics: list[tuple[str, float]], margin: float):
+    """Each natural frequency (Hz) as a marker with its interval [low, high] (None: not
+    bounded), beside each excitation harmonic (label, Hz) with its band of +- `margin`
+    (fraction): a mode inside a band is too near."""
+    import numpy as np
+
+    fig, ax = _figure((7.5, 3.2))
+    f = np.asarray(frequencies, float)
+    colours = {"bending": "tab:blue", "torsion": "tab:red", "axial": "tab:green",
+               "mixed": "tab:grey"}
+    for kind in dict.fromkeys(kinds):
+        at = np.array([k == kind for k in kinds])
+        ax.plot(f[at], np.flatnonzero(at) + 1, "o", color=colours.get(kind, "black"),
+                label=kind)
+    if low is not None and high is not None:
+        ax.errorbar(f, np.arange(1, len(f) + 1), fmt="none", ecolor="black", capsize=3,
+                    xerr=[f - np.asarray(low), np.asarray(high) - f], lw=1)
+    for label, fk in harmonics:
+        ax.axvspan(fk * (1 - margin), fk * (1 + margin), color="tab:orange", alpha=0.15, lw=0)
+        ax.axvline(fk, color="tab:orange", lw=1)
+        ax.annotate(label, (fk, len(f) + 0.9), fontsize=7, ha="right", va="top",
+                    rotation=90, color="tab:orange")
+    # excitations and modes often lie decades apart: a log axis shows both
+    ax.set_xscale("log")
+    ax.set_xlabel("frequency, Hz (orange: excitation harmonics and their required margin)")
+    ax.set_ylabel("mode")
+    ax.set_ylim(0.3, len(f) + 1)
+    ax.grid(True, axis="x", alpha=0.3)
+    ax.legend(fontsize=7, loc="lower right")
+    return fig

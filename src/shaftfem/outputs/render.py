@@ -32,7 +32,11 @@ import numpy as np
 from shaftfem.store import atomic_path, staged_directory
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.fem.result import ModalResult
+    from shaftfem.scene.model import Scene
 
 GEOMETRY_SIZE = (1600, 500)
 PANEL_SIZE = (800, 200)        # pixels per mode in modes.png, two modes a row
@@ -57,12 +61,13 @@ def load_pyvista():
     return pv
 
 
-def plotter(pv, size: tuple[int, int], samples: int = 4, **kwargs):
-    """An off-screen plotter on white with `samples` x multi-sampling (pyvista's default
-    of 8 costs half again the time in software rendering, for edges no one sees)."""
+def plotter(pv, size: tuple[int, int], samples: int = 4, off_screen: bool = True, **kwargs):
+    """A plotter (off-screen by default) on white with `samples` x multi-sampling
+    (pyvista's default of 8 costs half again the time in software rendering, for edges no
+    one sees)."""
     theme = pv.themes.DocumentTheme()
     theme.multi_samples = samples
-    p = pv.Plotter(off_screen=True, window_size=size, theme=theme, **kwargs)
+    p = pv.Plotter(off_screen=off_screen, window_size=size, theme=theme, **kwargs)
     p.set_background("white")
     return p
 
@@ -74,12 +79,6 @@ def _surface(grid, subdivision: int):
                                     algorithm="dataset_surface")
     except TypeError:  # pyvista before 0.47 has no `algorithm`
         return grid.extract_surface(nonlinear_subdivision=subdivision)
-
-
-def _grid(pv, result: ModalResult):
-    from shaftfem.outputs.vtk import grid
-
-    return pv.wrap(grid(result.mesh, scale=1e3))  # mm, as a designer reads it
 
 
 @dataclass(frozen=True)
@@ -107,23 +106,47 @@ class Drawing:
 
 
 def drawing(pv, result: ModalResult, subdivision: int = 1) -> Drawing:
-    """Every mode on one extracted surface: its displacement scaled for drawing
+    """Every mode of a run on one extracted surface (see drawing_of)."""
+    m = result.modes
+    return drawing_of(pv, result.scene, result.mesh, m.frequencies, m.kinds,
+                      result.shapes_at_points(), subdivision)
+
+
+def drawing_of(pv, scene: Scene, mesh: ShaftMesh, frequencies: np.ndarray,
+               kinds: Sequence[str], shapes: np.ndarray, subdivision: int = 1) -> Drawing:
+    """Every mode (`shapes` (n_modes, n_points, 3) at the mesh's points, with its frequency
+    in Hz and kind) on one extracted surface: its displacement scaled for drawing
     (DRAWN_FRACTION of the length, TWIST_FRACTION of the radius for torsion)."""
-    m, shaft = result.modes, result.scene.shaft
+    from shaftfem.outputs.vtk import grid as vtk_grid
+
+    shaft = scene.shaft
     length, radius = shaft.length * 1e3, shaft.radius * 1e3
-    grid = _grid(pv, result)
+    grid = pv.wrap(vtk_grid(mesh, scale=1e3))  # mm, as a designer reads it
     planes = []
-    for k, u in enumerate(result.shapes_at_points()):
+    for k, u in enumerate(shapes):
         mag = np.linalg.norm(u, axis=1)
-        reach = TWIST_FRACTION * radius if m.kinds[k] == "torsion" else DRAWN_FRACTION * length
+        reach = TWIST_FRACTION * radius if kinds[k] == "torsion" else DRAWN_FRACTION * length
         grid.point_data[f"u{k + 1}"] = u * (reach / mag.max())
         grid.point_data[f"c{k + 1}"] = mag / mag.max()
         planes.append(_plane(u))
     surface, rest = _surfaces(grid, subdivision, length)
     titles = [f"mode {k + 1}: {f:.1f} Hz, {kind}" for k, (f, kind)
-              in enumerate(zip(m.frequencies, m.kinds))]
+              in enumerate(zip(frequencies, kinds))]
     return Drawing(grid=grid, surface=surface, rest=rest, planes=planes, titles=titles,
                    length=length)
+
+
+def mode_view(d: Drawing, k: int, scene: Scene, size: tuple[int, int] = (900, 400),
+              off_screen: bool = True):
+    """A plotter with mode k of drawing `d` in it, framed above its colour bar: the picture
+    a notebook shows (`show()`) or saves (`screenshot(path)`)."""
+    pv = load_pyvista()
+    p = plotter(pv, size, off_screen=off_screen, shape=(2, 1), border=False,
+                row_weights=[size[1] - BAR_HEIGHT, BAR_HEIGHT])
+    _draw_mode(pv, p, d, k, scene, size[0] / (size[1] - BAR_HEIGHT))
+    p.subplot(1, 0)
+    _colour_bar(pv, p)
+    return p
 
 
 def _surfaces(grid, subdivision: int, length: float):
@@ -299,6 +322,19 @@ def _draw_mode(pv, p, d: Drawing, k: int, scene, aspect: float):
     return moving
 
 
+def _colour_bar(pv, p) -> None:
+    """The colour bar of |u| / max |u| in the current (sub)plot, its words above it."""
+    bar = pv.Line((0, 0, 0), (1, 0, 0), resolution=8)
+    bar.point_data[COLOUR_LABEL] = np.linspace(0.0, 1.0, bar.n_points)
+    p.add_mesh(bar, scalars=COLOUR_LABEL, cmap=CMAP, clim=(0.0, 1.0), opacity=0.0,
+               show_scalar_bar=False)
+    sb = p.add_scalar_bar(title=COLOUR_LABEL, vertical=False, position_x=0.3, position_y=0.28,
+                          width=0.4, height=0.42, color="black", label_font_size=12,
+                          n_labels=6, fmt="%.1f")
+    sb.SetTitle("")  # said above the bar instead: VTK sets a bar's title onto its numbers
+    p.add_text(COLOUR_LABEL, position="upper_edge", font_size=9, color="black")
+
+
 def render_modes(result: ModalResult, path: str | Path, d: Drawing | None = None) -> Path:
     """One PNG with a panel per mode (two a row), deformed, coloured by |u| / max |u|,
     with one colour bar and the drawing scale stated below them."""
@@ -314,15 +350,7 @@ def render_modes(result: ModalResult, path: str | Path, d: Drawing | None = None
         p.subplot(k // cols, k % cols)
         _draw_mode(pv, p, d, k, result.scene, w / h)
     p.subplot(rows, 0)
-    bar = pv.Line((0, 0, 0), (1, 0, 0), resolution=8)
-    bar.point_data[COLOUR_LABEL] = np.linspace(0.0, 1.0, bar.n_points)
-    p.add_mesh(bar, scalars=COLOUR_LABEL, cmap=CMAP, clim=(0.0, 1.0), opacity=0.0,
-               show_scalar_bar=False)
-    sb = p.add_scalar_bar(title=COLOUR_LABEL, vertical=False, position_x=0.3, position_y=0.28,
-                          width=0.4, height=0.42, color="black", label_font_size=12,
-                          n_labels=6, fmt="%.1f")
-    sb.SetTitle("")  # said above the bar instead: VTK sets a bar's title onto its numbers
-    p.add_text(COLOUR_LABEL, position="upper_edge", font_size=9, color="black")
+    _colour_bar(pv, p)
     scene = result.scene
     glyphs = (["orange: bearings"] if scene.held else []) + (
         ["blue: parts"] if scene.attachments else [])

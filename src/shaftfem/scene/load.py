@@ -189,19 +189,31 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
     target = mesh_t["target_error_percent"]
     for message in implausible(source, shaft):
         warnings.warn(message, PlausibilityWarning, stacklevel=2)
-    return Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,
-                 material=material, grooves=grooves, mesh=mesh,
-                 excitations=_excitations(source, data), sizing=sizing,
-                 required_margin=res_t["required_margin_percent"] / 100,
-                 modes=ModeRequest(count=t["modes"]["count"],
-                                   max_frequency=t["modes"]["max_frequency_hz"]),
-                 target_error=None if target is None else target / 100,
-                 max_dofs=mesh_t["max_dofs"], supports=supports, attachments=attachments,
-                 damping_ratio=t["response"]["damping_ratio_percent"] / 100,
-                 response_point=None if point is None else point * MM,
-                 criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
-                 rotor=_rotor(source, data, shaft),
-                 unbalances=_unbalances(source, data, shaft, attachments))
+    scene = Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,
+                  material=material, grooves=grooves, mesh=mesh,
+                  excitations=_excitations(source, data), sizing=sizing,
+                  required_margin=res_t["required_margin_percent"] / 100,
+                  modes=ModeRequest(count=t["modes"]["count"],
+                                    max_frequency=t["modes"]["max_frequency_hz"]),
+                  target_error=None if target is None else target / 100,
+                  max_dofs=mesh_t["max_dofs"], supports=supports, attachments=attachments,
+                  damping_ratio=t["response"]["damping_ratio_percent"] / 100,
+                  response_point=None if point is None else point * MM,
+                  criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
+                  rotor=_rotor(source, data, shaft),
+                  unbalances=_unbalances(source, data, shaft, attachments))
+    return scene.with_tables(_tables(data, shaft))
+
+
+def _tables(data: dict, shaft: Shaft) -> dict:
+    """The scene's tables as they will be written back: a STEP file by its full path, so
+    that the file found it from anywhere."""
+    import copy
+
+    tables = copy.deepcopy(data)
+    if shaft.step is not None:
+        tables["shaft"]["step_file"] = str(Path(shaft.step.path).resolve())
+    return tables
 
 
 def _check_tables(source: str, data: dict) -> None:

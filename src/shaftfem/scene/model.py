@@ -3,7 +3,8 @@ rad/s, Hz), made from a scene file by shaftfem.scene.load."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, fields, replace
+from pathlib import Path
 
 from shaftfem.scene.schema import (
     DEFAULT_DAMPING_PERCENT,
@@ -386,6 +387,56 @@ class Scene:
     hanging_free: bool = False
     rotor: Rotor | None = None  # [rotor]: the shaft turns (None: it stands still)
     unbalances: tuple[Unbalance, ...] = ()  # [[unbalance]]: what drives it at 1x
+    # the tables the scene was made from, in the file's units (what to_toml writes), and
+    # the scene they made: a copy changed in code since (with_mesh, free) is told apart
+    tables: dict | None = field(default=None, compare=False, repr=False)
+    made: tuple | None = field(default=None, compare=False, repr=False)
+
+    def with_tables(self, tables: dict) -> Scene:
+        """The scene, noting that `tables` (file units) describe it as it is now."""
+        return replace(self, tables=tables, made=self._content())
+
+    def _content(self) -> tuple:
+        """What the scene says, its name and file aside (a STEP shaft before placing)."""
+        return tuple(self.shaft.unplaced() if f.name == "shaft" else getattr(self, f.name)
+                     for f in fields(self) if f.compare and f.name not in ("name", "source"))
+
+    def file_tables(self) -> dict:
+        """The tables (file units) that make this scene. A scene changed in code since by a
+        function that does not keep them (with_mesh, with_modes, free) has none: make such
+        a change with shaftfem.vary, which does."""
+        if self.tables is None or self.made != self._content():
+            from shaftfem.errors import SceneError
+
+            raise SceneError(
+                f"{self.source}: this scene was changed in code after it was made (by "
+                "with_mesh, with_modes, free or the like), so no scene file describes it; "
+                "make the change with shaftfem.vary(scene, ...) instead")
+        return self.tables
+
+    def to_toml(self, path: str | Path | None = None) -> str:
+        """The scene as a scene file (TOML, file units), written to `path` when given: what
+        `shaftfem modes FILE` reads back into this very scene (see file_tables)."""
+        import tomli_w
+
+        tables = self.file_tables()
+        many = {k for k, v in tables.items()
+                if isinstance(v, list) and v and all(isinstance(e, dict) for e in v)}
+        top = {k: v for k, v in tables.items() if not isinstance(v, dict) and k not in many}
+        # each table under its own header, an array's entries as [[name]] (as people
+        # write scene files; tomli_w would put short ones inline)
+        chunks = [tomli_w.dumps(top)] if top else []
+        for k, v in tables.items():
+            if isinstance(v, dict):
+                chunks.append(tomli_w.dumps({k: v}))
+            elif k in many:
+                chunks += [f"[[{k}]]\n" + tomli_w.dumps(e) for e in v]
+        text = "\n".join(chunks)
+        if path is not None:
+            from shaftfem.store import write_text
+
+            write_text(path, text)
+        return text
 
     @property
     def held(self) -> tuple[Support, ...]:
