@@ -1,20 +1,24 @@
 # The two commands of the README:
 #   make run    set up .venv from the lock (what the run needs) and run `shaftfem design`
 #   make test   set up .venv from the lock (plus test tools and the cross-check programs)
-#               and run the tests (.ci/run calls this)
+#               and run the tests, one worker per core (.ci/run calls this)
 # And for developers:
+#   make test-all     the tests with the long cases marked slow too (about an hour)
 #   make lint         ruff and mypy, as CI runs them
 #   make lock         upgrade the lock to the newest versions the ranges admit, then test
 #   make test-latest  the tests against the newest versions, in .venv-latest, lock untouched
 #   make docs         regenerate the pages made from the code, then build the docs site
 #                     strictly (warnings are errors) into out/docs
-.PHONY: run test lint lock test-latest docs
+.PHONY: run test test-all lint lock test-latest docs
 run:
 	bash scripts/setup.sh run
 	.venv/bin/shaftfem design
 test:
 	bash scripts/setup.sh test
-	.venv/bin/python -m pytest -q
+	.venv/bin/python -m pytest -q -n auto
+test-all:
+	bash scripts/setup.sh test
+	.venv/bin/python -m pytest -q -n auto -m "slow or not slow"
 lint:
 	bash scripts/setup.sh test
 	.venv/bin/ruff check src tests benchmarks scripts examples docs
