@@ -235,6 +235,7 @@ def test_geometry_order_3_needs_the_hierarchical_elements(tmp_path):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 def test_order_5_on_cubic_geometry(cylinder):
     """Order 5 on a cubic mesh (16 mm): six rigid modes at zero strain; its bound from
     orders 3 and 4 inside its space (three nested orders) measures a rate on every mode,
@@ -285,6 +286,7 @@ def test_a_folded_element_keeps_what_curving_it_can():
             assert share < 1e-12
 
 
+@pytest.mark.slow
 def test_a_cubic_mesh_of_the_grooved_shaft_is_the_same_every_time():
     """The paper's shaft meshed twice at 16/12/12 mm with cubic geometry, from nothing
     cached: the same points and cells, bit for bit (nothing in the route depends on

@@ -113,10 +113,10 @@ def test_rigid_motions_are_rigid(cylinder):
 
 
 def test_other_start_vectors_give_the_same_modes_with_small_residuals(paper, monkeypatch):
-    """The paper's shaft from three other Krylov starts: every elastic residual below
-    1e-8 and the same frequencies."""
+    """The paper's shaft from two other Krylov starts: every elastic residual below 1e-8
+    and the same frequencies."""
     s = paper.system
-    for seed in (1, 2, 3):
+    for seed in (1, 2):
         monkeypatch.setattr(eigen, "START_SEED", 7919 * seed)
         m = modal_analysis(s)
         assert m.residuals.max() < 1e-8

@@ -269,6 +269,27 @@ def test_a_step_file_from_another_cad_kernel_gives_the_parametric_frequencies():
     assert np.all(np.abs(fa / fb - 1) <= allowed), (fa / fb - 1, allowed)
 
 
+def test_a_step_file_of_overlapping_solids_is_refused_saying_where(tmp_path, capsys):
+    """A sleeve exported over the shaft (two solids sharing volume) is no one body: refused
+    at import, exit 2, naming the solids and where they overlap."""
+    from shaftfem.cli import main
+
+    # written in a process of its own: OpenCASCADE keeps its STEP unit for the process
+    make = ("import gmsh, sys; gmsh.initialize(); gmsh.option.setNumber('General.Terminal', 0);"
+            "gmsh.model.occ.addCylinder(0, 0, 0, 0, 0, 300, 15);"
+            "gmsh.model.occ.addCylinder(0, 0, 100, 0, 0, 50, 25);"
+            "gmsh.model.occ.synchronize(); gmsh.write(sys.argv[1]); gmsh.finalize()")
+    subprocess.run([sys.executable, "-c", make, str(tmp_path / "sleeve.step")], check=True,
+                   capture_output=True)
+    (tmp_path / "s.toml").write_text('[shaft]\nstep_file = "sleeve.step"\n[mesh]\n'
+                                     'element_size_mm = 8.0\n' + MATERIAL)
+    capsys.readouterr()
+    assert main(["modes", str(tmp_path / "s.toml"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "solids 1 and 2 overlap" in err and "z 100 to 150 mm" in err, err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
 def test_a_step_file_is_imported_once_cold_and_never_warm(tmp_path, monkeypatch):
     """What the import found is kept with the solid: a warm run places the scene and meshes
     it without reading the STEP file again."""

@@ -9,6 +9,7 @@ from shaftfem.errors import SceneError
 from shaftfem.scene.load import GEOMETRY_DIR, load_scene
 
 PAPER = (GEOMETRY_DIR / "paper2018.toml").read_text()
+EXAMPLES = GEOMETRY_DIR.parent / "examples"
 
 
 def _edit(text: str, key: str, value: str) -> str:
@@ -201,3 +202,84 @@ def test_every_modal_command_takes_the_modal_flags_and_an_unknown_one_points_to_
     err = capsys.readouterr().err.strip()
     assert err == ("shaftfem check: error: unrecognized arguments: --no-such-flag "
                    "(see shaftfem check --help)")
+
+
+THIN = """
+name = "{name}"
+[[section]]
+length_mm = 400.0
+diameter_mm = 40.0
+bore_mm = {bore}
+fillet_mm = {fillet}
+[[section]]
+length_mm = 100.0
+diameter_mm = 50.0
+[material]
+youngs_modulus_mpa = 210000.0
+poisson_ratio = 0.3
+density_kg_m3 = 7850.0
+[mesh]
+element_size_mm = 8.0
+{extra}
+"""
+
+
+@pytest.mark.parametrize("name,bore,fillet,extra", [
+    ("thin_wall", 39.0, 0.0, ""),                                # a 0.5 mm wall
+    ("tiny_fillet", 0.0, 0.05, "groove_element_size_mm = 0.05"),  # a 0.05 mm fillet, sized
+], ids=["thin wall", "tiny fillet"])
+def test_a_scene_past_the_budget_is_refused_at_once_with_its_dofs_and_memory(
+        tmp_path, capsys, name, bore, fillet, extra):
+    """The estimate before meshing sees a thin wall (elements of its thickness) and a small
+    feature's graded layer: such a scene is refused within seconds, exit 2."""
+    import time
+
+    f = tmp_path / f"{name}.toml"
+    f.write_text(THIN.format(name=name, bore=bore, fillet=fillet, extra=extra))
+    t0 = time.perf_counter()
+    assert main(["modes", str(f), "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert time.perf_counter() - t0 < 10
+    assert re.search(r"would need about [0-9.e+]+ DOFs and [0-9.]+ GB, above the budget of "
+                     r"400000 DOFs", err), err
+
+
+def test_a_mesh_whose_counted_dofs_pass_the_budget_is_refused_before_assembly(capsys):
+    """The estimate can miss small elements a STEP solid's curvature asks for: the mesh's
+    own DOFs are counted after meshing, and a mesh past the budget never reaches assembly."""
+    from shaftfem.cad.mesh import estimate_dofs
+    from shaftfem.workflows import stages
+
+    step = EXAMPLES / "step_shaft.toml"
+    scene, _ = stages.solid(load_scene(step))
+    estimate = estimate_dofs(scene.shaft, None, scene.mesh)
+    assert main(["modes", str(step), "-q", "--no-estimate", "--max-dofs",
+                 str(int(1.05 * estimate))]) == 2
+    err = capsys.readouterr().err
+    assert re.search(r"meshed to \d+ elements, which have [0-9.e+]+ DOFs", err), err
+    assert "assembl" not in err and "Traceback" not in err
+
+
+def test_a_run_the_free_memory_cannot_hold_is_refused(monkeypatch, capsys):
+    """Memory for the solve's peak is asked of the machine before assembly: with 0.2 GB
+    free the cylinder's 28k DOFs (about 0.3 GB) are refused, exit 2."""
+    import collections
+
+    import psutil
+
+    free = collections.namedtuple("free", "available")(0.2e9)
+    monkeypatch.setattr(psutil, "virtual_memory", lambda: free)
+    assert main(["modes", "plain_cylinder", "-q", "--no-estimate"]) == 2
+    err = capsys.readouterr().err
+    assert "GB at the solve's peak, and this machine has 0.2 GB free" in err, err
+
+
+@pytest.mark.parametrize("order", [2, 4])
+def test_the_counted_dofs_are_the_systems(order):
+    """mesh_dofs counts what assembly makes: P2's nodes, and order 4's hierarchical
+    functions on vertices, edges, faces and cells."""
+    from shaftfem.cad.mesh import mesh_dofs
+    from shaftfem.workflows.pipeline import run_modes, with_mesh
+
+    r = run_modes(with_mesh(load_scene("plain_cylinder"), 24.0, order=order))
+    assert mesh_dofs(r.mesh) == r.system.n_dofs

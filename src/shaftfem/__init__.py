@@ -44,6 +44,8 @@ _LAZY = {
     "Run": "shaftfem.workflows.results",
     "solve": "shaftfem.workflows.results",
     "load_run": "shaftfem.workflows.results",
+    "campbell": "shaftfem.workflows.results",
+    "Turning": "shaftfem.workflows.results",
     "Campbell": "shaftfem.fem.whirl",
     "ErrorEstimate": "shaftfem.fem.estimate",
 }
@@ -95,4 +97,4 @@ if TYPE_CHECKING:
     from shaftfem.workflows.campbell import run_campbell
     from shaftfem.workflows.design import DesignResult, run_design
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
-    from shaftfem.workflows.results import Run, load_run, solve
+    from shaftfem.workflows.results import Run, Turning, campbell, load_run, solve

@@ -82,9 +82,12 @@ class ShaftMesh:
 
 
 # Tetrahedra gmsh makes per h^3 of volume (a regular tetrahedron fills h^3 / 8.5; gmsh's
-# are less regular), and DOFs per element of a P2 / P1 mesh; fitted on the shipped scenes
-# (within 40 %, enough to refuse a size that is off by orders of magnitude).
+# are less regular), those its surface layer adds per h^2 of a profile's surface, and
+# DOFs per element of a P2 / P1 mesh; fitted on the shipped scenes and examples (within
+# 40 %, enough to refuse a size that is off by orders of magnitude: the mesh's own count
+# is checked again before assembly).
 ELEMENTS_PER_H3 = 6.0
+ELEMENTS_PER_H2 = 1.1
 DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0, 4: 40.0, 5: 74.0}
 BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (docs/performance.md)
 
@@ -97,17 +100,33 @@ def _graded(h0: float, h1: float, d0: float, d1: float, measure) -> float:
     return float(np.trapezoid(measure(x) / h**3, x)) * ELEMENTS_PER_H3
 
 
-def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings) -> int:
-    """About how many DOFs `settings` give on this shaft, without meshing: the shaft at
-    the element size, plus a graded layer over the groove faces and a tube around the
-    floor edges (the size fields of cad.mesher)."""
-    from shaftfem.cad.mesher import EDGE_GRADING
+def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
+                  hubs: tuple[tuple[float, float], ...] = ()) -> int:
+    """About how many DOFs `settings` give on this shaft, without meshing, from the size
+    fields cad.mesher sets: each section at its own size (smaller in a thin section, and
+    in a bored one at most WALL_ELEMENTS times its wall) with the layer along its surfaces,
+    the parts' seats (`hubs`, z0 and z1 in m) finer, a graded layer over the faces of the
+    grooves and of the profile's features (fillets, chamfers, keyways), and a tube around
+    the grooves' floor edges."""
+    from shaftfem.cad.mesher import EDGE_GRADING, FACE_GRADING, HUB_SIZE
 
     s, order = settings.size, settings.order
-    volume = np.pi * shaft.radius**2 * shaft.length
-    elements = ELEMENTS_PER_H3 * volume / s**3
+    sections = _section_sizes(shaft, s)
+    elements = sum(ELEMENTS_PER_H3 * volume / h**3 for volume, area, h in sections)
+    if not shaft.plain:   # a plain bar is a sector's mesh, copied: no surface layer to add
+        elements += sum(ELEMENTS_PER_H2 * area / h**2 for volume, area, h in sections)
+    for z0, z1 in hubs:   # the parts' seats at HUB_SIZE, a radius beyond each end
+        box = np.pi * shaft.radius**2 * (z1 - z0 + 2 * shaft.radius)
+        elements += ELEMENTS_PER_H3 * box * (1 / (HUB_SIZE * s) ** 3 - 1 / s**3)
+    gs = settings.groove_size
+    area, rings = _features(shaft)
+    if area and gs < s:
+        # the graded layer over the faces, and about their edges a tube that grows with
+        # the distance (what dominates a feature much smaller than the layer)
+        elements += _graded(gs, s, 0.5 * gs, 0.5 * gs + FACE_GRADING * (s - gs),
+                            lambda x: area + rings * np.pi * x)
     if grooves is not None:
-        g, gs, es = grooves, settings.groove_size, settings.edge_size
+        g, es = grooves, settings.edge_size
         r_mid = shaft.radius - g.depth / 2
         helix = g.length * np.hypot(1.0, 2 * np.pi * r_mid / g.pitch)
         faces = len(g.hands) * helix * (g.width + 2 * g.depth)
@@ -121,17 +140,111 @@ def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings)
     return int(elements * DOFS_PER_ELEMENT[order])
 
 
+def _section_sizes(shaft: Shaft, size: float) -> list[tuple[float, float, float]]:
+    """(volume m^3, surface m^2, element size m) of each section, as
+    cad.mesher._profile_fields sizes it; a STEP solid's as its bounding cylinder's."""
+    from shaftfem.cad.mesher import WALL_ELEMENTS
+
+    if shaft.step is not None:
+        r, length = shaft.radius, shaft.length
+        return [(np.pi * r**2 * length, 2 * np.pi * r * length, size)]
+    out = []
+    for sec in shaft.profile:
+        thinnest = min(sec.diameter_start, sec.diameter_end)
+        local = size * thinnest / (2 * shaft.radius)
+        if sec.bore:
+            local = min(local, WALL_ELEMENTS * (thinnest - sec.bore) / 2)
+        r0, r1 = sec.diameter_start / 2, sec.diameter_end / 2
+        volume = np.pi * sec.length * ((r0 * r0 + r0 * r1 + r1 * r1) / 3 - (sec.bore / 2) ** 2)
+        surface = np.pi * sec.length * (r0 + r1 + sec.bore)
+        out.append((volume, surface, min(local, size)))
+    return out
+
+
+def _features(shaft: Shaft) -> tuple[float, float]:
+    """The area of the profile's feature faces, m^2 (to a few per cent): the fillet and
+    chamfer rings at its steps and ends, and each keyway's floor, walls and ends; and the
+    length of the rings and keyway rims that bound them, m."""
+    area = rings = 0.0
+    prof = shaft.profile
+    for sec, nxt in zip(prof, prof[1:]):
+        small = min(sec.diameter_end, nxt.diameter_start) / 2
+        big = max(sec.diameter_end, nxt.diameter_start) / 2
+        if sec.fillet:
+            area += 2 * np.pi * small * (np.pi / 2) * sec.fillet
+            rings += 2 * np.pi * small
+        if sec.chamfer:
+            area += 2 * np.pi * big * np.sqrt(2) * sec.chamfer
+            rings += 2 * np.pi * big
+    if prof and shaft.end_chamfer:
+        for d in (prof[0].diameter_start, prof[-1].diameter_end):
+            area += np.pi * d * np.sqrt(2) * shaft.end_chamfer
+            rings += np.pi * d
+    for k in shaft.keyways:
+        area += k.length * (k.width + 2 * k.depth) + 2 * k.width * k.depth
+        rings += 2 * (k.length + k.width)
+    return float(area), float(rings)
+
+
+def _too_big(what: str, n: float, max_dofs: int, settings: MeshSettings) -> BudgetError:
+    return BudgetError(
+        f"element size {settings.size * 1e3:g} mm (features and grooves "
+        f"{settings.groove_size * 1e3:.3g} mm, floor edges {settings.edge_size * 1e3:.3g} mm) "
+        f"{what} {n:.3g} DOFs and {n * BYTES_PER_DOF / 1e9:.2g} GB, above the budget of "
+        f"{max_dofs} DOFs; use a larger size, or raise the budget ([mesh] max_dofs or "
+        "--max-dofs)")
+
+
 def check_budget(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
-                 max_dofs: int) -> int:
+                 max_dofs: int, hubs: tuple[tuple[float, float], ...] = ()) -> int:
     """Refuse, before meshing, a mesh that would need more than `max_dofs` DOFs."""
-    n = estimate_dofs(shaft, grooves, settings)
+    n = estimate_dofs(shaft, grooves, settings, hubs)
     if n > max_dofs:
-        raise BudgetError(
-            f"element size {settings.size * 1e3:g} mm (grooves {settings.groove_size * 1e3:.3g} "
-            f"mm, floor edges {settings.edge_size * 1e3:.3g} mm) would need about {n:.2g} DOFs "
-            f"and {n * BYTES_PER_DOF / 1e9:.2g} GB, above the budget of {max_dofs} DOFs; "
-            "use a larger size, or raise the budget ([mesh] max_dofs or --max-dofs)")
+        raise _too_big("would need about", n, max_dofs, settings)
     return n
+
+
+def mesh_dofs(mesh: ShaftMesh) -> int:
+    """The DOFs of the mesh's elements, counted: three per node of the P1/P2 cells, and for
+    orders 3 to 5 three per hierarchical function on its vertices, edges, faces and
+    cells."""
+    p = mesh.order
+    if p <= 2 and mesh.geometry_order <= p:
+        return 3 * int(mesh.points.shape[0])
+    tets = np.sort(mesh.cells[:, :4], axis=1)
+    vertices = np.unique(tets).size
+    edges = np.unique(tets[:, [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]]]
+                      .reshape(-1, 2), axis=0).shape[0]
+    if p <= 2:
+        return 3 * (vertices + (p - 1) * edges)
+    faces = np.unique(tets[:, [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]].reshape(-1, 3),
+                      axis=0).shape[0]
+    scalar = (vertices + (p - 1) * edges + (p - 1) * (p - 2) // 2 * faces
+              + (p - 1) * (p - 2) * (p - 3) // 6 * len(tets))
+    return 3 * int(scalar)
+
+
+def check_mesh_budget(mesh: ShaftMesh, settings: MeshSettings, max_dofs: int) -> int:
+    """Refuse, after meshing and before assembly, a mesh whose DOFs, counted, exceed the
+    budget (the estimate before meshing can miss a feature's small elements)."""
+    n = mesh_dofs(mesh)
+    if n > max_dofs:
+        raise _too_big(f"meshed to {mesh.n_elements} elements, which have", n, max_dofs,
+                       settings)
+    return n
+
+
+def check_memory(n_dofs: int) -> None:
+    """Refuse a run whose peak memory (BYTES_PER_DOF a DOF) this machine does not have
+    free, before assembly and factorisation fill it."""
+    import psutil
+
+    need, free = n_dofs * BYTES_PER_DOF, psutil.virtual_memory().available
+    if need > free:
+        raise BudgetError(
+            f"{n_dofs} DOFs need about {need / 1e9:.3g} GB at the solve's peak, and this "
+            f"machine has {free / 1e9:.3g} GB free: use a larger element size (--mesh-size), "
+            "a lower order, or a machine with more memory")
 
 
 MESH_ARRAYS = ("points", "cells", "order", "ratio", "straightened", "unfolded")

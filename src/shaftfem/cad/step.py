@@ -70,6 +70,7 @@ def import_step(step: StepSolid, key: str, brep: Path | None = None) -> StepImpo
             raise SceneError(f"{key} = {step.path!r}: holds no solid (only surfaces or "
                              "curves): export the shaft as a closed solid")
         if len(vols) > 1:  # a STEP file repeats the faces its solids share: one again
+            _refuse_overlaps(gmsh, vols, key, step.path)
             glue(gmsh, vols[0][1], [t for _, t in vols[1:]])
             gmsh.model.occ.synchronize()
             vols = gmsh.model.getEntities(3)
@@ -98,6 +99,33 @@ def import_step(step: StepSolid, key: str, brep: Path | None = None) -> StepImpo
             gmsh.write(str(brep))
     return StepImport(axis=axis, length=length, volume=volume, outer_max=outer_max,
                       outer_min=outer_min)
+
+
+# Solids sharing more volume than this (m^3) overlap; less is OpenCASCADE's tolerance.
+OVERLAP = 1e-12
+
+
+def _refuse_overlaps(gmsh, vols: list[tuple[int, int]], key: str, path: str) -> None:
+    """Refuse solids that overlap (a sleeve exported over the shaft, a press fit drawn
+    as two bodies): shaftfem meshes one body, and would not know which material is where.
+    Says which solids and where, in the file's coordinates."""
+    occ = gmsh.model.occ
+    for i, (_, a) in enumerate(vols):
+        for j, (_, b) in enumerate(vols[i + 1:], start=i + 1):
+            common, _ = occ.intersect([(3, a)], [(3, b)], removeObject=False, removeTool=False)
+            occ.synchronize()
+            shared = sum(occ.getMass(3, t) for d, t in common if d == 3)
+            if shared > OVERLAP:
+                box = [gmsh.model.getBoundingBox(3, t) for d, t in common if d == 3]
+                lo = np.min([bx[:3] for bx in box], axis=0) * 1e3
+                hi = np.max([bx[3:] for bx in box], axis=0) * 1e3
+                raise SceneError(
+                    f"{key} = {path!r}: solids {i + 1} and {j + 1} overlap ({shared * 1e9:.4g} "
+                    f"mm^3, within x {lo[0]:.4g} to {hi[0]:.4g}, y {lo[1]:.4g} to "
+                    f"{hi[1]:.4g}, z {lo[2]:.4g} to {hi[2]:.4g} mm in the file): shaftfem "
+                    "takes one body; export the shaft alone, or fuse the parts in CAD")
+            occ.remove(common, recursive=True)
+            occ.synchronize()
 
 
 def _bounding_box_axis(gmsh, key: str, path: str

@@ -177,11 +177,11 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int,
     (fraction) or the next mesh would exceed `max_dofs`."""
     watch = Stopwatch()
     check_order(scene)
-    check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
+    check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs, scene.hubs())
     with watch.lap("cad"):
         scene, shape = stages.solid(scene, use_cache=options.use_cache)
     if scene.shaft.step is not None:  # its budget now that the import measured it
-        check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs)
+        check_budget(scene.shaft, scene.grooves, scene.mesh, max_dofs, scene.hubs())
     path = cache_dir() / "adapted" / f"{adapt_key(scene, shape, target, max_dofs)}.npz"
     if options.use_cache and path.exists():
         cached = _cached(path, scene, shape, target, max_dofs, options, watch)

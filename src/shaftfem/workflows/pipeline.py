@@ -100,13 +100,14 @@ def check_buildable(scene: Scene) -> None:
     from shaftfem.cad.mesh import check_budget
 
     check_order(scene)
-    check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
+    check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs, scene.hubs())
 
 
 def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
     """Build, mesh, assemble and solve `scene`: the modes without a bound, with every
     intermediate result. Raises GeometryError, MeshError or SolverError, each naming
     what failed."""
+    from shaftfem.cad.mesh import check_memory, check_mesh_budget
     from shaftfem.workflows import stages
 
     watch = Stopwatch()
@@ -123,6 +124,7 @@ def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
                            hubs=scene.hubs())
     options.say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
                 "assembling K and M")
+    check_memory(check_mesh_budget(mesh, scene.mesh, scene.max_dofs))
     return solve_mesh(scene, shape, mesh, options, watch)
 
 

@@ -8,6 +8,7 @@ a table, a mode and the frequencies drawn, and the run saved as the files
     run.plot_mode(1)                     # pyvista: a picture, or interactive (trame)
     run.plot_frequencies()               # matplotlib: the modes against the excitations
     run.save("out/run"); shaftfem.load_run("out/run")
+    shaftfem.campbell(scene).plot()      # a turning shaft's Campbell diagram
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:
     from shaftfem.cad.mesh import ShaftMesh
+    from shaftfem.fem.whirl import Campbell
     from shaftfem.workflows.bounded import Bounded
 
 SCENE_FILE = "scene.toml"   # beside the exported modes: the scene that made them
@@ -197,3 +199,47 @@ def load_run(folder: str | Path) -> Run:
                kinds=tuple(r["kind"] for r in rows), bounds=column("error_bound_percent", 100.0),
                low=column("true_frequency_low_hz"), high=column("true_frequency_high_hz"),
                mesh=mesh, shapes=shapes, record=record)
+
+
+@dataclass(frozen=True)
+class Turning:
+    """A turning shaft's run as code holds it: the Campbell record (`campbell`: whirl at
+    every speed, critical speeds, onsets of instability, the unbalance response) and its
+    pictures."""
+
+    campbell: Campbell
+
+    @property
+    def critical_speeds(self) -> tuple:
+        """Each critical speed: order, whirl, speed_rpm, frequency_hz, mode."""
+        return self.campbell.critical_speeds
+
+    def plot(self, path: str | Path | None = None):
+        """The Campbell diagram (with the log decrements when the bearings damp): a
+        matplotlib Figure, or written to `path` (PNG) and the path returned."""
+        from shaftfem.outputs.campbell_plot import campbell_figure
+        from shaftfem.outputs.plots import save_png
+
+        fig = campbell_figure(self.campbell)
+        return fig if path is None else save_png(fig, path)
+
+    def plot_bode(self, path: str | Path | None = None):
+        """The unbalance response against speed at each probe (the scene needs an
+        [[unbalance]]): a Figure, or written to `path` (PNG) and the path returned."""
+        from shaftfem.outputs.campbell_plot import bode_figure
+        from shaftfem.outputs.plots import save_png
+
+        if self.campbell.unbalance is None:
+            raise SceneError(f"{self.campbell.result.scene.source}: no [[unbalance]]: there "
+                             "is no unbalance response to draw")
+        fig = bode_figure(self.campbell)
+        return fig if path is None else save_png(fig, path)
+
+
+def campbell(scene: Scene, speeds_rpm: np.ndarray | None = None,
+             options: RunOptions = RunOptions()) -> Turning:
+    """The scene's shaft turning (workflows.campbell.run_campbell; it needs [rotor]), as a
+    Turning: `campbell(scene).plot()` draws its Campbell diagram."""
+    from shaftfem.workflows.campbell import run_campbell
+
+    return Turning(run_campbell(scene, options, speeds_rpm))

@@ -135,7 +135,7 @@ def mesh_size(src: str, size: object, base: SceneText) -> float | None:
 
     try:
         scene = with_mesh(load_scene(base), size)
-        check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs)
+        check_budget(scene.shaft, scene.grooves, scene.mesh, scene.max_dofs, scene.hubs())
     except SceneError as exc:
         raise SceneError(f"{src}: mesh_size_mm = {size:g} for the base scene: {exc}") from exc
     return size
