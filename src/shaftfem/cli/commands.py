@@ -104,7 +104,12 @@ def cmd_modes(args) -> int:
     from shaftfem.outputs.tables import modes_text
 
     result, est, adapted = _bounded(args, estimate=not args.no_estimate)
-    print(modes_text(result, est))
+    moves = None
+    if args.sensitivity:
+        from shaftfem.workflows.sensitivity import sensitivity
+
+        moves = sensitivity(result, _options(args))
+    print(modes_text(result, est, moves))
     if result.scene.held:
         from shaftfem.fem.response import modal_basis, participation
         from shaftfem.outputs.tables import participation_text
@@ -122,7 +127,7 @@ def cmd_modes(args) -> int:
         print(f"modal basis: {t.size} standstill modes; on {t.smaller} the whirl frequencies "
               f"move by at most {t.change * 100:.2g} %")
     if args.json:
-        _write_json(args.json, modes_record(result, est))
+        _write_json(args.json, modes_record(result, est, moves))
     return _accuracy_status(args, adapted)
 
 

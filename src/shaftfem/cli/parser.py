@@ -104,6 +104,10 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--speed-rpm", type=_number(float, 1e6), metavar="N",
                    help="also the whirl table of the shaft turning at N r/min (needs [rotor] "
                    "for the frame, or takes the default one)")
+    m.add_argument("--sensitivity", action="store_true",
+                   help="also solve the same mesh with each modelling choice the scene makes "
+                   "flipped (each part's joint, each held seat's coupling) and show how far "
+                   "each frequency moves, beside its bound")
     _modal_command(sub, "check", "resonance check against the scene's excitations (exit 1 if "
                    "a margin is violated, 4 if it holds on a free-free shaft)", cmd.cmd_check,
                    margin=True)

@@ -52,3 +52,25 @@ class ModalResult:
     def shapes_at_points(self) -> np.ndarray:
         """Mode shapes at the mesh's points: (n_modes, n_points, 3), m / sqrt(kg)."""
         return self.system.at_points(self.modes.shapes)
+
+
+@dataclass(frozen=True)
+class ModelMoves:
+    """How far each frequency moves when one modelling choice the scene makes by default
+    is flipped (a part's joint, a seat's coupling) and the same mesh solved again:
+    `choices` names each flip, `moves[c, k]` is mode k's relative move under flip c
+    (f_flipped / f - 1; NaN where the flipped model has no mode of that kind to match)."""
+
+    choices: tuple[str, ...]
+    moves: np.ndarray
+
+    def largest(self) -> list[tuple[float, str]]:
+        """For each mode, its largest move (signed) and the choice behind it."""
+        import numpy as np
+
+        out = []
+        for k in range(self.moves.shape[1]):
+            col = np.nan_to_num(self.moves[:, k], nan=0.0)
+            c = int(np.argmax(np.abs(col)))
+            out.append((float(col[c]), self.choices[c]))
+        return out

@@ -16,11 +16,13 @@ from shaftfem.store import json_text, staged_directory, write_csv
 
 if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
-    from shaftfem.fem.result import ModalResult
+    from shaftfem.fem.result import ModalResult, ModelMoves
 
 
-def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
-    """The JSON form of a modal run (units in the key names): `modes --json` and modes.json."""
+def modes_record(result: ModalResult, est: ErrorEstimate | None = None,
+                 moves: ModelMoves | None = None) -> dict:
+    """The JSON form of a modal run (units in the key names): `modes --json` and modes.json;
+    with `moves`, how far each frequency moves under each flipped modelling choice."""
     from shaftfem.outputs import tables
 
     m, scene = result.modes, result.scene
@@ -40,6 +42,9 @@ def modes_record(result: ModalResult, est: ErrorEstimate | None = None) -> dict:
         "rigid_body_frequencies_hz": m.rigid_frequencies,
         "modes": modes_table(result, est),
         "bound_covers": None if est is None else tables.bound_coverage(scene),
+        **({} if moves is None else {"model_sensitivity": [
+            {"choice": c, "moves_percent": [None if v != v else float(100 * v) for v in row]}
+            for c, row in zip(moves.choices, moves.moves)]}),
         "mass_orthonormality_error": m.orthonormality_error,
         "groove_volume_mm3": {
             "cad": result.shape.groove_volume_cad * 1e9,

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
-    from shaftfem.fem.result import ModalResult
+    from shaftfem.fem.result import ModalResult, ModelMoves
     from shaftfem.scene.model import Scene
 
 
@@ -68,6 +68,8 @@ def bound_coverage(scene: Scene) -> str:
         outside.append("the bearings' stiffness and how the seats hold the shaft")
     if scene.attachments:
         outside.append("the parts' joints (rigid or distributing)")
+    if scene.attachments or scene.held:
+        outside[-1] += " (`shaftfem modes --sensitivity` shows what flipping them moves)"
     outside.append("rotation: the shaft stands still here (with [rotor], `shaftfem campbell` "
                    "gives its whirl)" if scene.rotor is None else
                    "rotation: these are standstill modes (`shaftfem campbell` turns them)")
@@ -162,8 +164,10 @@ def _feature_size(scene) -> str:
     return f" ({', '.join(has)} {scene.mesh.groove_size * 1e3:g} mm)" if has else ""
 
 
-def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
-    """The modes table as a designer reads it."""
+def modes_text(result: ModalResult, est: ErrorEstimate | None = None,
+               moves: ModelMoves | None = None) -> str:
+    """The modes table as a designer reads it (`moves`: the model's choices flipped, its
+    largest move per mode beside the bound)."""
     m, scene = result.modes, result.scene
     exc = scene.excitations[0] if scene.excitations else None
     # rounded up to a power of ten: the rigid modes' numerical noise, not a result
@@ -182,19 +186,40 @@ def modes_text(result: ModalResult, est: ErrorEstimate | None = None) -> str:
         residual_line(m.residuals),
         "",
     ]
+    shown = moves is not None and bool(moves.choices)
     rows = [["mode", "frequency", "kind"]
             + (["error bound", "true frequency in"] if est is not None else [])
+            + (["model's choices move it"] if shown else [])
             + ([f"f / {exc.name} {hz(exc.frequency)}"] if exc else [])]
     bounds = _bound_cells(m.frequencies, est)
+    largest = moves.largest() if moves is not None and shown else []
     for i, (f, kind) in enumerate(zip(m.frequencies, m.kinds)):
         rows.append([str(i + 1), f"{f:.2f} Hz", kind] + bounds[i]
+                    + ([f"{100 * largest[i][0]:+.2f} % ({largest[i][1].split(' (')[0]})"]
+                       if shown else [])
                     + ([f"{f / exc.frequency:.2f}"] if exc else []))
-    lines += aligned(rows, left={2})
+    lines += aligned(rows, left={2} | ({5 if est is not None else 3} if shown else set()))
+    if moves is not None:
+        lines += [""] + sensitivity_lines(moves)
     if est is not None:
         lines += [""] + estimate_notes(est, scene)
     lines += [f"WARNING: {w}" for w in result.warnings]
     lines += ["", "time: " + timings_line(result, est)]
     return "\n".join(lines)
+
+
+def sensitivity_lines(moves: ModelMoves) -> list[str]:
+    """What each flipped choice does to the frequencies, one line each."""
+    import numpy as np
+
+    if not moves.choices:
+        return ["the model's choices: none to flip (no parts, no held seats)"]
+    lines = ["the model's choices, each flipped and solved again on the same mesh "
+             "(what the bound does not cover):"]
+    for choice, row in zip(moves.choices, moves.moves):
+        lo, hi = np.nanmin(row), np.nanmax(row)
+        lines.append(f"  {choice}: frequencies move {100 * lo:+.2f} to {100 * hi:+.2f} %")
+    return lines
 
 
 PARTICIPATION_UNITS = {"x": "kg", "y": "kg", "z": "kg", "rz": "kg m^2"}
