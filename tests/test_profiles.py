@@ -290,6 +290,41 @@ def test_a_step_file_of_overlapping_solids_is_refused_saying_where(tmp_path, cap
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1
 
 
+GROOVED_STEP = (
+    "import gmsh, sys; gmsh.initialize(); gmsh.option.setNumber('General.Terminal', 0);"
+    "occ = gmsh.model.occ; shaft = occ.addCylinder(0, 0, 0, 0, 0, 300, 15);"
+    "ring = occ.addCylinder(0, 0, 100, 0, 0, 2, 20); core = occ.addCylinder(0, 0, 100, 0, 0, 2, 13);"
+    "occ.synchronize(); groove, _ = occ.cut([(3, ring)], [(3, core)]);"
+    "flat = occ.addBox(-20, 12, 200, 40, 10, 40);"
+    "occ.cut([(3, shaft)], groove + [(3, flat)]); occ.synchronize();"
+    "gmsh.write(sys.argv[1]); gmsh.finalize()")
+
+
+@pytest.mark.parametrize("position,under", [(101.0, "13 to 15 mm"), (220.0, "12 to 15 mm")],
+                         ids=["circlip groove", "flat"])
+def test_a_bearing_seat_over_a_groove_or_a_flat_of_a_step_solid_is_refused(
+        tmp_path, capsys, position, under):
+    """A STEP shaft with a 2 mm ring groove at 100 mm and a 40 mm flat at 200 mm: a bearing
+    seat over either is refused at placement, exit 2, naming the seat and the radii under
+    it; one on the plain stretch is placed."""
+    from shaftfem.cli import main
+    from shaftfem.workflows import stages
+
+    subprocess.run([sys.executable, "-c", GROOVED_STEP, str(tmp_path / "g.step")], check=True,
+                   capture_output=True)
+    seat = ('[[support]]\nname = "bearing"\nposition_mm = {}\nwidth_mm = 16.0\n'
+            'kind = "rigid"\n')
+    head = '[shaft]\nstep_file = "g.step"\n[mesh]\nelement_size_mm = 8.0\n' + MATERIAL
+    (tmp_path / "bad.toml").write_text(head + seat.format(position))
+    capsys.readouterr()
+    assert main(["modes", str(tmp_path / "bad.toml"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert 'support 1 ("bearing")' in err and f"runs from {under}" in err, err
+    (tmp_path / "good.toml").write_text(head + seat.format(50.0))
+    placed, shape = stages.solid(load_scene(tmp_path / "good.toml"))
+    assert placed.shaft.length == pytest.approx(0.3) and shape.found is not None
+
+
 def test_a_step_file_is_imported_once_cold_and_never_warm(tmp_path, monkeypatch):
     """What the import found is kept with the solid: a warm run places the scene and meshes
     it without reading the STEP file again."""

@@ -18,7 +18,7 @@ from shaftfem.cad.session import session, stdout_to_devnull, translated
 from shaftfem.errors import GeometryError, SceneError
 from shaftfem.scene.checks import check_seats
 from shaftfem.scene.model import Scene, StepSolid
-from shaftfem.scene.toml_reading import where
+from shaftfem.scene.toml_reading import entry, where
 
 
 @dataclass(frozen=True)
@@ -32,18 +32,22 @@ class StepImport:
     volume: float
     outer_max: float
     outer_min: float
+    # (z, r) of points on the outward-facing surfaces, placed (what seats sit on)
+    surface: tuple[tuple[float, float], ...] = ()
 
     def as_dict(self) -> dict:
         """The findings as JSON values (kept with the solid they were found on)."""
         return {"axis": [list(p) for p in self.axis], "length": self.length,
-                "volume": self.volume, "outer_max": self.outer_max, "outer_min": self.outer_min}
+                "volume": self.volume, "outer_max": self.outer_max, "outer_min": self.outer_min,
+                "surface": [list(p) for p in self.surface]}
 
     @classmethod
     def from_dict(cls, d: dict) -> StepImport:
         a, b = (tuple(float(v) for v in p) for p in d["axis"])
         return cls(axis=(a, b), length=float(d["length"]),  # type: ignore[arg-type]
                    volume=float(d["volume"]), outer_max=float(d["outer_max"]),
-                   outer_min=float(d["outer_min"]))
+                   outer_min=float(d["outer_min"]),
+                   surface=tuple((float(z), float(r)) for z, r in d.get("surface", [])))
 
     def summary(self, name: str) -> str:
         a, b = (", ".join(f"{v * 1e3:.4g}" for v in p) for p in self.axis)
@@ -95,10 +99,58 @@ def import_step(step: StepSolid, key: str, brep: Path | None = None) -> StepImpo
         length = float(zmax - zmin)
         xyz[:, 2] -= zmin
         outer_max, outer_min = _outer_radii(xyz, length)
+        surface = _outer_surface(gmsh)
         if brep is not None:
             gmsh.write(str(brep))
     return StepImport(axis=axis, length=length, volume=volume, outer_max=outer_max,
-                      outer_min=outer_min)
+                      outer_min=outer_min, surface=surface)
+
+
+SURFACE_SAMPLES = 9     # points along each parameter of a face
+OUTSIDE_PROBE = 1e-5    # m: a point this far out from an outer face lies outside the solid
+
+
+def _outer_surface(gmsh) -> tuple[tuple[float, float], ...]:
+    """(z, r) of points on the solid's outward-facing surfaces (m): faces that look away
+    from the axis with the material inside them (a bore looks away from the axis too, but
+    with the material outside). What a seat sits on."""
+    vols = [t for _, t in gmsh.model.getEntities(3)]
+    out: list[tuple[float, float]] = []
+    n = SURFACE_SAMPLES
+    for _, tag in gmsh.model.getEntities(2):
+        lo, hi = gmsh.model.getParametrizationBounds(2, tag)
+        uv = np.array([(a, b) for a in np.linspace(lo[0], hi[0], n)
+                       for b in np.linspace(lo[1], hi[1], n)]).ravel()
+        xyz = np.asarray(gmsh.model.getValue(2, tag, uv)).reshape(-1, 3)
+        normal = np.asarray(gmsh.model.getNormal(tag, uv)).reshape(-1, 3)
+        r = np.hypot(xyz[:, 0], xyz[:, 1])
+        away = np.column_stack([xyz[:, 0], xyz[:, 1], 0 * r]) / np.maximum(r, 1e-30)[:, None]
+        if np.median(np.abs(np.sum(away * normal, axis=1))) < 0.5:
+            continue   # an end, a shoulder: faces along the axis carry no seat
+        probe = xyz + OUTSIDE_PROBE * away
+        if any(gmsh.model.isInside(3, v, list(probe[len(probe) // 2])) for v in vols):
+            continue   # the material lies outside: a bore
+        out += [(round(float(z), 9), round(float(q), 9)) for z, q in zip(xyz[:, 2], r)]
+    return tuple(out)
+
+
+def check_seats_on_solid(scene: Scene, info: StepImport) -> None:
+    """Each bearing seat of a STEP shaft lies on one round, cylindrical stretch of its
+    outer surface: no groove, step or flat under it (the rule a profile's shoulders and
+    cones follow). Parts' hubs may sit over keyways, as keyed hubs do."""
+    if not info.surface:
+        return
+    zr = np.asarray(info.surface)
+    for i, s in enumerate(scene.supports):
+        lo, hi = s.seat
+        under = zr[(zr[:, 0] > lo + 1e-6) & (zr[:, 0] < hi - 1e-6), 1]
+        if under.size and under.max() - under.min() > 1e-6 + 1e-4 * under.max():
+            raise SceneError(
+                f"{where(scene.source, entry('support', i, s), 'position_mm')} = "
+                f"{s.position * 1e3:g}: the seat {lo * 1e3:g} to {hi * 1e3:g} mm lies on no "
+                f"single round section: the solid's outer radius under it runs from "
+                f"{under.min() * 1e3:.4g} to {under.max() * 1e3:.4g} mm (a groove, a step or "
+                "a flat); a bearing seat needs a round, cylindrical stretch of the shaft")
 
 
 # Solids sharing more volume than this (m^3) overlap; less is OpenCASCADE's tolerance.
@@ -192,6 +244,7 @@ def placed(scene: Scene, info: StepImport) -> Scene:
     step = replace(shaft.step, summary=info.summary(Path(shaft.step.path).name))
     shaft = replace(shaft, length=info.length, diameter=2 * info.outer_max, step=step)
     check_seats(scene.source, shaft, None, scene.supports, scene.attachments, scene.mesh)
+    check_seats_on_solid(scene, info)
     if scene.mesh.size > shaft.length:
         raise SceneError(f"{where(scene.source, 'mesh', 'element_size_mm')} = "
                          f"{scene.mesh.size * 1e3:g}: must not exceed the shaft length "
