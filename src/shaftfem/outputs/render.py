@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, replace
+from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -98,6 +99,12 @@ class Drawing:
         """The same modes on the surface with its curved faces subdivided so often."""
         surface, rest = _surfaces(self.grid, subdivision, self.length)
         return replace(self, surface=surface, rest=rest)
+
+    @cached_property
+    def coarse(self) -> Drawing:
+        """The same modes on the curved faces unsubdivided: what a moving or on-screen
+        view needs (the GIFs, report.html's 3D view), extracted once for both."""
+        return self.at(subdivision=0)
 
     def moved(self, k: int, phase: float = 1.0) -> np.ndarray:
         """Mode k's surface points at `phase` (-1 to 1) of its drawn amplitude."""
@@ -410,19 +417,18 @@ def render_all(result: ModalResult, out: str | Path, say=None) -> list[Path]:
     return [Path(out) / p.name for p in written]
 
 
-def render_into(result: ModalResult, folder: Path, say=None) -> list[Path]:
+def render_into(result: ModalResult, folder: Path, say=None,
+                d: Drawing | None = None) -> list[Path]:
     """The pictures of render_all, written straight into `folder`; `say(message)` after
-    each picture."""
+    each picture; `d`: the run's drawing, where the caller has made it already."""
     def done(path: Path) -> Path:
         if say is not None:
             say(f"picture {path.name}")
         return path
 
-    pv = load_pyvista()
-    d = drawing(pv, result)
+    d = d or drawing(load_pyvista(), result)
     # the GIFs are 800 px wide and move: the curved faces unsubdivided do (a quarter of
     # the triangles, a fifth less time per frame)
-    coarse = d.at(subdivision=0)
     return [done(render_geometry(result, folder / "geometry.png", d)),
             done(render_modes(result, folder / "modes.png", d)),
-            *render_mode_gifs(result, folder, d=coarse, say=say)]
+            *render_mode_gifs(result, folder, d=d.coarse, say=say)]

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
+    from shaftfem.outputs.render import Drawing
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1100px; padding: 1em 2em;
@@ -74,14 +75,14 @@ def _verdict(verdict: ResonanceVerdict | None) -> str:
     return out + "".join(f'<p class="caveat">{html.escape(x)}</p>' for x in lines[1:])
 
 
-def _view(result: ModalResult) -> str:
+def _view(result: ModalResult, drawing: Drawing | None = None) -> str:
     """The 3D view's controls and its container, the scene inlined as base64."""
     from shaftfem.outputs.web_scene import mode_scene
 
     m = result.modes
     names = [f"mode {k + 1}: {f:.2f} Hz, {kind}" for k, (f, kind)
              in enumerate(zip(m.frequencies, m.kinds))]
-    zipped, framing = mode_scene(result)
+    zipped, framing = mode_scene(result, drawing)
     scene = base64.b64encode(zipped).decode()
     return f"""
 <div class="controls">
@@ -101,15 +102,17 @@ The motion is drawn large (a mode shape has no amplitude of its own).</p>
 def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
                 sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                 estimate: ErrorEstimate | None = None, free: ModalResult | None = None,
-                participation: Participation | None = None, turning: str | None = None) -> str:
+                participation: Participation | None = None, turning: str | None = None,
+                drawing: Drawing | None = None) -> str:
     """report.html's text: the vtk.js viewer page with the report around its view
-    (`turning`: what `shaftfem campbell` prints, for a shaft with [rotor])."""
+    (`turning`: what `shaftfem campbell` prints, for a shaft with [rotor]; `drawing`: the
+    modes' drawing the pictures were made from, where there is one)."""
     from shaftfem.outputs.report import shaft_facts
     from shaftfem.outputs.web_scene import viewer_html
 
     scene = result.scene
     parts = [f"<h1>Modal design report: {html.escape(scene.name)}</h1>", _verdict(verdict),
-             "<h2>Mode shapes</h2>", _view(result),
+             "<h2>Mode shapes</h2>", _view(result, drawing),
              "<h2>Shaft</h2><ul>" + "".join(f"<li>{html.escape(x)}</li>"
                                             for x in shaft_facts(result)) + "</ul>"]
     if sizing is not None:
@@ -160,6 +163,6 @@ def write_report_html(path: str | Path, result: ModalResult,
                       pictures: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                       free: ModalResult | None = None,
                       participation: Participation | None = None,
-                      turning: str | None = None) -> Path:
+                      turning: str | None = None, drawing: Drawing | None = None) -> Path:
     return write_text(path, report_html(result, verdict, sizing, pictures, estimate, free,
-                                        participation, turning))
+                                        participation, turning, drawing))

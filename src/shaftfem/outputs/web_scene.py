@@ -20,6 +20,7 @@ import numpy as np
 
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
+    from shaftfem.outputs.render import Drawing
 
 VIEW_SIZE = (1000, 420)
 
@@ -31,15 +32,17 @@ def viewer_html() -> str:
     return Path(HTML_VIEWER_PATH).read_text(encoding="utf-8")
 
 
-def mode_scene(result: ModalResult) -> tuple[bytes, dict]:
+def mode_scene(result: ModalResult, d: Drawing | None = None) -> tuple[bytes, dict]:
     """The zipped vtk.js scene (index.json) of the modes, the shaft at rest and its
     bearings and parts, seen from the side as in modes.png; and the framing of each
     mode's view (the window's size in pixels, the camera of each mode, mm), which the
-    viewer's own camera does not carry."""
+    viewer's own camera does not carry. `d`: the run's drawing, where made already (its
+    coarse surface is the one drawn)."""
     from shaftfem.outputs import render
 
     pv = render.load_pyvista()
-    d = render.drawing(pv, result, subdivision=0)   # enough for a screen, a fifth the size
+    # the curved faces unsubdivided: enough for a screen, a fifth the size
+    d = (d or render.drawing(pv, result)).coarse
     p = render.plotter(pv, VIEW_SIZE, samples=1)
     faces = d.surface.faces
     for k in range(result.modes.count + 1):   # the modes, then the surface at rest

@@ -63,7 +63,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     from shaftfem.checks.resonance import check_result
     from shaftfem.checks.sizing import size_from_scene
     from shaftfem.outputs.export import write_mode_files
-    from shaftfem.outputs.render import render_into
+    from shaftfem.outputs.render import drawing, load_pyvista, render_into
     from shaftfem.outputs.report import write_report
     from shaftfem.store import staged_directory
     from shaftfem.workflows.bounded import run_bounded
@@ -102,7 +102,8 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         say("exporting mode shapes, mesh and solid")
         files = write_mode_files(result, stage, est)
         say("rendering pictures")
-        pictures = render_into(result, stage, say)
+        d = drawing(load_pyvista(), result)   # once, for the pictures and report.html
+        pictures = render_into(result, stage, say, d)
         if response is not None:
             pictures.append(_response_picture(result, response, basis, stage / "response.png"))
         if campbell is not None:
@@ -117,7 +118,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
 
             say("report.html: the report with a 3D view of every mode")
             write_report_html(stage / "report.html", result, verdict, sizing, pictures, est,
-                              free=free, participation=part, turning=turning)
+                              free=free, participation=part, turning=turning, drawing=d)
     files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
     report = out / "report.md"
     say(f"report written: {report}")
