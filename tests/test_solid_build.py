@@ -14,7 +14,8 @@ def _general_fragment(gmsh, first, rest):
     gmsh.model.occ.fragment([(3, first)], [(3, t) for t in rest])
 
 
-@pytest.mark.parametrize("start, root_radius", [(0.02, 0.001), (0.0, 0.0)])
+@pytest.mark.parametrize("start, root_radius", [
+    pytest.param(0.02, 0.001, marks=pytest.mark.slow), (0.0, 0.0)])
 def test_glued_cells_make_the_solid_and_mesh_of_a_general_fragment(
         tmp_path, monkeypatch, start, root_radius):
     # two full cells and a 15 mm one, with and without a plain start
