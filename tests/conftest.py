@@ -6,6 +6,9 @@ from pathlib import Path
 import shaftfem.runtime  # noqa: E402
 
 shaftfem.runtime.configure_threads()
+if "PYTEST_XDIST_WORKER" in os.environ:
+    # one worker per core: MKL's threads in each would only fight the other worker's
+    os.environ.setdefault("MKL_NUM_THREADS", "1")
 
 import pytest
 
