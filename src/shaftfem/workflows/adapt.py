@@ -27,6 +27,7 @@ from shaftfem.cad.mesh import (
     MESH_ARRAYS,
     ShaftMesh,
     check_budget,
+    check_mesh_budget,
     generate_mesh,
     mesh_arrays,
     mesh_from_arrays,
@@ -191,6 +192,7 @@ def run_adaptive(scene: Scene, target: float, max_dofs: int,
         mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh,
                            use_cache=options.use_cache, cuts=scene.seat_cuts(),
                            hubs=scene.hubs())
+    check_mesh_budget(mesh, scene.mesh, max_dofs)   # the first mesh's own count
     return _adapt(scene, shape, mesh, target, max_dofs, options, watch, path)
 
 

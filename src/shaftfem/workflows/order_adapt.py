@@ -87,7 +87,7 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
                        options: RunOptions = RunOptions()) -> Adapted:
     """Solve `scene` (order 3 to 5) with element orders raised until every frequency's
     bound is below `target` (fraction) or the next space would exceed `max_dofs`."""
-    from shaftfem.cad.mesh import BYTES_PER_DOF, check_budget, estimate_dofs
+    from shaftfem.cad.mesh import BYTES_PER_DOF, check_budget, check_mesh_budget, estimate_dofs
     from shaftfem.errors import BudgetError, SceneError
     from shaftfem.store import cache_dir
     from shaftfem.workflows import stages
@@ -123,6 +123,8 @@ def run_order_adaptive(scene: Scene, target: float, max_dofs: int,
     with watch.lap("mesh"):
         mesh = stages.mesh(shape, scene.shaft, scene.grooves, scene.mesh,
                            use_cache=options.use_cache)
+    # the first space, order 2 everywhere, by its own count
+    check_mesh_budget(replace(mesh, order=2), replace(scene.mesh, order=2), max_dofs)
     path = (cache_dir() / "adapted"
             / f"orders-{adapt_key(scene, shape, target, max_dofs)}.npz")
     z = _load(path, mesh.n_elements) if options.use_cache and path.exists() else None
