@@ -11,6 +11,7 @@ the beam is high by 0.01 % (bending mode 1), 0.5 % (mode 2), 1.4 % (mode 3) and 
 (its shear coefficient): the tolerances follow that.
 """
 
+import json
 import math
 import shutil
 import subprocess
@@ -325,24 +326,26 @@ def test_a_bearing_seat_over_a_groove_or_a_flat_of_a_step_solid_is_refused(
     assert placed.shaft.length == pytest.approx(0.3) and shape.found is not None
 
 
-def test_a_step_file_is_imported_once_cold_and_never_warm(tmp_path, monkeypatch):
-    """What the import found is kept with the solid: a warm run places the scene and meshes
-    it without reading the STEP file again."""
+def test_a_step_file_is_imported_once_cold_and_never_warm(tmp_path, monkeypatch, capsys):
+    """What the import found is kept with the solid: `shaftfem modes` (the bound's coarser
+    mesh included) reads the STEP file once on a cold cache and never on a warm one."""
     import shaftfem.cad.step as step
-    from shaftfem.workflows.pipeline import run_modes, with_mesh
+    from shaftfem.cli import main
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     calls = []
     real = step.import_step
     monkeypatch.setattr(step, "import_step", lambda *a, **k: calls.append(a) or real(*a, **k))
-    scene = with_mesh(load_scene(EXAMPLES / "step_shaft.toml"), size_mm=16)
-    cold = run_modes(scene)
-    assert len(calls) == 1 and not cold.shape.from_cache
-    warm = run_modes(scene)
-    assert len(calls) == 1 and warm.shape.from_cache and warm.mesh.from_cache
-    assert warm.scene.shaft == cold.scene.shaft and "300 mm long" in warm.scene.shaft.step.summary
+    args = ["modes", str(EXAMPLES / "step_shaft.toml"), "--mesh-size", "16", "-q", "--json"]
+    assert main([*args, str(tmp_path / "cold.json")]) == 0
+    assert len(calls) == 1
+    assert main([*args, str(tmp_path / "warm.json")]) == 0
+    assert len(calls) == 1
+    cold, warm = (json.loads((tmp_path / f"{w}.json").read_text()) for w in ("cold", "warm"))
     # the warm solve starts from the kept shapes: the same modes to round-off
-    assert np.allclose(warm.modes.frequencies, cold.modes.frequencies, rtol=1e-9, atol=0)
+    assert [m["frequency_hz"] for m in warm["modes"]] == pytest.approx(
+        [m["frequency_hz"] for m in cold["modes"]], rel=1e-9)
+    assert "300 mm long" in capsys.readouterr().out
 
 
 @pytest.mark.slow
