@@ -92,11 +92,13 @@ DOFS_PER_ELEMENT = {1: 0.6, 2: 5.5, 3: 17.0, 4: 40.0, 5: 74.0}
 BYTES_PER_DOF = 11e3   # peak memory of a modal run per DOF (docs/performance.md)
 
 
-def _graded(h0: float, h1: float, d0: float, d1: float, measure) -> float:
-    """Elements in a layer whose size is h0 up to distance d0 and grows linearly to h1 at
-    d1, with `measure(x)` the area (or perimeter) at distance x of the feature."""
+def _near_layer(small: float, large: float, grading: float, measure) -> float:
+    """Elements in the layer a cad.mesher._near field makes: size `small` within small / 2
+    of the feature, growing linearly to `large` over `grading` times the difference, with
+    `measure(x)` the area (or perimeter) at distance x of the feature."""
+    d0, d1 = 0.5 * small, 0.5 * small + grading * (large - small)
     x = np.linspace(0.0, d1, 400)
-    h = np.where(x <= d0, h0, h0 + (h1 - h0) * (x - d0) / max(d1 - d0, 1e-12))
+    h = np.where(x <= d0, small, small + (large - small) * (x - d0) / max(d1 - d0, 1e-12))
     return float(np.trapezoid(measure(x) / h**3, x)) * ELEMENTS_PER_H3
 
 
@@ -123,20 +125,18 @@ def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
     if area and gs < s:
         # the graded layer over the faces, and about their edges a tube that grows with
         # the distance (what dominates a feature much smaller than the layer)
-        elements += _graded(gs, s, 0.5 * gs, 0.5 * gs + FACE_GRADING * (s - gs),
-                            lambda x: area + rings * np.pi * x)
+        elements += _near_layer(gs, s, FACE_GRADING, lambda x: area + rings * np.pi * x)
     if grooves is not None:
         g, es = grooves, settings.edge_size
         r_mid = shaft.radius - g.depth / 2
         helix = g.length * np.hypot(1.0, 2 * np.pi * r_mid / g.pitch)
         faces = len(g.hands) * helix * (g.width + 2 * g.depth)
         if gs < s:
-            elements += _graded(gs, s, 0.5 * gs, 0.5 * gs + 2.5 * (s - gs),
-                                lambda x: np.full_like(x, faces))
+            elements += _near_layer(gs, s, FACE_GRADING, lambda x: np.full_like(x, faces))
         if es < gs:
             edges = 2 * len(g.hands) * helix
-            elements += _graded(es, gs, 0.5 * es, 0.5 * es + EDGE_GRADING * (gs - es),
-                                lambda x: edges * np.pi * np.maximum(x, 0.5 * es))
+            elements += _near_layer(es, gs, EDGE_GRADING,
+                                    lambda x: edges * np.pi * np.maximum(x, 0.5 * es))
     return int(elements * DOFS_PER_ELEMENT[order])
 
 
