@@ -103,18 +103,15 @@ def _message(exc: pytest.ExceptionInfo, source: str) -> str:
 
 def _builders_of(data: dict) -> dict:
     """A parsed scene as make_scene's keywords, every table through its object."""
-    words = {"material": sf.Material, "mesh": sf.Mesh, "grooves": sf.Grooves,
-             "rotor": sf.Rotor, "resonance": sf.Resonance, "modes": sf.ModesWanted,
-             "response": sf.Response}
-    many = {"support": ("supports", sf.Support), "attachment": ("attachments", sf.Attachment),
-            "excitation": ("excitations", sf.Excitation),
-            "unbalance": ("unbalances", sf.Unbalance)}
+    from shaftfem.scene.builders import REPEATED, SINGLE
+
+    many = {kind.TABLE: (word, kind) for word, kind in REPEATED.items()}
     out: dict = {"shaft": sf.Shaft(**data.get("shaft", {}),
                                    sections=[sf.Section(**s) for s in data.get("section", [])],
                                    keyways=[sf.Keyway(**k) for k in data.get("keyway", [])])}
     for table, value in data.items():
-        if table in words:
-            out[table] = words[table](**value)
+        if table in SINGLE:   # a single table's keyword is its name
+            out[table] = SINGLE[table](**value)
         elif table in many:
             out[many[table][0]] = [many[table][1](**v) for v in value]
         elif table in ("name", "description", "sizing"):

@@ -28,15 +28,19 @@ from typing import Any, ClassVar
 from shaftfem.errors import SceneError
 from shaftfem.scene.load import load_scene
 from shaftfem.scene.model import Scene
+from shaftfem.scene.schema import SCHEMA
 
 Number = float | int
 Numbers = Number | list[Number] | tuple[Number, ...]
 
 
 def _plain(value: Any) -> Any:
-    """A value as TOML holds it: tuples as lists, NumPy scalars as Python numbers."""
+    """A value as TOML holds it: tuples as lists, mappings as dicts, NumPy scalars as
+    Python numbers."""
     if isinstance(value, (list, tuple)):
         return [_plain(v) for v in value]
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
     if hasattr(value, "item") and not isinstance(value, (str, bytes)):
         return value.item()   # numpy.float64(8.0) -> 8.0
     return value
@@ -97,9 +101,8 @@ class Shaft:
     axis_to_mm: Numbers | None = None
 
     def tables(self) -> dict[str, Any]:
-        shaft = {k: _plain(getattr(self, k)) for k in
-                 ("length_mm", "diameter_mm", "end_chamfer_mm", "step_file", "axis_from_mm",
-                  "axis_to_mm") if getattr(self, k) is not None}
+        shaft = {k: _plain(getattr(self, k)) for k in SCHEMA["shaft"]
+                 if getattr(self, k) is not None}
         out: dict[str, Any] = {"shaft": shaft} if shaft else {}
         if self.sections:
             out["section"] = [_entry(s, Section) for s in self.sections]
@@ -263,7 +266,7 @@ def _entry(value: Any, kind: type[_Table]) -> dict[str, Any]:
     if isinstance(value, kind):
         return value.table()
     if isinstance(value, Mapping):
-        return {k: _plain(v) for k, v in value.items()}
+        return _plain(value)
     raise SceneError(f"[{kind.TABLE}]: expected shaftfem.{kind.__name__}(...) or a dict of "
                      f"its keys, not {type(value).__name__}")
 
@@ -296,7 +299,7 @@ def _set(tables: dict, given: dict[str, Any]) -> dict:
         elif word == "sizing":
             tables.pop("sizing", None)
             if value is not None:
-                tables["sizing"] = {k: _plain(v) for k, v in dict(value).items()}
+                tables["sizing"] = _plain(value)
         elif word in ("name", "description"):
             tables.pop(word, None)
             if value is not None:
