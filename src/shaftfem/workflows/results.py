@@ -108,7 +108,7 @@ class Run:
         """The modes (markers, with their intervals) against each excitation harmonic and
         its required margin: a matplotlib Figure (Jupyter shows it), or written to `path`
         (PNG) and the path returned."""
-        from shaftfem.outputs.plots import modes_figure, save_png
+        from shaftfem.outputs.plots import modes_figure
 
         harmonics = [(f"{e.name} {k}x", k * e.frequency) for e in self.scene.excitations
                      for k in e.orders]
@@ -117,7 +117,7 @@ class Run:
         fig.suptitle(f"{self.scene.name}: natural frequencies"
                      + (" with their intervals" if self.bounds is not None else ""),
                      fontsize=9)
-        return fig if path is None else save_png(fig, path)
+        return _shown(fig, path)
 
     def save(self, folder: str | Path) -> Path:
         """The files `shaftfem export` writes (modes_all.vtu, modes.json, modes.csv, one VTU
@@ -144,6 +144,16 @@ class Run:
         f = self.frequencies[k]
         bound = "" if self.bounds is None else f", bound {100 * self.bounds[k]:.2g} %"
         return f"mode {k + 1}: {f:.2f} Hz{bound}, {self.kinds[k]}"
+
+
+def _shown(fig, path: str | Path | None):
+    """A chart as the plot methods give it: the Figure (Jupyter shows it), or written to
+    `path` (PNG) and the path returned."""
+    if path is None:
+        return fig
+    from shaftfem.outputs.plots import save_png
+
+    return save_png(fig, path)
 
 
 def solve(scene: Scene, options: RunOptions = RunOptions(), estimate: bool = True) -> Run:
@@ -218,22 +228,20 @@ class Turning:
         """The Campbell diagram (with the log decrements when the bearings damp): a
         matplotlib Figure, or written to `path` (PNG) and the path returned."""
         from shaftfem.outputs.campbell_plot import campbell_figure
-        from shaftfem.outputs.plots import save_png
 
         fig = campbell_figure(self.campbell)
-        return fig if path is None else save_png(fig, path)
+        return _shown(fig, path)
 
     def plot_bode(self, path: str | Path | None = None):
         """The unbalance response against speed at each probe (the scene needs an
         [[unbalance]]): a Figure, or written to `path` (PNG) and the path returned."""
         from shaftfem.outputs.campbell_plot import bode_figure
-        from shaftfem.outputs.plots import save_png
 
         if self.campbell.unbalance is None:
             raise SceneError(f"{self.campbell.result.scene.source}: no [[unbalance]]: there "
                              "is no unbalance response to draw")
         fig = bode_figure(self.campbell)
-        return fig if path is None else save_png(fig, path)
+        return _shown(fig, path)
 
 
 def campbell(scene: Scene, speeds_rpm: np.ndarray | None = None,
