@@ -258,7 +258,14 @@ SINGLE: dict[str, type[_Table]] = {"material": Material, "mesh": Mesh, "grooves"
                                    "response": Response}
 REPEATED: dict[str, type[_Table]] = {"supports": Support, "attachments": Attachment,
                                      "excitations": Excitation, "unbalances": Unbalance}
-_UNSET: Any = object()
+class _Unset:
+    """vary's default for a table it is not given: the scene's is kept."""
+
+    def __repr__(self) -> str:   # as the signature reads in help() and the docs
+        return "unchanged"
+
+
+_UNSET: Any = _Unset()
 
 
 def _entry(value: Any, kind: type[_Table]) -> dict[str, Any]:
