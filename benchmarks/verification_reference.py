@@ -74,16 +74,16 @@ def solid(case: dict):
     feature = case["feature_mm"] * 1e-3
     for face in shape.faces:
         lo, hi = face.bounding_box
-        r_in = min(math.hypot(a, b) for a in (lo[0], hi[0]) for b in (lo[1], hi[1]))
         for z0, z1, r0, r1 in case.get("feature_boxes_mm", []):
             if z0 * 1e-3 - 1e-7 <= lo[2] and hi[2] <= z1 * 1e-3 + 1e-7 and (
                     r0 * 1e-3 <= math.hypot(face.center.x, face.center.y) <= r1 * 1e-3):
                 face.maxh = feature
-        c = face.center
         for i, s in enumerate(case["seats"]):
-            if (s["z0_mm"] * 1e-3 - 1e-7 <= lo[2] and hi[2] <= s["z1_mm"] * 1e-3 + 1e-7
-                    and abs(math.hypot(c.x, c.y) - s["radius_mm"] * 1e-3) < 2e-3
-                    and r_in >= 0):
+            r = s["radius_mm"] * 1e-3
+            # a band of the cylinder r = R (its centre of mass lies on the axis)
+            if (s["z0_mm"] * 1e-3 - 1e-6 <= lo[2] and hi[2] <= s["z1_mm"] * 1e-3 + 1e-6
+                    and hi[2] - lo[2] > 1e-5 and abs(hi[0] - r) < 1e-5 and abs(lo[0] + r) < 1e-5
+                    and abs(hi[1] - r) < 1e-5 and abs(lo[1] + r) < 1e-5):
                 face.name = f"seat{i}"
     for edge in shape.edges:
         for z0, z1, rmax in case.get("sharp_edges", []):
@@ -98,7 +98,12 @@ def main() -> None:
     E, nu, rho = case["youngs_modulus_mpa"] * 1e6, case["poisson_ratio"], case["density_kg_m3"]
     mu, lam = E / (2 * (1 + nu)), E * nu / ((1 + nu) * (1 - 2 * nu))
     t0 = time.perf_counter()
-    mesh = Mesh(OCCGeometry(solid(case)).GenerateMesh(maxh=case["size_mm"] * 1e-3, curvaturesafety=0.7, segmentsperedge=0.3,
+    geometry = solid(case)
+    named = {f.name for f in geometry.faces}
+    missing = [i for i in range(len(case["seats"])) if f"seat{i}" not in named]
+    if missing:
+        raise SystemExit(f"{case['name']}: no faces found for seat(s) {missing}")
+    mesh = Mesh(OCCGeometry(geometry).GenerateMesh(maxh=case["size_mm"] * 1e-3, curvaturesafety=0.7, segmentsperedge=0.3,
                                                       grading=0.5))
     if case.get("hp_levels"):
         mesh.RefineHP(case["hp_levels"], factor=HP_FACTOR)

@@ -122,6 +122,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     same scene solved on a mesh `ratio` times coarser (cached like any solve, unless
     the options say not to)."""
     from shaftfem.fem.estimate import (
+        RECOVERY_SHORTFALL,
         combine,
         geometry_allowances,
         matched,
@@ -146,7 +147,8 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
         combine(m.frequencies, fine.relative,
                 matched(m.kinds, coarse.modes.kinds, coarse.modes.frequencies),
                 matched(m.kinds, coarse.modes.kinds, ceta), coarse.modes.n_dofs,
-                method=f"recovery, confirmed on a {ratio:g}x coarser mesh", geometry=geometry),
+                method=f"recovery, confirmed on a {ratio:g}x coarser mesh", geometry=geometry,
+                shortfall=1.0 if scene.shaft.plain else RECOVERY_SHORTFALL),
         m.frequencies, straightened)
 
 
