@@ -48,14 +48,16 @@ def csr(mat) -> sp.csr_matrix:
     return sp.csr_matrix((np.array(v), (np.array(r), np.array(c))), shape=(mat.height, mat.width))
 
 
-def frequencies(K: sp.csr_matrix, M: sp.csr_matrix, k: int = N_ELASTIC + 6) -> np.ndarray:
-    """Lowest k eigenfrequencies (Hz) of the free body, shift-invert about a negative shift."""
+def frequencies(K: sp.csr_matrix, M: sp.csr_matrix, k: int = N_ELASTIC + 6,
+                shift_hz: float = 100.0, definite: bool = True) -> np.ndarray:
+    """Lowest k eigenfrequencies (Hz) of the free body, shift-invert about a negative shift
+    (`definite` False: K - sigma M is symmetric indefinite, as with Lagrange multipliers)."""
     import pypardiso
 
-    sigma = -(2 * math.pi * 100.0) ** 2
+    sigma = -(2 * math.pi * shift_hz) ** 2
     upper = sp.triu((K - sigma * M).tocsr(), format="csr")
     upper.sort_indices()
-    solver = pypardiso.PyPardisoSolver(mtype=2)
+    solver = pypardiso.PyPardisoSolver(mtype=2 if definite else -2)
     solver.factorize(upper)
     op = LinearOperator(K.shape, matvec=lambda b: solver.solve(upper, np.asarray(b, float)),
                         dtype=float)

@@ -3,10 +3,12 @@ installed, its printed interval [f (1 - bound), f (1 + upward)] against an indep
 reference (NGSolve at high order on netgen's mesh of the exported STEP, stored in
 tests/data/verification/ by benchmarks/verification_reference.py in NGSolve's own venv).
 
-    .venv/bin/python benchmarks/verification.py            # the tables of docs/verification.md
-    .venv/bin/python benchmarks/verification.py --cases    # writes out/verification/*.json
+    .venv/bin/python benchmarks/verification.py --write    # the tables of docs/verification.md
+    .venv/bin/python benchmarks/verification.py --steps    # the profiles' STEP files
+    .venv-ngsolve/bin/python benchmarks/verification_reference.py \
+        tests/data/verification/cases/CASE.json              # each reference, in its venv
 
-`--cases` exports each case's STEP and writes the file verification_reference.py reads.
+`--steps` writes out/verification/steps/SCENE.step, which the cases' inputs name.
 The true error is f / f_ref - 1; the effectivity is the bound on the side the truth lies
 (the downward bound, or the upward allowance when the reference lies above f) over |error|.
 """
@@ -42,6 +44,8 @@ CASES = (
          (8, 12, 16)),
     Case("stepped_installed", "stepped_installed.toml",
          "the stepped shaft on two rigid seats", (8, 12)),
+    Case("cross_hole_free", "cross_hole.toml",
+         "STEP: 30 mm bar, 6 mm cross hole, ring groove with sharp floor", (8, 12, 16)),
     Case("paper2018_free", "paper2018", "the paper's shaft: helical grooves, round roots", (8,)),
     Case("paper2018_sharp_free", "paper2018_sharp.toml",
          "the paper's shaft, sharp groove roots", (8,)),
@@ -101,35 +105,53 @@ def solve(case: Case, size: float) -> Row:
                est.relative_error[:n], est.upward[:n])
 
 
-def write_cases() -> None:
-    """Each case's STEP and the description verification_reference.py reads."""
+def export_steps() -> None:
+    """Each profile case's solid as the STEP its reference reads (the reference's inputs:
+    tests/data/verification/cases/CASE.json)."""
+    import shutil
     import subprocess
+    import tempfile
 
-    out = ROOT / "out" / "verification"
-    out.mkdir(parents=True, exist_ok=True)
+    steps = ROOT / "out" / "verification" / "steps"
+    steps.mkdir(parents=True, exist_ok=True)
     for case in CASES:
-        scene = scene_of(case)
-        folder = ROOT / "out" / "ver" / case.name
-        subprocess.run([sys.executable, "-m", "shaftfem", "export", str(scene.source),
-                        "--out", str(folder), "--no-estimate", "-q"], check=True)
-        shaft, mat = scene.shaft, scene.material
-        (out / f"{case.name}.json").write_text(json.dumps({
-            "name": case.name, "step": str((folder / "shaft.step").relative_to(ROOT)),
-            "radius_mm": shaft.radius * 1e3, "length_mm": shaft.length * 1e3,
-            "youngs_modulus_mpa": mat.youngs_modulus / 1e6, "poisson_ratio": mat.poisson_ratio,
-            "density_kg_m3": mat.density, "modes": 10, "shift_hz": 100, "size_mm": 10,
-            "feature_mm": 1.0, "orders": [3, 4], "hp_levels": 0,
-            "seats": [{"z0_mm": s.seat[0] * 1e3, "z1_mm": s.seat[1] * 1e3,
-                       "radius_mm": shaft.radius_at(s.position) * 1e3, "kind": s.kind}
-                      for s in scene.supports]}, indent=1) + "\n")
+        path = SCENES / case.scene
+        if not path.exists() or "step_file" in path.read_text():
+            continue
+        with tempfile.TemporaryDirectory() as d:
+            subprocess.run([sys.executable, "-m", "shaftfem", "export", str(path), "--out", d,
+                            "--no-estimate", "-q"], check=True)
+            shutil.copy(Path(d) / "shaft.step", steps / f"{path.stem}.step")
 
 
 def main(argv: list[str]) -> None:
-    if "--cases" in argv:
-        write_cases()
+    if "--steps" in argv:
+        export_steps()
         return
     rows = [solve(case, size) for case in CASES if (DATA / f"{case.name}.json").exists()
             for size in case.sizes]
+    if "--write" in argv:
+        import contextlib
+        import io
+
+        buffer = io.StringIO()
+        with contextlib.redirect_stdout(buffer):
+            tables(rows)
+        doc = ROOT / "docs" / "verification.md"
+        text = doc.read_text()
+        head, rest = text.split(BEGIN, 1)
+        tail = rest.split(END, 1)[1]
+        doc.write_text(f"{head}{BEGIN}\n{buffer.getvalue()}{END}{tail}")
+    else:
+        tables(rows)
+
+
+BEGIN = "<!-- benchmarks/verification.py --write: from here -->"
+END = "<!-- benchmarks/verification.py --write: to here -->"
+
+
+def tables(rows: list[Row]) -> None:
+    """The matrix's summary per solid and mesh, then every mode."""
     print("| solid | reference (its change from the order below) | mesh (mm) | DOFs "
           "| bounds holding | effectivity | largest error | its bound |")
     print("|---|---|---|---|---|---|---|---|")

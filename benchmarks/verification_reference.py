@@ -1,12 +1,14 @@
 """The verification matrix's references: NGSolve at high order on a graded netgen mesh of
-each case's exported STEP, free-free or held in its seats (benchmarks/verification.py
-writes the cases; this script runs in NGSolve's own venv, never shaftfem's).
+each case's STEP, free-free or held in its seats (the cases' inputs are
+tests/data/verification/cases/CASE.json; this script runs in NGSolve's own venv, never
+shaftfem's; benchmarks/verification.py --steps exports the profiles' STEP files).
 
-    .venv-ngsolve/bin/python benchmarks/verification_reference.py out/verification/CASE/case.json
+    .venv-ngsolve/bin/python benchmarks/verification_reference.py \
+        tests/data/verification/cases/CASE.json
 
 A different discretisation of the same solid: netgen's own mesh, curved to the order, with
-every face that is smaller than the shaft (fillets, chamfers, keyways, grooves, holes)
-meshed at `feature_mm`, and geometric refinement (`hp_levels` layers, each HP_FACTOR times
+the faces inside the case's `feature_boxes_mm` (fillets, keyways, grooves, holes) meshed
+at `feature_mm`, and geometric refinement (`hp_levels` layers, each HP_FACTOR times
 the last) towards the case's sharp concave edges, where the stress is singular and raising
 the order alone converges slowly. A seat holds the means of the displacement over its band
 of surface (x and y; z too for a "rigid" seat), as exact constraints through Lagrange
@@ -27,35 +29,14 @@ import time
 from pathlib import Path
 
 import numpy as np
-import scipy.sparse as sp
 from netgen.occ import Box, Glue, OCCGeometry, Pnt
-from ngsolve import (BilinearForm, CoefficientFunction, Grad, InnerProduct, Mesh, NumberSpace,
-                     Sym, VectorH1, div, ds, dx, x, y)
-from scipy.sparse.linalg import LinearOperator, eigsh
+from ngsolve import BilinearForm, Grad, InnerProduct, Mesh, NumberSpace, Sym, VectorH1, div, ds, dx
+
+sys.path.insert(0, str(Path(__file__).parent))
+from ngsolve_reference import csr, frequencies  # noqa: E402
 
 HP_FACTOR = 0.2
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def csr(mat) -> sp.csr_matrix:
-    r, c, v = mat.COO()
-    return sp.csr_matrix((np.array(v), (np.array(r), np.array(c))), shape=(mat.height, mat.width))
-
-
-def lowest(K: sp.csr_matrix, M: sp.csr_matrix, k: int, shift_hz: float) -> np.ndarray:
-    """The k eigenfrequencies (Hz) of K x = w^2 M x nearest above a negative shift."""
-    import pypardiso
-
-    sigma = -(2 * math.pi * shift_hz) ** 2
-    A = sp.triu((K - sigma * M).tocsr(), format="csr")
-    A.sort_indices()
-    solver = pypardiso.PyPardisoSolver(mtype=-2)   # the seats' multipliers: indefinite
-    solver.factorize(A)
-    op = LinearOperator(K.shape, matvec=lambda b: solver.solve(A, np.asarray(b, float)),
-                        dtype=float)
-    lam = eigsh(K, k=k, M=M, sigma=sigma, OPinv=op, which="LM", tol=1e-12,
-                return_eigenvectors=False)
-    return np.sqrt(np.abs(np.sort(lam))) / (2 * math.pi)
 
 
 def solid(case: dict):
@@ -74,9 +55,11 @@ def solid(case: dict):
     feature = case["feature_mm"] * 1e-3
     for face in shape.faces:
         lo, hi = face.bounding_box
-        for z0, z1, r0, r1 in case.get("feature_boxes_mm", []):
-            if z0 * 1e-3 - 1e-7 <= lo[2] and hi[2] <= z1 * 1e-3 + 1e-7 and (
-                    r0 * 1e-3 <= math.hypot(face.center.x, face.center.y) <= r1 * 1e-3):
+        # the face's reach from the axis, from its box (a ring's centre of mass is on it)
+        reach = max(hi[0], hi[1], -lo[0], -lo[1])
+        for z0, z1, r1 in case.get("feature_boxes_mm", []):
+            if (z0 * 1e-3 - 1e-6 <= lo[2] and hi[2] <= z1 * 1e-3 + 1e-6
+                    and reach <= r1 * 1e-3 + 1e-6):
                 face.maxh = feature
         for i, s in enumerate(case["seats"]):
             r = s["radius_mm"] * 1e-3
@@ -103,8 +86,9 @@ def main() -> None:
     missing = [i for i in range(len(case["seats"])) if f"seat{i}" not in named]
     if missing:
         raise SystemExit(f"{case['name']}: no faces found for seat(s) {missing}")
-    mesh = Mesh(OCCGeometry(geometry).GenerateMesh(maxh=case["size_mm"] * 1e-3, curvaturesafety=0.7, segmentsperedge=0.3,
-                                                      grading=0.5))
+    # curved high-order elements carry the fillets: little curvature-driven refinement
+    mesh = Mesh(OCCGeometry(geometry).GenerateMesh(
+        maxh=case["size_mm"] * 1e-3, curvaturesafety=0.7, segmentsperedge=0.3, grading=0.5))
     if case.get("hp_levels"):
         mesh.RefineHP(case["hp_levels"], factor=HP_FACTOR)
     print(f"{case['name']}: netgen {mesh.ne} elements in {time.perf_counter() - t0:.1f} s",
@@ -133,8 +117,12 @@ def main() -> None:
         a.Assemble()
         m.Assemble()
         K, M = csr(a.mat), csr(m.mat)
-        used = np.flatnonzero((K.diagonal() != 0) | (abs(K).sum(axis=1).A1 != 0))
-        f = lowest(K[used][:, used], M[used][:, used], n + rigid, case["shift_hz"])
+        used = np.flatnonzero(abs(K).sum(axis=1).A1 != 0)   # hp leaves unused DOFs
+        # the multipliers (the compound space's last DOFs) first: their rows of the upper
+        # triangle, which PARDISO reads, then hold their couplings
+        used = np.r_[used[used.size - len(held):], used[:used.size - len(held)]]
+        f = frequencies(K[used][:, used], M[used][:, used], n + rigid, case["shift_hz"],
+                        definite=not held)
         if rigid and (np.max(f[:rigid]) > 1.0 or np.min(f[rigid:]) < 1.0):
             raise SystemExit(f"order {p}: expected {rigid} rigid-body modes, got {f[:8]}")
         orders.append({"order": p, "dofs": int(fes.ndof), "seconds": round(time.perf_counter() - t, 1),
@@ -156,5 +144,4 @@ def write(case: dict, mesh, orders: list[dict]) -> None:
 
 
 if __name__ == "__main__":
-    _ = CoefficientFunction, x, y
     main()
