@@ -30,6 +30,8 @@ TABLES = {
     "campbell": ("performance: Turning shafts", ["campbell.py", "3"]),
     "rotor-verification": ("verification: Turning shafts against ross",
                            ["rotor_verification.py"]),
+    "verification": ("verification: The bounds' verification matrix",
+                     ["verification.py", "--write"]),
     "profiles": ("performance: Stepped shafts, tubes and STEP files", ["profiles.py"]),
     "cold-runs": ("performance: First runs and geometry changes", ["cold_runs.py"]),
     "sweeps": ("performance: Sweeps", ["sweeps.py"]),
