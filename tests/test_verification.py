@@ -21,7 +21,9 @@ FAST = [("stepped_free", "stepped.toml", 12.0),
 def reference(name: str) -> tuple[np.ndarray, float]:
     """The reference's frequencies (Hz) and their largest change from the order below."""
     orders = json.loads((DATA / f"{name}.json").read_text())["orders"]
-    top, below = (np.array(o["frequencies_hz"]) for o in (orders[-1], orders[-2]))
+    # above 1 Hz: a shaft in its seats still turns about its axis, which shaftfem counts apart
+    top, below = (np.array([f for f in o["frequencies_hz"] if f > 1.0])
+                  for o in (orders[-1], orders[-2]))
     return top, float(np.max(np.abs(below / top - 1)))
 
 
