@@ -55,9 +55,12 @@ def frequencies(K: sp.csr_matrix, M: sp.csr_matrix, k: int = N_ELASTIC + 6,
     import pypardiso
 
     sigma = -(2 * math.pi * shift_hz) ** 2
-    upper = sp.triu((K - sigma * M).tocsr(), format="csr")
+    # indefinite: PARDISO's symmetric indefinite factorisation perturbs small pivots, which
+    # split the pairs of an axisymmetric shaft at order 4; the full LU pivots properly
+    upper = (sp.triu((K - sigma * M).tocsr(), format="csr") if definite
+             else (K - sigma * M).tocsr())
     upper.sort_indices()
-    solver = pypardiso.PyPardisoSolver(mtype=2 if definite else -2)
+    solver = pypardiso.PyPardisoSolver(mtype=2 if definite else 11)
     solver.factorize(upper)
     op = LinearOperator(K.shape, matvec=lambda b: solver.solve(upper, np.asarray(b, float)),
                         dtype=float)

@@ -118,9 +118,6 @@ def main() -> None:
         m.Assemble()
         K, M = csr(a.mat), csr(m.mat)
         used = np.flatnonzero(abs(K).sum(axis=1).A1 != 0)   # hp leaves unused DOFs
-        # the multipliers (the compound space's last DOFs) first: their rows of the upper
-        # triangle, which PARDISO reads, then hold their couplings
-        used = np.r_[used[used.size - len(held):], used[:used.size - len(held)]]
         f = frequencies(K[used][:, used], M[used][:, used], n + rigid, case["shift_hz"],
                         definite=not held)
         if rigid and (np.max(f[:rigid]) > 1.0 or np.min(f[rigid:]) < 1.0):

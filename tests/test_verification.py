@@ -34,8 +34,8 @@ def test_every_bound_holds_against_an_independent_reference(name, scene, size):
     from shaftfem.workflows.pipeline import run_modes, with_mesh
 
     f_ref, change = reference(name)
-    # the reference converged well beyond the bounds it checks
-    assert change < 2e-4, change
+    # the reference converged well beyond the bounds it checks (0.3-1 % at 12 mm)
+    assert change < 5e-4, change
     r = run_modes(with_mesh(load_scene(DATA / "scenes" / scene), size))
     est = estimate_errors(r)
     low, high = est.interval(r.modes.frequencies)
