@@ -57,12 +57,13 @@ def frequencies(K: sp.csr_matrix, M: sp.csr_matrix, k: int = N_ELASTIC + 6,
     sigma = -(2 * math.pi * shift_hz) ** 2
     # indefinite: PARDISO's symmetric indefinite factorisation perturbs small pivots, which
     # split the pairs of an axisymmetric shaft at order 4; the full LU pivots properly
-    upper = (sp.triu((K - sigma * M).tocsr(), format="csr") if definite
-             else (K - sigma * M).tocsr())
-    upper.sort_indices()
+    A = (K - sigma * M).tocsr()
+    if definite:
+        A = sp.triu(A, format="csr")   # PARDISO reads a symmetric matrix's upper triangle
+    A.sort_indices()
     solver = pypardiso.PyPardisoSolver(mtype=2 if definite else 11)
-    solver.factorize(upper)
-    op = LinearOperator(K.shape, matvec=lambda b: solver.solve(upper, np.asarray(b, float)),
+    solver.factorize(A)
+    op = LinearOperator(K.shape, matvec=lambda b: solver.solve(A, np.asarray(b, float)),
                         dtype=float)
     lam = eigsh(K, k=k, M=M, sigma=sigma, OPinv=op, which="LM", tol=1e-12,
                 return_eigenvectors=False)

@@ -85,9 +85,20 @@ class Row:
     size: float
     dofs: int
     f: np.ndarray
-    error: np.ndarray       # f / f_ref - 1
+    f_ref: np.ndarray
     bound: np.ndarray
     upward: np.ndarray
+
+    @property
+    def error(self) -> np.ndarray:
+        """f / f_ref - 1."""
+        return self.f / self.f_ref - 1
+
+    @property
+    def side(self) -> np.ndarray:
+        """The bound on the side where the reference lies (downward, or the upward
+        allowance where the reference lies above f)."""
+        return np.where(self.error >= 0, self.bound, self.upward)
 
     @property
     def holds(self) -> np.ndarray:
@@ -95,20 +106,17 @@ class Row:
 
     @property
     def effectivity(self) -> np.ndarray:
-        side = np.where(self.error >= 0, self.bound, self.upward)
-        return side / np.maximum(np.abs(self.error), 1e-300)
+        return self.side / np.maximum(np.abs(self.error), 1e-300)
 
 
-def solve(case: Case, size: float) -> Row:
+def solve(case: Case, size: float, f_ref: np.ndarray) -> Row:
     from shaftfem.workflows.bounded import estimate_errors
     from shaftfem.workflows.pipeline import run_modes, with_mesh
 
-    f_ref, _, _ = reference(case)
     r = run_modes(with_mesh(scene_of(case), size))
     est = estimate_errors(r)
-    f = r.modes.frequencies
-    n = min(f.size, f_ref.size)
-    return Row(case, size, r.modes.n_dofs, f[:n], f[:n] / f_ref[:n] - 1,
+    n = min(r.modes.count, f_ref.size)
+    return Row(case, size, r.modes.n_dofs, r.modes.frequencies[:n], f_ref[:n],
                est.relative_error[:n], est.upward[:n])
 
 
@@ -135,56 +143,51 @@ def main(argv: list[str]) -> None:
     if "--steps" in argv:
         export_steps()
         return
-    rows = [solve(case, size) for case in CASES if (DATA / f"{case.name}.json").exists()
-            for size in case.sizes]
+    references = {case.name: reference(case) for case in CASES
+                  if (DATA / f"{case.name}.json").exists()}
+    rows = [solve(case, size, references[case.name][0]) for case in CASES
+            if case.name in references for size in case.sizes]
+    text = tables(rows, {name: (change, how) for name, (_, change, how) in references.items()})
     if "--write" in argv:
-        import contextlib
-        import io
-
-        buffer = io.StringIO()
-        with contextlib.redirect_stdout(buffer):
-            tables(rows)
         doc = ROOT / "docs" / "verification.md"
-        text = doc.read_text()
-        head, rest = text.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1]
-        doc.write_text(f"{head}{BEGIN}\n{buffer.getvalue()}{END}{tail}")
+        head, rest = doc.read_text().split(BEGIN, 1)
+        doc.write_text(f"{head}{BEGIN}\n{text}{END}{rest.split(END, 1)[1]}")
     else:
-        tables(rows)
+        print(text, end="")
 
 
 BEGIN = "<!-- benchmarks/verification.py --write: from here -->"
 END = "<!-- benchmarks/verification.py --write: to here -->"
 
 
-def tables(rows: list[Row]) -> None:
-    """The matrix's summary per solid and mesh, then every mode."""
-    print("| solid | reference (its change from the order below) | mesh (mm) | DOFs "
-          "| bounds holding | effectivity | largest error | its bound |")
-    print("|---|---|---|---|---|---|---|---|")
+def tables(rows: list[Row], references: dict[str, tuple[float, str]]) -> str:
+    """The matrix's summary per solid and mesh, then every mode (Markdown); `references`:
+    each case's reference's change from the order below, and how it was made."""
+    out = ["| solid | reference (its change from the order below) | mesh (mm) | DOFs "
+           "| bounds holding | effectivity | largest error | its bound |",
+           "|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        _, change, how = reference(r.case)
+        change, how = references[r.case.name]
         k = int(np.argmax(np.abs(r.error)))
-        print(f"| {r.case.what} | {how} ({100 * change:.3f} %) | {r.size:g} | {r.dofs:,} "
-              f"| {int(r.holds.sum())} of {r.holds.size} | {r.effectivity.min():.2f}-"
-              f"{r.effectivity.max():.2f} | {100 * r.error[k]:+.3f} % | "
-              f"{100 * (r.bound[k] if r.error[k] >= 0 else r.upward[k]):.3f} % |")
+        out.append(f"| {r.case.what} | {how} ({100 * change:.3f} %) | {r.size:g} | {r.dofs:,} "
+                   f"| {int(r.holds.sum())} of {r.holds.size} | {r.effectivity.min():.2f}-"
+                   f"{r.effectivity.max():.2f} | {100 * r.error[k]:+.3f} % | "
+                   f"{100 * r.side[k]:.3f} % |")
     eff = np.concatenate([r.effectivity for r in rows])
     held = np.concatenate([r.holds for r in rows])
-    print(f"\n{int(held.sum())} of {held.size} bounds hold; effectivity at most 5 on "
-          f"{100 * np.mean(eff <= 5):.0f} % of the modes, at most 3 on "
-          f"{100 * np.mean(eff <= 3):.0f} %.\n")
-    print("| solid | mesh (mm) | mode | f (Hz) | reference (Hz) | true error | bound "
-          "| effectivity | holds |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    out += ["", f"{int(held.sum())} of {held.size} bounds hold; effectivity at most 5 on "
+            f"{100 * np.mean(eff <= 5):.0f} % of the modes, at most 3 on "
+            f"{100 * np.mean(eff <= 3):.0f} %.", "",
+            "| solid | mesh (mm) | mode | f (Hz) | reference (Hz) | true error | bound "
+            "| effectivity | holds |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        f_ref, _, _ = reference(r.case)
+        error, side, eff, holds = r.error, r.side, r.effectivity, r.holds
         for i in range(r.f.size):
-            side = r.bound[i] if r.error[i] >= 0 else r.upward[i]
-            print(f"| {r.case.name} | {r.size:g} | {i + 1} | {r.f[i]:.2f} | {f_ref[i]:.2f} "
-                  f"| {100 * r.error[i]:+.4f} % | {'-' if r.error[i] >= 0 else '+'}"
-                  f"{100 * side:.4f} % | {r.effectivity[i]:.2f} | "
-                  f"{'yes' if r.holds[i] else 'NO'} |")
+            out.append(f"| {r.case.name} | {r.size:g} | {i + 1} | {r.f[i]:.2f} | "
+                       f"{r.f_ref[i]:.2f} | {100 * error[i]:+.4f} % | "
+                       f"{'-' if error[i] >= 0 else '+'}{100 * side[i]:.4f} % | "
+                       f"{eff[i]:.2f} | {'yes' if holds[i] else 'NO'} |")
+    return "\n".join(out) + "\n"
 
 
 if __name__ == "__main__":

@@ -148,7 +148,8 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
                 matched(m.kinds, coarse.modes.kinds, coarse.modes.frequencies),
                 matched(m.kinds, coarse.modes.kinds, ceta), coarse.modes.n_dofs,
                 method=f"recovery, confirmed on a {ratio:g}x coarser mesh", geometry=geometry,
-                shortfall=1.0 if copied_sector(scene) else RECOVERY_SHORTFALL),
+                # no BREP: a plain bar, meshed as one sector copied round the axis
+                shortfall=1.0 if result.shape.brep is None else RECOVERY_SHORTFALL),
         m.frequencies, straightened)
 
 
@@ -229,9 +230,3 @@ def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | No
         target = percent / 100
     return replace(scene, target_error=target,
                    max_dofs=scene.max_dofs if max_dofs is None else max_dofs)
-
-
-def copied_sector(scene: Scene) -> bool:
-    """Whether the scene's mesh is one sector's copied round the axis (a plain bar with no
-    grooves), on which the recovery estimate is not below the true error."""
-    return scene.shaft.plain and scene.grooves is None
