@@ -60,8 +60,8 @@ def reference(case: Case) -> tuple[np.ndarray, float, str]:
     top, below = (elastic(o) for o in (orders[-1], orders[max(len(orders) - 2, 0)]))
     change = (float(np.max(np.abs(below / top - 1)))
               if len(orders) > 1 else float(data.get("change_from_order_below", np.nan)))
-    how = (f"{data['program']}, order {orders[-1]['order']}, {orders[-1]['dofs']:,} DOFs"
-           + (f", {data['hp_levels']} hp layers" if data.get("hp_levels") else ""))
+    how = (f"order {orders[-1]['order']}, {orders[-1]['dofs'] / 1e3:.0f}k DOFs"
+           + (f", hp {data['hp_levels']}" if data.get("hp_levels") else ""))
     return top, change, how
 
 
@@ -163,7 +163,7 @@ END = "<!-- benchmarks/verification.py --write: to here -->"
 def tables(rows: list[Row], references: dict[str, tuple[float, str]]) -> str:
     """The matrix's summary per solid and mesh, then every mode (Markdown); `references`:
     each case's reference's change from the order below, and how it was made."""
-    out = ["| solid | reference (its change from the order below) | mesh (mm) | DOFs "
+    out = ["| solid | NGSolve reference (change from the order below) | mesh (mm) | DOFs "
            "| bounds holding | effectivity | largest error | its bound |",
            "|---|---|---|---|---|---|---|---|"]
     for r in rows:
