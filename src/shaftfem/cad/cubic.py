@@ -26,9 +26,8 @@ from shaftfem.cad.tetrahedra import (
     CUBIC_NODES,
     EDGES,
     FACES,
-    MIN_JACOBIAN_RATIO,
-    element_jacobian_ratios,
     skfem_mesh,
+    straight_positions,
 )
 from shaftfem.errors import MeshError
 
@@ -57,11 +56,6 @@ def ascending(cells: np.ndarray, local: np.ndarray = CUBIC_NODES) -> np.ndarray:
             raise MeshError("gmsh's 20-node tetrahedra do not have the expected nodes")
         out[rows] = cells[rows][:, pick]
     return out
-
-
-def straight_positions(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """The edge and face nodes of `cells` (E, 20) where a straight-sided element puts them."""
-    return np.einsum("nk,ekd->end", OURS[4:], points[cells[:, :4]])
 
 
 def _boundary_nodes(cells: np.ndarray) -> np.ndarray:
@@ -98,43 +92,6 @@ def curve_inside(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     if free.size:
         d[free] = sla.splu(L[free][:, free].tocsc()).solve(-(L[free][:, fixed] @ d[fixed]))
     return straight + d[dof]
-
-
-# shares of its curving a folded element tries to keep, largest first, and the det J
-# ratio that a share must give it (a barely valid element fits the field poorly)
-KEPT_CURVING = (0.75, 0.5, 0.25)
-KEPT_RATIO = 0.1
-
-
-def straighten_folded(points: np.ndarray, cells: np.ndarray,
-                      rounds: int = 10) -> tuple[np.ndarray, int]:
-    """Take back the curving of every element whose det J ratio is at most
-    MIN_JACOBIAN_RATIO: each keeps the largest share of it (KEPT_CURVING) that gives it
-    a ratio above KEPT_RATIO on its own, else none (straight-sided). Its shared nodes
-    move too, so neighbours may need a next round; the last rounds straighten fully. The
-    new points and how many elements were touched."""
-    points = points.copy()
-    done = np.zeros(len(cells), dtype=bool)
-    for r in range(rounds):
-        bad = element_jacobian_ratios(points, cells) <= MIN_JACOBIAN_RATIO
-        if not bad.any():
-            break
-        nodes = cells[bad, 4:]
-        straight = straight_positions(points, cells[bad])
-        bend = points[nodes] - straight
-        n = int(bad.sum())
-        share = np.zeros(n)
-        if r < rounds // 2:  # partial first; a fold left after that goes straight
-            own = points[cells[bad]]       # each element on its own nodes
-            alone = np.arange(20 * n).reshape(n, 20)
-            for t in KEPT_CURVING:
-                own[:, 4:] = straight + t * bend
-                ok = (share == 0) & (element_jacobian_ratios(own.reshape(-1, 3), alone)
-                                     > KEPT_RATIO)
-                share[ok] = t
-        points[nodes] = straight + share[:, None, None] * bend
-        done |= bad
-    return points, int(done.sum())
 
 
 # Other programs' 20-node tetrahedra: each node's reference coordinates, times 3 (tests

@@ -21,12 +21,11 @@ import numpy as np
 
 from shaftfem.cad.solid import ShaftShape
 from shaftfem.cad.tetrahedra import (
-    EDGES,
     MIN_JACOBIAN_RATIO,
-    element_jacobian_ratios,
     jacobian_ratio,
     skfem_mesh,
     sorted_cells,
+    straighten_folded,
 )
 from shaftfem.errors import BudgetError, MeshError
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
@@ -35,8 +34,8 @@ from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
 # not reused (workflows.stages keys them with it)
 # (2: entries carry checksums; 3: the checksum covers the arrays in name order; 4: they
 # keep the points from before the straightening; 5: cubic meshes without gmsh's
-# high-order optimiser).
-MESH_VERSION = 5
+# high-order optimiser; 6: quadratic meshes' folds keep a share of their curving too).
+MESH_VERSION = 6
 
 
 @dataclass(frozen=True)
@@ -106,7 +105,7 @@ def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
                   hubs: tuple[tuple[float, float], ...] = ()) -> int:
     """About how many DOFs `settings` give on this shaft, without meshing, from the size
     fields cad.mesher sets: each section at its own size (smaller in a thin section, and
-    in a bored one at most WALL_ELEMENTS times its wall) with the layer along its surfaces,
+    in a bored one at most twice its wall and its bore's radius) with the layer along its surfaces,
     the parts' seats (`hubs`, z0 and z1 in m) finer, a graded layer over the faces of the
     grooves and of the profile's features (fillets, chamfers, keyways), and a tube around
     the grooves' floor edges."""
@@ -143,21 +142,17 @@ def estimate_dofs(shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
 def _section_sizes(shaft: Shaft, size: float) -> list[tuple[float, float, float]]:
     """(volume m^3, surface m^2, element size m) of each section, as
     cad.mesher._profile_fields sizes it; a STEP solid's as its bounding cylinder's."""
-    from shaftfem.cad.mesher import WALL_ELEMENTS
+    from shaftfem.cad.mesher import section_size
 
     if shaft.step is not None:
         r, length = shaft.radius, shaft.length
         return [(np.pi * r**2 * length, 2 * np.pi * r * length, size)]
     out = []
     for sec in shaft.profile:
-        thinnest = min(sec.diameter_start, sec.diameter_end)
-        local = size * thinnest / (2 * shaft.radius)
-        if sec.bore:
-            local = min(local, WALL_ELEMENTS * (thinnest - sec.bore) / 2)
         r0, r1 = sec.diameter_start / 2, sec.diameter_end / 2
         volume = np.pi * sec.length * ((r0 * r0 + r0 * r1 + r1 * r1) / 3 - (sec.bore / 2) ** 2)
         surface = np.pi * sec.length * (r0 + r1 + sec.bore)
-        out.append((volume, surface, min(local, size)))
+        out.append((volume, surface, section_size(shaft, sec, size)))
     return out
 
 
@@ -288,13 +283,13 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     straightened = 0
     curved = points
     if settings.geometry_order == 3:
-        from shaftfem.cad.cubic import ascending, curve_inside, straighten_folded
+        from shaftfem.cad.cubic import ascending, curve_inside
 
         cells = ascending(cells)   # copies of a sector renumber the vertices
         curved = curve_inside(points, cells)
         points, straightened = straighten_folded(curved, cells)
     elif settings.order >= 2:
-        points, straightened = straighten_bad_elements(points, cells)
+        points, straightened = straighten_folded(points, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
                      straightened=straightened, unfolded=curved if straightened else None)
@@ -321,30 +316,6 @@ def _compact(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndar
     remap = np.full(points.shape[0], -1, dtype=np.int64)
     remap[used] = np.arange(used.size)
     return np.ascontiguousarray(points[used]), remap[cells]
-
-
-def straighten_bad_elements(points: np.ndarray, cells: np.ndarray,
-                            rounds: int = 5) -> tuple[np.ndarray, int]:
-    """Move the edge nodes of badly curved P2 elements back to their edges' midpoints.
-
-    Curving second-order tets onto the helical groove faces can invert thin
-    elements. gmsh's high-order optimiser repairs them but is slow and has aborted
-    the whole process (an uncaught C++ exception) on this geometry, so such
-    elements are made straight-sided instead: always valid, at a local geometric
-    error of the order of the element's curvature. Returns the new points and
-    how many elements were straightened.
-    """
-    points = points.copy()
-    done = np.zeros(len(cells), dtype=bool)
-    for _ in range(rounds):
-        bad = (element_jacobian_ratios(points, cells) <= MIN_JACOBIAN_RATIO) & ~done
-        if not bad.any():
-            break
-        c = cells[bad]
-        for k, (a, b) in enumerate(EDGES):
-            points[c[:, 4 + k]] = 0.5 * (points[c[:, a]] + points[c[:, b]])
-        done |= bad
-    return points, int(done.sum())
 
 
 def check_jacobians(points: np.ndarray, cells: np.ndarray) -> float:

@@ -299,14 +299,24 @@ def clusters(frequencies: np.ndarray, gap: float = CLUSTER) -> list[list[int]]:
 
 def combine(fine_f: np.ndarray, fine_eta: np.ndarray, coarse_f: np.ndarray,
             coarse_eta: np.ndarray, coarse_dofs: int, method: str,
-            geometry: float = 0.0, shortfall: float = RECOVERY_SHORTFALL) -> ErrorEstimate:
+            geometry: float = 0.0, shortfall: float = RECOVERY_SHORTFALL,
+            shifts: tuple[np.ndarray, np.ndarray] | None = None) -> ErrorEstimate:
     """The bound of each fine-mesh frequency from both meshes' frequencies and recovery
     estimates (coarse values matched to the fine modes; nan where a mode has none), and
     the fine mesh's relative volume difference from the solid, `geometry`; no bound below
-    SAFETY `shortfall` times the recovery estimate."""
+    SAFETY `shortfall` times the recovery estimate.
+
+    `shifts`: each mesh's frequency shift back from its straightened faces to the CAD's
+    (Straightening.shift; fine, coarse matched), taken out of the drop between them so
+    that it measures the discretisation alone: on a cone with a 16 mm bore at 12 mm, the
+    coarser mesh's 37 straightened elements lowered its frequencies by up to 0.22 % and
+    turned the drops of six modes negative."""
     fine_f, fine_eta = np.asarray(fine_f, float), np.asarray(fine_eta, float)
     coarse_f, coarse_eta = np.asarray(coarse_f, float), np.asarray(coarse_eta, float)
-    drop = coarse_f / fine_f - 1
+    if shifts is None:
+        drop = coarse_f / fine_f - 1
+    else:
+        drop = coarse_f * (1 + shifts[1]) / (fine_f * (1 + shifts[0])) - 1
     rho = fine_eta / coarse_eta
     ok = np.isfinite(drop) & (drop > 0) & np.isfinite(rho) & (rho > 0) & (rho < RHO_MAX)
     two = np.where(ok, drop * rho / np.where(ok, 1 - rho, 1.0), np.nan)
@@ -479,13 +489,13 @@ def _rate_bound(top: np.ndarray, est: np.ndarray, recovery: np.ndarray, geometry
 
 
 def geometry_allowances(mesh: ShaftMesh, shape: ShaftShape, shaft: Shaft, material: Material,
-                        modes: Modes, mesh_volume: float) -> tuple[float, np.ndarray]:
+                        modes: Modes, mesh_volume: float) -> tuple[float, Straightening]:
     """The mesh's allowances for the solid's shape: the relative volume difference from
     the solid of its faces as curved onto the CAD (before any straightening; the mesh
     itself holds `mesh_volume`, m^3), and each mode's shift from the straightened faces
     (straightening)."""
     s = straightening(mesh, material, modes)
-    return volume_difference(mesh_volume + s.layer, shape, shaft), s.relative
+    return volume_difference(mesh_volume + s.layer, shape, shaft), s
 
 
 def volume_difference(mesh_volume: float, shape: ShaftShape, shaft: Shaft) -> float:

@@ -309,4 +309,4 @@ def _bound(result: ModalResult, rec: Recovery, prev: Coarser) -> ErrorEstimate:
         combine(m.frequencies, rec.relative, matched(m.kinds, prev.kinds, prev.frequencies),
                 matched(m.kinds, prev.kinds, prev.recovery), prev.dofs,
                 method=f"recovery, confirmed on the adaptive round before ({prev.dofs} DOFs)",
-                geometry=geometry), m.frequencies, straightened)
+                geometry=geometry), m.frequencies, straightened.relative)

@@ -127,6 +127,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
         geometry_allowances,
         matched,
         recovery_estimate,
+        straightening,
         with_straightening,
     )
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
@@ -141,6 +142,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     coarse_scene = with_modes(with_mesh(scene, size_mm), count=m.count)
     coarse = run_modes(coarse_scene, replace(options, progress=None))
     ceta = recovery_estimate(coarse.mesh, scene.material, coarse.modes).relative
+    cshift = straightening(coarse.mesh, scene.material, coarse.modes).shift
     geometry, straightened = geometry_allowances(result.mesh, result.shape, scene.shaft,
                                                  scene.material, m, fine.volume)
     return with_straightening(
@@ -149,8 +151,9 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
                 matched(m.kinds, coarse.modes.kinds, ceta), coarse.modes.n_dofs,
                 method=f"recovery, confirmed on a {ratio:g}x coarser mesh", geometry=geometry,
                 # no BREP: a plain bar, meshed as one sector copied round the axis
-                shortfall=1.0 if result.shape.brep is None else RECOVERY_SHORTFALL),
-        m.frequencies, straightened)
+                shortfall=1.0 if result.shape.brep is None else RECOVERY_SHORTFALL,
+                shifts=(straightened.shift, matched(m.kinds, coarse.modes.kinds, cshift))),
+        m.frequencies, straightened.relative)
 
 
 def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
@@ -194,14 +197,14 @@ def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) ->
         if not np.isfinite(est.two_mesh).all():
             est = hierarchy_estimate(f, dofs, recovery_estimate(result.mesh, scene.material,
                                                                 m).relative, geometry)
-        return with_straightening(est, m.frequencies, straightened)
+        return with_straightening(est, m.frequencies, straightened.relative)
     fine = recovery_estimate(result.mesh, scene.material, m)
     low = replace(first, shapes=raised(first.shapes, keep, system.nodes.shape[0]))
     ceta = recovery_estimate(result.mesh, scene.material, low).relative
     return with_straightening(
         combine(m.frequencies, fine.relative, f1, matched(m.kinds, first.kinds, ceta),
                 first.n_dofs, method=f"recovery, confirmed by order {p - 1} in the same space",
-                geometry=geometry), m.frequencies, straightened)
+                geometry=geometry), m.frequencies, straightened.relative)
 
 
 def _solve_lower(system, result: ModalResult, options: RunOptions):

@@ -122,20 +122,26 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     """A hash of everything the mesh depends on: its sizes and the degree of its map,
     not the element order on it (orders 2 to 5 share a quadratic mesh, 3 to 5 a cubic
     one)."""
-    from shaftfem.cad.cubic import KEPT_CURVING, KEPT_RATIO
     from shaftfem.cad.mesh import MESH_VERSION
-    from shaftfem.cad.mesher import EDGE_GRADING, HUB_SIZE
+    from shaftfem.cad.mesher import (
+        BORE_ELEMENTS,
+        EDGE_GRADING,
+        FACE_GRADING,
+        HUB_SIZE,
+        STEP_CURVATURE,
+        WALL_ELEMENTS,
+    )
     from shaftfem.cad.session import gmsh_version
-    from shaftfem.cad.tetrahedra import MIN_JACOBIAN_RATIO
+    from shaftfem.cad.tetrahedra import KEPT_CURVING, KEPT_RATIO, MIN_JACOBIAN_RATIO
 
     geometry = {k: v for k, v in asdict(settings).items() if k != "geometry_order"}
     geometry["order"] = 1 if settings.order == 1 else settings.geometry_order
     payload = {
         "version": MESH_VERSION, "gmsh": gmsh_version(),
-        "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING],
-        **({"nodes": "parametric", "inside": "harmonic",
-            "folds": ["partly straightened, each on its own", list(KEPT_CURVING), KEPT_RATIO]}
-           if geometry["order"] == 3 else {}),
+        "constants": [MIN_JACOBIAN_RATIO, EDGE_GRADING, FACE_GRADING, WALL_ELEMENTS,
+                      BORE_ELEMENTS, STEP_CURVATURE],
+        "folds": ["partly straightened, each on its own", list(KEPT_CURVING), KEPT_RATIO],
+        **({"nodes": "parametric", "inside": "harmonic"} if geometry["order"] == 3 else {}),
         "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
         "settings": geometry, **({"cuts": list(cuts)} if cuts else {}),
         **({"hubs": [list(h) for h in hubs], "hub_size": HUB_SIZE} if hubs else {}),
