@@ -76,8 +76,14 @@ class ShaftMesh:
         return sorted_cells(self.cells)
 
     def to_skfem(self):
-        """The same mesh as a scikit-fem MeshTet1/MeshTet2, its cells as `element_cells`."""
-        return skfem_mesh(self.points, self.element_cells)
+        """The same mesh as a scikit-fem MeshTet1/MeshTet2, its cells as `element_cells`
+        (made once: its faces and edges take a tenth of a second on the default mesh,
+        and the assembly, the recovery and the bound each ask for it)."""
+        made = self.__dict__.get("_skfem")
+        if made is None:
+            made = skfem_mesh(self.points, self.element_cells)
+            object.__setattr__(self, "_skfem", made)
+        return made
 
 
 # Tetrahedra gmsh makes per h^3 of volume (a regular tetrahedron fills h^3 / 8.5; gmsh's

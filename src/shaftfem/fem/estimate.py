@@ -231,15 +231,16 @@ def straightening(mesh: ShaftMesh, material: Material, modes: Modes) -> Straight
     from skfem.quadrature import get_quadrature
     from skfem.refdom import RefTri
 
-    from shaftfem.cad.tetrahedra import skfem_mesh
     from shaftfem.fem.assembly import _element
 
     n = modes.frequencies.size
     if mesh.unfolded is None:
         return Straightening(relative=np.zeros(n), shift=np.zeros(n), layer=0.0)
-    final, before = mesh.to_skfem(), skfem_mesh(mesh.unfolded, mesh.element_cells)
+    final, cells = mesh.to_skfem(), mesh.element_cells
     moved = np.flatnonzero(np.any(mesh.unfolded != mesh.points, axis=1))
-    touched = np.any(np.isin(mesh.element_cells, moved), axis=1)
+    touched = np.any(np.isin(cells, moved), axis=1)
+    back = mesh.unfolded - mesh.points     # each node's way back to the CAD
+    geometry = final.elem()                # the map's basis: local node k is cells' column k
     faces = final.boundary_facets()
     faces = faces[touched[final.f2t[0, faces]]]
     owners = final.f2t[0, faces]
@@ -256,28 +257,28 @@ def straightening(mesh: ShaftMesh, material: Material, modes: Modes) -> Straight
         va, vb, vc = _VERTICES[[a, b, c]]
         X = va[:, None] + np.outer(vb - va, qx[0]) + np.outer(vc - va, qx[1])
         on = Basis(final, _element(mesh.order), quadrature=(X, qw), elements=elements)
-        was = Basis(before, _element(mesh.order), quadrature=(X, qw), elements=elements)
         J = on.mapping.DF(X, tind=elements)
         normal = np.cross(np.einsum("ijeq,j->ieq", J, vb - va),
                           np.einsum("ijeq,j->ieq", J, vc - va), axis=0)
         opposite = _VERTICES[6 - a - b - c] - va          # into the element
         inward = np.einsum("ieq,ieq->eq", normal, np.einsum("ijeq,j->ieq", J, opposite))
         normal *= -np.sign(inward)                         # outward, times the area ratio
-        shift = was.global_coordinates().value - on.global_coordinates().value
+        phi_map = np.array([geometry.lbasis(X, k)[0] for k in range(cells.shape[1])])
+        shift = np.einsum("kq,ekd->deq", phi_map, back[cells[elements]])
         vn_da = np.einsum("ieq,ieq->eq", shift, normal) * qw
         layer += float(vn_da.sum())
         phi = np.array([on.basis[j][0].value for j in range(on.Nbfun)])   # (nb, e, q)
         dphi = np.array([on.basis[j][0].grad for j in range(on.Nbfun)])  # (nb, 3, e, q)
-        for k in range(n):
-            coef = modes.shapes[:, k].reshape(-1, 3)[on.element_dofs]    # (nb, e, 3)
-            u = np.einsum("jei,jeq->ieq", coef, phi)
-            grad = np.einsum("jei,jdeq->ideq", coef, dphi)  # grad[i, d] = du_i / dx_d
-            eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
-            div = eps[0, 0] + eps[1, 1] + eps[2, 2]
-            energy = lam * div**2 + 2 * mu * np.einsum("ijeq,ijeq->eq", eps, eps)
-            density = energy - omega2[k] * material.density * np.einsum("ieq,ieq->eq", u, u)
-            total[k] += float(np.abs(density * vn_da).sum())
-            signed[k] += float((density * vn_da).sum())
+        # every mode at once: coef (nb, e, 3, n)
+        coef = modes.shapes.reshape(-1, 3, n)[on.element_dofs]
+        u = np.einsum("jein,jeq->ieqn", coef, phi, optimize=True)
+        grad = np.einsum("jein,jdeq->ideqn", coef, dphi, optimize=True)  # du_i / dx_d
+        eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3, 4))
+        div = eps[0, 0] + eps[1, 1] + eps[2, 2]
+        energy = lam * div**2 + 2 * mu * np.einsum("ijeqn,ijeqn->eqn", eps, eps)
+        density = energy - omega2 * material.density * np.einsum("ieqn,ieqn->eqn", u, u)
+        total += np.abs(density * vn_da[..., None]).sum(axis=(0, 1))
+        signed += (density * vn_da[..., None]).sum(axis=(0, 1))
     return Straightening(relative=SAFETY * total / (2 * omega2), shift=signed / (2 * omega2),
                          layer=layer)
 
