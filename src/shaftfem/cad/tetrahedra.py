@@ -159,7 +159,7 @@ def straight_positions(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
 
 # shares of its curving a folded element tries to keep, largest first, and the det J
 # ratio that a share must give it (a barely valid element fits the field poorly)
-KEPT_CURVING = (0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1)
+KEPT_CURVING = (0.75, 0.5, 0.25)
 KEPT_RATIO = 0.1
 
 
