@@ -266,8 +266,13 @@ def test_a_folded_element_keeps_what_curving_it_can():
     folded (det J ratio below the limit) at 0.2 of an edge, valid at half that, so
     straighten_folded keeps a share of the push (0.25 to 0.75), not none; a push that
     no share makes valid goes fully straight."""
-    from shaftfem.cad.tetrahedra import KEPT_CURVING, straight_positions, straighten_folded
-    from shaftfem.cad.tetrahedra import MIN_JACOBIAN_RATIO, element_jacobian_ratios
+    from shaftfem.cad.tetrahedra import (
+        KEPT_CURVING,
+        MIN_JACOBIAN_RATIO,
+        element_jacobian_ratios,
+        straight_positions,
+        straighten_folded,
+    )
 
     corners = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
     cells = np.arange(20)[None]

@@ -40,6 +40,32 @@ def test_inverted_element_is_refused(cylinder):
     assert np.array_equal(fixed[keep], pts[keep])
 
 
+def test_a_folded_quadratic_element_keeps_what_curving_it_can():
+    """One 10-node tetrahedron whose node on edge (0, 1) is pushed into it: folded at
+    0.3 and 0.45 of an edge, so straighten_folded keeps the largest share of the push
+    (0.75, 0.5) that leaves it valid with a det J ratio of 0.1 or more, not none; a push
+    no share makes valid (an exact zero of det J among the trials) goes fully straight."""
+    from shaftfem.cad.tetrahedra import (
+        MIN_JACOBIAN_RATIO,
+        element_jacobian_ratios,
+        straight_positions,
+    )
+
+    corners = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    cells = np.arange(10)[None]
+    straight = np.vstack([corners, straight_positions(np.vstack([corners, np.zeros((6, 3))]),
+                                                      cells)[0]])
+    for push, share in ((0.3, 0.75), (0.45, 0.5), (1.0, 0.0), (3.0, 0.0)):
+        points = straight.copy()
+        points[4, 1] += push
+        assert element_jacobian_ratios(points, cells)[0] <= MIN_JACOBIAN_RATIO
+        out, n = straighten_folded(points, cells)
+        assert n == 1 and element_jacobian_ratios(out, cells)[0] >= 0.1 - 1e-12
+        assert np.allclose(out[4], straight[4] + share * (points[4] - straight[4]))
+        assert np.array_equal(out[[0, 1, 2, 3, 5, 6, 7, 8, 9]],
+                              points[[0, 1, 2, 3, 5, 6, 7, 8, 9]])
+
+
 def test_mesh_volume_matches_the_cylinder(cylinder):
     from skfem import Basis, ElementTetP1, ElementTetP2, Functional, MeshTet
 
@@ -148,3 +174,31 @@ def test_stiffness_that_resists_a_translation_is_refused(cylinder):
     K.data[: K.nnz // 10] *= 1.01  # a corrupted block of rows
     with pytest.raises(AssemblyError, match="rigid translation"):
         _check_translations(K, cylinder.system.nodes)
+
+
+def test_a_bore_is_meshed_finely_enough_not_to_fold(monkeypatch):
+    """The cone's 16 mm bore under a 16 mm mesh: its elements are at most the bore's
+    radius, and none of them folds where it is curved onto the bore; with elements as
+    large as the wall allows (14 mm) a few dozen do."""
+    from pathlib import Path
+
+    import shaftfem.cad.mesher as mesher
+    from shaftfem.cad.mesh import generate_mesh
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.pipeline import with_mesh
+    from shaftfem.workflows.stages import solid
+
+    path = Path(__file__).parent / "data" / "verification" / "scenes" / "cone_tube.toml"
+    scene, shape = solid(with_mesh(load_scene(path), 16.0), use_cache=False)
+    bore = 8e-3
+
+    def folded_at_the_bore() -> int:
+        m = generate_mesh(shape, scene.shaft, scene.grooves, scene.mesh)
+        if m.unfolded is None:
+            return 0
+        moved = np.any(m.unfolded != m.points, axis=1)
+        return int(np.sum(moved & (np.hypot(m.points[:, 0], m.points[:, 1]) < bore + 0.5e-3)))
+
+    assert folded_at_the_bore() == 0
+    monkeypatch.setattr(mesher, "BORE_ELEMENTS", float("inf"))
+    assert folded_at_the_bore() > 10

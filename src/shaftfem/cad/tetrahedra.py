@@ -135,7 +135,12 @@ def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray
     pts.append(v.mean(axis=0))
     if cells.shape[1] == 20:  # and the cubic map's edge nodes
         pts += list(CUBIC_NODES[4:16])
-    det = mapping.detDF(np.array(pts).T)
+    # det J from J itself: scikit-fem's detDF raises on an exact zero, which a trial
+    # share of an element's curving (straighten_folded) can give
+    J = mapping.DF(np.array(pts).T)
+    det = (J[0, 0] * (J[1, 1] * J[2, 2] - J[1, 2] * J[2, 1])
+           - J[0, 1] * (J[1, 0] * J[2, 2] - J[1, 2] * J[2, 0])
+           + J[0, 2] * (J[1, 0] * J[2, 1] - J[1, 1] * J[2, 0]))
     # each element against its straight-sided self (ascending-vertex cells mix orientations)
     v = points[cells[:, :4]]
     straight = np.einsum("ed,ed->e", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]),
