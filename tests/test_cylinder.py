@@ -79,8 +79,7 @@ def test_cubic_elements_are_conforming_and_exact_for_cubic_fields():
     from skfem import Basis, BilinearForm, MeshTet1, MeshTet2
     from skfem.helpers import dot, grad
 
-    from shaftfem.cad.mesh import EDGES, sorted_cells
-    from shaftfem.cad.tetrahedra import lagrange_cubic
+    from shaftfem.cad.tetrahedra import EDGES, lagrange_cubic, sorted_cells
 
     m = MeshTet1().refined(2)
     t = m.t.T.copy()

@@ -40,11 +40,15 @@ def test_inverted_element_is_refused(cylinder):
     assert np.array_equal(fixed[keep], pts[keep])
 
 
-def test_a_folded_quadratic_element_keeps_what_curving_it_can():
-    """One 10-node tetrahedron whose node on edge (0, 1) is pushed into it: folded at
-    0.3 and 0.45 of an edge, so straighten_folded keeps the largest share of the push
-    (0.75, 0.5) that leaves it valid with a det J ratio of 0.1 or more, not none; a push
-    no share makes valid (an exact zero of det J among the trials) goes fully straight."""
+@pytest.mark.parametrize("width,node,axis,pushes", [
+    (10, 4, 1, ((0.3, 0.75), (0.45, 0.5), (1.0, 0.0), (3.0, 0.0))),  # edge (0, 1)'s node
+    (20, 16, 2, ((0.2, 0.5), (40.0, 0.0))),                          # face (0, 1, 2)'s centre
+], ids=["quadratic", "cubic"])
+def test_a_folded_element_keeps_what_curving_it_can(width, node, axis, pushes):
+    """One tetrahedron with a node pushed into it, folded: straighten_folded keeps the
+    largest share of the push (KEPT_CURVING) that leaves it a det J ratio of 0.1 or more,
+    not none; a push no share makes valid (an exact zero of det J among the trials, at a
+    quarter of the edge's push) goes fully straight. The other nodes stay."""
     from shaftfem.cad.tetrahedra import (
         MIN_JACOBIAN_RATIO,
         element_jacobian_ratios,
@@ -52,18 +56,18 @@ def test_a_folded_quadratic_element_keeps_what_curving_it_can():
     )
 
     corners = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
-    cells = np.arange(10)[None]
-    straight = np.vstack([corners, straight_positions(np.vstack([corners, np.zeros((6, 3))]),
-                                                      cells)[0]])
-    for push, share in ((0.3, 0.75), (0.45, 0.5), (1.0, 0.0), (3.0, 0.0)):
+    cells = np.arange(width)[None]
+    straight = np.vstack([corners, straight_positions(
+        np.vstack([corners, np.zeros((width - 4, 3))]), cells)[0]])
+    others = np.arange(width) != node
+    for push, share in pushes:
         points = straight.copy()
-        points[4, 1] += push
+        points[node, axis] += push
         assert element_jacobian_ratios(points, cells)[0] <= MIN_JACOBIAN_RATIO
         out, n = straighten_folded(points, cells)
         assert n == 1 and element_jacobian_ratios(out, cells)[0] >= 0.1 - 1e-12
-        assert np.allclose(out[4], straight[4] + share * (points[4] - straight[4]))
-        assert np.array_equal(out[[0, 1, 2, 3, 5, 6, 7, 8, 9]],
-                              points[[0, 1, 2, 3, 5, 6, 7, 8, 9]])
+        assert np.allclose(out[node], straight[node] + share * (points[node] - straight[node]))
+        assert np.array_equal(out[others], points[others])
 
 
 def test_mesh_volume_matches_the_cylinder(cylinder):
