@@ -199,7 +199,7 @@ def test_files_carry_the_cubic_cells_in_each_program_order(cubic_runs, tmp_path)
         assert vols > 0
         assert np.isclose(x[:4], mesh.points[mesh.cells[e, :4]]).all(axis=1).sum() >= 2
     # each VTK cell's nodes are the cubic map at VTK's reference points, over its vertices
-    from shaftfem.cad.cubic import barycentric
+    from shaftfem.cad.tetrahedra import barycentric
 
     lam = barycentric(VTK_NODES)
     assert np.allclose(np.einsum("nk,ekd->end", lam[:4], got[:, :4]), got[:, :4])

@@ -26,16 +26,11 @@ from shaftfem.cad.tetrahedra import (
     CUBIC_NODES,
     EDGES,
     FACES,
+    barycentric,
     skfem_mesh,
     straight_positions,
 )
 from shaftfem.errors import MeshError
-
-
-def barycentric(X: np.ndarray) -> np.ndarray:
-    """Barycentric coordinates (n, 4) of reference points X (n, 3)."""
-    return np.column_stack([1.0 - X.sum(axis=1), X])
-
 
 OURS = barycentric(CUBIC_NODES)
 

@@ -293,9 +293,8 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
 
         cells = ascending(cells)   # copies of a sector renumber the vertices
         curved = curve_inside(points, cells)
+    if settings.order >= 2:        # curved elements: each fold keeps what curving it can
         points, straightened = straighten_folded(curved, cells)
-    elif settings.order >= 2:
-        points, straightened = straighten_folded(points, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
                      straightened=straightened, unfolded=curved if straightened else None)

@@ -37,6 +37,16 @@ CUBIC_NODES = np.vstack(
     + [VERTICES[list(f)].mean(axis=0)[None] for f in FACES])
 
 
+# The 10 nodes of a quadratic tetrahedron (meshio's order): the vertices, the edges' midpoints.
+QUADRATIC_NODES = np.vstack([VERTICES] + [(VERTICES[i] + VERTICES[j])[None] / 2
+                                          for i, j in EDGES])
+
+
+def barycentric(X: np.ndarray) -> np.ndarray:
+    """Barycentric coordinates (n, 4) of reference points X (n, 3)."""
+    return np.column_stack([1.0 - X.sum(axis=1), X])
+
+
 # d l_i / d X on the reference element (l_0 = 1 - x - y - z)
 GRAD_L = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
 
@@ -129,8 +139,7 @@ def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray
     mapping = skfem_mesh(points, cells)._mapping()
     # vertices, edge midpoints, face centroids and the centroid of the reference tet
     v = VERTICES
-    pts = list(v)
-    pts += [(v[i] + v[j]) / 2 for i in range(4) for j in range(i + 1, 4)]
+    pts = list(QUADRATIC_NODES)
     pts += [(v[i] + v[j] + v[k]) / 3 for i, j, k in FACES]
     pts.append(v.mean(axis=0))
     if cells.shape[1] == 20:  # and the cubic map's edge nodes
@@ -149,17 +158,11 @@ def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray
     return det.min(axis=1) / np.abs(det).max(axis=1)
 
 
-# The reference coordinates of a 10-node tetrahedron's nodes (meshio's order)
-QUADRATIC_NODES = np.vstack([VERTICES] + [(VERTICES[i] + VERTICES[j])[None] / 2
-                                          for i, j in EDGES])
-
-
 def straight_positions(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     """(E, n - 4, 3): where a straight-sided element puts the edge and face nodes of
     `cells` (E, 10 in meshio's order, or 20 in the cubic element's)."""
     local = QUADRATIC_NODES if cells.shape[1] == 10 else CUBIC_NODES
-    bary = np.column_stack([1.0 - local.sum(axis=1), local])
-    return np.einsum("nk,ekd->end", bary[4:], points[cells[:, :4]])
+    return np.einsum("nk,ekd->end", barycentric(local)[4:], points[cells[:, :4]])
 
 
 # shares of its curving a folded element tries to keep, largest first, and the det J

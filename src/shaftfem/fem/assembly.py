@@ -393,10 +393,9 @@ def point_dofs(cells: np.ndarray, element_dofs: np.ndarray, nodes: np.ndarray,
 def point_values(cells: np.ndarray, basis, n_points: int) -> sp.csr_matrix:
     """(n_points, n_nodes): the scalar field at every point of the mesh (the nodes of its
     10-node cells, or of its 20-node ones, in `cells`' local order) from the basis' DOFs."""
-    from shaftfem.cad.tetrahedra import CUBIC_NODES, EDGES, VERTICES
+    from shaftfem.cad.tetrahedra import CUBIC_NODES, QUADRATIC_NODES
 
-    ref = (CUBIC_NODES if cells.shape[1] == 20 else
-           np.vstack([VERTICES] + [(VERTICES[a] + VERTICES[b]) / 2 for a, b in EDGES]))
+    ref = CUBIC_NODES if cells.shape[1] == 20 else QUADRATIC_NODES
     E = np.stack([basis.elem.lbasis(ref.T, i)[0] for i in range(basis.Nbfun)], axis=-1)
     # each point from the first element that has it
     points, first = np.unique(cells.ravel(), return_index=True)
