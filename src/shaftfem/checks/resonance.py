@@ -15,7 +15,7 @@ scene's modal damping, AF = 1 / (2 zeta) (2 %: AF 25, margin 16.3 %).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -64,10 +64,15 @@ class ResonanceVerdict:
     free_free_intended: bool = False
     # the shaft turning ([rotor]): what the verdict rests on (None: standstill modes)
     turning: str | None = None
+    # the turning shaft's stability: each reason it fails (a mode that grows or is damped
+    # less than required at a speed it runs through, a divergence in its running range)
+    unstable: list[str] = field(default_factory=list)
+    # what is printed beside the verdict and does not fail it (onsets beyond the range)
+    warnings: list[str] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
-        return all(a.ok for a in self.approaches)
+        return all(a.ok for a in self.approaches) and not self.unstable
 
     @property
     def exit_status(self) -> int:
@@ -98,6 +103,8 @@ class ResonanceVerdict:
             "exit_status": self.exit_status,
             "required_margin": self.required,
             "turning": self.turning,
+            "unstable": list(self.unstable),
+            "warnings": list(self.warnings),
             "approaches": [
                 {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,
                  "order": a.order, "excitation_hz": a.excitation, "margin": a.margin,

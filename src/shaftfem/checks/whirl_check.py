@@ -4,12 +4,19 @@ source's harmonics.
 
 - A harmonic of the shaft's own speed (a source at an operating speed, 1x always) is
   met where a whirl curve crosses its order line: the critical speed N_c, with the
-  speed margin |N_c - N| / N. At 1x an unbalance drives forward whirl only on a shaft
-  of revolution in isotropic bearings, so there backward 1x crossings are not judged;
+  speed margin |N_c - N| / N from each operating speed N, or from an operating range
+  ([rotor] speed_range_rpm) 0 inside it and measured to its nearer end outside. At 1x
+  an unbalance drives forward whirl only on a shaft of revolution in isotropic
+  bearings, so there backward 1x crossings are not judged;
   elsewhere (anisotropic bearings, a shaft that is not of revolution) both are.
 - Any other source's harmonic k f is met by the whirl frequencies at each operating
   speed, forward and backward, margin |f - k f| / (k f).
 - Torsion and axial modes do not whirl: they meet every harmonic as at standstill.
+
+- Stability: a whirling mode that grows, or whose log decrement is at or below
+  [rotor] min_log_dec (API 684's 0.1 with criterion "api684"), at a speed up to the
+  highest operating one fails; so does a divergence band inside the running range.
+  Onsets and bands beyond it are warnings with their margin.
 
 The required margin is the scene's flat one, or with criterion "api684" that of each
 mode's amplification factor AF = pi / log dec (none below AF 2.5; an undamped model
@@ -22,6 +29,7 @@ import math
 from typing import TYPE_CHECKING
 
 from shaftfem.checks.resonance import Approach, ResonanceVerdict, api684_margin
+from shaftfem.fem.whirl import RPM
 
 if TYPE_CHECKING:
     from shaftfem.fem.whirl import Campbell
@@ -34,12 +42,67 @@ def amplification(log_dec: float) -> float:
     return math.pi / log_dec if log_dec > 0 else math.inf
 
 
-def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict | None:
-    """The turning shaft's verdict (None when the scene has no excitation at all)."""
+def span_margin(n_c: float, lo: float, hi: float) -> tuple[float, bool]:
+    """A critical speed's separation margin from an operating span [lo, hi] (r/min; a
+    single speed has lo = hi): 0 inside it, else the distance to the nearer end as a
+    fraction of that end; and whether the critical speed lies above the span."""
+    if lo <= n_c <= hi:
+        return 0.0, False
+    if n_c < lo:
+        return (lo - n_c) / lo, False
+    return (n_c - hi) / hi, True
+
+
+def _span_text(lo: float, hi: float) -> str:
+    return f"{lo:,.0f} r/min" if lo == hi else f"{lo:,.0f}-{hi:,.0f} r/min"
+
+
+def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
+    """What fails the turning shaft's stability, and what is only warned of: a whirling
+    mode that grows, or is damped less than required, at a speed up to the highest
+    operating one; an onset of growth or a divergence band inside the running range
+    (fails) or beyond it (a warning with its margin)."""
+    rotor = c.result.scene.rotor
+    assert rotor is not None
+    spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans]
+    top = max(hi for _, hi in spans)
+    fails, warns = [], []
+    st = c.stability
+    if st is not None and not st.ok:
+        what = ("grows" if st.growing else
+                f"is damped less than required (min_log_dec {st.required:g})")
+        fails.append(f"curve {st.curve} ({st.whirl} whirl, {st.frequency_hz:.2f} Hz) {what}: "
+                     f"log decrement {st.log_dec:.3g} at {st.speed_rpm:,.0f} r/min")
+    elif st is not None and not st.judged:
+        warns.append("stability not judged: no damping in the model (every log decrement is "
+                     "zero); give the bearings' damping, or [rotor] min_log_dec")
+    for o in c.onsets:
+        text = (f"curve {o.curve_text} starts to grow at {o.speed_rpm:,.0f} r/min "
+                f"({o.frequency_hz:.2f} Hz)")
+        if o.speed_rpm <= top * (1 + 1e-9):
+            fails.append(text + f", below the highest operating speed ({top:,.0f} r/min)")
+        else:
+            warns.append(text + f": {100 * (o.speed_rpm - top) / top:.1f} % above the highest "
+                         f"operating speed ({top:,.0f} r/min)")
+    for lo, hi in c.divergent:
+        inside = [s for s in spans if lo <= s[1] and hi >= s[0]]
+        text = f"divergence (a mode locks to the shaft and grows) from {lo:,.0f} to {hi:,.0f} r/min"
+        if inside:
+            fails.append(text + f", inside the running range {_span_text(*inside[0])}")
+        else:
+            gap = min(min(abs(lo - b), abs(hi - a)) / (b if lo > b else a) for a, b in spans)
+            warns.append(text + f": {100 * gap:.1f} % from the nearest running speed")
+    return fails, warns
+
+
+def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
+    """The turning shaft's verdict: its critical speeds against where it runs, its whirl
+    at the operating speeds against the other sources, and its stability."""
     scene = c.result.scene
     rotor = scene.rotor
     assert rotor is not None
     speeds = [om * 60 / (2 * math.pi) for om in rotor.speeds]
+    spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans]
     own = [e for e in scene.excitations if any(abs(e.frequency * 60 - n) <= 1e-9 * n
                                                for n in speeds)]
     others = [e for e in scene.excitations if e not in own]
@@ -51,15 +114,16 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict 
               if not (cs.order == 1 and cs.whirl == "backward" and scene.axisymmetric
                       and isotropic)]
     out = []
-    for n in speeds:
+    for lo, hi in spans:
         for cs in judged:
-            below = cs.speed_rpm < n
-            need = api684_margin(amplification(cs.log_dec), above=not below) if api else flat
+            margin, above = span_margin(cs.speed_rpm, lo, hi)
+            need = api684_margin(amplification(cs.log_dec), above=above) if api else flat
+            curve = f"curve {cs.mode}" if cs.mode else "found directly"
             out.append(Approach(mode=cs.mode, frequency=cs.frequency_hz,
-                                kind=f"{cs.whirl} whirl, critical at {cs.speed_rpm:,.0f} r/min",
-                                source=f"shaft at {n:,.0f} r/min", order=cs.order,
-                                excitation=cs.order * n / 60, margin=abs(cs.speed_rpm - n) / n,
-                                required=need))
+                                kind=f"{cs.whirl} whirl ({curve}), critical at "
+                                     f"{cs.speed_rpm:,.0f} r/min",
+                                source=f"shaft at {_span_text(lo, hi)}", order=cs.order,
+                                excitation=cs.frequency_hz, margin=margin, required=need))
     rows = {n: [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n] for n in speeds}
     for n, ws in rows.items():
         for w in ws:
@@ -72,12 +136,16 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict 
                     out.append(Approach(mode=w.mode, frequency=w.frequency_hz, kind=kind,
                                         source=e.name, order=k, excitation=fk,
                                         margin=abs(w.frequency_hz - fk) / fk, required=need))
-    if not scene.excitations and not c.critical_speeds:
-        return None
     out.sort(key=lambda a: a.margin - a.required)
-    basis = (f"the shaft turning at {', '.join(f'{n:,.0f}' for n in speeds)} r/min ({c.frame} "
-             f"frame): critical speeds from 0 to {max(c.speeds_rpm):,.0f} r/min against the "
-             "operating speed" + ("; whirl frequencies there against "
+    fails, warns = stability_findings(c)
+    check = c.crossing_check
+    basis = (f"the shaft turning at {', '.join(_span_text(lo, hi) for lo, hi in spans)} "
+             f"({c.frame} frame): critical speeds from 0 to {max(c.speeds_rpm):,.0f} r/min "
+             f"(orders {', '.join(f'{k}x' for k in c.orders)}, every curve, found on the "
+             "curves followed by shape"
+             + (" and directly" if check is not None and check.applies else "")
+             + ") against the running "
+             + ("range" if rotor.ranges else "speed") + ("; whirl frequencies there against "
                                   + ", ".join(e.name for e in others) if others else "")
              + (" (backward 1x crossings left out: an unbalance drives forward whirl only on "
                 "a shaft of revolution in isotropic bearings)" if scene.axisymmetric
@@ -86,7 +154,11 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict 
              + (". API 684 margins from each mode's log decrement" if api else "")
              + ("; no bearing damping, so no amplification factor: the margin is API 684's "
                 "for a lightly damped mode" if api and not any(
-                    s.bearing is not None for s in scene.held) else ""))
+                    s.bearing is not None for s in scene.held) else "")
+             + (f"; stability: least log decrement {c.stability.log_dec:.3g} (curve "
+                f"{c.stability.curve} at {c.stability.speed_rpm:,.0f} r/min), required above "
+                f"{c.stability.required:g}" if c.stability is not None and c.stability.judged
+                else ""))
     return ResonanceVerdict(approaches=out, required=flat, free_free=not scene.held,
                             free_free_intended=scene.free_free_intended or scene.hanging_free,
-                            turning=basis)
+                            turning=basis, unstable=fails, warnings=warns)

@@ -165,9 +165,6 @@ def cmd_check(args) -> int:
 
         c = run_campbell(scene, _options(args))
         turning = check_whirl(c, _margin(args))
-        if turning is None:
-            raise SceneError(f"{scene.source}: no [[excitation]] sources and no critical speed "
-                             "to check against")
         print(campbell_text(c) + "\n")
         print(verdict_text(turning))
         if args.json:

@@ -106,11 +106,83 @@ class Whirl:
                 "rotating_frame_hz": self.rotating_frame_hz, "companion_hz": self.companion_hz}
 
 
+def seen(f_s: np.ndarray, index: np.ndarray, n: np.ndarray | float, frame: str) -> np.ndarray:
+    """The frequency (Hz) the housing sees of a root's larger component: the root
+    itself in the stationary frame; in the rotating frame its forward component
+    f_s + n where its whirl index is positive, else its backward one f_s - n."""
+    if frame == "stationary":
+        return np.abs(f_s)
+    return np.where(index >= 0, np.abs(f_s + n), np.abs(f_s - n))
+
+
+def label(index: float) -> str:
+    """A whirl index's word: forward, backward, or mixed between -FORWARD and FORWARD."""
+    return "forward" if index > FORWARD else "backward" if index < -FORWARD else "mixed"
+
+
+@dataclass(frozen=True)
+class Curve:
+    """One whirl curve: a mode family followed from speed to speed by its shape
+    (fem.tracking), numbered from 1 by its first speed and frequency there. At each of
+    its speeds (r/min): its frequency in the frame it is solved in (Hz; in the rotating
+    frame signed, the form continuous along the curve), decay rate (1/s, negative where
+    it grows), whirl index (+1 forward circular, -1 backward) and kind; its unit modal
+    coordinates (N, points) follow the curve too."""
+
+    number: int
+    frame: str
+    speeds_rpm: np.ndarray
+    signed_hz: np.ndarray
+    decay: np.ndarray
+    index: np.ndarray
+    kinds: tuple[str, ...]
+    shapes: np.ndarray = field(repr=False)
+
+    @property
+    def seen_hz(self) -> np.ndarray:
+        """The frequency the housing sees at each speed (Hz): its larger component."""
+        return seen(self.signed_hz, self.index, self.speeds_rpm / 60.0, self.frame)
+
+    @property
+    def log_dec(self) -> np.ndarray:
+        """The log decrement at each speed, per cycle of the frequency seen."""
+        f = self.seen_hz
+        return np.where(f > 0, self.decay / np.where(f > 0, f, 1.0), 0.0)
+
+    @property
+    def whirl(self) -> list[str]:
+        """The whirl seen at each speed, by the larger component's sense (rotating frame)
+        or the index (stationary)."""
+        if self.frame == "stationary":
+            return [label(w) for w in self.index]
+        n = self.speeds_rpm / 60.0
+        out = []
+        for f, w, nn in zip(self.signed_hz, self.index, n):
+            v = f + nn if w >= 0 else f - nn
+            out.append("forward" if (w >= 0) == (v > 0) else "backward")
+        return out
+
+    @property
+    def whirling(self) -> bool:
+        """Whether it orbits (bending) at any of its speeds."""
+        return any(k in WHIRLING for k in self.kinds)
+
+    def rows(self) -> list[dict]:
+        """One dict per speed: what campbell.csv holds."""
+        return [{"speed_rpm": float(s), "curve": self.number, "frequency_hz": float(f),
+                 "whirl": w, "whirl_index": float(i), "log_dec": float(d), "kind": k}
+                for s, f, w, i, d, k in zip(self.speeds_rpm, self.seen_hz, self.whirl,
+                                            self.index, self.log_dec, self.kinds)]
+
+
 @dataclass(frozen=True)
 class CriticalSpeed:
     """Where a whirl curve crosses the excitation order line f = order x n / 60: the
-    order, the whirl, the speed (r/min), the frequency there (Hz), and which curve
-    (its number among the curves of that whirl, from 1)."""
+    order, the whirl there, the speed (r/min), the frequency there (Hz), which curve
+    (its number, from 1: Campbell.curves), its log decrement there, the component
+    met ("" in the stationary frame; "forward" or "backward" of a rotating-frame
+    mode) and its share of the motion, and how it was found ("curve": on the
+    followed curve; "direct": only by the eigenproblem in the speed squared)."""
 
     order: int
     whirl: str
@@ -118,16 +190,71 @@ class CriticalSpeed:
     frequency_hz: float
     mode: int
     log_dec: float = 0.0
+    component: str = ""
+    share: float = 1.0
+    found: str = "curve"
 
     def as_dict(self) -> dict:
         return {"order": self.order, "whirl": self.whirl, "speed_rpm": self.speed_rpm,
-                "frequency_hz": self.frequency_hz, "mode": self.mode, "log_dec": self.log_dec}
+                "frequency_hz": self.frequency_hz, "curve": self.mode, "log_dec": self.log_dec,
+                "component": self.component, "share": self.share, "found": self.found}
+
+
+@dataclass(frozen=True)
+class CrossingCheck:
+    """The crossings found twice: whether the direct route (undamped crossings as a
+    linear eigenproblem in the speed squared, fem.tracking) applies and why not, the
+    largest relative difference between the routes' speeds, how many crossings each
+    found, and those found directly but not on the curves (added to the list)."""
+
+    applies: bool
+    why: str
+    largest_difference: float | None = None
+    on_curves: int = 0
+    direct: int = 0
+    direct_only: int = 0
+    curves_only: int = 0
+
+    def as_dict(self) -> dict:
+        return {"direct_route_applies": self.applies, "why": self.why,
+                "largest_difference": self.largest_difference, "on_curves": self.on_curves,
+                "direct": self.direct, "found_directly_only": self.direct_only,
+                "found_on_curves_only": self.curves_only}
+
+
+@dataclass(frozen=True)
+class Stability:
+    """The least damped whirling mode at the speeds up to the highest operating one: its
+    curve, speed (r/min), frequency (Hz), whirl and log decrement; the required
+    minimum log decrement and whether it is judged (an undamped model's decrements are
+    zero: judged only where the scene sets min_log_dec or a mode grows)."""
+
+    curve: int
+    speed_rpm: float
+    frequency_hz: float
+    whirl: str
+    log_dec: float
+    required: float
+    judged: bool
+    growing: bool
+
+    @property
+    def ok(self) -> bool:
+        if self.growing:
+            return False
+        return not self.judged or self.log_dec > self.required
+
+    def as_dict(self) -> dict:
+        return {"curve": self.curve, "speed_rpm": self.speed_rpm,
+                "frequency_hz": self.frequency_hz, "whirl": self.whirl,
+                "log_dec": self.log_dec, "required_min_log_dec": self.required,
+                "judged": self.judged, "growing": self.growing, "ok": self.ok}
 
 
 @dataclass(frozen=True)
 class Onset:
     """Where a whirl curve's log decrement falls through zero: the speed (r/min) from
-    which that mode grows, its whirl, its curve (from 1 among that whirl's) and its
+    which that mode grows, its whirl, its curve (Campbell.curves' number) and its
     frequency there (Hz)."""
 
     speed_rpm: float
@@ -135,8 +262,12 @@ class Onset:
     mode: int
     frequency_hz: float
 
+    @property
+    def curve_text(self) -> str:
+        return f"{self.mode} ({self.whirl} whirl)"
+
     def as_dict(self) -> dict:
-        return {"speed_rpm": self.speed_rpm, "whirl": self.whirl, "mode": self.mode,
+        return {"speed_rpm": self.speed_rpm, "whirl": self.whirl, "curve": self.mode,
                 "frequency_hz": self.frequency_hz}
 
 
@@ -176,47 +307,39 @@ class Campbell:
     # at each operating speed, the reported modes' complex shapes on the standstill modes
     # (N, count): u = Phi y, in the model's frame
     operating_shapes: tuple[np.ndarray, ...] = ()
-    # the 1x crossings against the synchronous eigenproblem (largest relative difference;
-    # None where that eigenproblem does not apply: rotating frame, speed-dependent or
-    # damped bearings)
+    # the crossings against the direct route (largest relative difference; None where
+    # it does not apply: speed-dependent or damped bearings)
     synchronous_check: float | None = None
+    crossing_check: CrossingCheck | None = None
+    # the whirl curves, followed by shape (those among the modes asked at some speed)
+    curves: tuple[Curve, ...] = ()
+    stability: Stability | None = None
+    ranges_rpm: tuple[tuple[float, float], ...] = ()   # operating speed ranges
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem campbell` (its names are read by scripts)."""
         t = self.truncation
         return {"frame": self.frame, "frame_reason": self.why,
-                "operating_speeds_rpm": list(self.operating_rpm), "orders": list(self.orders),
+                "operating_speeds_rpm": list(self.operating_rpm),
+                "operating_ranges_rpm": [list(r) for r in self.ranges_rpm],
+                "orders": list(self.orders),
                 "whirl": [w.as_dict() for w in self.whirl],
                 "operating": [w.as_dict() for w in self.operating],
                 "critical_speeds": [c.as_dict() for c in self.critical_speeds],
                 "instability_onsets": [o.as_dict() for o in self.onsets],
                 "divergent_rpm": [list(band) for band in self.divergent],
                 "synchronous_check": self.synchronous_check,
+                "crossing_check": (None if self.crossing_check is None
+                                   else self.crossing_check.as_dict()),
+                "stability": None if self.stability is None else self.stability.as_dict(),
                 "basis": {"modes": t.size, "checked_against": t.smaller,
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
                 "notes": list(self.notes)}
 
-    def decrements(self, whirl: str) -> list[tuple[np.ndarray, np.ndarray]]:
-        """As `curves`, the log decrement of each curve instead of its frequency."""
-        return self.curves(whirl, "log_dec")
-
-    def curves(self, whirl: str, value: str = "frequency_hz"
-               ) -> list[tuple[np.ndarray, np.ndarray]]:
-        """The diagram's curves of one whirl ("forward", "backward", "mixed", or "none"
-        for the modes that do not orbit: torsion, axial): (speeds r/min, frequencies Hz)
-        of the k-th lowest mode of that whirl at each speed, for k = 1, 2, ..."""
-        by_speed: dict[float, list[Whirl]] = {}
-        for w in self.whirl:
-            if category(w) == whirl:
-                by_speed.setdefault(w.speed_rpm, []).append(w)
-        n = max((len(v) for v in by_speed.values()), default=0)
-        out = []
-        for k in range(n):
-            pts = [(s, getattr(sorted(v, key=lambda w: w.frequency_hz)[k], value))
-                   for s, v in sorted(by_speed.items()) if len(v) > k]
-            out.append((np.array([p[0] for p in pts]), np.array([p[1] for p in pts])))
-        return out
+    def csv_rows(self) -> list[dict]:
+        """campbell.csv: one row per curve and speed."""
+        return [row for c in self.curves for row in c.rows()]
 
 
 def category(w: Whirl) -> str:

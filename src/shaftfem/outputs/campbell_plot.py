@@ -19,27 +19,65 @@ LABELS = {"forward": "forward whirl", "backward": "backward whirl", "mixed": "mi
 BAND = 0.05
 
 
+def _runs(labels: list[str]) -> list[tuple[int, int, str]]:
+    """The runs of equal labels along a curve: (first, last inclusive, label), each
+    sharing its end point with the next so the line is unbroken."""
+    out, start = [], 0
+    for i in range(1, len(labels) + 1):
+        if i == len(labels) or labels[i] != labels[start]:
+            out.append((start, min(i, len(labels) - 1), labels[start]))
+            start = i
+    return out
+
+
 def campbell_figure(c: Campbell):
-    """Whirl frequency (Hz) against speed (r/min); below it the log decrement of each
-    curve when the bearings damp."""
+    """Whirl frequency (Hz) against speed (r/min), each curve a mode family followed by
+    its shape and coloured by its whirl where it has it; in the rotating frame a mode's
+    smaller component drawn thin. Below, each curve's log decrement when the bearings
+    damp."""
     import numpy as np
     from matplotlib.figure import Figure
 
-    damped = any(abs(w.log_dec) > 1e-9 for w in c.whirl)
+    from shaftfem.fem.tracking import component_lines, component_whirl
+
+    damped = any(np.any(np.abs(cv.log_dec) > 1e-6) for cv in c.curves)
     if damped:
         fig = Figure(figsize=(8, 7.5))
         ax, dec = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
     else:
         fig, ax = _figure((8, 5.5))
     top_rpm = max(c.speeds_rpm)
-    fmax = max(w.frequency_hz for w in c.whirl) * 1.05
+    shown = [float(np.max(cv.seen_hz)) for cv in c.curves] or [1.0]
+    fmax = max(shown) * 1.05
+    for lo, hi in c.ranges_rpm:
+        ax.axvspan(lo, hi, color="gold", alpha=0.3, lw=0)
     for n in c.operating_rpm:
-        ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
+        if not any(lo <= n <= hi for lo, hi in c.ranges_rpm):
+            ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
         ax.axvline(n, color="goldenrod", lw=1)
-    for whirl in ("forward", "backward", "mixed", "none"):
-        for k, (s, f) in enumerate(c.curves(whirl)):
-            ax.plot(s, f, "-" if whirl != "none" else ":", color=COLOURS[whirl], lw=1.6,
-                    label=LABELS[whirl] if k == 0 else None)
+    labelled = set()
+    for cv in c.curves:
+        whirls = cv.whirling
+        for comp, v, share in component_lines(cv):
+            heavy = float(np.max(share)) >= 0.5
+            if not heavy and float(np.max(share)) < 0.02:
+                continue
+            if not whirls:
+                words = ["none"] * v.size
+            else:
+                words = [component_whirl(comp, float(x), float(w)) if k in ("bending", "mixed")
+                         else "none" for x, w, k in zip(v, cv.index, cv.kinds)]
+            for a, b, word in _runs(words):
+                ax.plot(cv.speeds_rpm[a:b + 1], np.abs(v[a:b + 1]),
+                        "-" if word != "none" else ":", color=COLOURS[word],
+                        lw=1.6 if heavy else 0.6,
+                        label=LABELS[word] if word not in labelled and heavy else None)
+                if heavy:
+                    labelled.add(word)
+        end = cv.speeds_rpm[-1]
+        if end >= 0.6 * top_rpm and cv.seen_hz[-1] < fmax:
+            ax.annotate(str(cv.number), (end, float(cv.seen_hz[-1])), fontsize=6,
+                        color="dimgrey", textcoords="offset points", xytext=(2, -2))
     speeds = np.array([0.0, top_rpm])
     for order in c.orders:
         ax.plot(speeds, order * speeds / 60.0, "--", color="black", lw=0.9)
@@ -47,23 +85,31 @@ def campbell_figure(c: Campbell):
         ax.annotate(f"{order}x", (end, order * end / 60.0), fontsize=8,
                     textcoords="offset points", xytext=(-14, 4))
     for cs in c.critical_speeds:
-        ax.plot(cs.speed_rpm, cs.frequency_hz, "o", mfc="white", color=COLOURS[cs.whirl], ms=7,
+        ax.plot(cs.speed_rpm, cs.frequency_hz, "o", mfc="none", color=COLOURS[cs.whirl], ms=8,
                 mew=1.8)
         # forward labels above and left, backward below and right: a pair's two crossings
         # lie close together
         up = cs.whirl == "forward"
-        ax.annotate(f"{cs.speed_rpm:,.0f} r/min", (cs.speed_rpm, cs.frequency_hz), fontsize=7,
+        ax.annotate(f"{cs.speed_rpm:,.0f}", (cs.speed_rpm, cs.frequency_hz), fontsize=7,
                     color=COLOURS[cs.whirl], textcoords="offset points",
-                    xytext=(-52, 6) if up else (6, -12))
-    ax.plot([], [], "o", mfc="white", color="black", label="critical speed")
-    ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed")
+                    xytext=(-30, 6) if up else (6, -12))
+    ax.plot([], [], "o", mfc="none", color="black", label="critical speed, r/min")
+    ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed" + (
+        " range" if c.ranges_rpm else ""))
     ax.set_xlim(0, top_rpm)
     ax.set_ylim(0, fmax)
     if damped:
-        for whirl in ("forward", "backward", "mixed"):
-            for s, d in c.decrements(whirl):
-                dec.plot(s, d, "-", color=COLOURS[whirl], lw=1.2)
+        for cv in c.curves:
+            if not cv.whirling:
+                continue
+            d = cv.log_dec
+            for a, b, word in _runs(cv.whirl):
+                dec.plot(cv.speeds_rpm[a:b + 1], d[a:b + 1], "-", color=COLOURS[word], lw=1.2)
         dec.axhline(0.0, color="black", lw=0.8)
+        if c.stability is not None and c.stability.required > 0:
+            dec.axhline(c.stability.required, color="tab:red", lw=0.8, ls="--")
+        for lo, hi in c.ranges_rpm:
+            dec.axvspan(lo, hi, color="gold", alpha=0.3, lw=0)
         dec.set_ylabel("log decrement")
         dec.set_xlabel("shaft speed, r/min")
         dec.grid(True, alpha=0.3)

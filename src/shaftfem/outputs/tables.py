@@ -305,6 +305,9 @@ FREE_FREE_MEANT = (
 def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
     """The verdict line, and for a free-free shaft the caveat under it (Markdown bold)."""
     lines = [verdict_line(v)]
+    if v is not None:
+        lines += [f"UNSTABLE: {u}" for u in v.unstable]
+        lines += [f"warning: {w}" for w in v.warnings]
     if v is not None and v.turning:
         lines.append(f"judged on {v.turning}")
     if v is not None and v.free_free:
@@ -318,6 +321,12 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
         return ("**VERDICT: NOT CHECKED** - the scene has no [[excitation]] sources; add them "
                 "to check the modes against the excitation harmonics")
     free = " (free-free)" if v.free_free else ""
+    if v.unstable:
+        return (f"**VERDICT: FAIL{free}** - not stable where the shaft runs: {v.unstable[0]}"
+                + (f" (and {len(v.unstable) - 1} more)" if len(v.unstable) > 1 else ""))
+    if v.ok and not v.approaches:
+        return (f"**VERDICT: PASS{free}** - stable, and no critical speed or whirl frequency "
+                "meets an excitation harmonic in the range checked")
     if v.ok:
         a = v.approaches[0]
         if v.turning:
@@ -448,6 +457,9 @@ def whirl_text(rows, title: str) -> str:
 def campbell_text(c) -> str:
     """What `shaftfem campbell` prints: the frame, the whirl at each operating speed,
     the critical speeds and the basis check (a workflows.campbell.Campbell)."""
+    from shaftfem.checks.whirl_check import span_margin
+    from shaftfem.fem.whirl import RPM
+
     r = c.result
     t = c.truncation
     lines = [f"scene {r.scene.name}: P{r.scene.mesh.order}, {r.modes.n_dofs} DOFs, "
@@ -456,20 +468,42 @@ def campbell_text(c) -> str:
         rows = [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n]
         lines += ["", whirl_text(rows, f"at {n:,.0f} r/min ({n / 60:.2f} Hz), stationary frame:")]
     lines += ["", f"critical speeds, 0 to {max(c.speeds_rpm):,.0f} r/min "
-              f"(orders {', '.join(f'{o}x' for o in c.orders)}):"]
+              f"(orders {', '.join(f'{o}x' for o in c.orders)}; every curve):"]
     if not c.critical_speeds:
         lines.append("  none: no whirl curve crosses an order line in this range")
+    rotor = r.scene.rotor
+    spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans] if rotor else []
     for cs in c.critical_speeds:
-        near = min(c.operating_rpm, key=lambda n: abs(n - cs.speed_rpm))
+        lo, hi = min(spans, key=lambda s: span_margin(cs.speed_rpm, *s)[0])
+        margin, above = span_margin(cs.speed_rpm, lo, hi)
+        where = (f"inside {lo:,.0f}-{hi:,.0f} r/min" if margin == 0 and lo < hi else
+                 f"{'+' if above else '-'}{100 * margin:.1f} % from "
+                 + (f"{hi if above else lo:,.0f} r/min"))
+        curve = (f"curve {cs.mode}" if cs.found == "curve" else "found directly only")
+        part = (f", its {cs.component} component ({100 * cs.share:.0f} % of the motion)"
+                if cs.component and cs.share < 0.95 else "")
+        dec = f", log dec {cs.log_dec:.3g}" if cs.log_dec else ""
         lines.append(f"  {cs.order}x {cs.whirl:8s} {cs.speed_rpm:10,.0f} r/min "
-                     f"({cs.frequency_hz:.2f} Hz, curve {cs.mode}): "
-                     f"{(cs.speed_rpm - near) / near * 100:+.1f} % from {near:,.0f} r/min")
-    if c.synchronous_check is not None:
-        lines.append(f"  the 1x crossings agree with the synchronous eigenproblem (critical "
-                     f"speeds found directly) to {c.synchronous_check:.1e}")
+                     f"({cs.frequency_hz:.2f} Hz, {curve}{part}{dec}): {where}")
+    x = c.crossing_check
+    if x is not None and x.applies:
+        lines.append(f"  found twice: on the curves ({x.on_curves}) and directly as an "
+                     f"eigenproblem in the speed squared ({x.direct}); they agree to "
+                     f"{x.largest_difference:.1e}"
+                     + (f"; {x.direct_only} found directly only" if x.direct_only else "")
+                     + (f"; {x.curves_only} on the curves only" if x.curves_only else ""))
+    elif x is not None:
+        lines.append(f"  found on the curves followed by shape (the direct route does not "
+                     f"apply: {x.why})")
     lines += ["", f"modal basis: {t.size} standstill modes; on {t.smaller} of them the "
               f"reported whirl frequencies move by at most {t.change * 100:.2g} % "
               f"(at {', '.join(f'{s:,.0f}' for s in t.speeds_rpm)} r/min)"]
+    st = c.stability
+    if st is not None:
+        lines.append(f"stability up to {max(hi for _, hi in spans):,.0f} r/min: least log "
+                     f"decrement {st.log_dec:.3g} (curve {st.curve}, {st.whirl} whirl, "
+                     f"{st.frequency_hz:.2f} Hz, at {st.speed_rpm:,.0f} r/min)"
+                     + ("" if not st.judged else f", required above {st.required:g}"))
     for lo, hi in c.divergent:
         lines.append(f"UNSTABLE between {lo:,.0f} and {hi:,.0f} r/min: a mode locks to the "
                      "shaft and grows (divergence; the shaft is stiffer across one diameter "

@@ -210,6 +210,8 @@ class Rotor(_Table):
     campbell_points: int | None = None
     probes_mm: Numbers | None = None
     basis_modes: int | None = None
+    speed_range_rpm: Numbers | None = None
+    min_log_dec: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

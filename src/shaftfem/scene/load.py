@@ -402,7 +402,20 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
     if "rotor" not in data:
         return None
     t = validate_table(source, "rotor", _as_lists(data["rotor"], ("speed_rpm",)), SCHEMA["rotor"])
-    top = max(t["speed_rpm"])
+    band = t["speed_range_rpm"]
+    if t["speed_rpm"] is None and band is None:
+        raise SceneError(f"{where(source, 'rotor', 'speed_rpm')}: missing: give the operating "
+                         "speed(s), r/min, or speed_range_rpm = [lowest, highest]")
+    listed = sorted(t["speed_rpm"] or [])
+    for a, b in zip(listed, listed[1:]):
+        if b - a < 1.0:
+            raise SceneError(f"{where(source, 'rotor', 'speed_rpm')} = {t['speed_rpm']!r}: "
+                             f"{a:g} and {b:g} r/min are less than 1 r/min apart: list each "
+                             "operating speed once")
+    speeds = listed or list(band)
+    if band is not None:   # a range's ends are where its whirl is tabled
+        speeds = sorted({*speeds, *band})
+    top = max(speeds)
     end = t["max_speed_rpm"] if t["max_speed_rpm"] is not None else DEFAULT_SPEED_HEADROOM * top
     if end < top:
         raise SceneError(f"{where(source, 'rotor', 'max_speed_rpm')} = {end:g}: must reach the "
@@ -411,10 +424,12 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
         if shaft.step is None and z > shaft.length / MM:
             raise SceneError(f"{where(source, 'rotor', 'probes_mm')} = {t['probes_mm']!r}: "
                              f"{z:g} mm is off the shaft, 0 to {shaft.length / MM:g} mm")
-    return Rotor(speeds=tuple(n * RPM for n in t["speed_rpm"]), max_speed=end * RPM,
+    return Rotor(speeds=tuple(n * RPM for n in speeds), max_speed=end * RPM,
                  frame=t["frame"], points=t["campbell_points"],
                  basis_modes=t["basis_modes"] or 0,
-                 probes=tuple(z * MM for z in t["probes_mm"]))
+                 probes=tuple(z * MM for z in t["probes_mm"]),
+                 ranges=() if band is None else ((band[0] * RPM, band[1] * RPM),),
+                 min_log_dec=t["min_log_dec"])
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:

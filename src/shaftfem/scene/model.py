@@ -289,6 +289,21 @@ class Rotor:
     points: int = 31
     basis_modes: int = 0
     probes: tuple[float, ...] = ()   # z (m) of points whose unbalance response is shown
+    ranges: tuple[tuple[float, float], ...] = ()   # operating speed ranges (rad/s)
+    min_log_dec: float | None = None   # None: 0, or API 684's 0.1 with criterion "api684"
+
+    @property
+    def spans(self) -> tuple[tuple[float, float], ...]:
+        """Where the shaft runs (rad/s): each range, and each operating speed outside
+        them as a range of one speed."""
+        alone = [(w, w) for w in self.speeds
+                 if not any(lo <= w <= hi for lo, hi in self.ranges)]
+        return tuple(sorted([*self.ranges, *alone]))
+
+    @property
+    def top_speed(self) -> float:
+        """The highest operating speed (rad/s)."""
+        return max(hi for _, hi in self.spans)
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,7 @@ against its entry here, so a new key is one line.
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -76,9 +77,11 @@ def coefficient(what: str, direct: bool) -> Key:
     """A bearing coefficient's key: one number, or one per speeds_rpm entry; a direct
     stiffness or damping is not negative."""
     def check(v: list) -> bool:
-        return len(v) >= 1 and (not direct or all(x >= 0 for x in v))
-    return Key(("list", float), f"{what} : one number, or a list with one value per "
-               "speeds_rpm entry", check, "numbers >= 0" if direct else "numbers",
+        return len(v) >= 1 and all(math.isfinite(x) and abs(x) <= 1e12 for x in v) and (
+            not direct or all(x >= 0 for x in v))
+    return Key(("list", float), f"{what}: one number, or a list with one value per "
+               "speeds_rpm entry", check,
+               "finite numbers in [0, 1e12]" if direct else "finite numbers in [-1e12, 1e12]",
                required=False)
 
 
@@ -223,7 +226,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "kyx_n_per_mm": coefficient(
             "cross-coupled stiffness, the y force per x displacement, N/mm (default 0)",
             direct=False),
-        "cxx_n_s_per_mm": coefficient("direct damping along x, N s/mm (default 0)", direct=True),
+        "cxx_n_s_per_mm": coefficient("direct damping along x, N s/mm (default 0)",
+                                      direct=True),
         "cyy_n_s_per_mm": coefficient("direct damping along y, N s/mm (default: cxx)",
                                       direct=True),
         "cxy_n_s_per_mm": coefficient("cross-coupled damping, N s/mm (default 0)", direct=False),
@@ -275,8 +279,19 @@ SCHEMA: dict[str, dict[str, Key]] = {
     },
     "rotor": {  # the shaft turning: whirl, Campbell diagram, critical speeds (fem.rotor)
         "speed_rpm": Key(("list", float), "operating speed of the shaft, r/min: one number, "
-                         "or a list of them", lambda v: len(v) >= 1 and all(0 < x <= 1e6 for x in v),
-                         "numbers in (0, 10^6]"),
+                         "or a list of them (at least 1 r/min apart); may be left out when "
+                         "speed_range_rpm is given",
+                         lambda v: len(v) >= 1 and all(0 < x <= 1e6 for x in v),
+                         "numbers in (0, 10^6]", required=False),
+        "speed_range_rpm": Key(("list", float), "operating speed range of a variable-speed "
+                               "drive, r/min: [lowest, highest]; a critical speed inside it "
+                               "has margin 0, one outside it is measured to the nearer end",
+                               lambda v: len(v) == 2 and 0 < v[0] < v[1] <= 1e6,
+                               "two numbers, 0 < lowest < highest <= 10^6", required=False),
+        "min_log_dec": Key(float, "the least log decrement a whirling mode may have at any "
+                           "speed up to the highest operating one (default 0, i.e. no mode "
+                           "may grow; 0.1 with [resonance] criterion = \"api684\")",
+                           *upto(10.0, "up to 10", closed_low=True), required=False),
         "max_speed_rpm": Key(float, "end of the Campbell diagram, r/min (default "
                              f"{DEFAULT_SPEED_HEADROOM:g} times the highest operating speed)",
                              *upto(1e6, "up to 10^6 r/min"), required=False),

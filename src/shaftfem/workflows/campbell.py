@@ -24,10 +24,12 @@ from shaftfem.fem.whirl import (
     WHIRLING,
     Campbell,
     CriticalSpeed,
+    CrossingCheck,
+    Curve,
     Onset,
+    Stability,
     Truncation,
     Whirl,
-    category,
 )
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
@@ -35,14 +37,17 @@ from shaftfem.scene.schema import MAX_MODE_COUNT
 
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
-    from shaftfem.fem.rotor import Roots, RotorModel
+    from shaftfem.fem.rotor import RotorModel
+    from shaftfem.fem.tracking import Spectrum
 
 # Of the basis, the whirl solved on this share too: its change is the truncation check.
 CHECK_SHARE = 2 / 3
 # Log decrements within this of zero are zero (an undamped model's round-off).
 ROUND_OFF = 1e-9
-# The spin, as a share of the lowest frequency, that stands for standstill in whirl_at.
-STANDSTILL = 1e-5
+# The direct route and the curves agree on a crossing's speed to this (relative).
+AGREE = 1e-6
+# API 684's least log decrement, with [resonance] criterion = "api684".
+API684_LOG_DEC = 0.1
 # The whirl frequencies may move by at most this (relative) between the basis and two
 # thirds of it; else the basis is doubled (up to the largest mode count). Far below the
 # discretisation's own bounds (0.1 % and more).
@@ -99,46 +104,9 @@ def basis_size(scene: Scene) -> int:
 
 
 def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
-    """The lowest `count` modes at the spin omega (rad/s), in the stationary frame. At
-    standstill a shaft of revolution's bending pairs are double and their orbit any:
-    there each mode takes the whirl it has at a spin of STANDSTILL times the lowest
-    frequency (the limit from above), its frequency and damping those at rest."""
-    if omega == 0.0:
-        rest = _whirl_rows(model, 0.0, count)
-        start = _whirl_rows(model, STANDSTILL * math.sqrt(float(model.omega2[0])), count)
-        return [replace(r, whirl=s.whirl, whirl_index=s.whirl_index)
-                for r, s in zip(rest, start)]
-    return _whirl_rows(model, omega, count)
-
-
-def _seen(model: RotorModel, omega: float) -> tuple[Roots, list[tuple]]:
-    """The roots at the spin omega and each as the stationary frame sees it, lowest
-    first: (frequency Hz, whirl, whirl index, kind, rotating-frame Hz, other component's
-    Hz or None, decay rate 1/s, its column among the roots)."""
-    from shaftfem.fem.rotor import dominant_kinds, roots, whirl_index
-
-    r = roots(model, omega)
-    W = whirl_index(model, r.y)
-    kinds = dominant_kinds(model, r.y)
-    n = omega / (2 * math.pi)
-    rows = []
-    for j, (lam, w, kind) in enumerate(zip(r.lam, W, kinds)):
-        f_r = lam.imag / (2 * math.pi)
-        f, index, other = f_r, float(w), None
-        if model.frame == "rotating" and kind in WHIRLING and omega > 0:
-            forward, backward = f_r + n, f_r - n
-            if w >= 0:
-                f, other = forward, abs(backward)
-            else:   # the backward component: seen backward above n, forward below it
-                f, other, index = abs(backward), forward, (w if backward > 0 else -w)
-        direction = ("forward" if index > FORWARD else "backward" if index < -FORWARD
-                     else "mixed")
-        rows.append((f, direction, index, kind, f_r, other, -lam.real, j))
-    rows.sort(key=lambda row: row[0])
-    return r, rows
-
-
-def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
+    """The lowest `count` modes at the spin omega (rad/s), in the stationary frame. A
+    double pair (a shaft of revolution's, at standstill) is taken as its forward and
+    its backward orbit (fem.tracking.spectrum)."""
     out = []
     for k, (f, direction, index, kind, f_r, other, decay, _) in enumerate(
             _seen(model, omega)[1][:count]):
@@ -151,113 +119,147 @@ def _whirl_rows(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     return out
 
 
-def synchronous_check(model: RotorModel, critical: list[CriticalSpeed]) -> float | None:
-    """The largest relative difference between the 1x crossings found on the diagram and
-    the same critical speeds from the synchronous eigenproblem (fem.rotor), matched by
-    whirl and number; None where that eigenproblem does not apply (the rotating frame,
-    bearings that change with speed or damp)."""
-    from shaftfem.fem.rotor import synchronous_speeds
+def _seen(model: RotorModel, omega: float) -> tuple[Spectrum, list[tuple]]:
+    """The roots at the spin omega and each as the stationary frame sees it, lowest
+    first: (frequency Hz, whirl, whirl index, kind, rotating-frame Hz, other component's
+    Hz or None, decay rate 1/s, its column among the roots)."""
+    from shaftfem.fem.tracking import spectrum
 
-    if model.frame != "stationary" or any(
-            len(b.coefficients.speeds) or np.any(np.array(b.coefficients.damping(0.0)))
-            for b in model.bearings):
-        return None
-    ones = [c for c in critical if c.order == 1]
-    if not ones:
-        return None
-    speeds, index = synchronous_speeds(model)
-    worst = 0.0
-    for whirl, sign in (("forward", 1), ("backward", -1)):
-        direct = speeds[sign * index > FORWARD]
-        for c in (c for c in ones if c.whirl == whirl):
-            if c.mode > direct.size:
-                return math.inf
-            worst = max(worst, abs(c.speed_rpm * RPM / direct[c.mode - 1] - 1))
-    return worst
+    s = spectrum(model, omega)
+    n = omega / (2 * math.pi)
+    rows = []
+    for j, (f_r, w, kind, decay) in enumerate(zip(s.f, s.index, s.kinds, s.decay)):
+        f, index, other = float(f_r), float(w), None
+        if model.frame == "rotating" and kind in WHIRLING and omega > 0:
+            forward, backward = f_r + n, f_r - n
+            if w >= 0:
+                f, other = forward, abs(backward)
+            else:   # the backward component: seen backward above n, forward below it
+                f, other, index = abs(backward), forward, (w if backward > 0 else -w)
+        direction = ("forward" if index > FORWARD else "backward" if index < -FORWARD
+                     else "mixed")
+        rows.append((f, direction, index, kind, float(f_r), other, float(decay), j))
+    rows.sort(key=lambda row: row[0])
+    return s, rows
 
 
 def mode_shapes(model: RotorModel, omega: float, count: int) -> np.ndarray:
     """The complex modal coordinates (N, count) of whirl_at's rows at the spin omega
     (rad/s), in the same order, each scaled to a largest entry of 1."""
-    r, rows = _seen(model, omega)
-    y = r.y[:, [row[-1] for row in rows[:count]]]
+    s, rows = _seen(model, omega)
+    y = s.y[:, [row[-1] for row in rows[:count]]]
     return y / y[np.argmax(np.abs(y), axis=0), np.arange(y.shape[1])]
 
 
-def curve_row(model: RotorModel, omega: float, whirl: str, k: int, count: int
-              ) -> Whirl | None:
-    """The k-th lowest mode of one whirl (a curve of the diagram) at the spin omega, or
-    None where that whirl has fewer modes among the lowest `count`."""
-    ws = sorted((w for w in whirl_at(model, omega, count) if category(w) == whirl),
-                key=lambda w: w.frequency_hz)
-    return ws[k] if k < len(ws) else None
+def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, ...],
+                    top: float) -> tuple[list[CriticalSpeed], CrossingCheck]:
+    """Every crossing of the curves with the order lines up to the spin `top` (rad/s),
+    found on the curves and, where it applies, directly (fem.tracking); a crossing found
+    directly on a reported mode and missed on the curves is added."""
+    from shaftfem.fem.tracking import (
+        component_whirl,
+        curve_crossings,
+        direct_applies,
+        direct_crossings,
+    )
+
+    found = curve_crossings(model, curves, orders)
+    out = [CriticalSpeed(order=x.order, whirl=x.whirl, speed_rpm=x.omega / RPM,
+                         frequency_hz=x.order * x.omega / (2 * math.pi), mode=x.curve,
+                         log_dec=x.log_dec if abs(x.log_dec) > ROUND_OFF else 0.0,
+                         component=x.component, share=x.share) for x in found]
+    why = direct_applies(model)
+    if why is not None:
+        return out, CrossingCheck(False, why, on_curves=len(out))
+    direct = direct_crossings(model, orders, top)
+    unused = list(range(len(found)))
+    worst, extra = 0.0, []
+    for d in sorted(direct, key=lambda d: d.omega):
+        near = [i for i in unused if found[i].order == d.order
+                and abs(found[i].omega / d.omega - 1) <= 1e-3]
+        if near:
+            i = min(near, key=lambda i: abs(found[i].omega - d.omega))
+            unused.remove(i)
+            worst = max(worst, abs(found[i].omega / d.omega - 1))
+            continue
+        # a reported mode's crossing: below the highest reported curve at that speed
+        f = d.order * d.omega / (2 * math.pi)
+        tops = [float(np.interp(d.omega / RPM, c.speeds_rpm, c.seen_hz)) for c in curves
+                if c.speeds_rpm[0] <= d.omega / RPM <= c.speeds_rpm[-1]]
+        if tops and f <= max(tops):
+            sign = 1 if d.component != "backward" else -1
+            v = f if d.component == "" else sign * f
+            extra.append(CriticalSpeed(order=d.order, whirl=component_whirl(d.component, v,
+                                                                             d.index),
+                                       speed_rpm=d.omega / RPM, frequency_hz=f, mode=0,
+                                       component=d.component, found="direct"))
+    check = CrossingCheck(True, "constant, undamped bearings", worst, len(out), len(direct),
+                          len(extra), len(unused))
+    return sorted(out + extra, key=lambda c: (c.speed_rpm, c.order)), check
 
 
-def crossings(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]],
-              orders: tuple[int, ...], count: int) -> list[CriticalSpeed]:
-    """Every crossing of a forward or backward whirl curve with an order line, found
-    on the diagram's speeds and refined by root finding on the reduced model."""
+def onsets(model: RotorModel, curves: list[Curve]) -> list[Onset]:
+    """Every speed where a whirling curve's decay rate changes from positive to
+    negative (the mode starts to grow), refined by root finding on the model."""
     from scipy.optimize import brentq
 
-    def row(omega: float, whirl: str, k: int) -> Whirl | None:
-        return curve_row(model, omega, whirl, k, count)
-
-    def curve(omega: float, whirl: str, k: int) -> float:
-        w = row(omega, whirl, k)
-        return math.nan if w is None else w.frequency_hz
+    from shaftfem.fem.tracking import REACH, _at
 
     out = []
-    for whirl in ("forward", "backward"):
-        per_speed = [sorted(w.frequency_hz for w in r if category(w) == whirl) for r in rows]
-        n_curves = min((len(f) for f in per_speed), default=0)
-        for k in range(n_curves):
-            f = np.array([p[k] for p in per_speed])
-            for order in orders:
-                g = f - order * speeds / (2 * math.pi)
-                for i in np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0):
-                    def gap(om: float, k: int = k, order: int = order, whirl: str = whirl
-                            ) -> float:
-                        return curve(om, whirl, k) - order * om / (2 * math.pi)
-                    try:
-                        om = brentq(gap, speeds[i], speeds[i + 1], xtol=1e-10 * speeds[i + 1])
-                    except ValueError:   # the curve's numbering changed inside the bracket
-                        continue
-                    at = row(om, whirl, k)
-                    out.append(CriticalSpeed(order=order, whirl=whirl, speed_rpm=om / RPM,
-                                             frequency_hz=order * om / (2 * math.pi), mode=k + 1,
-                                             log_dec=at.log_dec if at is not None else 0.0))
-    return sorted(out, key=lambda c: (c.speed_rpm, c.order))
+    for c in curves:
+        if not c.whirling:
+            continue
+        scale = ROUND_OFF * 2 * math.pi * np.maximum(c.seen_hz, 1.0)
+        d = c.decay
+        for i in np.flatnonzero((d[:-1] > scale[:-1]) & (d[1:] < -scale[1:])):
+            lo, hi = c.speeds_rpm[i] * RPM, c.speeds_rpm[i + 1] * RPM
+            f0, f1 = float(c.signed_hz[i]), float(c.signed_hz[i + 1])
+            reach = REACH * (hi - lo) / (2 * math.pi) + 1e-3 * max(abs(f0), abs(f1))
 
+            def decay(om: float, y=c.shapes[:, i], f0=f0, f1=f1, lo=lo, hi=hi,
+                      reach=reach) -> float:
+                return _at(model, om, y, f0 + (f1 - f0) * (om - lo) / (hi - lo), reach)[1]
 
-def onsets(model: RotorModel, speeds: np.ndarray, rows: list[list[Whirl]], count: int
-           ) -> list[Onset]:
-    """Every speed where a whirl curve's log decrement changes from positive to negative
-    (the mode starts to grow), on the diagram's speeds, refined by root finding."""
-    from scipy.optimize import brentq
-
-    def curve(omega: float, whirl: str, k: int) -> Whirl | None:
-        return curve_row(model, omega, whirl, k, count)
-
-    out = []
-    for whirl in ("forward", "backward", "mixed"):
-        per_speed = [sorted((w for w in r if category(w) == whirl), key=lambda w: w.frequency_hz)
-                     for r in rows]
-        for k in range(min((len(p) for p in per_speed), default=0)):
-            d = np.array([p[k].log_dec for p in per_speed])
-            # an undamped model's decrements are zero to round-off: only a sign that
-            # changes beyond that is a change of stability
-            for i in np.flatnonzero((d[:-1] > ROUND_OFF) & (d[1:] < -ROUND_OFF)):
-                def logdec(om: float, k: int = k, whirl: str = whirl) -> float:
-                    w = curve(om, whirl, k)
-                    return math.nan if w is None else w.log_dec
-                try:
-                    om = brentq(logdec, speeds[i], speeds[i + 1], xtol=1e-10 * speeds[i + 1])
-                except ValueError:
-                    continue
-                w = curve(om, whirl, k)
-                assert w is not None
-                out.append(Onset(om / RPM, whirl, k + 1, w.frequency_hz))
+            try:
+                om = brentq(decay, lo, hi, xtol=1e-10 * hi)
+            except ValueError:
+                om = lo + d[i] * (hi - lo) / (d[i] - d[i + 1])
+            t = (om - lo) / (hi - lo)
+            out.append(Onset(om / RPM, c.whirl[i if t < 0.5 else i + 1], c.number,
+                             float((1 - t) * c.seen_hz[i] + t * c.seen_hz[i + 1])))
     return sorted(out, key=lambda o: o.speed_rpm)
+
+
+def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
+    """The least damped whirling mode at the speeds up to the highest operating one,
+    against the required least log decrement ([rotor] min_log_dec; 0, or API 684's 0.1
+    with criterion "api684"). An undamped model (every decrement zero to round-off) is
+    judged only when min_log_dec is set; a mode that grows always fails."""
+    rotor = scene.rotor
+    assert rotor is not None
+    top = rotor.top_speed / RPM * (1 + 1e-9)
+    best = None
+    for c in curves:
+        if not c.whirling:
+            continue
+        seen_hz, logdec, words = c.seen_hz, c.log_dec, c.whirl
+        for i in np.flatnonzero(c.speeds_rpm <= top):
+            if c.kinds[i] not in WHIRLING:
+                continue
+            d = float(logdec[i])
+            if abs(d) <= 1e-6:
+                d = 0.0
+            if best is None or d < best[0]:
+                best = (d, c.number, float(c.speeds_rpm[i]), float(seen_hz[i]), words[i])
+    if best is None:
+        return None
+    d, number, speed, f, whirl = best
+    required = (rotor.min_log_dec if rotor.min_log_dec is not None
+                else API684_LOG_DEC if scene.criterion == "api684" else 0.0)
+    damped = any(abs(float(x)) > 1e-6 for c in curves if c.whirling for x in c.log_dec)
+    return Stability(curve=number, speed_rpm=speed, frequency_hz=f, whirl=whirl, log_dec=d,
+                     required=required, judged=damped or rotor.min_log_dec is not None,
+                     growing=d < 0)
 
 
 def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, float]]:
@@ -321,6 +323,10 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
     size = basis_size(scene)
     rotor = scene.rotor
     assert rotor is not None
+    if rotor.basis_modes and rotor.basis_modes < scene.modes.count + 2:
+        raise SceneError(f"{scene.source}: [rotor] basis_modes = {rotor.basis_modes}: the "
+                         f"basis must hold the {scene.modes.count} modes asked and more to "
+                         f"check them on: at least {scene.modes.count + 2} (or leave it out)")
     speeds = tuple(sorted({*rotor.speeds, rotor.max_speed}))
     while True:
         result = run_modes(with_modes(scene, count=size), options)
@@ -347,27 +353,38 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
 def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                 speeds_rpm: np.ndarray | None = None) -> Campbell:
     """run_campbell's diagram of the turning shaft `model` on the standstill `result`."""
+    from shaftfem.fem.tracking import reported, track
+
     rotor = scene.rotor
     assert rotor is not None
     frame = model.frame
     count = scene.modes.count
     grid = (np.linspace(0.0, rotor.max_speed, rotor.points) if speeds_rpm is None
             else np.asarray(speeds_rpm, dtype=float) * RPM)
+    # the curves pass through every operating speed and range end
+    ends = [w for span in rotor.spans for w in span]
+    path = np.union1d(grid, [w for w in ends if grid.min() <= w <= grid.max()])
+    curves = reported(track(model, path, count + 2), count)
     rows = [whirl_at(model, om, count) for om in grid]
     orders = rotor_orders(scene)
-    critical = crossings(model, grid, rows, orders, count)
+    critical, check = critical_speeds(model, curves, orders, float(grid.max()))
     operating = [w for om in rotor.speeds for w in whirl_at(model, om, count)]
     shapes = tuple(mode_shapes(model, om, count) for om in rotor.speeds)
-    check = truncation(model, tuple(sorted({*rotor.speeds, float(grid.max())})), count)
+    basis = truncation(model, tuple(sorted({*rotor.speeds, float(grid.max())})), count)
     notes = []
     if not scene.held:
         notes.append("the shaft hangs free (no [[support]]): its whirl is a free rotor's")
-    if not any(s.bearing is not None for s in scene.held):
-        notes.append("no bearing has damping (kind = \"bearing\" with cxx ...): the log "
-                     "decrements are zero and no amplification factor can be given")
-    synchronous = synchronous_check(model, critical)
-    unstable = onsets(model, grid, rows, count)
-    bands = divergent_bands(model, grid)
+    if not any(s.bearing is not None and np.any(np.array(s.bearing.cxx + s.bearing.cyy
+                                                         + s.bearing.cxy + s.bearing.cyx))
+               for s in scene.held):
+        notes.append("no bearing has damping (kind = \"bearing\" with cxx_n_s_per_mm ...): "
+                     "the log decrements are zero and no amplification factor can be given")
+    if check.direct_only:
+        notes.append(f"{check.direct_only} crossing(s) found only by the direct route were "
+                     "added: the diagram's curves missed them")
+    stability = least_damped(scene, curves)
+    unstable = onsets(model, curves)
+    bands = divergent_bands(model, path)
     response = None
     if scene.unbalances:
         from shaftfem.workflows.unbalance import unbalance_response
@@ -376,10 +393,13 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     return Campbell(frame=frame, why=why, speeds_rpm=tuple(grid / RPM),
                     whirl=tuple(w for r in rows for w in r), operating=tuple(operating),
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
-                    critical_speeds=tuple(critical), orders=orders, truncation=check,
+                    critical_speeds=tuple(critical), orders=orders, truncation=basis,
                     result=result, notes=tuple(notes), unbalance=response,
                     onsets=tuple(unstable), divergent=tuple(bands),
-                    operating_shapes=shapes, synchronous_check=synchronous)
+                    operating_shapes=shapes,
+                    synchronous_check=check.largest_difference, crossing_check=check,
+                    curves=tuple(curves), stability=stability,
+                    ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges))
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
@@ -390,7 +410,7 @@ def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions
 
     omega = speed_rpm * RPM
     rotor = scene.rotor or Rotor(speeds=(omega,), max_speed=omega)
-    scene = replace(scene, rotor=replace(rotor, speeds=(omega,), max_speed=omega))
+    scene = replace(scene, rotor=replace(rotor, speeds=(omega,), max_speed=omega, ranges=()))
     return run_campbell(scene, options, np.array([0.0, speed_rpm]))
 
 

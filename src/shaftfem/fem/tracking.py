@@ -1,0 +1,394 @@
+"""Whirl curves as mode families, and their crossings with the excitation order lines.
+
+Each root of the turning shaft (fem.rotor) is followed from speed to speed by its shape:
+the correlation (MAC) of its modal coordinates with those at the speed before, the
+pairs assigned as a whole (linear_sum_assignment), and the step halved where a
+followed curve's correlation falls below MAC_MIN (two curves veer or cross). Neither
+its rank nor its whirl label is used, so a curve keeps its identity through crossings
+and may change its label along the way.
+
+In the rotating frame a root at signed frequency f_s (Hz) with whirl index w moves as
+two circular components seen from the housing: forward at f_s + n, carrying
+(1 + w) / 2 of its motion, and backward at f_s - n, carrying (1 - w) / 2 (n the spin,
+Hz). A root and its conjugate are one motion, (f_s, y, w) ~ (-f_s, conj y, -w): along
+a curve the form continuous with the speed before is kept, so f_s passes through zero
+at a rotating-frame critical speed instead of jumping. In the stationary frame each
+root is one line at f_s > 0.
+
+Crossings are found twice. On the curves: every sign change of |v| - k n along every
+component v that carries at least SHARE_MIN of the motion, refined by root finding on
+the model. And, for bearings whose coefficients are constant and undamped, directly:
+a root at lambda = i m Omega of q'' + Omega G q' + (K_0 + Omega^2 K_2) q = 0 solves
+
+    K_0 a = Omega^2 (m^2 I - i m G - K_2) a,
+
+a linear eigenproblem in Omega^2 (m = k in the stationary frame; m = k - 1 for the
+forward component and m = k + 1, or 0 at k = 1, for the backward one in the rotating
+frame).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaftfem.fem.rotor import RotorModel, roots, whirl_index
+from shaftfem.fem.whirl import FORWARD, RPM, WHIRLING, Curve, seen
+
+# A step along the diagram is halved while a followed curve's shape correlation with
+# the speed before is below this ...
+MAC_MIN = 0.8
+# ... at most this many times (a step of 1/256 of the grid's).
+MAX_HALVINGS = 8
+# Below this correlation a root is not the same mode: a curve ends, another starts.
+MAC_NEW = 0.1
+# A component carrying less of the motion than this is not judged as a crossing (the
+# companion of a circular rotating-frame mode on a shaft of revolution carries 0).
+SHARE_MIN = 0.05
+# Two bending roots closer than this (relative) are a double pair (split by the mesh).
+PAIR = 1e-3
+# How far a curve's frequency may move per Hz of spin from its straight continuation.
+REACH = 2.0
+# Crossings of one curve with one order closer than this (relative) are one.
+SAME = 1e-6
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """The roots at one spin: signed frequency (Hz), decay rate (1/s), whirl index,
+    kind, unit modal coordinates (N, m), and the largest non-oscillating growth rate."""
+
+    omega: float
+    f: np.ndarray
+    decay: np.ndarray
+    index: np.ndarray
+    kinds: tuple[str, ...]
+    y: np.ndarray
+    divergence: float
+
+
+def spectrum(model: RotorModel, omega: float) -> Spectrum:
+    """The roots at the spin omega (rad/s). Two bending roots within PAIR of each other
+    (a shaft of revolution's double pair, split only by its mesh) have any pair of
+    shapes in their plane: they are taken as the two circular orbits there, forward and
+    backward, so a pair double at standstill starts as two curves of known whirl."""
+    from shaftfem.fem.rotor import dominant_kinds
+
+    r = roots(model, omega)
+    y = r.y / np.linalg.norm(r.y, axis=0)
+    f, decay = r.lam.imag / (2 * math.pi), -r.lam.real
+    kinds = dominant_kinds(model, y)
+    for j in range(f.size - 1):
+        if (abs(f[j + 1] - f[j]) <= PAIR * abs(f[j + 1]) and kinds[j] in WHIRLING
+                and kinds[j + 1] in WHIRLING):
+            y[:, j:j + 2] = circular(model, y[:, j:j + 2])
+    return Spectrum(omega, f, decay, whirl_index(model, y), tuple(kinds), y, r.divergence)
+
+
+def circular(model: RotorModel, y: np.ndarray) -> np.ndarray:
+    """The combinations of the shapes y (N, 2) whose whirl indices are extreme: the
+    forward and the backward orbit of their plane (unit norm)."""
+    import scipy.linalg
+
+    T = y.conj().T @ model.turning @ y
+    L = y.conj().T @ model.lateral @ y
+    if np.linalg.eigvalsh(0.5 * (L + L.conj().T)).min() <= 1e-12 * max(np.abs(L).max(), 1e-300):
+        return y
+    _, c = scipy.linalg.eigh(0.5 * (T + T.conj().T), 0.5 * (L + L.conj().T))
+    z = y @ c
+    return z / np.linalg.norm(z, axis=0)
+
+
+@dataclass(eq=False)
+class _Track:
+    """A curve being followed: its points, and its shape at the last (in the form kept)."""
+
+    omega: list[float]
+    f: list[float]
+    decay: list[float]
+    index: list[float]
+    kinds: list[str]
+    ys: list[np.ndarray]
+
+    def add(self, s: Spectrum, j: int, flip: bool) -> None:
+        sign = -1.0 if flip else 1.0
+        self.omega.append(s.omega)
+        self.f.append(sign * float(s.f[j]))
+        self.decay.append(float(s.decay[j]))
+        self.index.append(sign * float(s.index[j]))
+        self.kinds.append(s.kinds[j])
+        self.ys.append(s.y[:, j].conj() if flip else s.y[:, j])
+
+
+def match(y: np.ndarray, f: np.ndarray, s: Spectrum, frame: str, reach: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Which root of `s` continues each shape y[:, i], expected near the signed
+    frequency f[i] (Hz) give or take reach[i]: the rows and columns assigned, whether
+    the root is taken conjugate (rotating frame), and each pair's score, its shape
+    correlation less up to a half for a frequency beyond reach (in the rotating frame a
+    root's conjugate can have the shape of another root: only the frequency tells)."""
+    from scipy.optimize import linear_sum_assignment
+
+    def score(mac: np.ndarray, fj: np.ndarray) -> np.ndarray:
+        off = np.abs(fj[None, :] - f[:, None]) / reach[:, None]
+        return mac - 0.5 * np.minimum(1.0, off)
+
+    direct = score(np.abs(y.conj().T @ s.y) ** 2, s.f)
+    if frame == "rotating":
+        conj = score(np.abs(y.T @ s.y) ** 2, -s.f)
+        flip = conj > direct
+        total = np.where(flip, conj, direct)
+    else:
+        flip, total = np.zeros_like(direct, dtype=bool), direct
+    rows, cols = linear_sum_assignment(-total)
+    return rows, cols, flip[rows, cols], total[rows, cols]
+
+
+def predicted(live: list[_Track], omega: float) -> tuple[np.ndarray, np.ndarray]:
+    """Each followed curve's signed frequency (Hz) at the spin omega, extrapolated from
+    its last two points, and how far from it a root may lie: REACH times the spin's
+    change in Hz (a whirl frequency moves at most a few times as fast as the spin) plus
+    a thousandth of the frequency."""
+    f = np.empty(len(live))
+    reach = np.empty(len(live))
+    for i, t in enumerate(live):
+        step = abs(omega - t.omega[-1]) / (2 * math.pi)
+        f[i] = t.f[-1]
+        if len(t.f) > 1 and t.omega[-1] > t.omega[-2]:
+            f[i] += (t.f[-1] - t.f[-2]) / (t.omega[-1] - t.omega[-2]) * (omega - t.omega[-1])
+        reach[i] = REACH * step + 1e-3 * abs(t.f[-1]) + 1e-9
+    return f, reach
+
+
+def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
+    """Every root followed over the speeds `grid` (rad/s, ascending from any speed),
+    the step halved where one of the `watch` lowest curves (by the frequency seen)
+    correlates less than MAC_MIN with its shape before; the curves numbered from 1 by
+    their first speed, then by their frequency there."""
+    frame = model.frame
+    first = spectrum(model, float(grid[0]))
+    live = [_Track([], [], [], [], [], []) for _ in range(first.f.size)]
+    for j, t in enumerate(live):
+        t.add(first, j, False)
+    done: list[_Track] = []
+
+    def step(t0: float, t1: float, depth: int) -> None:
+        nonlocal live
+        s = spectrum(model, t1)
+        y = np.column_stack([t.ys[-1] for t in live]) if live else np.zeros((model.size, 0))
+        f, reach = predicted(live, t1)
+        rows, cols, flips, score = match(y, f, s, frame, reach)
+        n0 = t0 / (2 * math.pi)
+        heard = seen(f, np.array([t.index[-1] for t in live]), n0, frame)
+        watched = set(np.argsort(heard)[:watch].tolist())
+        worst = min((sc for r, sc in zip(rows, score) if r in watched), default=1.0)
+        if worst < MAC_MIN and depth < MAX_HALVINGS:
+            mid = 0.5 * (t0 + t1)
+            step(t0, mid, depth + 1)
+            step(mid, t1, depth + 1)
+            return
+        kept, taken = [], set()
+        for r, c, fl, sc in zip(rows, cols, flips, score):
+            if sc < MAC_NEW:
+                continue
+            live[r].add(s, int(c), bool(fl))
+            kept.append(live[r])
+            taken.add(int(c))
+        done.extend(t for t in live if all(t is not k for k in kept))
+        for j in range(s.f.size):
+            if j not in taken:
+                t = _Track([], [], [], [], [], [])
+                t.add(s, j, False)
+                kept.append(t)
+        live = kept
+
+    for a, b in zip(grid[:-1], grid[1:]):
+        step(float(a), float(b), 0)
+    tracks = sorted(done + live, key=lambda t: (t.omega[0], abs(t.f[0])))
+    return [Curve(number=i + 1, frame=frame, speeds_rpm=np.array(t.omega) / RPM,
+                  signed_hz=np.array(t.f), decay=np.array(t.decay), index=np.array(t.index),
+                  kinds=tuple(t.kinds), shapes=np.column_stack(t.ys))
+            for i, t in enumerate(tracks)]
+
+
+def reported(curves: list[Curve], count: int) -> list[Curve]:
+    """The curves among the `count` lowest (by the frequency seen) at some speed of the
+    diagram: the modes the basis check vouches for."""
+    speeds = sorted({float(s) for c in curves for s in c.speeds_rpm})
+    keep: set[int] = set()
+    for s in speeds:
+        here = [(float(np.interp(s, c.speeds_rpm, c.seen_hz)), c.number) for c in curves
+                if c.speeds_rpm[0] <= s <= c.speeds_rpm[-1]]
+        keep.update(number for _, number in sorted(here)[:count])
+    return [c for c in curves if c.number in keep]
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """A curve meeting an order line: the order, the curve, the component ("" in the
+    stationary frame, "forward" or "backward" in the rotating), the speed (rad/s), and
+    the curve's whirl there, its whirl index, log decrement and the component's share."""
+
+    order: int
+    curve: int
+    component: str
+    omega: float
+    whirl: str
+    index: float
+    log_dec: float
+    share: float
+
+
+def _at(model: RotorModel, omega: float, y: np.ndarray, f: float, reach: float
+        ) -> tuple[float, float, float, float]:
+    """The root continuing shape y (expected near the signed frequency f, Hz, give or
+    take reach) at the spin omega: its signed frequency (Hz), decay (1/s), whirl index
+    (in the form kept) and score."""
+    s = spectrum(model, omega)
+    _, cols, flips, score = match(y[:, None], np.array([f]), s, model.frame,
+                                     np.array([reach]))
+    j, sign = int(cols[0]), (-1.0 if flips[0] else 1.0)
+    return sign * float(s.f[j]), float(s.decay[j]), sign * float(s.index[j]), float(score[0])
+
+
+def component_lines(c: Curve) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """A curve's lines as the housing sees them: (component, signed value v in Hz whose
+    magnitude is seen, share of the motion)."""
+    if c.frame == "stationary":
+        return [("", c.signed_hz, np.ones_like(c.signed_hz))]
+    n = c.speeds_rpm / 60.0
+    return [("forward", c.signed_hz + n, 0.5 * (1 + c.index)),
+            ("backward", c.signed_hz - n, 0.5 * (1 - c.index))]
+
+
+def component_whirl(component: str, v: float, index: float) -> str:
+    """The whirl of a component seen at |v|: in the stationary frame the root's own by
+    its index; in the rotating frame circular, its sense flipped where v < 0."""
+    if component == "":
+        return "forward" if index > FORWARD else "backward" if index < -FORWARD else "mixed"
+    forward = (component == "forward") == (v > 0)
+    return "forward" if forward else "backward"
+
+
+def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, ...]
+                    ) -> list[Crossing]:
+    """Every crossing of every curve's components with every order line, on the curves'
+    own (refined) speeds, each refined by root finding on the model."""
+    from scipy.optimize import brentq
+
+    out: list[Crossing] = []
+    for c in curves:
+        if not any(k in WHIRLING for k in c.kinds):
+            continue
+        for comp, v, share in component_lines(c):
+            for k in orders:
+                g = np.abs(v) - k * c.speeds_rpm / 60.0
+                for i in np.flatnonzero((g[:-1] > 0) & (g[1:] <= 0) | (g[:-1] < 0) & (g[1:] >= 0)):
+                    if max(share[i], share[i + 1]) < SHARE_MIN or c.speeds_rpm[i + 1] <= 0:
+                        continue
+                    y0 = c.shapes[:, i]
+                    lo, hi = c.speeds_rpm[i] * RPM, c.speeds_rpm[i + 1] * RPM
+                    f0, f1 = float(c.signed_hz[i]), float(c.signed_hz[i + 1])
+                    reach = REACH * (hi - lo) / (2 * math.pi) + 1e-3 * max(abs(f0), abs(f1))
+
+                    def near(om: float, y0: np.ndarray = y0, f0: float = f0, f1: float = f1,
+                             lo: float = lo, hi: float = hi, reach: float = reach
+                             ) -> tuple[float, float, float, float]:
+                        return _at(model, om, y0, f0 + (f1 - f0) * (om - lo) / (hi - lo), reach)
+
+                    def gap(om: float, k: int = k, comp: str = comp, near=near) -> float:
+                        fs, _, _, _ = near(om)
+                        n = om / (2 * math.pi)
+                        val = fs if comp == "" else fs + n if comp == "forward" else fs - n
+                        return abs(val) - k * n
+
+                    try:
+                        om = brentq(gap, lo, hi, xtol=1e-12 * hi) if gap(lo) * gap(hi) < 0 else (
+                            hi if g[i + 1] == 0 else lo - g[i] * (hi - lo) / (g[i + 1] - g[i]))
+                    except ValueError:
+                        om = lo - g[i] * (hi - lo) / (g[i + 1] - g[i])
+                    fs, decay, index, sc = near(om)
+                    if sc < MAC_MIN:   # a root passing through zero frequency is not listed
+                        t = (om - lo) / (hi - lo)
+                        fs, decay, index = (
+                            (1 - t) * float(a[i]) + t * float(a[i + 1])
+                            for a in (c.signed_hz, c.decay, c.index))
+                    n = om / (2 * math.pi)
+                    val = fs if comp == "" else fs + n if comp == "forward" else fs - n
+                    wd = 2 * math.pi * float(seen(np.array([fs]), np.array([index]), n,
+                                                  model.frame)[0])
+                    part = 1.0 if comp == "" else 0.5 * (1 + index if comp == "forward"
+                                                         else 1 - index)
+                    out.append(Crossing(k, c.number, comp, float(om),
+                                        component_whirl(comp, val, index), float(index),
+                                        float(2 * math.pi * decay / wd) if wd > 0 else 0.0,
+                                        float(part)))
+    return dedupe(out)
+
+
+def dedupe(found: list[Crossing]) -> list[Crossing]:
+    """One crossing per curve, order and speed (a rotating-frame root at f_s = 0 meets
+    1x with both its components): the one of the larger share."""
+    out: list[Crossing] = []
+    for x in sorted(found, key=lambda x: -x.share):
+        if not any(o.curve == x.curve and o.order == x.order
+                   and abs(o.omega - x.omega) <= SAME * max(o.omega, x.omega) for o in out):
+            out.append(x)
+    return sorted(out, key=lambda x: (x.omega, x.order))
+
+
+def direct_applies(model: RotorModel) -> str | None:
+    """None where the direct route applies, else why not."""
+    if any(len(b.coefficients.speeds) for b in model.bearings):
+        return "the bearing coefficients change with speed"
+    if any(np.any(np.array(b.coefficients.damping(0.0))) for b in model.bearings):
+        return ("the bearings damp: a damped root meets an order line at a speed no "
+                "undamped eigenproblem gives")
+    return None
+
+
+@dataclass(frozen=True)
+class Direct:
+    """A crossing found directly: order, speed (rad/s), the component, whirl index."""
+
+    order: int
+    omega: float
+    component: str
+    index: float
+
+
+def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> list[Direct]:
+    """Every undamped crossing with each order line up to the spin `top` (rad/s), from
+    the linear eigenproblem in Omega^2 of the module's docstring (constant, undamped
+    bearings only: see direct_applies)."""
+    import scipy.linalg
+
+    K0 = np.diag(model.omega2).astype(complex)
+    for b in model.bearings:
+        K0 = K0 + b.beta.T @ (np.array(b.coefficients.stiffness(0.0)) - np.diag(b.standstill)
+                              ) @ b.beta
+    eye = np.eye(model.size)
+
+    def solve(m: int) -> tuple[np.ndarray, np.ndarray]:
+        lam, A = scipy.linalg.eig(K0, m * m * eye - 1j * m * model.G - model.K2)
+        ok = (np.isfinite(lam) & (np.abs(lam.imag) <= 1e-8 * np.abs(lam)) & (lam.real > 0)
+              & (lam.real <= top**2 * (1 + 1e-9)))
+        return np.sqrt(lam.real[ok]), whirl_index(model, A[:, ok])
+
+    out = []
+    for k in orders:
+        if model.frame == "stationary":
+            speeds, index = solve(k)
+            out += [Direct(k, float(om), "", float(w)) for om, w in zip(speeds, index)]
+            continue
+        for m, comp, sign in ((k - 1, "forward", 1.0), (k + 1, "backward", -1.0)):
+            speeds, index = solve(m)
+            out += [Direct(k, float(om), comp, float(w)) for om, w in zip(speeds, index)
+                    if 0.5 * (1 + sign * w) >= SHARE_MIN]
+        if k == 1:   # f_s = 0: both components at 1x
+            speeds, index = solve(0)
+            out += [Direct(k, float(om), "backward", float(w)) for om, w in zip(speeds, index)
+                    if 0.5 * (1 - w) >= SHARE_MIN]
+    return out
