@@ -250,6 +250,14 @@ def test_the_two_frames_agree(size_mm, agree):
         assert a.speed_rpm == b.speed_rpm and a.whirl == b.whirl
         assert b.frequency_hz == pytest.approx(a.frequency_hz, rel=agree)
         assert b.log_dec == pytest.approx(a.log_dec, rel=100 * agree)
+    # the critical speeds, found in each frame on its own curves, are the same
+    full = {frame: campbell_of(scene, result, rotor_model(result, frame), why)
+            for frame in ("stationary", "rotating")}
+    crit = {frame: sorted((cs.order, cs.whirl, cs.speed_rpm) for cs in full[frame].critical_speeds)
+            for frame in full}
+    assert len(crit["stationary"]) == len(crit["rotating"]) >= 2
+    for (oa, wa, na), (ob, wb, nb) in zip(crit["stationary"], crit["rotating"]):
+        assert (oa, wa) == (ob, wb) and nb == pytest.approx(na, rel=agree)
     # in the rotating frame the same modes stand at f -+ n
     for b in c["rotating"].whirl:
         n = b.speed_rpm / 60

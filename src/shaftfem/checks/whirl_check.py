@@ -62,7 +62,7 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
     mode that grows, or is damped less than required, at a speed up to the highest
     operating one; an onset of growth or a divergence band inside the running range
     (fails) or beyond it (a warning with its margin)."""
-    rotor = c.result.scene.rotor
+    rotor = c.rotor_scene.rotor
     assert rotor is not None
     spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans]
     top = max(hi for _, hi in spans)
@@ -98,7 +98,7 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
 def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     """The turning shaft's verdict: its critical speeds against where it runs, its whirl
     at the operating speeds against the other sources, and its stability."""
-    scene = c.result.scene
+    scene = c.rotor_scene
     rotor = scene.rotor
     assert rotor is not None
     speeds = [om * 60 / (2 * math.pi) for om in rotor.speeds]

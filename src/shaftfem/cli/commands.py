@@ -115,6 +115,7 @@ def cmd_modes(args) -> int:
         from shaftfem.outputs.tables import participation_text
 
         print("\n" + participation_text(result, participation(modal_basis(result))))
+    turning = None
     if args.speed_rpm is not None:
         from shaftfem.outputs.tables import whirl_text
         from shaftfem.workflows.campbell import whirl_table
@@ -126,8 +127,15 @@ def cmd_modes(args) -> int:
         t = c.truncation
         print(f"modal basis: {t.size} standstill modes; on {t.smaller} the whirl frequencies "
               f"move by at most {t.change * 100:.2g} %")
+        turning = {"speed_rpm": args.speed_rpm, "frame": c.frame,
+                   "whirl": [w.as_dict() for w in c.operating],
+                   "basis": {"modes": t.size, "checked_against": t.smaller,
+                             "largest_change": t.change}}
     if args.json:
-        _write_json(args.json, modes_record(result, est, moves))
+        record = modes_record(result, est, moves)
+        if turning is not None:
+            record = {**record, "turning": turning}
+        _write_json(args.json, record)
     return _accuracy_status(args, adapted)
 
 

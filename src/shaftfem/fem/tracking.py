@@ -23,8 +23,8 @@ a root at lambda = i m Omega of q'' + Omega G q' + (K_0 + Omega^2 K_2) q = 0 sol
     K_0 a = Omega^2 (m^2 I - i m G - K_2) a,
 
 a linear eigenproblem in Omega^2 (m = k in the stationary frame; m = k - 1 for the
-forward component and m = k + 1, or 0 at k = 1, for the backward one in the rotating
-frame).
+forward component and m = k + 1 for the backward one in the rotating frame; at k = 1
+the root m = 0 stands still in the turning frame, a static critical speed).
 """
 
 from __future__ import annotations
@@ -385,10 +385,19 @@ def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> 
             continue
         for m, comp, sign in ((k - 1, "forward", 1.0), (k + 1, "backward", -1.0)):
             speeds, index = solve(m)
-            out += [Direct(k, float(om), comp, float(w)) for om, w in zip(speeds, index)
-                    if 0.5 * (1 + sign * w) >= SHARE_MIN]
-        if k == 1:   # f_s = 0: both components at 1x
-            speeds, index = solve(0)
-            out += [Direct(k, float(om), "backward", float(w)) for om, w in zip(speeds, index)
-                    if 0.5 * (1 - w) >= SHARE_MIN]
+            found = [Direct(k, float(om), comp, float(w)) for om, w in zip(speeds, index)
+                     if m == 0 or 0.5 * (1 + sign * w) >= SHARE_MIN]
+            if m == 0:
+                # a root standing still in the turning frame is a conjugate pair met at
+                # zero: each of its crossings is a null space of two shapes on a shaft
+                # of revolution (x and y), of one where the shaft is stiffer one way
+                found = sorted(found, key=lambda d: d.omega)
+                groups: list[list[Direct]] = []
+                for d in found:
+                    if groups and d.omega <= groups[-1][0].omega * (1 + 1e-6):
+                        groups[-1].append(d)
+                    else:
+                        groups.append([d])
+                found = [g[i] for g in groups for i in range(max(1, len(g) // 2))]
+            out += found
     return out

@@ -14,6 +14,7 @@ import numpy as np
 
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
+    from shaftfem.scene.model import Scene
 
 RPM = 2 * math.pi / 60           # rad/s per r/min
 # A whirl index beyond these is forward (backward); between, the orbit is mixed.
@@ -49,6 +50,7 @@ class Peak:
     amplification: float | None
     margin: float
     required_margin: float | None
+    unstable: bool = False   # a mode grows there: no steady response, no AF
 
     @property
     def ok(self) -> bool:
@@ -58,7 +60,8 @@ class Peak:
         return {"probe": self.probe, "speed_rpm": self.speed_rpm, "amplitude_m": self.amplitude,
                 "half_power_rpm": list(self.half_power_rpm) if self.half_power_rpm else None,
                 "amplification_factor": self.amplification, "separation_margin": self.margin,
-                "required_margin": self.required_margin, "ok": self.ok}
+                "required_margin": self.required_margin, "ok": self.ok,
+                "unstable": self.unstable}
 
 
 @dataclass(frozen=True)
@@ -315,6 +318,13 @@ class Campbell:
     curves: tuple[Curve, ...] = ()
     stability: Stability | None = None
     ranges_rpm: tuple[tuple[float, float], ...] = ()   # operating speed ranges
+    # the scene the diagram was drawn for (its [rotor] may differ from the basis run's)
+    scene: Scene | None = None
+
+    @property
+    def rotor_scene(self) -> Scene:
+        """The scene whose speeds, sources and criteria the diagram answers."""
+        return self.scene if self.scene is not None else self.result.scene
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem campbell` (its names are read by scripts)."""

@@ -59,15 +59,19 @@ def campbell_figure(c: Campbell):
     for cv in c.curves:
         whirls = cv.whirling
         for comp, v, share in component_lines(cv):
-            heavy = float(np.max(share)) >= 0.5
-            if not heavy and float(np.max(share)) < 0.02:
-                continue
+            # each point drawn as its component's share says: heavy where it carries
+            # most of the motion, thin where it is the smaller part, not where it is none
+            weight = ["heavy" if x >= 0.5 else "thin" if x >= 0.02 else "" for x in share]
             if not whirls:
                 words = ["none"] * v.size
             else:
                 words = [component_whirl(comp, float(x), float(w)) if k in ("bending", "mixed")
                          else "none" for x, w, k in zip(v, cv.index, cv.kinds)]
-            for a, b, word in _runs(words):
+            for a, b, key in _runs([f"{w}|{h}" for w, h in zip(words, weight)]):
+                word, how = key.split("|")
+                if not how:
+                    continue
+                heavy = how == "heavy"
                 ax.plot(cv.speeds_rpm[a:b + 1], np.abs(v[a:b + 1]),
                         "-" if word != "none" else ":", color=COLOURS[word],
                         lw=1.6 if heavy else 0.6,

@@ -471,7 +471,7 @@ def campbell_text(c) -> str:
               f"(orders {', '.join(f'{o}x' for o in c.orders)}; every curve):"]
     if not c.critical_speeds:
         lines.append("  none: no whirl curve crosses an order line in this range")
-    rotor = r.scene.rotor
+    rotor = c.rotor_scene.rotor
     spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans] if rotor else []
     for cs in c.critical_speeds:
         lo, hi = min(spans, key=lambda s: span_margin(cs.speed_rpm, *s)[0])
@@ -519,6 +519,11 @@ def campbell_text(c) -> str:
         if not c.unbalance.peaks:
             lines.append("  none in the speed range")
         for p in c.unbalance.peaks:
+            if p.unstable:
+                lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min: a mode grows at this "
+                             "speed, so the shaft has no steady unbalance response here (no "
+                             "amplification factor): the rotor is unstable")
+                continue
             af = (f"AF {p.amplification:.1f}" if p.amplification is not None
                   else "AF not measurable (a half-power point lies outside the range)")
             need = ("margin not judged" if p.amplification is None else

@@ -399,7 +399,8 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     operating_shapes=shapes,
                     synchronous_check=check.largest_difference, crossing_check=check,
                     curves=tuple(curves), stability=stability,
-                    ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges))
+                    ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges),
+                    scene=scene)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()

@@ -127,14 +127,32 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
                         participation=part)
 
 
+def write_campbell_csv(c, path: Path) -> Path:
+    """campbell.csv: each curve at each of its speeds (speed r/min, curve, frequency Hz,
+    whirl, whirl index, log dec, kind)."""
+    import csv
+    import io
+
+    from shaftfem.store import write_text
+
+    buf = io.StringIO()
+    names = ["speed_rpm", "curve", "frequency_hz", "whirl", "whirl_index", "log_dec", "kind"]
+    w = csv.DictWriter(buf, fieldnames=names, lineterminator="\n")
+    w.writeheader()
+    for row in c.csv_rows():
+        w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+    return write_text(path, buf.getvalue())
+
+
 def campbell_pictures(c, folder: Path) -> list[Path]:
-    """campbell.png, bode.png when the scene has unbalances, and orbits.png (the whirl at
-    the first operating speed), in `folder`."""
+    """campbell.png, campbell.csv, bode.png when the scene has unbalances, and
+    orbits.png (the whirl at the first operating speed), in `folder`."""
     from shaftfem.outputs.campbell_plot import bode_figure, campbell_figure
     from shaftfem.outputs.plots import save_png
     from shaftfem.outputs.whirl_files import orbits_figure
 
-    out = [save_png(campbell_figure(c), folder / "campbell.png", dpi=130)]
+    out = [save_png(campbell_figure(c), folder / "campbell.png", dpi=130),
+           write_campbell_csv(c, folder / "campbell.csv")]
     if c.unbalance is not None:
         out.append(save_png(bode_figure(c), folder / "bode.png", dpi=130))
     out.append(save_png(orbits_figure(c), folder / "orbits.png", dpi=130))

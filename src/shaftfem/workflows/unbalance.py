@@ -59,7 +59,8 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     for name, z, beta in probes:
         rows = np.array([at(n, beta) for n in grid])
         b = Bode(name, z, grid, rows[:, 0], np.degrees(rows[:, 2]), rows[:, 1])
-        found = find_peaks(name, b, lambda n, beta=beta: at(n, beta)[0], operating)
+        found = find_peaks(name, b, lambda n, beta=beta: at(n, beta)[0], operating,
+                           lambda n: grows(model, n * RPM))
         # a lightly damped peak is narrower than the grid: draw it through its own speeds
         extra = np.array([p.speed_rpm + k * w for p in found for w in
                           [(p.half_power_rpm[1] - p.half_power_rpm[0]) if p.half_power_rpm
@@ -75,10 +76,22 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     return UnbalanceResponse(tuple(bode), tuple(peaks))
 
 
-def find_peaks(name: str, b: Bode, amplitude, operating: list[float]) -> list[Peak]:
+def grows(model, omega: float) -> bool:
+    """Whether a mode of the turning shaft grows at the spin omega (rad/s): there it has
+    no steady unbalance response."""
+    from shaftfem.fem.rotor import roots
+
+    r = roots(model, omega)
+    scale = 1e-9 * max(float(np.max(np.abs(r.lam))) if r.lam.size else 1.0, 1.0)
+    return r.divergence > 0 or bool(np.any(r.lam.real > scale))
+
+
+def find_peaks(name: str, b: Bode, amplitude, operating: list[float],
+               unstable=lambda n: False) -> list[Peak]:
     """The peaks of one probe's Bode curve, each refined on `amplitude` (r/min -> m), its
     half-power speeds and amplification factor, and its margin from the nearest of the
-    `operating` speeds (r/min)."""
+    `operating` speeds (r/min). Where a mode grows (`unstable(n)`) a peak is no steady
+    response: it is marked so, with no amplification factor."""
     from scipy.optimize import minimize_scalar
 
     grid, a = b.speeds_rpm, b.amplitude
@@ -87,6 +100,11 @@ def find_peaks(name: str, b: Bode, amplitude, operating: list[float]) -> list[Pe
         best = minimize_scalar(lambda n: -amplitude(n), bounds=(grid[i - 1], grid[i + 1]),
                                method="bounded", options={"xatol": 1e-7 * grid[i]})
         n_c, peak = float(best.x), -float(best.fun)
+        near = min(operating, key=lambda n: abs(n - n_c))
+        if unstable(n_c):
+            out.append(Peak(name, n_c, peak, None, None, abs(n_c - near) / near, None,
+                            unstable=True))
+            continue
         half = peak / math.sqrt(2)
         hp = None
         sides = [_half_power(amplitude, n_c, half, grid[0], -1),
@@ -94,7 +112,6 @@ def find_peaks(name: str, b: Bode, amplitude, operating: list[float]) -> list[Pe
         if sides[0] is not None and sides[1] is not None:
             hp = (sides[0], sides[1])
         af = n_c / (hp[1] - hp[0]) if hp and hp[1] > hp[0] else None
-        near = min(operating, key=lambda n: abs(n - n_c))
         required = api684_required(af, n_c < near) if af is not None else None
         out.append(Peak(name, n_c, peak, hp, af, abs(n_c - near) / near, required))
     return out

@@ -1,0 +1,287 @@
+"""The turning shaft's verdict: every crossing found whatever the grid, by two routes,
+in both frames; stability and operating ranges judged; the CLI's exit status.
+
+The closed forms are a rigid rotor's (mass m, moments I_d and I_p, radial stiffness k
+and tilting stiffness k_t, isotropic): its translation pair whirls at sqrt(k / m) at
+every speed, its tilting pair at the roots of I_d w^2 -+ I_p Omega w = k_t, so the k-th
+order line meets them at Omega = sqrt(k/m) / k and Omega^2 (k^2 I_d -+ k I_p) = k_t.
+The rotors on the 3D solid are checked against the direct route (an eigenproblem in
+the speed squared, independent of the curves) and against themselves on a grid ten
+times finer.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from shaftfem.fem.rotor import RotorModel, part_matrices
+from shaftfem.fem.tracking import curve_crossings, direct_crossings, reported, track
+from shaftfem.fem.whirl import RPM
+from shaftfem.scene.load import load_scene
+
+M, ID, IP, K, KT = 10.0, 0.1, 0.05, 1e6, 2e4
+STEEL = {"name": "steel", "youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.3,
+         "density_kg_m3": 7810.0}
+
+
+def rigid_rotor(frame: str) -> RotorModel:
+    """The rigid rotor on its four lateral modes (x, y, tilt about x, tilt about y),
+    mass-normalised, in either frame (fem.rotor.part_matrices)."""
+    phi = np.diag([1 / math.sqrt(M)] * 2 + [1 / math.sqrt(ID)] * 2)
+    Gp, Kp = part_matrices(M, IP, ID, frame)
+    keep = [0, 1, 3, 4]
+    G = phi @ Gp[np.ix_(keep, keep)] @ phi
+    K2 = phi @ Kp[np.ix_(keep, keep)] @ phi
+    # whirl forms: (x, tilt about y) move along x, (y, -tilt about x) along y
+    w = np.diag([M, ID])
+    X, Y = phi[[0, 3]], np.vstack([phi[1], -phi[2]])
+    lateral = X.T @ w @ X + Y.T @ w @ Y
+    t = 1j * (X.T @ w @ Y - (X.T @ w @ Y).T)
+    return RotorModel(frame, np.array([K / M, K / M, KT / ID, KT / ID]), 0.5 * (G - G.T),
+                      0.5 * (K2 + K2.T), (), lateral, 0.5 * (t + t.conj().T), ("bending",) * 4)
+
+
+def closed_form(order: int) -> list[float]:
+    """The rigid rotor's crossings with the order line, r/min, ascending."""
+    out = [math.sqrt(K / M) / order] * 2 + [math.sqrt(KT / (order**2 * ID + order * IP))]
+    if order**2 * ID > order * IP:
+        out.append(math.sqrt(KT / (order**2 * ID - order * IP)))
+    return sorted(om / RPM for om in out)
+
+
+@pytest.mark.parametrize("frame", ["stationary", "rotating"])
+@pytest.mark.parametrize("points", [3, 31, 310])
+def test_rigid_rotor_crossings_on_any_grid_in_either_frame(frame, points):
+    """Every crossing of 1x, 2x and 3x with all four curves, on a grid of 3, 31 or 310
+    speeds, in either frame: the closed forms to 1e-8, each curve labelled forward or
+    backward from standstill on (its double pair split, not "mixed")."""
+    model = rigid_rotor(frame)
+    top = 8000 * RPM
+    curves = track(model, np.linspace(0.0, top, points), 4)
+    assert len(curves) == 4
+    assert sorted(c.whirl[0] for c in curves) == ["backward"] * 2 + ["forward"] * 2
+    found = curve_crossings(model, curves, (1, 2, 3))
+    for order in (1, 2, 3):
+        ours = sorted(x.omega / RPM for x in found if x.order == order)
+        ref = [n for n in closed_form(order) if n <= 8000]
+        assert ours == pytest.approx(ref, rel=1e-8), (order, ours, ref)
+    direct = direct_crossings(model, (1, 2, 3), top)
+    for order in (1, 2, 3):
+        ours = sorted(d.omega / RPM for d in direct if d.order == order)
+        assert ours == pytest.approx([n for n in closed_form(order) if n <= 8000], rel=1e-8)
+
+
+def test_the_curves_cross_and_keep_their_identity():
+    """In the stationary frame the tilting pair's backward curve falls through the
+    translation pair (a true crossing: the shapes do not mix): each curve stays on its
+    own mode family, its frequency continuous, the translation at sqrt(k/m) throughout."""
+    model = rigid_rotor("stationary")
+    curves = track(model, np.linspace(0.0, 20000 * RPM, 9), 4)
+    tilt_back = [c for c in curves if c.whirl[-1] == "backward" and c.seen_hz[0] > 60]
+    assert len(tilt_back) == 1
+    c = tilt_back[0]
+    assert c.seen_hz[-1] < math.sqrt(K / M) / (2 * math.pi)   # it passed below the pair
+    assert np.all(np.diff(c.seen_hz) < 0)
+    flat = [c for c in curves if np.allclose(c.seen_hz, math.sqrt(K / M) / (2 * math.pi))]
+    assert len(flat) == 2
+
+
+def test_reported_curves_are_those_among_the_modes_asked():
+    model = rigid_rotor("stationary")
+    curves = track(model, np.linspace(0.0, 8000 * RPM, 11), 4)
+    assert len(reported(curves, 2)) >= 2
+    assert len(reported(curves, 4)) == 4
+
+
+# --------------------------------------------------------------------------------------
+# On the 3D solid
+
+
+def pulley_rotor(**bearing) -> dict:
+    """A stepped shaft (35/50/35 mm) with a disk between two bearings and an overhung
+    pulley, P2 at 14 mm."""
+    brg = {"kind": "bearing", "width_mm": 20.0, "kxx_n_per_mm": 5e4, **bearing}
+    return {"name": "pulley_rotor", "material": STEEL, "mesh": {"element_size_mm": 14.0},
+            "section": [{"length_mm": 80.0, "diameter_mm": 35.0, "fillet_mm": 1.0},
+                        {"length_mm": 420.0, "diameter_mm": 50.0, "fillet_mm": 1.0},
+                        {"length_mm": 160.0, "diameter_mm": 35.0}],
+            "support": [{**brg, "name": "drive end", "position_mm": 50.0},
+                        {**brg, "name": "free end", "position_mm": 520.0}],
+            "attachment": [{"name": "disk", "position_mm": 300.0, "width_mm": 40.0,
+                            "mass_kg": 18.0, "polar_inertia_kg_m2": 0.12,
+                            "diametral_inertia_kg_m2": 0.065, "joint": "distributing"},
+                           {"name": "pulley", "position_mm": 620.0, "width_mm": 50.0,
+                            "mass_kg": 6.0, "polar_inertia_kg_m2": 0.03,
+                            "diametral_inertia_kg_m2": 0.017, "joint": "distributing"}],
+            "modes": {"count": 6},
+            "rotor": {"speed_rpm": 3000.0, "max_speed_rpm": 12000.0}}
+
+
+@pytest.fixture(scope="module")
+def pulley():
+    """The rotor's standstill basis and its turning model, solved once."""
+    from shaftfem.workflows.campbell import turning
+
+    scene = load_scene(pulley_rotor())
+    result, model, why = turning(scene)
+    return scene, result, model, why
+
+
+def at_speed(scene, rpm: float | None = None, **rotor):
+    """The scene with its [rotor] changed (speeds in r/min)."""
+    r = scene.rotor
+    if rpm is not None:
+        r = replace(r, speeds=(rpm * RPM,))
+    if "range_rpm" in rotor:
+        lo, hi = rotor.pop("range_rpm")
+        r = replace(r, ranges=((lo * RPM, hi * RPM),), speeds=(lo * RPM, hi * RPM))
+    return replace(scene, rotor=replace(r, **rotor))
+
+
+def test_stepped_rotor_every_crossing_by_two_routes_on_any_grid(pulley):
+    """Isotropic undamped bearings, 0-12,000 r/min: the curves' crossings equal the
+    direct route's (none added, none extra, to 1e-6), the same set on the default grid
+    and on one ten times finer (to 1e-4), the forward and backward 1x crossings of the
+    first pairs among them, and at standstill no bending row "mixed"."""
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    c = campbell_of(scene, result, model, why)
+    x = c.crossing_check
+    assert x is not None and x.applies
+    assert x.direct_only == 0 and x.curves_only == 0 and x.largest_difference < 1e-6
+    ones = [cs for cs in c.critical_speeds if cs.order == 1]
+    assert {cs.whirl for cs in ones} == {"forward", "backward"} and len(ones) >= 2
+    still = [w for w in c.whirl if w.speed_rpm == 0.0 and w.kind == "bending"]
+    assert still and all(w.whirl != "mixed" for w in still)
+    fine = campbell_of(scene, result, model, why, np.linspace(0.0, 12000.0, 310))
+    a = sorted((cs.order, cs.speed_rpm) for cs in c.critical_speeds)
+    b = sorted((cs.order, cs.speed_rpm) for cs in fine.critical_speeds)
+    assert len(a) == len(b)
+    for (oa, na), (ob, nb) in zip(a, b):
+        assert oa == ob and na == pytest.approx(nb, rel=1e-4)
+
+
+def test_a_high_order_crossing_near_the_running_range_fails(pulley):
+    """A pump's vane pass, 7x: put its first crossing (found directly, independently of
+    the curves) 12 % above one of two operating speeds; the verdict fails on it, with a
+    15 % margin, and passes with 10 %."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.fem.tracking import direct_crossings
+    from shaftfem.scene.model import Excitation
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    seven = min(d.omega for d in direct_crossings(model, (7,), 12000 * RPM))
+    run = seven / RPM / 1.12
+    vane = Excitation(name="vane pass", frequency=run / 60, orders=(1, 2, 7))
+    pump = replace(at_speed(scene, None), rotor=replace(
+        scene.rotor, speeds=(0.66 * run * RPM, run * RPM)), excitations=(vane,))
+    c = campbell_of(pump, result, model, why)
+    v = check_whirl(c, 0.15)
+    assert not v.ok and v.exit_status == 1
+    assert any(a.order == 7 and a.margin == pytest.approx(0.12, rel=1e-3) for a in v.violations)
+    assert check_whirl(c, 0.10).ok or all(a.order != 7 for a in check_whirl(c, 0.10).violations)
+
+
+def test_a_critical_speed_inside_the_running_range_has_margin_zero(pulley):
+    """A variable-speed drive whose range holds the first forward 1x critical speed
+    fails with margin 0; outside it the margin is measured to the nearer end."""
+    from shaftfem.checks.whirl_check import check_whirl, span_margin
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    c = campbell_of(scene, result, model, why)
+    first = min(cs.speed_rpm for cs in c.critical_speeds
+                if cs.order == 1 and cs.whirl == "forward")
+    inside = campbell_of(at_speed(scene, range_rpm=(0.9 * first, 1.05 * first)), result,
+                         model, why)
+    v = check_whirl(inside, 0.15)
+    assert not v.ok and v.exit_status == 1
+    assert any(a.margin == 0.0 and a.order == 1 for a in v.violations)
+    assert span_margin(100.0, 110.0, 200.0) == (pytest.approx(10 / 110), False)
+    assert span_margin(250.0, 110.0, 200.0) == (pytest.approx(0.25), True)
+
+
+def test_no_crossing_in_range_gives_a_verdict(pulley):
+    """Running below every critical speed, the diagram ending at the running speed: no
+    crossing, a verdict all the same (PASS), not a crash."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.outputs.tables import verdict_text
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    low = replace(scene, rotor=replace(scene.rotor, speeds=(500 * RPM,),
+                                       max_speed=500 * RPM))
+    c = campbell_of(low, result, model, why)
+    assert not c.critical_speeds
+    v = check_whirl(c, 0.15)
+    assert v.ok and v.exit_status == 0
+    assert "VERDICT: PASS" in verdict_text(v)
+
+
+def test_cross_coupled_bearings_fail_for_instability():
+    """kxy = -kyx (a constant cross-coupling, as an oil film's) larger than the bearings'
+    damping can hold: a forward mode grows from standstill. The verdict fails naming
+    it, and the unbalance peak of the growing mode has no amplification factor."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.workflows.campbell import run_campbell
+
+    data = pulley_rotor(cxx_n_s_per_mm=0.2, kxy_n_per_mm=2e4, kyx_n_per_mm=-2e4)
+    data["unbalance"] = [{"part": "disk", "amount_g_mm": 50.0}]
+    data["rotor"]["campbell_points"] = 13
+    c = run_campbell(load_scene(data))
+    st = c.stability
+    assert st is not None and st.growing and st.log_dec < 0 and st.whirl == "forward"
+    v = check_whirl(c, 0.15)
+    assert not v.ok and v.exit_status == 1 and v.unstable
+    assert "grows" in v.unstable[0]
+    assert c.unbalance is not None
+    grown = [p for p in c.unbalance.peaks if p.unstable]
+    assert all(p.amplification is None for p in grown)
+
+
+def test_instability_above_the_running_speed_warns_and_inside_fails(pulley):
+    """A cross-coupling growing with speed (kxy = -kyx = q n): its onset found on the
+    curves; running above it fails, running at half of it passes with a warning that
+    gives the margin."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.scene.model import BearingCoefficients
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    table = tuple(np.linspace(0.0, 12000 * RPM, 7))
+    q = [4e6 * w / table[-1] for w in table]
+    coeffs = BearingCoefficients(speeds=table, kxx=(5e7,) * 7, kxy=tuple(q),
+                                 kyx=tuple(-x for x in q), kyy=(5e7,) * 7,
+                                 cxx=(200.0,) * 7, cxy=(0.0,) * 7, cyx=(0.0,) * 7,
+                                 cyy=(200.0,) * 7)
+    coupled = replace(model, bearings=tuple(replace(b, coefficients=coeffs)
+                                            for b in model.bearings))
+    c = campbell_of(scene, result, coupled, why)
+    assert c.onsets, "the cross-coupling should destabilise a forward mode in range"
+    onset = c.onsets[0].speed_rpm
+    fast = check_whirl(campbell_of(at_speed(scene, 1.2 * onset), result, coupled, why), 0.15)
+    assert not fast.ok and fast.exit_status == 1
+    assert any("starts to grow" in u or "grows" in u for u in fast.unstable)
+    slow = check_whirl(campbell_of(at_speed(scene, 0.5 * onset), result, coupled, why), 0.15)
+    assert not slow.unstable
+    assert any("above the highest operating speed" in w for w in slow.warnings)
+
+
+def test_a_required_log_decrement_fails_a_lightly_damped_rotor(pulley):
+    """[rotor] min_log_dec = 0.1 on bearings that damp little: FAIL, naming the mode."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.workflows.campbell import run_campbell
+
+    data = pulley_rotor(cxx_n_s_per_mm=0.05)
+    data["rotor"]["min_log_dec"] = 0.1
+    data["rotor"]["campbell_points"] = 7
+    c = run_campbell(load_scene(data))
+    assert c.stability is not None and 0 < c.stability.log_dec <= 0.1
+    v = check_whirl(c, 0.15)
+    assert not v.ok and "damped less than required" in v.unstable[0]
