@@ -285,3 +285,63 @@ def test_a_required_log_decrement_fails_a_lightly_damped_rotor(pulley):
     assert c.stability is not None and 0 < c.stability.log_dec <= 0.1
     v = check_whirl(c, 0.15)
     assert not v.ok and "damped less than required" in v.unstable[0]
+
+
+# --------------------------------------------------------------------------------------
+# What probing found
+
+
+@pytest.mark.parametrize("key,value", [("kxy_n_per_mm", float("nan")),
+                                       ("kxx_n_per_mm", float("inf")),
+                                       ("cxx_n_s_per_mm", float("-inf"))])
+def test_a_coefficient_that_is_no_number_is_refused_at_load(key, value):
+    from shaftfem.errors import SceneError
+
+    data = pulley_rotor(**{key: value})
+    with pytest.raises(SceneError, match=key) as e:
+        load_scene(data)
+    assert "finite" in str(e.value)
+
+
+def test_the_rotor_table_refuses_what_it_cannot_mean():
+    """Two operating speeds less than 1 r/min apart (they would name the same files),
+    a basis smaller than the modes asked plus two (its check would be empty), and a
+    speed range upside down; a one-speed coefficient table is a constant one."""
+    from shaftfem.errors import SceneError
+    from shaftfem.workflows.campbell import turning
+
+    with pytest.raises(SceneError, match=r"rotor\.speed_rpm.*less than 1 r/min apart"):
+        load_scene({**pulley_rotor(), "rotor": {"speed_rpm": [9000.0, 9000.4]}})
+    with pytest.raises(SceneError, match="basis_modes = 2"):
+        turning(load_scene({**pulley_rotor(), "rotor": {"speed_rpm": 3000.0,
+                                                         "basis_modes": 2}}))
+    with pytest.raises(SceneError, match="speed_range_rpm"):
+        load_scene({**pulley_rotor(), "rotor": {"speed_range_rpm": [4500.0, 2950.0]}})
+    one = load_scene(pulley_rotor(speeds_rpm=[3000.0], kxx_n_per_mm=[5e4]))
+    assert one.held[0].bearing is not None and one.held[0].bearing.speeds == ()
+    ranged = load_scene({**pulley_rotor(), "rotor": {"speed_range_rpm": [2950.0, 4500.0]}})
+    assert ranged.rotor is not None
+    assert [round(w / RPM) for w in ranged.rotor.speeds] == [2950, 4500]
+    assert ranged.rotor.spans == ((2950 * RPM, 4500 * RPM),)
+
+
+def test_a_bearing_is_summarised_by_its_coefficients_and_units_are_named():
+    from shaftfem.outputs.tables import installation_lines
+    from shaftfem.scene.reference import unit
+
+    class Result:
+        scene = load_scene(pulley_rotor(cxx_n_s_per_mm=0.3))
+        installed = None
+
+    line = installation_lines(Result())[0]   # type: ignore[arg-type]
+    assert "kxx 5e+04" in line and "cxx 0.3, cyy 0.3 N s/mm" in line and "k_r" not in line
+    assert unit("cxx_n_s_per_mm") == "N s/mm" and unit("kxx_n_per_mm") == "N/mm"
+
+
+def test_json_holds_no_infinity():
+    import json
+
+    from shaftfem.store import json_text
+
+    text = json_text({"a": math.inf, "b": [1.0, -math.inf, math.nan], "c": {"d": 2.0}})
+    assert json.loads(text) == {"a": None, "b": [1.0, None, None], "c": {"d": 2.0}}

@@ -14,6 +14,7 @@ import csv
 import functools
 import hashlib
 import json
+import math
 import os
 import shutil
 import tempfile
@@ -175,8 +176,20 @@ def plain(obj):
     raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
 
 
+def _finite(value):
+    """The value with every infinite or undefined float made null: JSON has neither."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    return value
+
+
 def json_text(data: dict) -> str:
-    return json.dumps(data, indent=2, default=plain) + "\n"
+    """Valid JSON (no Infinity or NaN: null where a number is infinite or undefined)."""
+    return json.dumps(_finite(data), indent=2, default=plain, allow_nan=False) + "\n"
 
 
 def write_json(path: str | Path, data: dict) -> Path:

@@ -139,6 +139,9 @@ def cmd_modes(args) -> int:
     return _accuracy_status(args, adapted)
 
 
+CAMPBELL_MANIFEST = "campbell.manifest.json"   # the files of the last complete campbell run
+
+
 def cmd_campbell(args) -> int:
     from shaftfem.outputs.tables import campbell_text
     from shaftfem.workflows.campbell import run_campbell, speed_grid
@@ -149,13 +152,18 @@ def cmd_campbell(args) -> int:
     print(campbell_text(c))
     if args.out:
         from shaftfem.outputs.whirl_files import write_whirl_files
+        from shaftfem.store import staged_directory
         from shaftfem.workflows.design import campbell_pictures
 
-        for path in campbell_pictures(c, Path(args.out)):
-            print(f"wrote {path}")
-        files = write_whirl_files(c, Path(args.out))
+        out = Path(args.out)
+        # every file of the run is published at once, or none (an interrupt, a failure)
+        with staged_directory(out, CAMPBELL_MANIFEST) as stage:
+            pictures = campbell_pictures(c, stage)
+            files = write_whirl_files(c, stage)
+        for path in pictures:
+            print(f"wrote {out / path.name}")
         print(f"wrote {len(files)} files of the whirl at the operating speed(s) for ParaView: "
-              f"{files[-1]} (real and imaginary parts of each mode)")
+              f"{out / files[-1].name} (real and imaginary parts of each mode)")
     if args.json:
         _write_json(args.json, {"scene": scene.name, **c.as_dict()})
     return 0

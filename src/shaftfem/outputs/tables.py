@@ -108,6 +108,13 @@ def installation_lines(result: ModalResult) -> list[str]:
     for s in scene.held:
         what = {"rigid": "rigid, radially and axially", "rigid-radial": "rigid, radially",
                 "clamped": "clamped"}.get(s.kind)
+        if what is None and s.bearing is not None:
+            b = s.bearing
+            k, c = b.stiffness(0.0), b.damping(0.0)
+            what = (f"bearing kxx {k[0][0] / 1e3:.4g}, kyy {k[1][1] / 1e3:.4g}, "
+                    f"kxy {k[0][1] / 1e3:.4g}, kyx {k[1][0] / 1e3:.4g} N/mm; "
+                    f"cxx {c[0][0] / 1e3:.4g}, cyy {c[1][1] / 1e3:.4g} N s/mm"
+                    + (" (at standstill; against speed)" if b.speeds else ""))
         if what is None:
             parts = [f"k_r {s.radial / 1e3:.4g} N/mm"]
             if s.axial:

@@ -315,9 +315,11 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
             raise SceneError(f"{where(source, table, key)} = {v!r}: give one number, or one "
                              f"value for each of the {len(speeds)} speeds of speeds_rpm")
         values[key] = v
-    if speeds and all(len(values[k]) == 1 for k in BEARING_KEYS):
+    if len(speeds) > 1 and all(len(values[k]) == 1 for k in BEARING_KEYS):
         raise SceneError(f"{where(source, table, 'speeds_rpm')}: no coefficient is a list; "
                          "give lists of values against these speeds, or leave speeds_rpm out")
+    if len(speeds) == 1:   # a table of one speed is constant coefficients
+        speeds = []
     per_mm = {k: tuple(x * 1e3 for x in v) for k, v in values.items()}
     return BearingCoefficients(
         speeds=tuple(n * RPM for n in speeds), kxx=per_mm["kxx_n_per_mm"],

@@ -12,7 +12,8 @@ from shaftfem.scene.schema import SCHEMA, TABLES, Key
 # A key's unit, by the suffix of its name (the longest that matches wins).
 UNITS = {
     "_mm": "mm", "_mpa": "MPa", "_kg_m3": "kg/m^3", "_rpm": "r/min", "_kw": "kW",
-    "_deg": "deg", "_n_per_mm": "N/mm", "_nmm_per_rad": "N mm/rad", "_kg": "kg",
+    "_deg": "deg", "_n_per_mm": "N/mm", "_n_s_per_mm": "N s/mm", "_nmm_per_rad": "N mm/rad",
+    "_kg": "kg", "_g_mm": "g mm",
     "_kg_m2": "kg m^2", "_percent": "%", "_hz": "Hz",
 }
 

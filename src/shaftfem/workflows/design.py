@@ -96,7 +96,10 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         free = solve_mesh(scene.free(), result.shape, result.mesh, options)
         basis = modal_basis(result)
         part = participation(basis)
-        response = response_sweep(result, "x", basis=basis)
+        # a turning shaft's response is its unbalance response (bode.png), on its own
+        # bearings' damping: the base-motion sweep on [damping]'s modal ratio is not drawn
+        if campbell is None:
+            response = response_sweep(result, "x", basis=basis)
     # every file of the run is published at once, under design.manifest.json
     with staged_directory(out, MANIFEST) as stage:
         say("exporting mode shapes, mesh and solid")
