@@ -86,6 +86,51 @@ def critical(rotor, direction, lo, hi):
     return 0.5 * (lo + hi)
 
 
+def lateral_wd(rotor, speed, n):
+    """The first n lateral damped frequencies (rad/s) at a speed, ascending."""
+    m = rotor.run_modal(speed, num_modes=2 * n + 8)
+    return np.array([w for w, d in zip(m.wd, m.whirl_direction()) if d != "None"][:n])
+
+
+def every_crossing(rotor, orders, top, n, points=81):
+    """Every speed (rad/s) where one of the first n lateral frequencies meets an order
+    line, up to `top`: sign changes on a grid, then bisection. The k-th lowest
+    frequencies are the union of the curves, so their crossings are the curves'."""
+    grid = np.linspace(top / points, top, points)
+    wd = np.array([lateral_wd(rotor, w, n) for w in grid])
+    out = []
+    for order in orders:
+        for k in range(n):
+            g = wd[:, k] - order * grid
+            for i in np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0):
+                lo, hi = grid[i], grid[i + 1]
+                for _ in range(45):
+                    mid = 0.5 * (lo + hi)
+                    if (lateral_wd(rotor, mid, n)[k] - order * mid) * g[i] > 0:
+                        lo = mid
+                    else:
+                        hi = mid
+                out.append({"order": order, "curve": k + 1, "speed": 0.5 * (lo + hi)})
+    return sorted(out, key=lambda x: (x["speed"], x["order"]))
+
+
+def major_peaks(rotor, node, unbalance, speeds):
+    """The peaks (speed rad/s, major semi-axis m) of a node's unbalance orbit."""
+    def major(w):
+        r = rotor.run_unbalance_response(node, unbalance, 0.0, w)
+        x, y = r.forced_resp[6 * node], r.forced_resp[6 * node + 1]
+        return 0.5 * (np.abs(x + 1j * y) + np.abs(x - 1j * y))
+
+    a = major(speeds)
+    peaks = []
+    for i in np.flatnonzero((a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:])) + 1:
+        fine = np.linspace(speeds[i - 1], speeds[i + 1], 801)
+        af = major(fine)
+        j = int(np.argmax(af))
+        peaks.append({"speed": float(fine[j]), "major_m": float(af[j])})
+    return peaks
+
+
 def main(path: str) -> None:
     import ross as rs
     from ross.materials import steel
@@ -135,6 +180,20 @@ def main(path: str) -> None:
         lo, hi = (mid, hi) if logdec(mid) > 0 else (lo, mid)
     out["5.9.1 cross-coupled"] = {"bearing_damping_n_s_per_m": c, "kxy_per_speed": SLOPE,
                                   "onset_speed": 0.5 * (lo + hi)}
+    # 5.9.2's anisotropic bearings (kyy = kxx / 2 here) with 500 N s/m of damping:
+    # every 1x crossing of the first four curves, and the unbalance peaks (major
+    # semi-axis) of the 350 mm disk's node, 100 g mm there
+    ra = rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL // 3, 0.28),
+                                     disk(rs, steel, 2 * N_EL // 3, 0.35)],
+                  [rs.BearingElement(n=b, kxx=1e6, kyy=5e5, cxx=c, cyy=c)
+                   for b in (0, N_EL)])
+    out["anisotropic damped"] = {
+        "kxx": 1e6, "kyy": 5e5, "c": c, "unbalance_kg_m": 1e-4,
+        "crossings": every_crossing(ra, (1,), 1500 * RPM, 4),
+        "peaks": major_peaks(ra, 2 * N_EL // 3, 1e-4, np.linspace(20.0, 160.0, 281))}
+    # 5.9.1 undamped with a pump's orders 1x, 2x and 7x (vane pass) up to 3,000 r/min
+    out["orders 1 2 7"] = {"orders": [1, 2, 7],
+                           "crossings": every_crossing(r1, (1, 2, 7), 3000 * RPM, 6)}
     # The examples: the grinding spindle and the motor shaft with its fan
     # (examples/overhung_spindle.toml, examples/motor_fan.toml), on 10 mm elements
     for name, (length, od, brgs, k, (node, m, ip, idm), rpm, top) in {

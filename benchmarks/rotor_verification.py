@@ -30,6 +30,7 @@ def main() -> None:
 
     ross = json.loads((ROOT / "tests" / "data" / "ross_rotors.json").read_text())
     rows = []
+    counts: list[tuple[str, int, int]] = []
 
     def row(what: str, theirs: float, ours: float, unit: str) -> None:
         rows.append(f"| {what} | {theirs:.6g} {unit} | {ours:.6g} {unit} | "
@@ -81,6 +82,44 @@ def main() -> None:
                                             "campbell_points": 11})))
     row("5.9.1 cross-coupled, instability onset", ref["onset_speed"], c.onsets[0].speed_rpm * RAD,
         "rad/s")
+    if "anisotropic damped" in ross:
+        ref = ross["anisotropic damped"]
+        c = run_campbell(load_scene(t.friswell(
+            t.ends(kxx_n_per_mm=ref["kxx"] / 1e3, kyy_n_per_mm=ref["kyy"] / 1e3,
+                   cxx_n_s_per_mm=ref["c"] / 1e3),
+            t.two_disks(), {"speed_rpm": 1200.0, "max_speed_rpm": 1500.0},
+            unbalance=[{"name": "disk 2", "position_mm": 1000.0,
+                        "amount_g_mm": ref["unbalance_kg_m"] * 1e6}])))
+        ours = sorted(cs.speed_rpm * RAD for cs in c.critical_speeds if cs.order == 1)
+        for k, x in enumerate(ref["crossings"]):
+            near = min(ours, key=lambda n: abs(n - x["speed"]))
+            row(f"anisotropic damped bearings, 1x crossing {k + 1}", x["speed"], near, "rad/s")
+        assert c.unbalance is not None
+        peaks = [p for p in c.unbalance.peaks if p.probe == "disk 2"]
+        for k, x in enumerate(ref["peaks"]):
+            p = min(peaks, key=lambda p: abs(p.speed_rpm * RAD - x["speed"]))
+            row(f"anisotropic damped bearings, unbalance peak {k + 1}, speed", x["speed"],
+                p.speed_rpm * RAD, "rad/s")
+            row(f"anisotropic damped bearings, unbalance peak {k + 1}, major semi-axis",
+                x["major_m"] * 1e6, p.amplitude * 1e6, "um")
+        counts.append(("anisotropic damped bearings, 1x crossings up to 1,500 r/min",
+                       len(ref["crossings"]), len(ours)))
+    if "orders 1 2 7" in ross:
+        ref = ross["orders 1 2 7"]
+        scene = load_scene(t.friswell(
+            t.ends(kxx_n_per_mm=1000.0), t.two_disks(),
+            {"speed_rpm": 1500.0, "max_speed_rpm": 3000.0},
+            excitation=[{"name": "vane pass", "speed_rpm": 1500.0, "orders": [1, 2, 7]}]))
+        c = run_campbell(scene)
+        for x in ref["crossings"]:
+            same = [cs.speed_rpm * RAD for cs in c.critical_speeds if cs.order == x["order"]]
+            near = min(same, key=lambda n: abs(n - x["speed"]))
+            row(f"1x, 2x, 7x: {x['order']}x crossing of curve {x['curve']}", x["speed"], near,
+                "rad/s")
+        counts.append(("1x, 2x, 7x crossings up to 3,000 r/min", len(ref["crossings"]),
+                       sum(1 for cs in c.critical_speeds
+                           if cs.frequency_hz * 2 * math.pi
+                           <= max(x["speed"] * x["order"] for x in ref["crossings"]) * 1.0001)))
     for name in ("overhung_spindle", "motor_fan"):
         if name not in ross:
             continue
@@ -98,6 +137,12 @@ def main() -> None:
     print("| quantity | ross | shaftfem | difference |")
     print("|---|---|---|---|")
     print("\n".join(rows))
+    if counts:
+        print()
+        print("| crossings counted | ross | shaftfem |")
+        print("|---|---|---|")
+        for what, a, b in counts:
+            print(f"| {what} | {a} | {b} |")
 
 
 if __name__ == "__main__":

@@ -345,3 +345,70 @@ def test_json_holds_no_infinity():
 
     text = json_text({"a": math.inf, "b": [1.0, -math.inf, math.nan], "c": {"d": 2.0}})
     assert json.loads(text) == {"a": None, "b": [1.0, None, None], "c": {"d": 2.0}}
+
+
+# --------------------------------------------------------------------------------------
+# The unbalance response
+
+
+def free_bar(**support) -> dict:
+    """A 500 x 40 mm steel bar turning, an unbalance at its middle; held by damping
+    only at both ends (`support` given) or not at all."""
+    data = {"name": "free_bar", "material": STEEL, "mesh": {"element_size_mm": 16.0},
+            "shaft": {"length_mm": 500.0, "diameter_mm": 40.0}, "modes": {"count": 4},
+            "rotor": {"speed_rpm": 2000.0, "max_speed_rpm": 2000.0, "campbell_points": 3},
+            "unbalance": [{"position_mm": 250.0, "amount_g_mm": 100.0}]}
+    if support:
+        brg = {"kind": "bearing", "width_mm": 20.0, **support}
+        data["support"] = [{**brg, "name": "a", "position_mm": 20.0},
+                           {**brg, "name": "b", "position_mm": 480.0}]
+    return data
+
+
+@pytest.mark.parametrize("support", [{}, {"kxx_n_per_mm": 0.0, "cxx_n_s_per_mm": 0.01}])
+def test_a_shaft_its_bearings_do_not_hold_spins_about_its_centre_of_mass(support):
+    """Far below its first bending mode (about 44,000 r/min) a shaft that nothing holds
+    sideways, or only a light damper, turns about its centre of mass: its middle
+    orbits at the eccentricity U / m (rigid-body estimate) within 1 %."""
+    from shaftfem.workflows.campbell import turning
+    from shaftfem.workflows.unbalance import unbalance_response
+
+    scene = load_scene(free_bar(**support))
+    result, model, _ = turning(scene)
+    r = unbalance_response(scene, result, model, np.array([2000.0]))
+    mass = 7810.0 * math.pi / 4 * 0.04**2 * 0.5
+    middle = r.bode[0]
+    assert middle.major[0] == pytest.approx(100e-6 / mass, rel=0.01)
+
+
+def test_an_undamped_rotor_has_no_finite_peak(pulley):
+    """No damping: each peak is unbounded, at a 1x critical speed found directly."""
+    from shaftfem.fem.tracking import direct_crossings
+    from shaftfem.scene.model import Unbalance
+    from shaftfem.workflows.unbalance import unbalance_response
+
+    scene, result, model, _ = pulley
+    heavy = replace(scene, unbalances=(Unbalance("disk", 0.3, 50e-6),))
+    r = unbalance_response(heavy, result, model)
+    assert not r.damped and r.peaks
+    ones = [d.omega / RPM for d in direct_crossings(model, (1,), 12000 * RPM)]
+    for p in r.peaks:
+        assert p.unbounded and math.isinf(p.amplitude) and p.amplification is None
+        assert min(abs(p.speed_rpm / n - 1) for n in ones) < 1e-3
+
+
+def test_unbalances_that_cancel_give_no_peak_and_one_off_the_shaft_is_refused(pulley):
+    from shaftfem.errors import SceneError
+    from shaftfem.scene.model import Unbalance
+    from shaftfem.workflows.unbalance import unbalance_response
+
+    scene, result, model, _ = pulley
+    pair = (Unbalance("a", 0.3, 50e-6, 0.0), Unbalance("b", 0.3, 50e-6, math.pi))
+    damped = replace(model, bearings=tuple(
+        replace(b, coefficients=replace(b.coefficients, cxx=(300.0,), cyy=(300.0,)))
+        for b in model.bearings))
+    r = unbalance_response(replace(scene, unbalances=pair), result, damped)
+    assert r.damped and r.peaks == ()
+    with pytest.raises(SceneError, match="off the shaft"):
+        unbalance_response(replace(scene, unbalances=(Unbalance("far", 0.9, 1e-6),)),
+                           result, model)

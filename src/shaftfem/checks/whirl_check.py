@@ -108,11 +108,12 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     others = [e for e in scene.excitations if e not in own]
     api = scene.criterion == "api684" and required is None
     flat = required if required is not None else scene.required_margin
+    from shaftfem.workflows.unbalance import forward_only
+
     isotropic = c.frame == "rotating" or all(
         s.bearing is None or s.bearing.isotropic for s in scene.held)
     judged = [cs for cs in c.critical_speeds
-              if not (cs.order == 1 and cs.whirl == "backward" and scene.axisymmetric
-                      and isotropic)]
+              if not (cs.order == 1 and cs.whirl == "backward" and forward_only(scene, c.frame))]
     out = []
     for lo, hi in spans:
         for cs in judged:

@@ -78,6 +78,7 @@ class RotorModel:
     lateral: np.ndarray
     turning: np.ndarray
     kinds: tuple[str, ...]
+    shapes: np.ndarray | None = None   # the basis as nodal shapes (3 n, N), if kept
 
     @property
     def size(self) -> int:
@@ -88,7 +89,8 @@ class RotorModel:
         return replace(self, omega2=self.omega2[:n], G=self.G[:n, :n], K2=self.K2[:n, :n],
                        bearings=tuple(replace(b, beta=b.beta[:, :n]) for b in self.bearings),
                        lateral=self.lateral[:n, :n], turning=self.turning[:n, :n],
-                       kinds=self.kinds[:n])
+                       kinds=self.kinds[:n],
+                       shapes=None if self.shapes is None else self.shapes[:, :n])
 
     def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
         """(D, K) of q'' + D q' + K q = 0 at the spin omega (rad/s)."""
@@ -152,15 +154,50 @@ def dominant_kinds(model: RotorModel, y: np.ndarray) -> list[str]:
 # Building the model from a standstill modal run
 
 
-def rotor_model(result: ModalResult, frame: str) -> RotorModel:
+def lateral_rigid(result: ModalResult) -> np.ndarray:
+    """The rigid motions that move the shaft sideways (translations along x and y,
+    tilts about x and y, about any point) and that its supports leave free: a shaft
+    held by damping only, or not at all. As nodal shapes (3 n, r), mass-normalised in
+    the run's pencil, like its modes."""
+    import scipy.linalg
+
+    from shaftfem.fem.supports import rigid_body_modes
+
+    system, inst = result.system, result.installed
+    nodes = system.nodes
+    if inst is not None:
+        if inst.n_rigid == 0:
+            return np.zeros((3 * nodes.shape[0], 0))
+        free_q, M = inst.rigid, inst.M
+        free = np.asarray(inst.T @ free_q)
+    else:
+        free = rigid_body_modes(nodes)
+        free_q, M = free, system.M
+    sideways = rigid_body_modes(nodes, np.array([0.0, 0.0, nodes[:, 2].mean()]))[:, [0, 1, 3, 4]]
+    Qf, Rf = np.linalg.qr(free)
+    Ql = np.linalg.qr(sideways)[0]
+    U, sv, _ = np.linalg.svd(Qf.T @ Ql)
+    r = int(np.sum(sv > 1 - 1e-8))
+    if r == 0:
+        return np.zeros((free.shape[0], 0))
+    q = free_q @ scipy.linalg.solve_triangular(Rf, U[:, :r])
+    lam, V = np.linalg.eigh(q.T @ (M @ q))
+    q = q @ (V / np.sqrt(lam))
+    return np.asarray(inst.T @ q) if inst is not None else q
+
+
+def rotor_model(result: ModalResult, frame: str, rigid: bool = False) -> RotorModel:
     """The turning shaft of `result` (an order-1 or order-2 modal run, its elastic
-    modes the basis) in `frame` ("stationary" or "rotating")."""
+    modes the basis) in `frame` ("stationary" or "rotating"); with `rigid`, the basis
+    also holds the sideways rigid motions the supports leave free (lateral_rigid), at
+    zero frequency: what a forced response needs of a shaft its bearings do not hold."""
     if frame not in FRAMES:
         raise ValueError(f"frame {frame!r}: one of {FRAMES}")
     system, modes = result.system, result.modes
     if system.order > 2:
         raise SolverError("the turning shaft takes element orders 1 and 2")
-    Phi = modes.shapes                                     # (3 n, N)
+    free = lateral_rigid(result) if rigid else np.zeros((modes.shapes.shape[0], 0))
+    Phi = np.hstack([free, modes.shapes]) if free.shape[1] else modes.shapes   # (3 n, N)
     Ms = system.mass_scalar
     X, Y = Phi[0::3], Phi[1::3]
     MX, MY = Ms @ X, Ms @ Y
@@ -179,14 +216,15 @@ def rotor_model(result: ModalResult, frame: str) -> RotorModel:
     else:
         G = 2.0 * (Y.T @ MX - X.T @ MY)
         K2 = K2 - lateral
-    for psi, part in part_motions(result):
+    for psi, part in part_motions(result, Phi):
         Gp, Kp = part_matrices(part.mass, part.polar_inertia, part.diametral_inertia, frame)
         G = G + psi.T @ Gp @ psi
         K2 = K2 + psi.T @ Kp @ psi
-    return RotorModel(frame=frame, omega2=(2 * math.pi * modes.frequencies) ** 2,
-                      G=0.5 * (G - G.T), K2=0.5 * (K2 + K2.T),
-                      bearings=bearing_modal(result), lateral=lateral,
-                      turning=0.5 * (turning + turning.conj().T), kinds=tuple(modes.kinds))
+    omega2 = np.concatenate([np.zeros(free.shape[1]), (2 * math.pi * modes.frequencies) ** 2])
+    return RotorModel(frame=frame, omega2=omega2, G=0.5 * (G - G.T), K2=0.5 * (K2 + K2.T),
+                      bearings=bearing_modal(result, Phi), lateral=lateral,
+                      turning=0.5 * (turning + turning.conj().T),
+                      kinds=("rigid",) * free.shape[1] + tuple(modes.kinds), shapes=Phi)
 
 
 def spin_basis(result: ModalResult):
@@ -300,15 +338,17 @@ def part_matrices(mass: float, polar: float, diametral: float, frame: str
     return G, K
 
 
-def part_motions(result: ModalResult) -> list[tuple[np.ndarray, Attachment]]:
-    """Each part's (U, Theta) in each mode, (6, N), and the part: on a distributing
-    joint its section's means, on a rigid one the rigid motion its slice follows."""
+def part_motions(result: ModalResult, Phi: np.ndarray | None = None
+                 ) -> list[tuple[np.ndarray, Attachment]]:
+    """Each part's (U, Theta) in each shape of Phi (default the run's modes), (6, N),
+    and the part: on a distributing joint its section's means, on a rigid one the rigid
+    motion its slice follows."""
     from shaftfem.fem.supports import tie_rows
 
     inst = result.installed
     if inst is None:
         return []
-    Phi = result.modes.shapes
+    Phi = result.modes.shapes if Phi is None else Phi
     out = [(c.C @ Phi[c.dofs], c.part) for c in inst.carried]
     nodes = result.system.nodes
     for idx, part in zip(inst.tied, inst.parts):
@@ -318,8 +358,10 @@ def part_motions(result: ModalResult) -> list[tuple[np.ndarray, Attachment]]:
     return out
 
 
-def bearing_modal(result: ModalResult) -> tuple[BearingModal, ...]:
-    """The scene's bearings (kind "bearing") on the modal basis."""
+def bearing_modal(result: ModalResult, Phi: np.ndarray | None = None
+                  ) -> tuple[BearingModal, ...]:
+    """The scene's bearings (kind "bearing") on the shapes Phi (default the run's
+    modes)."""
     from shaftfem.fem.installation import seat_radius
     from shaftfem.fem.supports import seat_restraints, surface_weights
 
@@ -335,16 +377,17 @@ def bearing_modal(result: ModalResult) -> tuple[BearingModal, ...]:
         w = surface_weights(skmesh, system.order, radius, s.seat)
         unit = replace(s, kind="springs", radial=1.0, axial=0.0, tilting=0.0, bearing=None)
         x, y = seat_restraints(unit, system.nodes, w)[:2]
-        Phi = result.modes.shapes
-        beta = np.vstack([x.coeffs @ Phi[x.dofs], y.coeffs @ Phi[y.dofs]])
+        shapes = result.modes.shapes if Phi is None else Phi
+        beta = np.vstack([x.coeffs @ shapes[x.dofs], y.coeffs @ shapes[y.dofs]])
         out.append(BearingModal(s.name, beta, s.bearing, s.radial_xy))
     return tuple(out)
 
 
-def section_motion(result: ModalResult, z: float) -> np.ndarray:
+def section_motion(result: ModalResult, z: float, Phi: np.ndarray | None = None
+                   ) -> np.ndarray:
     """The mean radial motion (x, y) of the shaft's cross-section at z (m) in each
-    mode, (2, N), m / sqrt(kg): where a beam model reads its node (the mesh follows
-    the planes of the scene's parts and unbalances)."""
+    shape of Phi (default the run's modes), (2, N), m / sqrt(kg): where a beam model
+    reads its node (the mesh follows the planes of the scene's parts and unbalances)."""
     from shaftfem.fem.supports import carried, section_weights
 
     system = result.system
@@ -352,7 +395,7 @@ def section_motion(result: ModalResult, z: float) -> np.ndarray:
     probe = Attachment(name="probe", position=z, width=0.0, mass=0.0, polar_inertia=0.0,
                        diametral_inertia=0.0, joint="distributing")
     c = carried(probe, system.nodes, w)
-    return c.C[:2] @ result.modes.shapes[c.dofs]
+    return c.C[:2] @ (result.modes.shapes if Phi is None else Phi)[c.dofs]
 
 
 def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.ndarray, complex]]
@@ -375,17 +418,20 @@ def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.nd
     return np.linalg.solve(K.astype(complex), F)
 
 
-def orbit(model: RotorModel, beta: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
-    """The orbit of a section (its motion beta, (2, N)) in the response y: the
-    amplitudes along x and the orbit's major semi-axis (m), and the phase of x (rad).
-    In the rotating frame the response stands still there: a circle in the stationary
-    frame, of the radius of its displacement."""
+def orbit(model: RotorModel, beta: np.ndarray, y: np.ndarray
+          ) -> tuple[float, float, float, float, float]:
+    """The orbit of a section (its motion beta, (2, N)) in the response y, 0-peak: the
+    amplitude along x, the orbit's major semi-axis (m), the phase of x (rad), the
+    amplitude along y (m) and its phase (rad). In the rotating frame the response
+    stands still there: a forward circle in the stationary frame, of the radius of its
+    displacement."""
     x, yv = beta[0] @ y, beta[1] @ y
     if model.frame == "rotating":
-        r = float(abs(math.hypot(abs(x), abs(yv))))
-        return r, r, float(np.angle(x + 1j * yv))
+        r = float(math.hypot(abs(x), abs(yv)))
+        angle = float(np.angle(x + 1j * yv))
+        return r, r, angle, r, angle - math.pi / 2
     major = 0.5 * (abs(x + 1j * yv) + abs(x - 1j * yv))
-    return float(abs(x)), float(major), float(np.angle(x))
+    return float(abs(x)), float(major), float(np.angle(x)), float(abs(yv)), float(np.angle(yv))
 
 
 def synchronous_speeds(model: RotorModel) -> tuple[np.ndarray, np.ndarray]:

@@ -25,8 +25,9 @@ WHIRLING = ("bending", "mixed")
 
 @dataclass(frozen=True)
 class Bode:
-    """One probe's response against speed: its name and plane (m), speeds (r/min),
-    amplitude along x (m), its phase (deg) and the orbit's major semi-axis (m)."""
+    """One probe's response against speed, amplitudes 0-peak: its name and plane (m),
+    speeds (r/min), amplitude along x (m), its phase (deg, a continuous lag), the
+    orbit's major semi-axis (m), and the amplitude along y (m) and its phase (deg)."""
 
     name: str
     z: float
@@ -34,14 +35,17 @@ class Bode:
     amplitude: np.ndarray
     phase_deg: np.ndarray
     major: np.ndarray
+    amplitude_y: np.ndarray | None = None
+    phase_y_deg: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
 class Peak:
-    """A resonance peak at a probe: its speed (r/min), amplitude (m), the half-power
-    speeds (r/min), the amplification factor N_c / (N_2 - N_1) (None where a half-power
-    point lies outside the speeds), and against the nearest operating speed the actual
-    and required separation margins (fractions; required None below AF 2.5)."""
+    """A resonance peak at a probe: its speed (r/min), amplitude (the orbit's major
+    semi-axis, 0-peak, m; infinite in a model with no damping), the half-power speeds
+    (r/min), the amplification factor N_c / (N_2 - N_1) (None where a half-power point
+    lies outside the speeds), and against the nearest operating speed or range the
+    actual and required separation margins (fractions; required None below AF 2.5)."""
 
     probe: str
     speed_rpm: float
@@ -51,6 +55,7 @@ class Peak:
     margin: float
     required_margin: float | None
     unstable: bool = False   # a mode grows there: no steady response, no AF
+    unbounded: bool = False  # no damping in the model: the response has no finite peak
 
     @property
     def ok(self) -> bool:
@@ -61,7 +66,7 @@ class Peak:
                 "half_power_rpm": list(self.half_power_rpm) if self.half_power_rpm else None,
                 "amplification_factor": self.amplification, "separation_margin": self.margin,
                 "required_margin": self.required_margin, "ok": self.ok,
-                "unstable": self.unstable}
+                "unstable": self.unstable, "unbounded": self.unbounded}
 
 
 @dataclass(frozen=True)
@@ -70,13 +75,19 @@ class UnbalanceResponse:
 
     bode: tuple[Bode, ...]
     peaks: tuple[Peak, ...]
+    damped: bool = True   # False: no damping in the model, every peak unbounded
 
     def as_dict(self) -> dict:
-        return {"peaks": [p.as_dict() for p in self.peaks],
+        return {"amplitudes": "0-peak", "damped": self.damped,
+                "peaks": [p.as_dict() for p in self.peaks],
                 "probes": [{"name": b.name, "z_mm": b.z * 1e3,
                             "speeds_rpm": b.speeds_rpm.tolist(),
                             "amplitude_m": b.amplitude.tolist(),
                             "phase_deg": b.phase_deg.tolist(),
+                            "amplitude_y_m": (None if b.amplitude_y is None
+                                              else b.amplitude_y.tolist()),
+                            "phase_y_deg": (None if b.phase_y_deg is None
+                                            else b.phase_y_deg.tolist()),
                             "major_m": b.major.tolist()} for b in self.bode]}
 
 

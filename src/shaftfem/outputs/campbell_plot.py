@@ -4,7 +4,10 @@ marked and the operating speeds shaded."""
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
+
+import numpy as np
 
 from shaftfem.outputs.plots import _figure
 
@@ -127,40 +130,144 @@ def campbell_figure(c: Campbell):
 
 
 def bode_figure(c: Campbell):
-    """Amplitude (um) and phase (deg) of the unbalance response against speed at every
-    probe, its peaks marked and the operating speeds shaded."""
+    """The unbalance response against speed at every probe, 0-peak: the orbit's major
+    semi-axis (solid), its x (dashed) and y (dotted) amplitudes where they differ, the
+    peaks marked, the running speeds or range shaded, the scene's amplitude limit drawn;
+    below, the phase of x as one continuous lag."""
+    import numpy as np
     from matplotlib.figure import Figure
 
     assert c.unbalance is not None
-    fig = Figure(figsize=(8, 6))
+    scene = c.rotor_scene
+    limit = scene.rotor.amplitude_limit if scene.rotor is not None else None
+    fig = Figure(figsize=(8, 6.5))
     amp, phase = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
-    for n in c.operating_rpm:
+    for lo, hi in c.ranges_rpm:
         for ax in (amp, phase):
-            ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
+            ax.axvspan(lo, hi, color="gold", alpha=0.3, lw=0)
+    for n in c.operating_rpm:
+        if not any(lo <= n <= hi for lo, hi in c.ranges_rpm):
+            for ax in (amp, phase):
+                ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
     labelled = set()
-    for b in c.unbalance.bode:
-        line, = amp.semilogy(b.speeds_rpm, b.amplitude * 1e6, lw=1.5,
-                             label=f"{b.name} ({b.z * 1e3:g} mm)")
-        phase.plot(b.speeds_rpm, b.phase_deg, lw=1.2, color=line.get_color())
+    low, high = [], []
+    for i, b in enumerate(c.unbalance.bode):
+        um = b.major * 1e6
+        line, = amp.semilogy(b.speeds_rpm, um, lw=1.5, label=f"{b.name} ({b.z * 1e3:g} mm)")
+        colour = line.get_color()
+        elliptic = b.amplitude_y is not None and np.any(
+            np.abs(b.amplitude - b.amplitude_y) > 0.02 * np.maximum(b.major, 1e-300))
+        if elliptic and b.amplitude_y is not None:
+            amp.semilogy(b.speeds_rpm, b.amplitude * 1e6, "--", lw=0.9, color=colour)
+            amp.semilogy(b.speeds_rpm, b.amplitude_y * 1e6, ":", lw=1.1, color=colour)
+        # thinner for each probe drawn later: a phase equal to another's shows as its core
+        phase.plot(b.speeds_rpm, b.phase_deg, lw=max(3.2 - 0.7 * i, 0.8), color=colour)
+        finite = um[np.isfinite(um) & (um > 0)]
+        if finite.size:
+            high.append(float(finite.max()))
+        for lo, hi in [*c.ranges_rpm, *((n * (1 - BAND), n * (1 + BAND))
+                                        for n in c.operating_rpm)]:
+            inside = um[(b.speeds_rpm >= lo) & (b.speeds_rpm <= hi) & (um > 0)]
+            if inside.size:
+                low.append(float(inside.min()))
         for p in c.unbalance.peaks:
-            if p.probe == b.name:
-                amp.plot(p.speed_rpm, p.amplitude * 1e6, "o", mfc="white",
-                         color=line.get_color())
-                if round(p.speed_rpm, -1) in labelled:   # another probe's peak says it
-                    continue
-                labelled.add(round(p.speed_rpm, -1))
-                af = f", AF {p.amplification:.1f}" if p.amplification else ""
-                amp.annotate(f"{p.speed_rpm:,.0f} r/min{af}", (p.speed_rpm, p.amplitude * 1e6),
-                             fontsize=7, textcoords="offset points", xytext=(5, 3))
-    top = max([float(b.amplitude.max()) for b in c.unbalance.bode]
-              + [p.amplitude for p in c.unbalance.peaks]) * 1e6
-    amp.set_ylim(top * 1e-4, top * 3)   # four decades: the slow end's tiny response aside
-    amp.set_ylabel("amplitude along x, um")
-    amp.set_title(f"Unbalance response: {c.result.scene.name}", fontsize=10)
+            if p.probe != b.name:
+                continue
+            y = p.amplitude * 1e6 if math.isfinite(p.amplitude) else float(np.max(um))
+            amp.plot(p.speed_rpm, y, "o", mfc="none", color=colour)
+            if round(p.speed_rpm, -1) in labelled:   # another probe's peak says it
+                continue
+            labelled.add(round(p.speed_rpm, -1))
+            what = (", unbounded" if p.unbounded else ", unstable" if p.unstable else
+                    f", AF {p.amplification:.1f}" if p.amplification else "")
+            amp.annotate(f"{p.speed_rpm:,.0f} r/min{what}", (p.speed_rpm, y),
+                         fontsize=7, textcoords="offset points", xytext=(5, 3))
+    if limit is not None:
+        amp.axhline(limit * 1e6, color="tab:red", lw=1.0, ls="-.",
+                    label=f"limit {limit * 1e6:g} um")
+        high.append(limit * 1e6)
+    top = max(high) if high else 1.0
+    # the running range's response stays legible beside the peaks
+    bottom = min([top * 1e-4, *(x / 3 for x in low)])
+    amp.set_ylim(bottom, top * 3)
+    amp.plot([], [], "k-", lw=1.5, label="orbit's major semi-axis")
+    if any(b.amplitude_y is not None for b in c.unbalance.bode):
+        amp.plot([], [], "k--", lw=0.9, label="along x")
+        amp.plot([], [], "k:", lw=1.1, label="along y")
+    amp.set_ylabel("amplitude, um (0-peak)")
+    amp.set_title(f"Unbalance response: {scene.name}"
+                  + ("" if c.unbalance.damped else " (no damping: unbounded at the criticals)"),
+                  fontsize=10)
     amp.grid(True, which="both", alpha=0.3)
-    amp.legend(fontsize=8)
-    phase.set_ylabel("phase, deg")
+    amp.legend(fontsize=7, loc="upper left")
+    phase.set_ylabel("phase of x, deg")
     phase.set_xlabel("shaft speed, r/min")
-    phase.set_yticks([-180, -90, 0, 90, 180])
     phase.grid(True, alpha=0.3)
+    return fig
+
+
+# The deflected line is read in this many slices along the shaft.
+SLICES = 60
+
+
+def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """At each judged 1x critical speed, the shape of its curve along the shaft: (label,
+    z of each slice mm, the orbit's major semi-axis there, scaled to a largest of 1),
+    each slice the mass-weighted mean motion of its nodes."""
+    import numpy as np
+
+    r = c.result
+    nodes, mass = r.system.nodes, r.system.mass_scalar.diagonal()
+    edges = np.linspace(nodes[:, 2].min(), nodes[:, 2].max(), SLICES + 1)
+    slot = np.clip(np.searchsorted(edges, nodes[:, 2], side="right") - 1, 0, SLICES - 1)
+    weight = np.bincount(slot, mass, SLICES)
+    z = 0.5 * (edges[1:] + edges[:-1]) * 1e3
+    out = []
+    curves = {cv.number: cv for cv in c.curves}
+    for cs in c.critical_speeds:
+        cv = curves.get(cs.mode)
+        if cs.order != 1 or cv is None:
+            continue
+        i = int(np.argmin(np.abs(cv.speeds_rpm - cs.speed_rpm)))
+        u = r.modes.shapes @ cv.shapes[:, i]
+        x = np.bincount(slot, mass * u[0::3].real, SLICES) + 1j * np.bincount(
+            slot, mass * u[0::3].imag, SLICES)
+        y = np.bincount(slot, mass * u[1::3].real, SLICES) + 1j * np.bincount(
+            slot, mass * u[1::3].imag, SLICES)
+        x, y = x / weight, y / weight
+        major = 0.5 * (np.abs(x + 1j * y) + np.abs(x - 1j * y))
+        out.append((f"{cs.whirl} {cs.speed_rpm:,.0f} r/min (curve {cs.mode})", z,
+                    major / major.max()))
+    return out
+
+
+def critical_shapes_figure(c: Campbell):
+    """The deflected shape along the shaft at each 1x critical speed (API 684's mode
+    shape plot): the orbit's major semi-axis against the axial position, the bearings'
+    and parts' planes marked."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8, 4.5))
+    ax = fig.subplots()
+    scene = c.rotor_scene
+    for s in scene.held:
+        ax.axvline(s.position * 1e3, color="black", lw=0.8, ls="--")
+        ax.annotate(s.name, (s.position * 1e3, 1.02), fontsize=7, ha="center",
+                    xycoords=("data", "axes fraction"))
+    for a in scene.attachments:
+        ax.axvline(a.position * 1e3, color="grey", lw=0.8, ls=":")
+    lines = deflected_lines(c)
+    for label, z, major in lines:
+        ax.plot(z, major, lw=1.5, label=label)
+    if not lines:
+        ax.text(0.5, 0.5, "no 1x critical speed in the range", transform=ax.transAxes,
+                ha="center")
+    ax.set_xlabel("position along the shaft, mm")
+    ax.set_ylabel("orbit's major semi-axis (largest 1)")
+    ax.set_ylim(0, 1.1)
+    ax.set_title(f"Deflected shape at the critical speeds: {scene.name}", fontsize=10,
+                 pad=14)
+    ax.grid(True, alpha=0.3)
+    if lines:
+        ax.legend(fontsize=7)
     return fig

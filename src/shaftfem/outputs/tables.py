@@ -521,11 +521,20 @@ def campbell_text(c) -> str:
     if c.unbalance is not None:
         verdict = ("the verdict follows these margins" if c.result.scene.criterion == "api684"
                    else "for information: the verdict takes [resonance]'s flat margin")
-        lines += ["", "unbalance response peaks (half-power amplification factor, API 684 "
-                  f"separation margin; {verdict}):"]
+        lines += ["", "unbalance response peaks (the orbit's major semi-axis, 0-peak; "
+                  "half-power amplification factor, API 684 separation margin; "
+                  f"{verdict}):"]
         if not c.unbalance.peaks:
             lines.append("  none in the speed range")
+        if not c.unbalance.damped:
+            lines.append("  no damping in the model: at each critical speed the response is "
+                         "unbounded (no finite peak, no amplification factor); give the "
+                         "bearings' damping (cxx_n_s_per_mm) for the amplitudes")
         for p in c.unbalance.peaks:
+            if p.unbounded:
+                lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min: unbounded (undamped), "
+                             f"margin {p.margin * 100:.1f} %")
+                continue
             if p.unstable:
                 lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min: a mode grows at this "
                              "speed, so the shaft has no steady unbalance response here (no "

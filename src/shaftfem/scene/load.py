@@ -431,7 +431,9 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
                  basis_modes=t["basis_modes"] or 0,
                  probes=tuple(z * MM for z in t["probes_mm"]),
                  ranges=() if band is None else ((band[0] * RPM, band[1] * RPM),),
-                 min_log_dec=t["min_log_dec"])
+                 min_log_dec=t["min_log_dec"],
+                 amplitude_limit=(None if t["amplitude_limit_um"] is None
+                                  else t["amplitude_limit_um"] * 1e-6))
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:

@@ -291,6 +291,7 @@ class Rotor:
     probes: tuple[float, ...] = ()   # z (m) of points whose unbalance response is shown
     ranges: tuple[tuple[float, float], ...] = ()   # operating speed ranges (rad/s)
     min_log_dec: float | None = None   # None: 0, or API 684's 0.1 with criterion "api684"
+    amplitude_limit: float | None = None   # m, 0-peak, at any probe
 
     @property
     def spans(self) -> tuple[tuple[float, float], ...]:

@@ -288,6 +288,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                "has margin 0, one outside it is measured to the nearer end",
                                lambda v: len(v) == 2 and 0 < v[0] < v[1] <= 1e6,
                                "two numbers, 0 < lowest < highest <= 10^6", required=False),
+        "amplitude_limit_um": Key(float, "the largest unbalance response allowed at a probe "
+                                  "(0-peak, for example a seal's radial clearance), um: drawn "
+                                  "on the Bode plot, and a peak above it is said",
+                                  *upto(1e6, "up to 1 m"), required=False),
         "min_log_dec": Key(float, "the least log decrement a whirling mode may have at any "
                            "speed up to the highest operating one (default 0, i.e. no mode "
                            "may grow; 0.1 with [resonance] criterion = \"api684\")",

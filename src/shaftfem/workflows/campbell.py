@@ -387,9 +387,11 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     bands = divergent_bands(model, path)
     response = None
     if scene.unbalances:
-        from shaftfem.workflows.unbalance import unbalance_response
+        from shaftfem.workflows.unbalance import forward_only, unbalance_response
 
-        response = unbalance_response(scene, result, model)
+        driven = [cs.speed_rpm for cs in critical if cs.order == 1 and not (
+            forward_only(scene, frame) and cs.whirl == "backward")]
+        response = unbalance_response(scene, result, model, criticals=driven)
     return Campbell(frame=frame, why=why, speeds_rpm=tuple(grid / RPM),
                     whirl=tuple(w for r in rows for w in r), operating=tuple(operating),
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),

@@ -148,14 +148,20 @@ def write_campbell_csv(c, path: Path) -> Path:
 
 
 def campbell_pictures(c, folder: Path) -> list[Path]:
-    """campbell.png, campbell.csv, bode.png when the scene has unbalances, and
-    orbits.png (the whirl at the first operating speed), in `folder`."""
-    from shaftfem.outputs.campbell_plot import bode_figure, campbell_figure
+    """campbell.png, campbell.csv, critical_shapes.png (the deflected shape at each 1x
+    critical speed), bode.png when the scene has unbalances, and orbits.png (the whirl
+    at the first operating speed), in `folder`."""
+    from shaftfem.outputs.campbell_plot import (
+        bode_figure,
+        campbell_figure,
+        critical_shapes_figure,
+    )
     from shaftfem.outputs.plots import save_png
     from shaftfem.outputs.whirl_files import orbits_figure
 
     out = [save_png(campbell_figure(c), folder / "campbell.png", dpi=130),
-           write_campbell_csv(c, folder / "campbell.csv")]
+           write_campbell_csv(c, folder / "campbell.csv"),
+           save_png(critical_shapes_figure(c), folder / "critical_shapes.png", dpi=130)]
     if c.unbalance is not None:
         out.append(save_png(bode_figure(c), folder / "bode.png", dpi=130))
     out.append(save_png(orbits_figure(c), folder / "orbits.png", dpi=130))

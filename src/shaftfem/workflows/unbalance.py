@@ -10,6 +10,7 @@ and the orbit's major semi-axis.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -30,37 +31,67 @@ def api684_required(af: float, below: bool) -> float | None:
     return api684_margin(af, above=not below)
 
 
-def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | None = None
-                       ) -> UnbalanceResponse:
+def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | None = None,
+                       criticals: list[float] | None = None) -> UnbalanceResponse:
     """The response of the turning shaft (`model` on the standstill `result`) to the
-    scene's unbalances at every probe, from 0 to the Campbell diagram's end."""
-    from shaftfem.fem.rotor import orbit, section_motion
+    scene's unbalances at every probe, from 0 to the Campbell diagram's end. Where the
+    supports leave the shaft free to move sideways (damping only, or no support) the
+    basis also holds those rigid motions. In a model with no damping a peak is
+    unbounded: the peaks are the 1x critical speeds (`criticals`, r/min; by default
+    found directly) whose mode the unbalances drive, each given by its speed."""
+    from shaftfem.fem.rotor import lateral_rigid, orbit, rotor_model, section_motion
     from shaftfem.fem.rotor import unbalance_response as solve
 
     if not scene.unbalances:
         raise SceneError(f"{scene.source}: no [[unbalance]] to respond to")
     rotor = scene.rotor
     assert rotor is not None
-    forces = [(section_motion(result, u.position), u.amount * complex(math.cos(u.phase),
-                                                                       math.sin(u.phase)))
+    z = result.system.nodes[:, 2]
+    for u in scene.unbalances:
+        _on_shaft(scene, f"[[unbalance]] {u.name!r}: position_mm", u.position, z)
+    for p in rotor.probes:
+        _on_shaft(scene, "[rotor] probes_mm", p, z)
+    if lateral_rigid(result).shape[1]:
+        model = replace(rotor_model(result, model.frame, rigid=True),
+                        bearings=_bearings_of(model, rotor_model(result, model.frame,
+                                                                 rigid=True)))
+    shapes = model.shapes
+    forces = [(section_motion(result, u.position, shapes),
+               u.amount * complex(math.cos(u.phase), math.sin(u.phase)))
               for u in scene.unbalances]
     probes = [(u.name, u.position, beta) for u, (beta, _) in zip(scene.unbalances, forces)]
     probes += [(b.name, s.position, b.beta) for b, s in
                zip(model.bearings, [s for s in scene.held if s.bearing is not None])]
-    probes += [(f"probe at {z * 1e3:g} mm", z, section_motion(result, z)) for z in rotor.probes]
+    probes += [(f"probe at {p * 1e3:g} mm", p, section_motion(result, p, shapes))
+               for p in rotor.probes]
     grid = (np.linspace(0.0, rotor.max_speed / RPM, BODE_POINTS + 1)[1:]
             if speeds_rpm is None else np.asarray(speeds_rpm, dtype=float))
+    damped = any(np.any(np.array(b.coefficients.cxx + b.coefficients.cyy + b.coefficients.cxy
+                                 + b.coefficients.cyx)) for b in model.bearings)
+    # round-off of unbalances that cancel: far below the rigid rotor's eccentricity
+    mass = float(result.system.mass_scalar.sum()) + sum(a.mass for a in scene.attachments)
+    floor = ROUND_OFF * sum(abs(u.amount) for u in scene.unbalances) / mass
 
-    def at(rpm: float, beta: np.ndarray) -> tuple[float, float, float]:
+    singular: list[float] = []
+    if not damped:
+        singular = (criticals if criticals is not None
+                    else _one_x(model, rotor.max_speed, forward_only(scene, model.frame)))
+
+    def at(rpm: float, beta: np.ndarray) -> tuple[float, ...]:
         return orbit(model, beta, solve(model, rpm * RPM, forces))
 
     bode, peaks = [], []
     operating = [om / RPM for om in rotor.speeds]
-    for name, z, beta in probes:
+    spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans]
+    for name, pz, beta in probes:
         rows = np.array([at(n, beta) for n in grid])
-        b = Bode(name, z, grid, rows[:, 0], np.degrees(rows[:, 2]), rows[:, 1])
-        found = find_peaks(name, b, lambda n, beta=beta: at(n, beta)[0], operating,
-                           lambda n: grows(model, n * RPM))
+        b = _bode(name, pz, grid, rows)
+        if damped:
+            found = [p for p in find_peaks(name, b, lambda n, beta=beta: at(n, beta)[1],
+                                           operating, lambda n: grows(model, n * RPM), spans)
+                     if p.amplitude > floor]
+        else:
+            found = poles(name, lambda n, beta=beta: at(n, beta)[1], singular, spans)
         # a lightly damped peak is narrower than the grid: draw it through its own speeds
         extra = np.array([p.speed_rpm + k * w for p in found for w in
                           [(p.half_power_rpm[1] - p.half_power_rpm[0]) if p.half_power_rpm
@@ -69,11 +100,83 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
         if extra.size:
             order = np.argsort(np.concatenate([grid, extra]), kind="stable")
             rows = np.vstack([rows, [at(n, beta) for n in extra]])[order]
-            speeds = np.concatenate([grid, extra])[order]
-            b = Bode(name, z, speeds, rows[:, 0], np.degrees(rows[:, 2]), rows[:, 1])
+            b = _bode(name, pz, np.concatenate([grid, extra])[order], rows)
         bode.append(b)
         peaks += found
-    return UnbalanceResponse(tuple(bode), tuple(peaks))
+    return UnbalanceResponse(tuple(bode), tuple(peaks), damped=damped)
+
+
+def forward_only(scene: Scene, frame: str) -> bool:
+    """Whether an unbalance drives forward whirl only: a shaft of revolution in
+    isotropic bearings (its backward modes it reaches only through the mesh's own
+    small asymmetry)."""
+    return scene.axisymmetric and (frame == "rotating" or all(
+        s.bearing is None or s.bearing.isotropic for s in scene.held))
+
+
+def _one_x(model, top: float, forward: bool) -> list[float]:
+    """The 1x critical speeds up to the spin top (rad/s), r/min, found directly (with
+    `forward`, those of forward whirl only)."""
+    from shaftfem.fem.tracking import direct_applies, direct_crossings
+    from shaftfem.fem.whirl import FORWARD
+
+    if direct_applies(model) is not None:
+        return []
+    return sorted(d.omega / RPM for d in direct_crossings(model, (1,), top)
+                  if not (forward and d.component != "forward" and d.index < -FORWARD))
+
+
+# Near a pole the response grows as 1 / |n - n_c|: from 1e-2 to 1e-9 of the speed a
+# driven mode's grows 1e7 times; one the unbalances barely reach (a backward mode of a
+# shaft of revolution, reached through its mesh's asymmetry) far less.
+POLE = (1e-2, 1e-9, 1e4)
+
+
+def poles(name: str, amplitude, criticals: list[float],
+          spans: list[tuple[float, float]]) -> list[Peak]:
+    """An undamped model's peaks at one probe: the critical speeds (r/min) whose mode
+    the unbalances drive, each unbounded, with its separation margin."""
+    from shaftfem.checks.whirl_check import span_margin
+
+    far, near, gain = POLE
+    out = []
+    for n_c in sorted(set(criticals)):
+        if amplitude(n_c * (1 - near)) < gain * amplitude(n_c * (1 - far)):
+            continue
+        margin, _ = min((span_margin(n_c, lo, hi) for lo, hi in spans), key=lambda m: m[0])
+        out.append(Peak(name, n_c, math.inf, None, None, margin, None, unbounded=True))
+    return out
+
+
+# Below this share of the rigid rotor's eccentricity (sum |U| / mass) a response is
+# round-off: the unbalances cancel.
+ROUND_OFF = 1e-9
+
+
+def _bearings_of(model, rigid):
+    """The bearings of `model` (their coefficients, which a caller may have changed) on
+    the shapes of `rigid`, the same rotor with its free rigid motions."""
+    return tuple(replace(b, beta=r.beta) for b, r in zip(model.bearings, rigid.bearings))
+
+
+def _on_shaft(scene: Scene, key: str, z: float, nodes_z: np.ndarray) -> None:
+    lo, hi = float(nodes_z.min()), float(nodes_z.max())
+    if not lo - 1e-9 <= z <= hi + 1e-9:
+        raise SceneError(f"{scene.source}: {key} = {z * 1e3:g}: off the shaft, which spans "
+                         f"{lo * 1e3:g} to {hi * 1e3:g} mm along its axis")
+
+
+def _bode(name: str, z: float, speeds: np.ndarray, rows: np.ndarray) -> Bode:
+    """A probe's Bode record from orbit rows (|x|, major, phase x, |y|, phase y)."""
+    return Bode(name, z, speeds, rows[:, 0], _unwrapped(rows[:, 2]), rows[:, 1],
+                amplitude_y=rows[:, 3], phase_y_deg=_unwrapped(rows[:, 4]))
+
+
+def _unwrapped(phase: np.ndarray) -> np.ndarray:
+    """A phase (rad) as one continuous lag in degrees: unwrapped, then shifted by whole
+    turns so that it starts in (-180, 180]."""
+    deg = np.degrees(np.unwrap(phase))
+    return deg - 360.0 * math.ceil((deg[0] - 180.0) / 360.0) if deg.size else deg
 
 
 def grows(model, omega: float) -> bool:
@@ -87,23 +190,31 @@ def grows(model, omega: float) -> bool:
 
 
 def find_peaks(name: str, b: Bode, amplitude, operating: list[float],
-               unstable=lambda n: False) -> list[Peak]:
+               unstable=lambda n: False, spans: list[tuple[float, float]] | None = None
+               ) -> list[Peak]:
     """The peaks of one probe's Bode curve, each refined on `amplitude` (r/min -> m), its
     half-power speeds and amplification factor, and its margin from the nearest of the
     `operating` speeds (r/min). Where a mode grows (`unstable(n)`) a peak is no steady
     response: it is marked so, with no amplification factor."""
     from scipy.optimize import minimize_scalar
 
-    grid, a = b.speeds_rpm, b.amplitude
+    from shaftfem.checks.whirl_check import span_margin
+
+    grid, a = b.speeds_rpm, b.major
+    spans = spans or [(n, n) for n in operating]
     out = []
     for i in np.flatnonzero((a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:])) + 1:
-        best = minimize_scalar(lambda n: -amplitude(n), bounds=(grid[i - 1], grid[i + 1]),
-                               method="bounded", options={"xatol": 1e-7 * grid[i]})
-        n_c, peak = float(best.x), -float(best.fun)
-        near = min(operating, key=lambda n: abs(n - n_c))
+        # on the logarithm: an undamped peak is a pole, which the raw amplitude's
+        # range of many decades hides from the search
+        best = minimize_scalar(lambda n: -math.log(max(amplitude(n), 1e-300)),
+                               bounds=(grid[i - 1], grid[i + 1]), method="bounded",
+                               options={"xatol": 1e-9 * grid[i]})
+        n_c = float(best.x)
+        peak = amplitude(n_c)
+        margin, above = min((span_margin(n_c, lo, hi) for lo, hi in spans),
+                            key=lambda m: m[0])
         if unstable(n_c):
-            out.append(Peak(name, n_c, peak, None, None, abs(n_c - near) / near, None,
-                            unstable=True))
+            out.append(Peak(name, n_c, peak, None, None, margin, None, unstable=True))
             continue
         half = peak / math.sqrt(2)
         hp = None
@@ -112,8 +223,8 @@ def find_peaks(name: str, b: Bode, amplitude, operating: list[float],
         if sides[0] is not None and sides[1] is not None:
             hp = (sides[0], sides[1])
         af = n_c / (hp[1] - hp[0]) if hp and hp[1] > hp[0] else None
-        required = api684_required(af, n_c < near) if af is not None else None
-        out.append(Peak(name, n_c, peak, hp, af, abs(n_c - near) / near, required))
+        required = api684_required(af, not above) if af is not None else None
+        out.append(Peak(name, n_c, peak, hp, af, margin, required))
     return out
 
 
