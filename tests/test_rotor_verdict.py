@@ -412,3 +412,100 @@ def test_unbalances_that_cancel_give_no_peak_and_one_off_the_shaft_is_refused(pu
     with pytest.raises(SceneError, match="off the shaft"):
         unbalance_response(replace(scene, unbalances=(Unbalance("far", 0.9, 1e-6),)),
                            result, model)
+
+
+# --------------------------------------------------------------------------------------
+# What the commands write
+
+
+@pytest.fixture(scope="module")
+def spindle_run(tmp_path_factory):
+    """`shaftfem campbell` of the grinding spindle (20 mm elements) into a folder, and
+    its JSON."""
+    from pathlib import Path
+
+    from shaftfem.cli import main
+
+    out = tmp_path_factory.mktemp("spindle")
+    scene = Path(__file__).parents[1] / "examples" / "overhung_spindle.toml"
+    code = main(["campbell", str(scene), "--mesh-size", "20", "-q", "--out", str(out / "c"),
+                 "--json", str(out / "c.json")])
+    assert code == 0
+    return scene, out
+
+
+def test_campbell_writes_its_curves_shapes_and_valid_json(spindle_run):
+    """campbell.csv holds every curve at every speed (each curve's frequency continuous:
+    no spikes), critical_shapes.png the deflected lines, the JSON the crossings with
+    their curves and the stability, and no Infinity."""
+    import csv
+    import json
+
+    scene, out = spindle_run
+    rows = list(csv.DictReader((out / "c" / "campbell.csv").open()))
+    assert set(rows[0]) == {"speed_rpm", "curve", "frequency_hz", "whirl", "whirl_index",
+                            "log_dec", "kind"}
+    by_curve: dict[str, list[tuple[float, float]]] = {}
+    for r in rows:
+        by_curve.setdefault(r["curve"], []).append((float(r["speed_rpm"]),
+                                                    float(r["frequency_hz"])))
+    assert len(by_curve) >= 6
+    for pts in by_curve.values():
+        s, f = np.array(pts).T
+        assert np.all(np.diff(s) > 0)
+        # a whirl frequency moves less than twice as fast as the spin (no jump)
+        assert np.all(np.abs(np.diff(f)) <= 2 * np.diff(s) / 60 + 1e-6 * f[1:])
+    assert (out / "c" / "critical_shapes.png").stat().st_size > 10_000
+    text = (out / "c.json").read_text()
+    assert "Infinity" not in text and "NaN" not in text
+    c = json.loads(text)
+    assert {cs["curve"] for cs in c["critical_speeds"]} and c["stability"]["ok"]
+    assert c["unbalance"]["amplitudes"] == "0-peak"
+
+
+def test_campbell_publishes_all_its_files_or_none(spindle_run, monkeypatch):
+    """Interrupted while it writes into a folder of an earlier run, campbell leaves that
+    run's files as they were and adds none."""
+    import shaftfem.outputs.whirl_files as wf
+    from shaftfem.cli import main
+
+    scene, out = spindle_run
+    before = {p.name: p.read_bytes() for p in (out / "c").iterdir() if p.is_file()}
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(wf, "write_whirl_files", interrupted)
+    code = main(["campbell", str(scene), "--mesh-size", "20", "-q", "--out", str(out / "c")])
+    assert code == 130
+    after = {p.name: p.read_bytes() for p in (out / "c").iterdir() if p.is_file()}
+    assert after == before
+
+
+def test_check_exits_1_for_an_unstable_rotor_and_0_for_a_sound_one(tmp_path):
+    """The check's exit status, as CI reads it: a rotor whose bearings' cross-coupling
+    makes it unstable fails (1) naming the instability; the same with the cross-coupling
+    gone passes (0)."""
+    import json
+    import tomllib
+    from pathlib import Path
+
+    import tomli_w
+
+    from shaftfem.cli import main
+
+    data = tomllib.loads((Path(__file__).parents[1] / "examples" / "overhung_spindle.toml")
+                         .read_text())
+    data["mesh"]["element_size_mm"] = 20.0
+    data["rotor"]["campbell_points"] = 11
+    for s in data["support"]:
+        s["kxy_n_per_mm"], s["kyx_n_per_mm"] = 6e4, -6e4
+    path = tmp_path / "unstable.toml"
+    path.write_text(tomli_w.dumps(data))
+    assert main(["check", str(path), "-q", "--json", str(tmp_path / "v.json")]) == 1
+    v = json.loads((tmp_path / "v.json").read_text())
+    assert v["unstable"] and "grows" in v["unstable"][0]
+    for s in data["support"]:
+        s.pop("kxy_n_per_mm"), s.pop("kyx_n_per_mm")
+    path.write_text(tomli_w.dumps(data))
+    assert main(["check", str(path), "-q"]) == 0
