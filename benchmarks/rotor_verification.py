@@ -111,11 +111,14 @@ def main() -> None:
             {"speed_rpm": 1500.0, "max_speed_rpm": 3000.0},
             excitation=[{"name": "vane pass", "speed_rpm": 1500.0, "orders": [1, 2, 7]}]))
         c = run_campbell(scene)
-        for x in ref["crossings"]:
-            same = [cs.speed_rpm * RAD for cs in c.critical_speeds if cs.order == x["order"]]
-            near = min(same, key=lambda n: abs(n - x["speed"]))
-            row(f"1x, 2x, 7x: {x['order']}x crossing of curve {x['curve']}", x["speed"], near,
-                "rad/s")
+        used: set[int] = set()
+        for x in ref["crossings"]:   # each of ours matched once, nearest first
+            same = [(abs(cs.speed_rpm * RAD - x["speed"]), k) for k, cs in
+                    enumerate(c.critical_speeds) if cs.order == x["order"] and k not in used]
+            _, k = min(same)
+            used.add(k)
+            row(f"1x, 2x, 7x: {x['order']}x crossing of curve {x['curve']}", x["speed"],
+                c.critical_speeds[k].speed_rpm * RAD, "rad/s")
         counts.append(("1x, 2x, 7x crossings up to 3,000 r/min", len(ref["crossings"]),
                        sum(1 for cs in c.critical_speeds
                            if cs.frequency_hz * 2 * math.pi

@@ -139,6 +139,8 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
                                         margin=abs(w.frequency_hz - fk) / fk, required=need))
     out.sort(key=lambda a: a.margin - a.required)
     fails, warns = stability_findings(c)
+    if c.coverage:
+        warns.append(c.coverage)
     check = c.crossing_check
     basis = (f"the shaft turning at {', '.join(_span_text(lo, hi) for lo, hi in spans)} "
              f"({c.frame} frame): critical speeds from 0 to {max(c.speeds_rpm):,.0f} r/min "

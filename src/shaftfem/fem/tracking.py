@@ -98,7 +98,11 @@ def circular(model: RotorModel, y: np.ndarray) -> np.ndarray:
         return y
     _, c = scipy.linalg.eigh(0.5 * (T + T.conj().T), 0.5 * (L + L.conj().T))
     z = y @ c
-    return z / np.linalg.norm(z, axis=0)
+    z = z / np.linalg.norm(z, axis=0)
+    # each orbit to the root it is most of (a pair split by the gyroscopic moments is
+    # circular already: its roots keep their own)
+    fit = np.abs(y.conj().T @ z) ** 2
+    return z[:, ::-1] if fit[0, 1] + fit[1, 0] > fit[0, 0] + fit[1, 1] else z
 
 
 @dataclass(eq=False)
@@ -174,8 +178,10 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
         t.add(first, j, False)
     done: list[_Track] = []
 
+    missing: list[_Track] = []
+
     def step(t0: float, t1: float, depth: int) -> None:
-        nonlocal live
+        nonlocal live, done, missing
         s = spectrum(model, t1)
         y = np.column_stack([t.ys[-1] for t in live]) if live else np.zeros((model.size, 0))
         f, reach = predicted(live, t1)
@@ -196,7 +202,29 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
             live[r].add(s, int(c), bool(fl))
             kept.append(live[r])
             taken.add(int(c))
-        done.extend(t for t in live if all(t is not k for k in kept))
+        ended = [t for t in live if all(t is not k for k in kept)]
+        done.extend(ended)
+        if s.f.size < len(live):
+            # fewer roots oscillate: those lost met at zero frequency and may come back
+            missing.extend(ended)
+        spare = [j for j in range(s.f.size) if j not in taken]
+        if spare and missing:
+            # a root back from a stretch where it did not oscillate: the curve it left
+            # goes on, with a gap (its shape may have turned there)
+            sub = Spectrum(s.omega, s.f[spare], s.decay[spare], s.index[spare],
+                           tuple(s.kinds[j] for j in spare), s.y[:, spare], s.divergence)
+            f, reach = predicted(missing, t1)
+            reach = reach + np.abs(f)   # it left near zero frequency
+            back = np.column_stack([t.ys[-1] for t in missing])
+            # one lost and one back: the same root, however far its shape turned
+            alone = len(missing) == 1 and len(spare) == 1
+            for r, c, fl, sc in zip(*match(back, f, sub, frame, reach)):
+                if sc >= MAC_NEW or alone:
+                    missing[r].add(s, spare[c], bool(fl))
+                    kept.append(missing[r])
+                    taken.add(spare[c])
+            done = [t for t in done if all(t is not k for k in kept)]
+            missing = [t for t in missing if all(t is not k for k in kept)]
         for j in range(s.f.size):
             if j not in taken:
                 t = _Track([], [], [], [], [], [])
@@ -213,16 +241,28 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
             for i, t in enumerate(tracks)]
 
 
-def reported(curves: list[Curve], count: int) -> list[Curve]:
+def reported(curves: list[Curve], count: int, order: int = 0, within: int = 0
+             ) -> list[Curve]:
     """The curves among the `count` lowest (by the frequency seen) at some speed of the
-    diagram: the modes the basis check vouches for."""
+    diagram, the modes the basis check vouches for; and, so that no crossing with the
+    highest `order` line is missed, those among the lowest `within` at a speed where
+    they lie below that line."""
     speeds = sorted({float(s) for c in curves for s in c.speeds_rpm})
     keep: set[int] = set()
     for s in speeds:
-        here = [(float(np.interp(s, c.speeds_rpm, c.seen_hz)), c.number) for c in curves
-                if c.speeds_rpm[0] <= s <= c.speeds_rpm[-1]]
-        keep.update(number for _, number in sorted(here)[:count])
+        here = sorted((float(np.interp(s, c.speeds_rpm, c.seen_hz)), c.number) for c in curves
+                      if c.speeds_rpm[0] <= s <= c.speeds_rpm[-1])
+        keep.update(number for _, number in here[:count])
+        keep.update(number for f, number in here[:within] if f <= order * s / 60.0)
     return [c for c in curves if c.number in keep]
+
+
+def reach(curves: list[Curve], within: int, speed_rpm: float) -> float:
+    """The frequency (Hz) of the `within`-th lowest curve at a speed: how high the
+    crossings are searched there."""
+    here = sorted(float(np.interp(speed_rpm, c.speeds_rpm, c.seen_hz)) for c in curves
+                  if c.speeds_rpm[0] <= speed_rpm <= c.speeds_rpm[-1])
+    return here[min(within, len(here)) - 1] if here else 0.0
 
 
 @dataclass(frozen=True)
@@ -247,10 +287,21 @@ def _at(model: RotorModel, omega: float, y: np.ndarray, f: float, reach: float
     take reach) at the spin omega: its signed frequency (Hz), decay (1/s), whirl index
     (in the form kept) and score."""
     s = spectrum(model, omega)
+    if s.f.size == 0:
+        return 0.0, 0.0, 0.0, -1.0
     _, cols, flips, score = match(y[:, None], np.array([f]), s, model.frame,
-                                     np.array([reach]))
+                                  np.array([reach]))
     j, sign = int(cols[0]), (-1.0 if flips[0] else 1.0)
     return sign * float(s.f[j]), float(s.decay[j]), sign * float(s.index[j]), float(score[0])
+
+
+def _shape_at(model: RotorModel, omega: float, y: np.ndarray, f: float, reach: float
+              ) -> np.ndarray:
+    """The shape (in the form kept) of the root _at finds."""
+    s = spectrum(model, omega)
+    _, cols, flips, _ = match(y[:, None], np.array([f]), s, model.frame, np.array([reach]))
+    j = int(cols[0])
+    return s.y[:, j].conj() if flips[0] else s.y[:, j]
 
 
 def component_lines(c: Curve) -> list[tuple[str, np.ndarray, np.ndarray]]:
@@ -299,7 +350,9 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                         return _at(model, om, y0, f0 + (f1 - f0) * (om - lo) / (hi - lo), reach)
 
                     def gap(om: float, k: int = k, comp: str = comp, near=near) -> float:
-                        fs, _, _, _ = near(om)
+                        fs, _, _, sc = near(om)
+                        if sc < MAC_MIN:   # not the curve: it does not oscillate there
+                            raise ValueError("the curve has a gap here")
                         n = om / (2 * math.pi)
                         val = fs if comp == "" else fs + n if comp == "forward" else fs - n
                         return abs(val) - k * n
@@ -307,14 +360,14 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                     try:
                         om = brentq(gap, lo, hi, xtol=1e-12 * hi) if gap(lo) * gap(hi) < 0 else (
                             hi if g[i + 1] == 0 else lo - g[i] * (hi - lo) / (g[i + 1] - g[i]))
+                        fs, decay, index, sc = near(om)
                     except ValueError:
-                        om = lo - g[i] * (hi - lo) / (g[i + 1] - g[i])
-                    fs, decay, index, sc = near(om)
-                    if sc < MAC_MIN:   # a root passing through zero frequency is not listed
-                        t = (om - lo) / (hi - lo)
-                        fs, decay, index = (
-                            (1 - t) * float(a[i]) + t * float(a[i + 1])
-                            for a in (c.signed_hz, c.decay, c.index))
+                        sc = 0.0
+                    if sc < MAC_MIN:
+                        # the curve does not oscillate over part of the step (two roots met
+                        # at zero frequency): the crossing lies in that gap, between the
+                        # last speeds the curve reaches from either side
+                        om, fs, decay, index = _across_gap(model, c, i, comp, k)
                     n = om / (2 * math.pi)
                     val = fs if comp == "" else fs + n if comp == "forward" else fs - n
                     wd = 2 * math.pi * float(seen(np.array([fs]), np.array([index]), n,
@@ -326,6 +379,48 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                                         float(2 * math.pi * decay / wd) if wd > 0 else 0.0,
                                         float(part)))
     return dedupe(out)
+
+
+def _follow(model: RotorModel, om: float, y: np.ndarray, f: float, end: float
+            ) -> tuple[float, float, float, float]:
+    """Follow one root from the spin om (shape y, signed frequency f) towards `end`,
+    halving the step where it is lost, as far as it oscillates: that spin (rad/s) and
+    the root's signed frequency, decay and whirl index there."""
+    decay, index = 0.0, 0.0
+    step = end - om
+    while abs(step) > 1e-9 * abs(end):
+        to = om + step
+        reach = REACH * abs(step) / (2 * math.pi) + 1e-3 * abs(f)
+        fs, d, w, sc = _at(model, to, y, f, reach)
+        if sc >= MAC_MIN:
+            y = _shape_at(model, to, y, f, reach)
+            om, f, decay, index = to, fs, d, w
+            if om == end:
+                break
+            step = end - om if abs(end - om) < abs(step) else step
+        else:
+            step /= 2
+    return om, f, decay, index
+
+
+def _across_gap(model: RotorModel, c: Curve, i: int, comp: str, k: int
+                ) -> tuple[float, float, float, float]:
+    """A crossing inside a stretch of the step i -> i + 1 where the curve does not
+    oscillate: the curve followed in from either side to its last speeds a and b, and
+    the order line's gap interpolated linearly between them: (spin rad/s, signed
+    frequency, decay, whirl index)."""
+    lo, hi = c.speeds_rpm[i] * RPM, c.speeds_rpm[i + 1] * RPM
+    a = _follow(model, lo, c.shapes[:, i], float(c.signed_hz[i]), hi)
+    b = _follow(model, hi, c.shapes[:, i + 1], float(c.signed_hz[i + 1]), lo)
+
+    def gap(om: float, fs: float) -> float:
+        n = om / (2 * math.pi)
+        val = fs if comp == "" else fs + n if comp == "forward" else fs - n
+        return abs(val) - k * n
+
+    ga, gb = gap(a[0], a[1]), gap(b[0], b[1])
+    t = 0.5 if ga == gb else min(max(ga / (ga - gb), 0.0), 1.0)
+    return tuple((1 - t) * x + t * z for x, z in zip(a, b))   # type: ignore[return-value]
 
 
 def dedupe(found: list[Crossing]) -> list[Crossing]:
@@ -371,10 +466,14 @@ def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> 
                               ) @ b.beta
     eye = np.eye(model.size)
 
+    from shaftfem.fem.rotor import dominant_kinds
+
     def solve(m: int) -> tuple[np.ndarray, np.ndarray]:
+        """The whirling roots (torsion and axial modes meet the lines as at standstill)."""
         lam, A = scipy.linalg.eig(K0, m * m * eye - 1j * m * model.G - model.K2)
         ok = (np.isfinite(lam) & (np.abs(lam.imag) <= 1e-8 * np.abs(lam)) & (lam.real > 0)
               & (lam.real <= top**2 * (1 + 1e-9)))
+        ok[ok] = [k in WHIRLING for k in dominant_kinds(model, A[:, ok])]
         return np.sqrt(lam.real[ok]), whirl_index(model, A[:, ok])
 
     out = []

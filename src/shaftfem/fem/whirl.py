@@ -331,6 +331,8 @@ class Campbell:
     ranges_rpm: tuple[tuple[float, float], ...] = ()   # operating speed ranges
     # the scene the diagram was drawn for (its [rotor] may differ from the basis run's)
     scene: Scene | None = None
+    # where the highest order line leaves the frequencies searched for crossings
+    coverage: str | None = None
 
     @property
     def rotor_scene(self) -> Scene:

@@ -353,7 +353,7 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
 def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                 speeds_rpm: np.ndarray | None = None) -> Campbell:
     """run_campbell's diagram of the turning shaft `model` on the standstill `result`."""
-    from shaftfem.fem.tracking import reported, track
+    from shaftfem.fem.tracking import reach, reported, track
 
     rotor = scene.rotor
     assert rotor is not None
@@ -364,9 +364,13 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     # the curves pass through every operating speed and range end
     ends = [w for span in rotor.spans for w in span]
     path = np.union1d(grid, [w for w in ends if grid.min() <= w <= grid.max()])
-    curves = reported(track(model, path, count + 2), count)
-    rows = [whirl_at(model, om, count) for om in grid]
     orders = rotor_orders(scene)
+    # the curves the basis check vouches for, and those below the highest order line
+    # within the part of the basis it checks them on
+    within = max(count + 1, math.ceil(CHECK_SHARE * model.size))
+    every = track(model, path, count + 2)
+    curves = reported(every, count, max(orders), within)
+    rows = [whirl_at(model, om, count) for om in grid]
     critical, check = critical_speeds(model, curves, orders, float(grid.max()))
     operating = [w for om in rotor.speeds for w in whirl_at(model, om, count)]
     shapes = tuple(mode_shapes(model, om, count) for om in rotor.speeds)
@@ -379,6 +383,15 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                for s in scene.held):
         notes.append("no bearing has damping (kind = \"bearing\" with cxx_n_s_per_mm ...): "
                      "the log decrements are zero and no amplification factor can be given")
+    top_rpm = float(grid.max()) / RPM
+    searched = reach(every, within, top_rpm)
+    coverage = None
+    if max(orders) * top_rpm / 60.0 > searched:
+        coverage = (f"the {max(orders)}x line reaches {max(orders) * top_rpm / 60:.0f} Hz at "
+                     f"{top_rpm:,.0f} r/min, and the crossings are searched up to "
+                     f"{searched:.0f} Hz there (the lower two thirds of the "
+                    f"{model.size}-mode basis): raise [rotor] basis_modes to search higher")
+        notes.append(coverage)
     if check.direct_only:
         notes.append(f"{check.direct_only} crossing(s) found only by the direct route were "
                      "added: the diagram's curves missed them")
@@ -402,7 +415,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     synchronous_check=check.largest_difference, crossing_check=check,
                     curves=tuple(curves), stability=stability,
                     ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges),
-                    scene=scene)
+                    scene=scene, coverage=coverage)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
