@@ -18,9 +18,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).parent))
 sys.path.insert(0, str(ROOT / "tests"))
-from _common import machine  # noqa: E402
-
 import numpy as np  # noqa: E402
+
+from _common import machine  # noqa: E402
 
 
 def rotors() -> dict:

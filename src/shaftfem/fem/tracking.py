@@ -367,7 +367,7 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                         # the curve does not oscillate over part of the step (two roots met
                         # at zero frequency): the crossing lies in that gap, between the
                         # last speeds the curve reaches from either side
-                        om, fs, decay, index = _across_gap(model, c, i, comp, k)
+                        om, fs, decay, index = _across_gap(model, c, int(i), comp, k)
                     n = om / (2 * math.pi)
                     val = fs if comp == "" else fs + n if comp == "forward" else fs - n
                     wd = 2 * math.pi * float(seen(np.array([fs]), np.array([index]), n,
