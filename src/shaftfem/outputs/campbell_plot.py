@@ -150,14 +150,18 @@ def bode_figure(c: Campbell):
             for ax in (amp, phase):
                 ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
     labelled = set()
+    ellipses = False
     low, high = [], []
     for i, b in enumerate(c.unbalance.bode):
         um = b.major * 1e6
-        line, = amp.semilogy(b.speeds_rpm, um, lw=1.5, label=f"{b.name} ({b.z * 1e3:g} mm)")
+        # thinner for each probe drawn later: one that reads as another shows as its core
+        line, = amp.semilogy(b.speeds_rpm, um, lw=max(3.0 - 0.6 * i, 1.0),
+                             label=f"{b.name} ({b.z * 1e3:g} mm)")
         colour = line.get_color()
         elliptic = b.amplitude_y is not None and np.any(
             np.abs(b.amplitude - b.amplitude_y) > 0.02 * np.maximum(b.major, 1e-300))
         if elliptic and b.amplitude_y is not None:
+            ellipses = True
             amp.semilogy(b.speeds_rpm, b.amplitude * 1e6, "--", lw=0.9, color=colour)
             amp.semilogy(b.speeds_rpm, b.amplitude_y * 1e6, ":", lw=1.1, color=colour)
         # thinner for each probe drawn later: a phase equal to another's shows as its core
@@ -191,7 +195,7 @@ def bode_figure(c: Campbell):
     bottom = min([top * 1e-4, *(x / 3 for x in low)])
     amp.set_ylim(bottom, top * 3)
     amp.plot([], [], "k-", lw=1.5, label="orbit's major semi-axis")
-    if any(b.amplitude_y is not None for b in c.unbalance.bode):
+    if ellipses:
         amp.plot([], [], "k--", lw=0.9, label="along x")
         amp.plot([], [], "k:", lw=1.1, label="along y")
     amp.set_ylabel("amplitude, um (0-peak)")

@@ -546,7 +546,10 @@ def campbell_text(c) -> str:
                     "no margin required (AF < 2.5)" if p.required_margin is None else
                     f"required {p.required_margin * 100:.1f} %: "
                     f"{'ok' if p.ok else 'NOT MET'}")
+            limit = rotor.amplitude_limit if rotor is not None else None
+            over = (f"; above the {limit * 1e6:g} um limit" if limit is not None
+                    and p.amplitude > limit else "")
             lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min, {p.amplitude * 1e6:.3g} um, "
-                         f"{af}, margin {p.margin * 100:.1f} %, {need}")
+                         f"{af}, margin {p.margin * 100:.1f} %, {need}{over}")
     lines += [f"note: {n}" for n in c.notes]
     return "\n".join(lines)
