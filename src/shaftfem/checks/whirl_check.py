@@ -120,11 +120,12 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
             margin, above = span_margin(cs.speed_rpm, lo, hi)
             need = api684_margin(amplification(cs.log_dec), above=above) if api else flat
             curve = f"curve {cs.mode}" if cs.mode else "found directly"
+            edge = min(max(cs.speed_rpm, lo), hi)   # the running speed nearest to it
             out.append(Approach(mode=cs.mode, frequency=cs.frequency_hz,
                                 kind=f"{cs.whirl} whirl ({curve}), critical at "
                                      f"{cs.speed_rpm:,.0f} r/min",
                                 source=f"shaft at {_span_text(lo, hi)}", order=cs.order,
-                                excitation=cs.frequency_hz, margin=margin, required=need))
+                                excitation=cs.order * edge / 60, margin=margin, required=need))
     rows = {n: [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n] for n in speeds}
     for n, ws in rows.items():
         for w in ws:
