@@ -73,6 +73,10 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
                 f"is damped less than required (min_log_dec {st.required:g})")
         fails.append(f"curve {st.curve} ({st.whirl} whirl, {st.frequency_hz:.2f} Hz) {what}: "
                      f"log decrement {st.log_dec:.3g} at {st.speed_rpm:,.0f} r/min")
+        for n, speed, f, whirl, d in st.others:
+            what = "grows" if d < 0 else f"is damped less than required (min_log_dec {st.required:g})"
+            fails.append(f"curve {n} ({whirl} whirl, {f:.2f} Hz) {what}: log decrement "
+                         f"{d:.3g} at {speed:,.0f} r/min")
     elif st is not None and not st.judged:
         warns.append("stability not judged: no damping in the model (every log decrement is "
                      "zero); give the bearings' damping, or [rotor] min_log_dec")

@@ -251,6 +251,8 @@ class Stability:
     required: float
     judged: bool
     growing: bool
+    # every other whirling curve that fails too: (curve, speed r/min, Hz, whirl, log dec)
+    others: tuple[tuple[int, float, float, str, float], ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -262,7 +264,10 @@ class Stability:
         return {"curve": self.curve, "speed_rpm": self.speed_rpm,
                 "frequency_hz": self.frequency_hz, "whirl": self.whirl,
                 "log_dec": self.log_dec, "required_min_log_dec": self.required,
-                "judged": self.judged, "growing": self.growing, "ok": self.ok}
+                "judged": self.judged, "growing": self.growing, "ok": self.ok,
+                "others_failing": [{"curve": n, "speed_rpm": sp, "frequency_hz": f,
+                                    "whirl": w, "log_dec": d}
+                                   for n, sp, f, w, d in self.others]}
 
 
 @dataclass(frozen=True)

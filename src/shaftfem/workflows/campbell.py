@@ -238,11 +238,12 @@ def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
     rotor = scene.rotor
     assert rotor is not None
     top = rotor.top_speed / RPM * (1 + 1e-9)
-    best = None
+    worst = []   # each whirling curve's least damped point up to the top speed
     for c in curves:
         if not c.whirling:
             continue
         seen_hz, logdec, words = c.seen_hz, c.log_dec, c.whirl
+        best = None
         for i in np.flatnonzero(c.speeds_rpm <= top):
             if c.kinds[i] not in WHIRLING:
                 continue
@@ -251,15 +252,20 @@ def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
                 d = 0.0
             if best is None or d < best[0]:
                 best = (d, c.number, float(c.speeds_rpm[i]), float(seen_hz[i]), words[i])
-    if best is None:
+        if best is not None:
+            worst.append(best)
+    if not worst:
         return None
-    d, number, speed, f, whirl = best
+    worst.sort()
+    d, number, speed, f, whirl = worst[0]
     required = (rotor.min_log_dec if rotor.min_log_dec is not None
                 else API684_LOG_DEC if scene.criterion == "api684" else 0.0)
     damped = any(abs(float(x)) > 1e-6 for c in curves if c.whirling for x in c.log_dec)
+    judged = damped or rotor.min_log_dec is not None
+    failing = tuple((n, s, fr, w, x) for x, n, s, fr, w in worst[1:]
+                    if x < 0 or (judged and x <= required))
     return Stability(curve=number, speed_rpm=speed, frequency_hz=f, whirl=whirl, log_dec=d,
-                     required=required, judged=damped or rotor.min_log_dec is not None,
-                     growing=d < 0)
+                     required=required, judged=judged, growing=d < 0, others=failing)
 
 
 def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, float]]:
