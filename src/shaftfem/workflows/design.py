@@ -96,9 +96,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         free = solve_mesh(scene.free(), result.shape, result.mesh, options)
         basis = modal_basis(result)
         part = participation(basis)
-        # a turning shaft's response is its unbalance response (bode.png), on its own
-        # bearings' damping: the base-motion sweep on [damping]'s modal ratio is not drawn
-        if campbell is None:
+        if base_motion_drawn(scene):
             response = response_sweep(result, "x", basis=basis)
     # every file of the run is published at once, under design.manifest.json
     with staged_directory(out, MANIFEST) as stage:
@@ -128,6 +126,14 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
                         files=files, pictures=pictures, report=report, adapted=bounded.adapted,
                         participation=part)
+
+
+def base_motion_drawn(scene: Scene) -> bool:
+    """Whether design draws the response to base motion (response.png): for a shaft in
+    supports that does not turn. A turning shaft's response is its unbalance response
+    (bode.png), damped by its own bearings; the base-motion sweep rests on [damping]'s
+    modal ratio instead, which would contradict the rotor's log decrements."""
+    return bool(scene.held) and scene.rotor is None
 
 
 def write_campbell_csv(c, path: Path) -> Path:
