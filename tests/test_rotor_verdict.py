@@ -513,9 +513,9 @@ def test_check_exits_1_for_an_unstable_rotor_and_0_for_a_sound_one(tmp_path):
 
 def test_the_keyed_rotor_s_forward_critical_is_found_near_its_bode_peak():
     """A keyed stepped shaft (not of revolution: the turning frame) in damped isotropic
-    bearings: its forward 1x crossing, where two roots meet at zero frequency in the
-    turning frame, found on 31 speeds and on 310 alike (1e-5), within 1 % of the peak of
-    its unbalance response."""
+    bearings: its forward 1x crossings, at the ends of the stretch where its pair's roots
+    stand at zero frequency in the turning frame, found on 31 speeds and on 310 alike
+    (1e-5), and the peak of its unbalance response between them."""
     import tomllib
     from pathlib import Path
 
@@ -534,15 +534,17 @@ def test_the_keyed_rotor_s_forward_critical_is_found_near_its_bode_peak():
     result, model, why = turning(scene)
     assert model.frame == "rotating"
     c = campbell_of(scene, result, model, why)
-    forward = [cs for cs in c.critical_speeds if cs.order == 1 and cs.whirl == "forward"]
-    assert len(forward) == 1
+    forward = sorted(cs.speed_rpm for cs in c.critical_speeds
+                     if cs.order == 1 and cs.whirl == "forward")
+    # the stretch where its roots stand at zero frequency: one crossing at each end
+    assert len(forward) == 2 and forward[1] / forward[0] - 1 < 0.03
     fine = campbell_of(scene, result, model, why, np.linspace(0.0, 30000.0, 310))
-    again = [cs for cs in fine.critical_speeds if cs.order == 1 and cs.whirl == "forward"]
-    assert len(again) == 1 and again[0].speed_rpm == pytest.approx(forward[0].speed_rpm,
-                                                                  rel=1e-5)
+    again = sorted(cs.speed_rpm for cs in fine.critical_speeds
+                   if cs.order == 1 and cs.whirl == "forward")
+    assert again == pytest.approx(forward, rel=1e-5)
     assert c.unbalance is not None
     peak = max(c.unbalance.peaks, key=lambda p: p.amplitude)
-    assert peak.speed_rpm == pytest.approx(forward[0].speed_rpm, rel=0.01)
+    assert forward[0] * 0.99 <= peak.speed_rpm <= forward[1] * 1.01
 
 
 def test_an_undamped_model_says_so_and_design_draws_no_base_motion_for_a_rotor(pulley):

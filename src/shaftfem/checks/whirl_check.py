@@ -33,6 +33,7 @@ from shaftfem.fem.whirl import RPM
 
 if TYPE_CHECKING:
     from shaftfem.fem.whirl import Campbell
+    from shaftfem.scene.model import Scene
 
 
 
@@ -40,6 +41,14 @@ def amplification(log_dec: float) -> float:
     """A mode's amplification factor from its log decrement, pi / delta (infinite
     undamped)."""
     return math.pi / log_dec if log_dec > 0 else math.inf
+
+
+def forward_only(scene: Scene, frame: str) -> bool:
+    """Whether an unbalance drives forward whirl only: a shaft of revolution in
+    isotropic bearings (its backward modes it reaches only through the mesh's own
+    small asymmetry)."""
+    return scene.axisymmetric and (frame == "rotating" or all(
+        s.bearing is None or s.bearing.isotropic for s in scene.held))
 
 
 def span_margin(n_c: float, lo: float, hi: float) -> tuple[float, bool]:
@@ -112,8 +121,6 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     others = [e for e in scene.excitations if e not in own]
     api = scene.criterion == "api684" and required is None
     flat = required if required is not None else scene.required_margin
-    from shaftfem.workflows.unbalance import forward_only
-
     isotropic = c.frame == "rotating" or all(
         s.bearing is None or s.bearing.isotropic for s in scene.held)
     judged = [cs for cs in c.critical_speeds

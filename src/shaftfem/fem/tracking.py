@@ -30,7 +30,7 @@ the root m = 0 stands still in the turning frame, a static critical speed).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -51,6 +51,8 @@ SHARE_MIN = 0.05
 PAIR = 1e-3
 # How far a curve's frequency may move per Hz of spin from its straight continuation.
 REACH = 2.0
+# A root followed into a stretch where it stops oscillating: at most this many halvings.
+FOLLOW_STEPS = 40
 # Crossings of one curve with one order closer than this (relative) are one.
 SAME = 1e-6
 
@@ -115,6 +117,7 @@ class _Track:
     index: list[float]
     kinds: list[str]
     ys: list[np.ndarray]
+    gaps: list[int] = field(default_factory=list)   # steps i -> i + 1 that span one
 
     def add(self, s: Spectrum, j: int, flip: bool) -> None:
         sign = -1.0 if flip else 1.0
@@ -220,6 +223,7 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
             alone = len(missing) == 1 and len(spare) == 1
             for r, c, fl, sc in zip(*match(back, f, sub, frame, reach)):
                 if sc >= MAC_NEW or alone:
+                    missing[r].gaps.append(len(missing[r].omega) - 1)
                     missing[r].add(s, spare[c], bool(fl))
                     kept.append(missing[r])
                     taken.add(spare[c])
@@ -237,7 +241,7 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
     tracks = sorted(done + live, key=lambda t: (t.omega[0], abs(t.f[0])))
     return [Curve(number=i + 1, frame=frame, speeds_rpm=np.array(t.omega) / RPM,
                   signed_hz=np.array(t.f), decay=np.array(t.decay), index=np.array(t.index),
-                  kinds=tuple(t.kinds), shapes=np.column_stack(t.ys))
+                  kinds=tuple(t.kinds), shapes=np.column_stack(t.ys), gaps=tuple(t.gaps))
             for i, t in enumerate(tracks)]
 
 
@@ -336,7 +340,17 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
         for comp, v, share in component_lines(c):
             for k in orders:
                 g = np.abs(v) - k * c.speeds_rpm / 60.0
-                for i in np.flatnonzero((g[:-1] > 0) & (g[1:] <= 0) | (g[:-1] < 0) & (g[1:] >= 0)):
+                changes = set(np.flatnonzero((g[:-1] > 0) & (g[1:] <= 0)
+                                             | (g[:-1] < 0) & (g[1:] >= 0)).tolist())
+                if comp and k == 1:
+                    # a stretch where the root stands at zero frequency in the turning
+                    # frame: both its ends meet 1x, whether or not its sign came back
+                    for i in c.gaps:
+                        ends = _gap_crossings(model, c, i, comp, k)
+                        if ends is not None:
+                            changes.discard(i)
+                            out += ends
+                for i in sorted(changes):
                     if max(share[i], share[i + 1]) < SHARE_MIN or c.speeds_rpm[i + 1] <= 0:
                         continue
                     y0 = c.shapes[:, i]
@@ -351,8 +365,8 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
 
                     def gap(om: float, k: int = k, comp: str = comp, near=near) -> float:
                         fs, _, _, sc = near(om)
-                        if sc < MAC_MIN:   # not the curve: it does not oscillate there
-                            raise ValueError("the curve has a gap here")
+                        if sc < MAC_MIN:   # the root does not oscillate here: at zero
+                            fs = 0.0
                         n = om / (2 * math.pi)
                         val = fs if comp == "" else fs + n if comp == "forward" else fs - n
                         return abs(val) - k * n
@@ -360,14 +374,28 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                     try:
                         om = brentq(gap, lo, hi, xtol=1e-12 * hi) if gap(lo) * gap(hi) < 0 else (
                             hi if g[i + 1] == 0 else lo - g[i] * (hi - lo) / (g[i + 1] - g[i]))
-                        fs, decay, index, sc = near(om)
                     except ValueError:
-                        sc = 0.0
+                        om = lo - g[i] * (hi - lo) / (g[i + 1] - g[i])
+                    fs, decay, index, sc = near(om)
                     if sc < MAC_MIN:
-                        # the curve does not oscillate over part of the step (two roots met
-                        # at zero frequency): the crossing lies in that gap, between the
-                        # last speeds the curve reaches from either side
-                        om, fs, decay, index = _across_gap(model, c, int(i), comp, k)
+                        # the root meets zero frequency here (a conjugate pair passing
+                        # through it): its state just beside, where it oscillates
+                        side = [near(om * (1 + e)) for e in (-1e-7, 1e-7)]
+                        if min(x[3] for x in side) >= MAC_MIN:
+                            fs, decay, index = (0.5 * (a + b) for a, b in
+                                                zip(side[0][:3], side[1][:3]))
+                        else:
+                            # the curve does not oscillate over part of the step (two roots
+                            # met at zero frequency): its ends there are the crossings
+                            ends = _gap_crossings(model, c, int(i), comp, k)
+                            if ends is None:   # it oscillates throughout: only just lost
+                                t = (om - lo) / (hi - lo)
+                                fs, decay, index = (
+                                    (1 - t) * float(a[i]) + t * float(a[i + 1])
+                                    for a in (c.signed_hz, c.decay, c.index))
+                            else:
+                                out += ends
+                                continue
                     n = om / (2 * math.pi)
                     val = fs if comp == "" else fs + n if comp == "forward" else fs - n
                     wd = 2 * math.pi * float(seen(np.array([fs]), np.array([index]), n,
@@ -383,44 +411,51 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
 
 def _follow(model: RotorModel, om: float, y: np.ndarray, f: float, end: float
             ) -> tuple[float, float, float, float]:
-    """Follow one root from the spin om (shape y, signed frequency f) towards `end`,
-    halving the step where it is lost, as far as it oscillates: that spin (rad/s) and
-    the root's signed frequency, decay and whirl index there."""
-    decay, index = 0.0, 0.0
-    step = end - om
-    while abs(step) > 1e-9 * abs(end):
-        to = om + step
-        reach = REACH * abs(step) / (2 * math.pi) + 1e-3 * abs(f)
-        fs, d, w, sc = _at(model, to, y, f, reach)
+    """Follow one root from the spin om (shape y, signed frequency f) towards `end`, by
+    bisection, to the last spin where it still oscillates (its shape found among the
+    roots): that spin (rad/s) and the root's signed frequency, decay and whirl index."""
+    reach = REACH * abs(end - om) / (2 * math.pi) + abs(f) + 1.0   # the shape decides
+    fs, decay, index, sc = _at(model, end, y, f, reach)
+    if sc >= MAC_MIN:
+        return end, fs, decay, index
+    good, bad = om, end
+    fs, decay, index = f, 0.0, 0.0
+    for _ in range(FOLLOW_STEPS):
+        if abs(bad - good) <= 1e-9 * abs(end):
+            break
+        mid = 0.5 * (good + bad)
+        f_mid, d, w, sc = _at(model, mid, y, fs, reach)
         if sc >= MAC_MIN:
-            y = _shape_at(model, to, y, f, reach)
-            om, f, decay, index = to, fs, d, w
-            if om == end:
-                break
-            step = end - om if abs(end - om) < abs(step) else step
+            y = _shape_at(model, mid, y, fs, reach)
+            good, fs, decay, index = mid, f_mid, d, w
         else:
-            step /= 2
-    return om, f, decay, index
+            bad = mid
+    return good, fs, decay, index
 
 
-def _across_gap(model: RotorModel, c: Curve, i: int, comp: str, k: int
-                ) -> tuple[float, float, float, float]:
-    """A crossing inside a stretch of the step i -> i + 1 where the curve does not
-    oscillate: the curve followed in from either side to its last speeds a and b, and
-    the order line's gap interpolated linearly between them: (spin rad/s, signed
-    frequency, decay, whirl index)."""
+def _gap_crossings(model: RotorModel, c: Curve, i: int, comp: str, k: int
+                   ) -> list[Crossing] | None:
+    """The crossings at a stretch of the step i -> i + 1 where the curve does not
+    oscillate (its roots meet at zero frequency in the turning frame, where the forward
+    and backward components both stand at 1x): the last speeds the curve reaches from
+    either side, each a crossing of the 1x line; None where it reaches across (no such
+    stretch: a conjugate pair passing through zero at one speed)."""
     lo, hi = c.speeds_rpm[i] * RPM, c.speeds_rpm[i + 1] * RPM
-    a = _follow(model, lo, c.shapes[:, i], float(c.signed_hz[i]), hi)
-    b = _follow(model, hi, c.shapes[:, i + 1], float(c.signed_hz[i + 1]), lo)
-
-    def gap(om: float, fs: float) -> float:
+    left = _follow(model, lo, c.shapes[:, i], float(c.signed_hz[i]), hi)
+    right = _follow(model, hi, c.shapes[:, i + 1], float(c.signed_hz[i + 1]), lo)
+    if left[0] == hi or right[0] == lo:
+        return None
+    out = []
+    for om, fs, decay, index in (left, right):
         n = om / (2 * math.pi)
-        val = fs if comp == "" else fs + n if comp == "forward" else fs - n
-        return abs(val) - k * n
-
-    ga, gb = gap(a[0], a[1]), gap(b[0], b[1])
-    t = 0.5 if ga == gb else min(max(ga / (ga - gb), 0.0), 1.0)
-    return tuple((1 - t) * x + t * z for x, z in zip(a, b))   # type: ignore[return-value]
+        val = fs + n if comp == "forward" else fs - n
+        wd = 2 * math.pi * float(seen(np.array([fs]), np.array([index]), n, model.frame)[0])
+        part = 0.5 * (1 + index if comp == "forward" else 1 - index)
+        if part >= SHARE_MIN:
+            out.append(Crossing(k, c.number, comp, float(om), component_whirl(comp, val, index),
+                                float(index), float(2 * math.pi * decay / wd) if wd > 0 else 0.0,
+                                float(part)))
+    return out
 
 
 def dedupe(found: list[Crossing]) -> list[Crossing]:

@@ -151,6 +151,7 @@ class Curve:
     index: np.ndarray
     kinds: tuple[str, ...]
     shapes: np.ndarray = field(repr=False)
+    gaps: tuple[int, ...] = ()   # steps i -> i + 1 over which it did not oscillate
 
     @property
     def seen_hz(self) -> np.ndarray:

@@ -211,8 +211,8 @@ class Rotor(_Table):
     probes_mm: Numbers | None = None
     basis_modes: int | None = None
     speed_range_rpm: Numbers | None = None
-    min_log_dec: Number | None = None
     amplitude_limit_um: Number | None = None
+    min_log_dec: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -283,19 +283,6 @@ SCHEMA: dict[str, dict[str, Key]] = {
                          "speed_range_rpm is given",
                          lambda v: len(v) >= 1 and all(0 < x <= 1e6 for x in v),
                          "numbers in (0, 10^6]", required=False),
-        "speed_range_rpm": Key(("list", float), "operating speed range of a variable-speed "
-                               "drive, r/min: [lowest, highest]; a critical speed inside it "
-                               "has margin 0, one outside it is measured to the nearer end",
-                               lambda v: len(v) == 2 and 0 < v[0] < v[1] <= 1e6,
-                               "two numbers, 0 < lowest < highest <= 10^6", required=False),
-        "amplitude_limit_um": Key(float, "the largest unbalance response allowed at a probe "
-                                  "(0-peak, for example a seal's radial clearance), um: drawn "
-                                  "on the Bode plot, and a peak above it is said",
-                                  *upto(1e6, "up to 1 m"), required=False),
-        "min_log_dec": Key(float, "the least log decrement a whirling mode may have at any "
-                           "speed up to the highest operating one (default 0, i.e. no mode "
-                           "may grow; 0.1 with [resonance] criterion = \"api684\")",
-                           *upto(10.0, "up to 10", closed_low=True), required=False),
         "max_speed_rpm": Key(float, "end of the Campbell diagram, r/min (default "
                              f"{DEFAULT_SPEED_HEADROOM:g} times the highest operating speed)",
                              *upto(1e6, "up to 10^6 r/min"), required=False),
@@ -316,6 +303,19 @@ SCHEMA: dict[str, dict[str, Key]] = {
                            "3 times [modes] count, at least 30)",
                            lambda v: 2 <= v <= MAX_MODE_COUNT, f"in [2, {MAX_MODE_COUNT}]",
                            required=False),
+        "speed_range_rpm": Key(("list", float), "operating speed range of a variable-speed "
+                               "drive, r/min: [lowest, highest]; a critical speed inside it "
+                               "has margin 0, one outside it is measured to the nearer end",
+                               lambda v: len(v) == 2 and 0 < v[0] < v[1] <= 1e6,
+                               "two numbers, 0 < lowest < highest <= 10^6", required=False),
+        "amplitude_limit_um": Key(float, "the largest unbalance response allowed at a probe "
+                                  "(0-peak, for example a seal's radial clearance), um: drawn "
+                                  "on the Bode plot, and a peak above it is said",
+                                  *upto(1e6, "up to 1 m"), required=False),
+        "min_log_dec": Key(float, "the least log decrement a whirling mode may have at any "
+                           "speed up to the highest operating one (default 0, i.e. no mode "
+                           "may grow; 0.1 with [resonance] criterion = \"api684\")",
+                           *upto(10.0, "up to 10", closed_low=True), required=False),
     },
     "unbalance": {  # an array of tables: [[unbalance]], a mass off the axis (workflows.unbalance)
         "name": Key(str, "name of the unbalance, e.g. wheel", required=False),

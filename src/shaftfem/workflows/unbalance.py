@@ -15,6 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from shaftfem.checks.resonance import AF_CRITICALLY_DAMPED, api684_margin
+from shaftfem.checks.whirl_check import forward_only
 from shaftfem.errors import SceneError
 from shaftfem.fem.whirl import RPM, Bode, Peak, UnbalanceResponse
 from shaftfem.scene.model import Scene
@@ -104,14 +105,6 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
         bode.append(b)
         peaks += found
     return UnbalanceResponse(tuple(bode), tuple(peaks), damped=damped)
-
-
-def forward_only(scene: Scene, frame: str) -> bool:
-    """Whether an unbalance drives forward whirl only: a shaft of revolution in
-    isotropic bearings (its backward modes it reaches only through the mesh's own
-    small asymmetry)."""
-    return scene.axisymmetric and (frame == "rotating" or all(
-        s.bearing is None or s.bearing.isotropic for s in scene.held))
 
 
 def _one_x(model, top: float, forward: bool) -> list[float]:
