@@ -163,4 +163,5 @@ def test_turning_examples_against_ross(tmp_path):
         if name == "overhung_spindle":
             # judged on its standstill 160 Hz it would fail against 150 Hz; turning, what
             # decides is its forward critical speed, 24 % above the running speed
-            assert "closest: forward whirl (curve 2), critical at 11," in check.stdout
+            assert re.search(r"closest: forward whirl \(curve \d\), critical at 11,",
+                             check.stdout)

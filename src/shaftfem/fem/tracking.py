@@ -239,6 +239,13 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
     for a, b in zip(grid[:-1], grid[1:]):
         step(float(a), float(b), 0)
     tracks = sorted(done + live, key=lambda t: (t.omega[0], abs(t.f[0])))
+    # a double pair's two curves in a fixed order, backward first (their frequencies
+    # differ only by the mesh's own asymmetry)
+    for i in range(len(tracks) - 1):
+        a, b = tracks[i], tracks[i + 1]
+        if (a.omega[0] == b.omega[0] and abs(abs(a.f[0]) - abs(b.f[0])) <= PAIR * abs(b.f[0])
+                and a.index[0] > b.index[0]):
+            tracks[i], tracks[i + 1] = b, a
     return [Curve(number=i + 1, frame=frame, speeds_rpm=np.array(t.omega) / RPM,
                   signed_hz=np.array(t.f), decay=np.array(t.decay), index=np.array(t.index),
                   kinds=tuple(t.kinds), shapes=np.column_stack(t.ys), gaps=tuple(t.gaps))
