@@ -11,7 +11,6 @@ differ, or whose difference exceeds 1e-3, fails (exit 1).
 
 import math
 import sys
-import tomllib
 from dataclasses import replace
 from pathlib import Path
 
@@ -28,14 +27,6 @@ def rotors() -> dict:
     import test_rotor as t
     import test_rotor_verdict as v
 
-    keyed = tomllib.loads((ROOT / "examples" / "stepped_shaft.toml").read_text())
-    keyed["mesh"]["element_size_mm"] = 12.0
-    keyed["modes"] = {"count": 4}
-    for s in keyed["support"]:
-        s.update({"kind": "bearing", "kxx_n_per_mm": 2e4, "cxx_n_s_per_mm": 0.3})
-    keyed["unbalance"] = [{"position_mm": 150.0, "amount_g_mm": 20.0}]
-    keyed["rotor"] = {"speed_rpm": 6000.0, "max_speed_rpm": 30000.0}
-    keyed.pop("excitation", None)
     table = np.linspace(0.0, 2000.0, 21)
     return {
         "overhung spindle (example)": ROOT / "examples" / "overhung_spindle.toml",
@@ -63,7 +54,7 @@ def rotors() -> dict:
             t.two_disks(), {"speed_rpm": 2000.0, "max_speed_rpm": 5000.0}),
         "stepped rotor, damped": t.stepped_rotor("auto"),
         "pulley rotor": v.pulley_rotor(),
-        "keyed shaft, rotating frame": keyed,
+        "keyed shaft, rotating frame": v.keyed_rotor(),
     }
 
 

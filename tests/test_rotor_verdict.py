@@ -511,18 +511,14 @@ def test_check_exits_1_for_an_unstable_rotor_and_0_for_a_sound_one(tmp_path):
     assert main(["check", str(path), "-q"]) == 0
 
 
-def test_the_keyed_rotor_s_forward_critical_is_found_near_its_bode_peak():
-    """A keyed stepped shaft (not of revolution: the turning frame) in damped isotropic
-    bearings: its forward 1x crossings, at the ends of the stretch where its pair's roots
-    stand at zero frequency in the turning frame, found on 31 speeds and on 310 alike
-    (1e-5), and the peak of its unbalance response between them."""
+def keyed_rotor() -> dict:
+    """The keyed stepped shaft of the examples (not of revolution: the turning frame),
+    12 mm elements, in damped isotropic bearings, 20 g mm at its keyway, to 30,000 r/min."""
     import tomllib
     from pathlib import Path
 
-    from shaftfem.workflows.campbell import campbell_of, turning
-
-    root = Path(__file__).parents[1]
-    data = tomllib.loads((root / "examples" / "stepped_shaft.toml").read_text())
+    data = tomllib.loads((Path(__file__).parents[1] / "examples" / "stepped_shaft.toml")
+                         .read_text())
     data["mesh"]["element_size_mm"] = 12.0
     data["modes"] = {"count": 4}
     for s in data["support"]:
@@ -530,7 +526,17 @@ def test_the_keyed_rotor_s_forward_critical_is_found_near_its_bode_peak():
     data["unbalance"] = [{"position_mm": 150.0, "amount_g_mm": 20.0}]
     data["rotor"] = {"speed_rpm": 6000.0, "max_speed_rpm": 30000.0}
     data.pop("excitation", None)
-    scene = load_scene(data)
+    return data
+
+
+def test_the_keyed_rotor_s_forward_critical_is_found_near_its_bode_peak():
+    """A keyed stepped shaft (not of revolution: the turning frame) in damped isotropic
+    bearings: its forward 1x crossings, at the ends of the stretch where its pair's roots
+    stand at zero frequency in the turning frame, found on 31 speeds and on 310 alike
+    (1e-5), and the peak of its unbalance response between them."""
+    from shaftfem.workflows.campbell import campbell_of, turning
+
+    scene = load_scene(keyed_rotor())
     result, model, why = turning(scene)
     assert model.frame == "rotating"
     c = campbell_of(scene, result, model, why)

@@ -432,27 +432,3 @@ def orbit(model: RotorModel, beta: np.ndarray, y: np.ndarray
         return r, r, angle, r, angle - math.pi / 2
     major = 0.5 * (abs(x + 1j * yv) + abs(x - 1j * yv))
     return float(abs(x)), float(major), float(np.angle(x)), float(abs(yv)), float(np.angle(yv))
-
-
-def synchronous_speeds(model: RotorModel) -> tuple[np.ndarray, np.ndarray]:
-    """The 1x critical speeds found directly, undamped, in the stationary frame: with
-    q = a exp(i W t) at its own speed W the whirl equation becomes the Hermitian
-    eigenproblem diag(w^2) a = W^2 (I - i G - K_2) a (bearings as at standstill plus
-    their constant part). Its positive eigenvalues W^2 (rad^2/s^2, ascending) and their
-    whirl indices; the crossings of the Campbell diagram with 1x must agree with them
-    (forward and backward alike: the index tells which)."""
-    import scipy.linalg
-
-    if model.frame != "stationary" or any(len(b.coefficients.speeds) for b in model.bearings):
-        raise ValueError("the synchronous eigenproblem takes the stationary frame with "
-                         "bearings that do not change with speed")
-    K = np.diag(model.omega2).astype(complex)
-    for b in model.bearings:
-        Kb = np.array(b.coefficients.stiffness(0.0)) - np.diag(b.standstill)
-        K = K + b.beta.T @ Kb @ b.beta
-    B = np.eye(model.size) - 1j * model.G - model.K2
-    lam, A = scipy.linalg.eig(K, B)
-    ok = np.isfinite(lam) & (np.abs(lam.imag) <= 1e-9 * np.abs(lam)) & (lam.real > 0)
-    lam, A = lam.real[ok], A[:, ok]
-    order = np.argsort(lam)
-    return np.sqrt(lam[order]), whirl_index(model, A[:, order])
