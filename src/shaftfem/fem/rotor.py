@@ -360,7 +360,7 @@ def part_motions(result: ModalResult, Phi: np.ndarray | None = None
 
 def bearing_modal(result: ModalResult, Phi: np.ndarray | None = None
                   ) -> tuple[BearingModal, ...]:
-    """The scene's bearings (kind "bearing") on the shapes Phi (default the run's
+    """The scene's bearings (kind "bearing" or "journal") on the shapes Phi (default the run's
     modes)."""
     from shaftfem.fem.installation import seat_radius
     from shaftfem.fem.supports import seat_restraints, surface_weights

@@ -182,6 +182,15 @@ class Support(_Table):
     radial_stiffness_n_per_mm: Number | None = None
     axial_stiffness_n_per_mm: Number | None = None
     tilting_stiffness_nmm_per_rad: Number | None = None
+    radial_clearance_um: Number | None = None
+    diameter_mm: Number | None = None
+    viscosity_mpa_s: Number | None = None
+    oil_iso_vg: int | None = None
+    oil_temperature_c: Number | None = None
+    load_n: Number | None = None
+    load_angle_deg: Number | None = None
+    cavitation: str | None = None
+    min_film_um: Number | None = None
     coupling: str | None = None
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import tomllib
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from shaftfem.errors import SceneError
@@ -178,6 +178,9 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
         grooves = check_grooves(source, g, shaft)
     mesh = _mesh_settings(source, mesh_t, shaft, grooves)
     supports = tuple(_support(source, i, e) for i, e in enumerate(_array(source, data, "support")))
+    rotor = _rotor(source, data, shaft)
+    supports = tuple(_journal(source, i, e, s, shaft, rotor) if s.kind == "journal" else s
+                     for i, (e, s) in enumerate(zip(_array(source, data, "support"), supports)))
     attachments = tuple(_attachment(source, i, e)
                         for i, e in enumerate(_array(source, data, "attachment")))
     check_seats(source, shaft, grooves, supports, attachments, mesh)
@@ -200,7 +203,7 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                   damping_ratio=t["response"]["damping_ratio_percent"] / 100,
                   response_point=None if point is None else point * MM,
                   criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
-                  rotor=_rotor(source, data, shaft),
+                  rotor=rotor,
                   unbalances=_unbalances(source, data, shaft, attachments))
     return scene.with_tables(_tables(data, shaft))
 
@@ -328,6 +331,84 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
         cyx=per_mm["cyx_n_s_per_mm"], cyy=per_mm["cyy_n_s_per_mm"])
 
 
+JOURNAL_KEYS = ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", "oil_iso_vg",
+                "oil_temperature_c", "load_n", "load_angle_deg", "cavitation", "min_film_um")
+
+
+def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
+             rotor: Rotor | None) -> Support:
+    """A journal bearing's support: its film's coefficients against speed, up to the
+    Campbell diagram's end (shaftfem.parts.journal)."""
+    from shaftfem.parts import journal, oil
+    from shaftfem.scene.schema import DEFAULT_MIN_FILM_UM
+
+    table = entry("support", i, raw)
+    t = validate_table(source, table, _as_lists(raw, BEARING_KEYS), SCHEMA["support"])
+    for key in ("radial_clearance_um", "load_n"):
+        if t[key] is None:
+            raise SceneError(f"{where(source, table, key)}: missing (kind = \"journal\" needs "
+                             "the radial clearance, um, and the static load, N)")
+    if rotor is None:
+        raise SceneError(f"{where(source, table, 'kind')} = \"journal\": a journal's film "
+                         "comes from its speed; add [rotor] with the operating speed")
+    if (t["viscosity_mpa_s"] is None) == (t["oil_iso_vg"] is None):
+        raise SceneError(f"{where(source, table, 'viscosity_mpa_s')}: give the oil as "
+                         "viscosity_mpa_s, or as oil_iso_vg with oil_temperature_c (one of them)")
+    if t["oil_iso_vg"] is not None:
+        if t["oil_temperature_c"] is None:
+            raise SceneError(f"{where(source, table, 'oil_temperature_c')}: missing (with "
+                             "oil_iso_vg, the film's mean temperature, C)")
+        viscosity = oil.dynamic(t["oil_iso_vg"], t["oil_temperature_c"])
+    else:
+        if t["oil_temperature_c"] is not None:
+            raise SceneError(f"{where(source, table, 'oil_temperature_c')}: only with "
+                             "oil_iso_vg (viscosity_mpa_s is the film's viscosity already)")
+        viscosity = t["viscosity_mpa_s"] * 1e-3
+    diameter = t["diameter_mm"] * MM if t["diameter_mm"] is not None else None
+    if diameter is None:
+        radius = shaft.radius_at(s.position)
+        if radius is None:
+            raise SceneError(f"{where(source, table, 'diameter_mm')}: missing (on a STEP shaft "
+                             "give the journal's diameter, mm)")
+        diameter = 2 * radius
+    clearance = t["radial_clearance_um"] * 1e-6
+    if clearance > 0.05 * diameter:
+        raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "
+                         f"{t['radial_clearance_um']:g}: {clearance / diameter:.3g} of the "
+                         "diameter; a journal bearing's radial clearance is about 0.0005 to "
+                         "0.003 of it (the film theory holds below 0.05)")
+    ratio = s.width / diameter
+    if not journal.RATIOS[0] <= ratio <= journal.RATIOS[1]:
+        raise SceneError(f"{where(source, table, 'width_mm')} = {s.width / MM:g}: length / "
+                         f"diameter {ratio:.3g}; the film is solved for {journal.RATIOS[0]:g} "
+                         f"to {journal.RATIOS[1]:g}")
+    angle = math.radians(t["load_angle_deg"])
+    bearing = journal.JournalBearing(
+        diameter=diameter, length=s.width, clearance=clearance, viscosity=viscosity,
+        load=t["load_n"], direction=(math.cos(angle), math.sin(angle)),
+        cavitation=t["cavitation"],
+        min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
+        * 1e-6)
+    try:
+        speeds = journal.speed_table(bearing, rotor.max_speed)
+    except ValueError as e:
+        raise SceneError(f"{where(source, table, 'load_n')} = {t['load_n']:g}: {e}; the "
+                         "load is too large for this film (a larger clearance ratio, "
+                         "viscosity, length or speed carries more)") from None
+    K, C = speeds.K * 1.0, speeds.C * 1.0
+
+    def column(A, i: int, j: int) -> tuple[float, ...]:
+        return tuple(float(v) for v in A[:, i, j])
+
+    low = min(lo for lo, _ in rotor.spans)
+    coefficients = BearingCoefficients(
+        speeds=tuple(float(w) for w in speeds.speeds), kxx=column(K, 0, 0),
+        kxy=column(K, 0, 1), kyx=column(K, 1, 0), kyy=column(K, 1, 1), cxx=column(C, 0, 0),
+        cxy=column(C, 0, 1), cyx=column(C, 1, 0), cyy=column(C, 1, 1),
+        reference=max(low, speeds.lift))
+    return replace(s, bearing=coefficients, journal=bearing)
+
+
 def _support(source: str, i: int, t: dict) -> Support:
     table = entry("support", i, t)
     t = validate_table(source, table, _as_lists(t, BEARING_KEYS), SCHEMA["support"])
@@ -338,6 +419,10 @@ def _support(source: str, i: int, t: dict) -> Support:
         if t["radial_stiffness_n_per_mm"] is None:
             raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: missing "
                              "(kind = \"springs\" needs the bearing's radial stiffness, N/mm)")
+    elif t["kind"] == "journal":
+        if t["radial_stiffness_n_per_mm"] is not None:
+            raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: not with "
+                             "kind = \"journal\": its film gives its stiffness")
     elif t["kind"] == "bearing":
         if t["radial_stiffness_n_per_mm"] is not None:
             raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: not with "
@@ -350,7 +435,16 @@ def _support(source: str, i: int, t: dict) -> Support:
         for key in springs:
             if t[key] is not None:
                 raise SceneError(f"{where(source, table, key)} = {t[key]:g}: only with kind = "
-                                 f"\"springs\" or \"bearing\" (this support is {t['kind']!r})")
+                                 f"\"springs\", \"bearing\" or \"journal\" (this support is "
+                                 f"{t['kind']!r})")
+    if t["kind"] != "journal":
+        for key in JOURNAL_KEYS:
+            if t[key] is not None and SCHEMA["support"][key].default != t[key]:
+                raise SceneError(f"{where(source, table, key)} = {t[key]!r}: only with kind = "
+                                 f"\"journal\" (this support is {t['kind']!r})")
+    elif t["coupling"] == "rigid":
+        raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a journal's film "
+                         "acts on the seat's mean motion; leave coupling out")
     if t["kind"] != "bearing":
         for key in (*BEARING_KEYS, "speeds_rpm"):
             if t[key] is not None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from shaftfem.scene.schema import (
     DEFAULT_DAMPING_PERCENT,
@@ -12,6 +13,9 @@ from shaftfem.scene.schema import (
     DEFAULT_MAX_DOFS,
     DEFAULT_MODE_COUNT,
 )
+
+if TYPE_CHECKING:
+    from shaftfem.parts.journal import JournalBearing
 
 MM = 1e-3  # m per mm: scene files are in mm
 
@@ -249,6 +253,7 @@ class BearingCoefficients:
     cxy: tuple[float, ...]
     cyx: tuple[float, ...]
     cyy: tuple[float, ...]
+    reference: float = 0.0   # rad/s: the speed whose kxx, kyy the standstill modes hold
 
     def _at(self, values: tuple[float, ...], omega: float) -> float:
         if len(values) == 1:
@@ -334,14 +339,16 @@ class Support:
     axial: float = 0.0
     tilting: float = 0.0
     coupling: str = "distributing"   # or "rigid": the band moves as a rigid ring
-    bearing: BearingCoefficients | None = None   # kind "bearing": its coefficients
+    bearing: BearingCoefficients | None = None   # kind "bearing", "journal": its coefficients
+    journal: JournalBearing | None = None   # kind "journal": the film's bearing
 
     @property
     def radial_xy(self) -> tuple[float, float]:
         """The radial stiffness along x and y at standstill, N/m (a bearing's kxx and kyy
-        at speed 0; the springs' radial stiffness on both)."""
+        at its reference speed, 0 but for a journal; the springs' radial stiffness on
+        both)."""
         if self.bearing is not None:
-            (kxx, _), (_, kyy) = self.bearing.stiffness(0.0)
+            (kxx, _), (_, kyy) = self.bearing.stiffness(self.bearing.reference)
             return kxx, kyy
         return self.radial, self.radial
 

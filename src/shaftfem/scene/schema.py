@@ -23,7 +23,12 @@ MAX_DOFS_LIMIT = 20_000_000
 # element orders (1, 2: Lagrange; 3 on: hierarchical) and degrees of the elements' map
 ELEMENT_ORDERS = (1, 2, 3, 4, 5)
 GEOMETRY_ORDERS = (2, 3)
-SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs", "bearing")
+SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs", "bearing", "journal")
+CAVITATION = ("reynolds", "gumbel")
+# ISO 3448 viscosity grades shaftfem knows the temperature line of (shaftfem.parts.oil)
+ISO_VG = (10, 15, 22, 32, 46, 68, 100, 150, 220, 320, 460, 680)
+# A journal bearing's film thinner than this at an operating speed is a warning.
+DEFAULT_MIN_FILM_UM = 10.0
 ROTOR_FRAMES = ("auto", "stationary", "rotating")
 # The Campbell diagram's end when [rotor] does not give one: this much above the
 # highest operating speed.
@@ -214,8 +219,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
                     "displacement), \"rigid-radial\" (radial only: a floating bearing), "
                     "\"clamped\" (every point of it, in every direction), \"springs\" (the "
                     "stiffnesses below), \"bearing\" (a rotor bearing's stiffness and damping "
-                    "coefficients kxx ... cyx, constant or against speed); rigid, springs and "
-                    "bearing let the shaft tilt and turn",
+                    "coefficients kxx ... cyx, constant or against speed), \"journal\" (a plain "
+                    "oil-film journal bearing from its clearance, oil and load: its coefficients "
+                    "at each speed from Reynolds' equation, docs/journal-bearing.md); rigid, "
+                    "springs, bearing and journal let the shaft tilt and turn",
                     lambda v: v in SUPPORT_KINDS, ", ".join(f'"{k}"' for k in SUPPORT_KINDS)),
         "kxx_n_per_mm": coefficient(
             "direct stiffness along x, N/mm (kind = \"bearing\")", direct=True),
@@ -250,6 +257,36 @@ SCHEMA: dict[str, dict[str, Key]] = {
             *upto(1e15, "up to 10^15 N mm/rad: the frequencies stop changing near 10^12; "
                   "far beyond, the solve loses the digits it needs", closed_low=True),
             required=False),
+        "radial_clearance_um": Key(
+            float, "radial clearance of a journal bearing (bore radius minus journal "
+            "radius), um (kind = \"journal\"; the bearing's length is width_mm)",
+            *upto(10_000, "up to 10 mm"), required=False),
+        "diameter_mm": Key(float, "journal diameter, mm (kind = \"journal\"; default: the "
+                           "shaft's diameter at the seat; needed on a STEP shaft)",
+                           *upto(2_000, "up to 2 m"), required=False),
+        "viscosity_mpa_s": Key(float, "the oil's dynamic viscosity in the film, mPa s (= cP; "
+                               "kind = \"journal\"; or oil_iso_vg and oil_temperature_c)",
+                               *upto(10_000, "up to 10^4 mPa s"), required=False),
+        "oil_iso_vg": Key(int, "the oil's ISO 3448 viscosity grade (a VI-100 mineral oil; "
+                          "kind = \"journal\", with oil_temperature_c)",
+                          lambda v: v in ISO_VG, ", ".join(str(g) for g in ISO_VG),
+                          required=False),
+        "oil_temperature_c": Key(float, "the film's mean temperature, C (with oil_iso_vg)",
+                                 lambda v: -20 <= v <= 200, "in [-20, 200] C", required=False),
+        "load_n": Key(float, "the static load the journal carries, N (kind = \"journal\")",
+                      *upto(1e8, "up to 10^8 N"), required=False),
+        "load_angle_deg": Key(float, "direction of that load on the journal, deg from +x "
+                              "towards +y (default -90: along -y, the shaft's weight with y up)",
+                              lambda v: -360 <= v <= 360, "in [-360, 360]", default=-90.0,
+                              required=False),
+        "cavitation": Key(str, "where the oil film ruptures (kind = \"journal\"): "
+                          "\"reynolds\" (default: Swift-Stieber, pressure and its gradient "
+                          "vanish) or \"gumbel\" (half-Sommerfeld: negative pressures dropped)",
+                          lambda v: v in CAVITATION, ", ".join(f'"{c}"' for c in CAVITATION),
+                          default="reynolds", required=False),
+        "min_film_um": Key(float, "the thinnest film that is fine at an operating speed, um "
+                           f"(kind = \"journal\"; default {DEFAULT_MIN_FILM_UM:g})",
+                           *upto(10_000, "up to 10 mm"), required=False),
         "coupling": coupling(
             "how the bearing holds its seat: \"distributing\" (default: the seat band's "
             "mean motion, the section under it free to deform, as a ball bearing on a "

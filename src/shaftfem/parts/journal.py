@@ -1,0 +1,391 @@
+"""A plain cylindrical journal bearing from its oil film: Reynolds' equation solved by
+finite elements (scikit-fem) on the unwrapped film; the journal's eccentricity,
+attitude angle, minimum film and Sommerfeld number under its load, and the eight
+stiffness and damping coefficients.
+
+Nondimensional, with theta around the bearing from +x towards +y, Z = z / R,
+H = h / c, P = p (c / R)^2 / (mu omega), tau = omega t, and the journal's centre at
+(e_x, e_y) = c (X, Y), turning at omega about +z:
+
+    div(H^3 grad P) = 6 dH/dtheta + 12 dH/dtau,     H = 1 - X cos(theta) - Y sin(theta),
+
+with P = 0 at the bearing's ends Z = +-L / (2 R) and periodic in theta (the ends'
+symmetry halves the film). Cavitation:
+
+* "reynolds" (Swift-Stieber): P >= 0, and the film ruptures where P and its gradient
+  vanish: the complementarity problem min 1/2 P.A P - b.P over P >= 0, solved by a
+  primal-dual active set (the P1 film on right triangles is an M-matrix, so it ends in
+  a few steps);
+* "gumbel" (the half-Sommerfeld film of Ocvirk's short bearing): the linear solution's
+  negative pressures are dropped.
+
+The film's force on the journal is F = -(mu omega R^4 / c^2) int P (cos, sin) dtheta dZ.
+Its derivatives along X, Y (stiffness) and dX/dtau, dY/dtau (damping) are those of the
+discrete film, exact: one tangent solve each on the film's own factorisation (where
+the film ends P and its gradient vanish, so the edge's motion adds nothing at first
+order). In the load's units K = (W / c) Kbar / |Fbar| and C = (W / (c omega)) Cbar / |Fbar|.
+
+References: Reynolds (1886); Ocvirk (1952), the short bearing; Raimondi and Boyd
+(1958), the finite bearing's tables; Lund (1987), the coefficients by perturbation.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+CAVITATION = ("reynolds", "gumbel")
+# The lengths over diameter the film is solved for (outside them a bearing is not plain).
+RATIOS = (0.1, 2.0)
+# The film's mesh: cells around the bearing (graded towards the thinnest film) and
+# across its half length. The tests measure what they leave (docs/journal-bearing.md).
+THETA_CELLS = 240
+Z_CELLS = 16
+# theta = s - GRADING sin(s): cells at the thinnest film this many times finer
+GRADING = 0.75
+# The active-set steps allowed to settle the film's edge, from the edge of a film of
+# half as many cells around (COARSEST cells: from the half-Sommerfeld film)
+STEPS = 60
+COARSEST = 60
+FEED = True
+# The eccentricity ratios the table is solved at (its ends: the lightest and the
+# heaviest load it holds).
+ECCENTRICITIES = tuple(np.concatenate([
+    [1e-3, 0.01, 0.03], np.linspace(0.05, 0.8, 16), 1 - np.geomspace(0.18, 0.02, 10)]).round(6))
+
+
+@dataclass(frozen=True)
+class FilmState:
+    """The film with the journal at (X, Y) = (eps, 0): its force on the journal (Fbar,
+    2), the stiffness Kbar = -dFbar/d(X, Y) and the damping Cbar = -dFbar/d(X', Y')
+    (2x2), all nondimensional (module docstring); `wet`, the film's share that carries
+    pressure."""
+
+    eccentricity: float
+    force: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    wet: float
+
+
+@dataclass(frozen=True)
+class Film:
+    """The unwrapped half film of a bearing of L / D = `ratio` on a P1 mesh: the
+    operators that do not depend on where the journal is."""
+
+    ratio: float
+    basis: object
+    free: np.ndarray          # the unknowns: nodes off the end Z = L / (2 R)
+    cos: np.ndarray           # int cos(theta) v, int sin(theta) v (per node)
+    sin: np.ndarray
+    periodic: object          # (nodes, unknowns): theta = pi is theta = -pi
+    at: np.ndarray            # (unknowns, 2): each unknown's (theta, Z)
+
+
+@lru_cache(maxsize=8)
+def film(ratio: float, theta_cells: int = THETA_CELLS, z_cells: int = Z_CELLS) -> Film:
+    """The film's mesh and its constant operators (cached by its L / D and cells)."""
+    import scipy.sparse as sp
+    from skfem import Basis, ElementTriP1, LinearForm, MeshTri
+
+    s = np.linspace(-math.pi, math.pi, theta_cells + 1)
+    theta = s - GRADING * np.sin(s)
+    mesh = MeshTri.init_tensor(theta, np.linspace(0.0, ratio, z_cells + 1))
+    basis = Basis(mesh, ElementTriP1(), intorder=4)
+    x = mesh.p
+    n = x.shape[1]
+    # theta = +pi is the node at theta = -pi with the same Z
+    seam = np.isclose(x[0], math.pi)
+    target = np.arange(n)
+    left = np.flatnonzero(np.isclose(x[0], -math.pi))
+    for i in np.flatnonzero(seam):
+        target[i] = left[np.argmin(np.abs(x[1, left] - x[1, i]))]
+    kept = np.flatnonzero(~seam)
+    index = -np.ones(n, dtype=int)
+    index[kept] = np.arange(kept.size)
+    T = sp.csr_matrix((np.ones(n), (np.arange(n), index[target])), shape=(n, kept.size))
+    end = np.isclose(x[1, kept], ratio) | (FEED & np.isclose(x[0, kept], -math.pi))
+    cos = T.T @ LinearForm(lambda v, w: np.cos(w.x[0]) * v).assemble(basis)
+    sin = T.T @ LinearForm(lambda v, w: np.sin(w.x[0]) * v).assemble(basis)
+    return Film(ratio=ratio, basis=basis, free=np.flatnonzero(~end), cos=cos, sin=sin,
+                periodic=T, at=x[:, kept].T)
+
+
+def _assemble(f: Film, X: float, Y: float, short: bool = False):
+    """A(H), the Couette load b, the tangents dA/dX, dA/dY and the loads' derivatives
+    (along X, Y, X', Y'), on the periodic unknowns; `short` drops the circumferential
+    pressure flow (Ocvirk's short bearing)."""
+    from skfem import BilinearForm, LinearForm
+
+    def H(w):
+        return 1.0 - X * np.cos(w.x[0]) - Y * np.sin(w.x[0])
+
+    around = 0.0 if short else 1.0
+
+    def flux(u, v):
+        return around * u.grad[0] * v.grad[0] + u.grad[1] * v.grad[1]
+
+    @BilinearForm
+    def flow(u, v, w):
+        return H(w) ** 3 * flux(u, v)
+
+    @BilinearForm
+    def flow_x(u, v, w):
+        return -3.0 * H(w) ** 2 * np.cos(w.x[0]) * flux(u, v)
+
+    @BilinearForm
+    def flow_y(u, v, w):
+        return -3.0 * H(w) ** 2 * np.sin(w.x[0]) * flux(u, v)
+
+    @LinearForm
+    def couette(v, w):   # -6 dH/dtheta, dH/dtheta = X sin - Y cos
+        return -6.0 * (X * np.sin(w.x[0]) - Y * np.cos(w.x[0])) * v
+
+    T = f.periodic
+
+    def red(M):
+        return (T.T @ M @ T).tocsr()
+
+    b = T.T @ couette.assemble(f.basis)
+    loads = np.column_stack([-6.0 * f.sin, 6.0 * f.cos, 12.0 * f.cos, 12.0 * f.sin])
+    return (red(flow.assemble(f.basis)), b, red(flow_x.assemble(f.basis)),
+            red(flow_y.assemble(f.basis)), loads)
+
+
+def _pressure(A, b: np.ndarray, free: np.ndarray, cavitation: str,
+              guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The film pressure P (on every unknown, 0 at the ends) and the unknowns where it
+    is free (the rest held at 0): Swift-Stieber by a primal-dual active set (from the
+    ruptured film `guess`, or the half-Sommerfeld one; each step moves the film's edge
+    by about a cell), or the half-Sommerfeld film."""
+    from scipy.sparse.linalg import spsolve
+
+    n = A.shape[0]
+    Aff = A[free][:, free]
+    P = np.zeros(n)
+    P[free] = spsolve(Aff.tocsc(), b[free])
+    if cavitation == "gumbel":
+        return P, free
+    # ties (a node whose pressure or multiplier is zero to round-off) stay as they are
+    tol_p, tol_r = 1e-9 * float(np.abs(P).max()), 1e-9 * float(np.abs(b).max())
+    active = np.zeros(n, dtype=bool)
+    active[free] = P[free] < 0 if guess is None else guess[free]
+    for _ in range(STEPS):
+        live = free[~active[free]]
+        P = np.zeros(n)
+        P[live] = spsolve(A[live][:, live].tocsc(), b[live])
+        residual = A @ P - b
+        now = np.zeros(n, dtype=bool)
+        now[free] = np.where(active[free], residual[free] > -tol_r, P[free] < -tol_p)
+        if np.array_equal(now, active):
+            return P, live
+        active = now
+    raise RuntimeError(f"the film's cavitation boundary did not settle in {STEPS} steps")
+
+
+def state(ratio: float, eccentricity: float, cavitation: str = "reynolds",
+          theta_cells: int = THETA_CELLS, z_cells: int = Z_CELLS, short: bool = False
+          ) -> FilmState:
+    """The film of a bearing of L / D = ratio with its journal at (eps, 0); `short`:
+    without the circumferential pressure flow, Ocvirk's short-bearing film (a check)."""
+    from scipy.sparse.linalg import splu
+
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation {cavitation!r}: one of {CAVITATION}")
+    f = film(float(ratio), theta_cells, z_cells)
+    A, b, Ax, Ay, loads = _assemble(f, eccentricity, 0.0, short)
+    P, live = _pressure(A, b, f.free, cavitation,
+                        _ruptured(float(ratio), eccentricity, cavitation, theta_cells, z_cells,
+                                  short))
+    carried = P.copy() if cavitation == "reynolds" else np.maximum(P, 0.0)
+    wet = np.flatnonzero(carried > 0) if cavitation == "gumbel" else live
+
+    def force(p: np.ndarray) -> np.ndarray:   # the whole film: twice the half
+        return -2.0 * np.array([f.cos @ p, f.sin @ p])
+
+    lu = splu(A[live][:, live].tocsc())
+    rhs = np.column_stack([loads[:, 0] - Ax @ P, loads[:, 1] - Ay @ P, loads[:, 2], loads[:, 3]])
+    dP = np.zeros((A.shape[0], 4))
+    dP[live] = lu.solve(rhs[live])
+    if cavitation == "gumbel":
+        mask = np.zeros(A.shape[0])
+        mask[wet] = 1.0
+        dP = dP * mask[:, None]
+    dF = np.column_stack([force(dP[:, k]) for k in range(4)])
+    return FilmState(eccentricity=float(eccentricity), force=force(carried),
+                     stiffness=-dF[:, :2], damping=-dF[:, 2:],
+                     wet=float(wet.size / max(f.free.size, 1)))
+
+
+def _ruptured(ratio: float, eccentricity: float, cavitation: str, theta_cells: int,
+              z_cells: int, short: bool) -> np.ndarray | None:
+    """Where the film of half as many cells around is ruptured, on this film's unknowns
+    (None for the coarsest film, or the half-Sommerfeld one)."""
+    if cavitation != "reynolds" or theta_cells <= COARSEST or theta_cells % 2:
+        return None
+    half = theta_cells // 2
+    coarse = film(ratio, half, z_cells)
+    A, b, *_ = _assemble(coarse, eccentricity, 0.0, short)
+    P, _ = _pressure(A, b, coarse.free, cavitation,
+                     _ruptured(ratio, eccentricity, cavitation, half, z_cells, short))
+    fine = film(ratio, theta_cells, z_cells)
+    xc, xf = coarse.at, fine.at
+    guess = np.zeros(xf.shape[0], dtype=bool)
+    for z in np.unique(xf[:, 1]):
+        row, crow = np.flatnonzero(xf[:, 1] == z), np.flatnonzero(np.isclose(xc[:, 1], z))
+        order, fine_order = np.argsort(xc[crow, 0]), np.argsort(xf[row, 0])
+        p = np.interp(xf[row[fine_order], 0], xc[crow[order], 0], P[crow[order]],
+                      period=2 * math.pi)
+        guess[row[fine_order]] = p <= 0
+    return guess
+
+
+def rotation(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+@dataclass(frozen=True)
+class FilmTable:
+    """A bearing's film over the eccentricity ratios ECCENTRICITIES, in the frame where
+    the load on the journal points along -y: the Sommerfeld number, the attitude angle
+    (rad, from the load line to the line of centres, with the journal's turn), |Fbar|,
+    and Kbar, Cbar (n, 2, 2)."""
+
+    ratio: float
+    cavitation: str
+    eccentricity: np.ndarray
+    sommerfeld: np.ndarray
+    attitude: np.ndarray
+    force: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+
+
+@lru_cache(maxsize=16)
+def table(ratio: float, cavitation: str = "reynolds") -> FilmTable:
+    """The film of a bearing of L / D = ratio at every eccentricity of ECCENTRICITIES."""
+    rows = [state(ratio, e, cavitation) for e in ECCENTRICITIES]
+    S, phi, F, K, C = [], [], [], [], []
+    for r in rows:
+        load_angle = math.atan2(r.force[1], r.force[0]) + math.pi   # W = -F
+        Q = rotation(-math.pi / 2 - load_angle)     # the load turned onto -y
+        S.append(2 * ratio / (math.pi * float(np.hypot(*r.force))))
+        phi.append(math.remainder(0.0 - load_angle, 2 * math.pi))
+        F.append(float(np.hypot(*r.force)))
+        K.append(Q @ r.stiffness @ Q.T)
+        C.append(Q @ r.damping @ Q.T)
+    return FilmTable(ratio, cavitation, np.array(ECCENTRICITIES), np.array(S), np.array(phi),
+                     np.array(F), np.array(K), np.array(C))
+
+
+@dataclass(frozen=True)
+class JournalBearing:
+    """A plain cylindrical journal bearing: its journal diameter, length and radial
+    clearance (m), the oil's dynamic viscosity (Pa s), the static load on the journal
+    (N) and its direction (a unit vector in the xy plane), the cavitation condition,
+    and the least minimum film that is fine (m)."""
+
+    diameter: float
+    length: float
+    clearance: float
+    viscosity: float
+    load: float
+    direction: tuple[float, float] = (0.0, -1.0)
+    cavitation: str = "reynolds"
+    min_film: float = 10e-6
+
+    @property
+    def ratio(self) -> float:
+        return self.length / self.diameter
+
+    def sommerfeld(self, omega: float) -> float:
+        """S = mu N L D / W (R / c)^2, N in rev/s."""
+        R = self.diameter / 2
+        return (self.viscosity * omega / (2 * math.pi) * self.length * self.diameter
+                / self.load * (R / self.clearance) ** 2)
+
+
+@dataclass(frozen=True)
+class Operating:
+    """A journal bearing at one speed: eccentricity ratio, attitude angle (rad), minimum
+    film (m), Sommerfeld number, K (N/m) and C (N s/m) on (x, y), and whether the
+    speed is beyond the table's heaviest load (the film then thinner than its last row;
+    the values are that row's)."""
+
+    speed: float
+    eccentricity: float
+    attitude: float
+    min_film: float
+    sommerfeld: float
+    K: np.ndarray
+    C: np.ndarray
+    beyond: bool = False
+
+
+def operating(b: JournalBearing, omega: float) -> Operating:
+    """The bearing at the spin omega (rad/s > 0): the film's table at its Sommerfeld
+    number, scaled by the load and turned onto the load's direction."""
+    from scipy.interpolate import PchipInterpolator
+
+    t = table(round(b.ratio, 9), b.cavitation)
+    S = b.sommerfeld(max(omega, 1e-12))
+    logS = np.log(t.sommerfeld)
+    beyond = S < t.sommerfeld[-1]
+    if S > t.sommerfeld[0]:   # lighter than eps = 1e-3: the film's linear limit
+        eps = t.eccentricity[0] * t.sommerfeld[0] / S
+        row = 0
+        scale_eps = eps / t.eccentricity[0]
+        phi, Fbar = t.attitude[0], t.force[0] * scale_eps
+        Kbar, Cbar = t.stiffness[0], t.damping[0]
+    else:
+        eps = float(PchipInterpolator(-logS, t.eccentricity)(-math.log(max(S, t.sommerfeld[-1]))))
+        at = PchipInterpolator(t.eccentricity, np.column_stack([
+            t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4)]))(eps)
+        phi, Fbar = float(at[0]), float(at[1])
+        Kbar, Cbar = at[2:6].reshape(2, 2), at[6:10].reshape(2, 2)
+        row = -1
+    del row
+    Q = rotation(math.atan2(b.direction[1], b.direction[0]) + math.pi / 2)
+    unit = b.load / (b.clearance * Fbar)
+    return Operating(speed=omega, eccentricity=float(eps), attitude=float(phi),
+                     min_film=b.clearance * (1 - float(eps)), sommerfeld=S,
+                     K=unit * (Q @ Kbar @ Q.T), C=unit / max(omega, 1e-12) * (Q @ Cbar @ Q.T),
+                     beyond=bool(beyond))
+
+
+# The speed table a journal bearing's coefficients are given to the rotor on: this
+# many speeds, spaced evenly in log(speed) from where the film lifts the journal to
+# its last table row (eccentricity 0.98) up to the top speed (between them linear: a
+# step of 1 to 4 % in speed, far below the film's own error).
+SPEED_POINTS = 161
+
+
+@dataclass(frozen=True)
+class SpeedTable:
+    """A journal bearing's coefficients against speed: speeds (rad/s, ascending), K
+    (n, 2, 2) N/m and C (n, 2, 2) N s/m; `lift`, the speed (rad/s) below which the film
+    is thinner than the table's last row (there the values are held at that row's)."""
+
+    speeds: np.ndarray
+    K: np.ndarray
+    C: np.ndarray
+    lift: float
+
+
+def speed_table(b: JournalBearing, top: float, points: int = SPEED_POINTS) -> SpeedTable:
+    """The bearing's coefficients from its lift-off speed to `top` (rad/s); a
+    ValueError if the film does not lift the journal below `top`."""
+    t = table(round(b.ratio, 9), b.cavitation)
+    lift = 2 * math.pi * t.sommerfeld[-1] / b.sommerfeld(2 * math.pi)
+    if lift >= top:
+        raise ValueError(f"the film lifts the journal (eccentricity {ECCENTRICITIES[-1]:g}) "
+                         f"only at {lift * 60 / (2 * math.pi):,.0f} r/min, above the top "
+                         f"speed {top * 60 / (2 * math.pi):,.0f} r/min")
+    speeds = np.geomspace(lift, top, points)
+    ops = [operating(b, w) for w in speeds]
+    return SpeedTable(speeds=speeds, K=np.array([o.K for o in ops]),
+                      C=np.array([o.C for o in ops]), lift=float(lift))

@@ -1,0 +1,205 @@
+"""A plain journal bearing from its film (shaftfem.parts.journal), against the closed
+forms and tables it must meet:
+
+* Ocvirk's short bearing (Ocvirk 1952; the eight coefficients as Friswell et al. 2010,
+  section 5.5, give them): the same film without its circumferential pressure flow
+  must meet them at L/D = 0.25, and the full film must approach them as L/D -> 0;
+* Raimondi and Boyd's full bearing at L/D = 1 (1958; Swift-Stieber film, oil entering
+  at the widest gap), as Shigley's table 12-4 reprints it;
+* the scene: a journal's keys refused clearly when wrong, and a rotor on two journals
+  whirling at about half its speed once the film turns it unstable (oil whip).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from shaftfem.errors import SceneError
+from shaftfem.parts import journal, oil
+from shaftfem.scene.load import load_scene
+
+PI = math.pi
+
+
+def ocvirk(e: float) -> tuple[float, np.ndarray, np.ndarray]:
+    """The short bearing at eccentricity ratio e: the modified Sommerfeld number
+    Ss = pi (L/D)^2 S, and K c / W, C c omega / W, in the frame where the load is
+    along -y (the first row and column across it, the second along it)."""
+    Ss = (1 - e**2) ** 2 / (e * math.sqrt(PI**2 * (1 - e**2) + 16 * e**2))
+    h0 = 1 / (PI**2 * (1 - e**2) + 16 * e**2) ** 1.5
+    root = math.sqrt(1 - e**2)
+    K = h0 * np.array([
+        [4 * (PI**2 * (2 - e**2) + 16 * e**2), PI * (PI**2 * (1 - e**2) ** 2 - 16 * e**4) / (e * root)],
+        [-PI * (PI**2 * (1 - e**2) * (1 + 2 * e**2) + 32 * e**2 * (1 + e**2)) / (e * root),
+         4 * (PI**2 * (1 + 2 * e**2) + 32 * e**2 * (1 + e**2) / (1 - e**2))]])
+    C = h0 * np.array([
+        [2 * PI * root * (PI**2 * (1 + 2 * e**2) - 16 * e**2) / e, -8 * (PI**2 * (1 + 2 * e**2) - 16 * e**2)],
+        [-8 * (PI**2 * (1 + 2 * e**2) - 16 * e**2), 2 * PI * (PI**2 * (1 - e**2) ** 2 + 48 * e**2) / (e * root)]])
+    return Ss, K, C
+
+
+def in_load_frame(s: journal.FilmState, ratio: float) -> tuple[float, np.ndarray, np.ndarray]:
+    """A film state as ocvirk() gives its values."""
+    F = float(np.hypot(*s.force))
+    Q = journal.rotation(-PI / 2 - (math.atan2(s.force[1], s.force[0]) + PI))
+    S = 2 * ratio / (PI * F)
+    return PI * ratio**2 * S, Q @ s.stiffness @ Q.T / F, Q @ s.damping @ Q.T / F
+
+
+@pytest.mark.parametrize("e", [0.1, 0.3, 0.5, 0.8, 0.9])
+def test_the_short_film_meets_ocvirk_at_l_over_d_one_quarter(e):
+    """Each coefficient within 2 % (away from e = 0.66, where Ocvirk's kxy passes
+    through zero)."""
+    Ss, K, C = in_load_frame(journal.state(0.25, e, "gumbel", theta_cells=480, short=True), 0.25)
+    Ss0, K0, C0 = ocvirk(e)
+    assert Ss == pytest.approx(Ss0, rel=0.02)
+    np.testing.assert_allclose(K, K0, rtol=0.02)
+    np.testing.assert_allclose(C, C0, rtol=0.02)
+
+
+def test_the_full_film_approaches_ocvirk_as_the_bearing_shortens():
+    """The circumferential flow the short bearing leaves out costs less and less."""
+    gaps = []
+    for ratio in (0.25, 0.1, 0.05):
+        Ss, K, _ = in_load_frame(journal.state(ratio, 0.5, "gumbel", theta_cells=480), ratio)
+        Ss0, K0, _ = ocvirk(0.5)
+        gaps.append(max(abs(Ss / Ss0 - 1), float(np.abs(K / K0 - 1).max())))
+    assert gaps[0] > gaps[1] > gaps[2]
+    assert gaps[2] < 0.015
+
+
+# Raimondi and Boyd, L/D = 1, full bearing: eccentricity ratio, Sommerfeld number,
+# attitude angle (deg)
+RAIMONDI_BOYD = [(0.1, 1.33, 79.5), (0.2, 0.631, 74.02), (0.4, 0.264, 63.10),
+                 (0.6, 0.121, 50.58), (0.8, 0.0446, 36.24), (0.9, 0.0188, 26.45),
+                 (0.97, 0.00474, 15.47)]
+
+
+@pytest.mark.parametrize("eps, S, phi", RAIMONDI_BOYD)
+def test_a_square_bearing_meets_raimondi_and_boyd(eps, S, phi):
+    """A bearing whose speed makes the table's Sommerfeld number: its eccentricity,
+    attitude angle and minimum film within 3 %."""
+    c = 50e-6
+    b = journal.JournalBearing(diameter=0.05, length=0.05, clearance=c, viscosity=0.02,
+                               load=1000.0)
+    omega = 2 * PI * S / b.sommerfeld(2 * PI)
+    op = journal.operating(b, omega)
+    assert op.sommerfeld == pytest.approx(S, rel=1e-12)
+    assert op.eccentricity == pytest.approx(eps, rel=0.03)
+    assert math.degrees(op.attitude) == pytest.approx(phi, rel=0.03)
+    assert op.min_film == pytest.approx(c * (1 - eps), rel=0.03)
+
+
+def test_the_table_between_its_rows_is_the_film_itself():
+    """operating() interpolates the film's table; at eccentricities between its rows it
+    gives the film solved there."""
+    b = journal.JournalBearing(diameter=0.1, length=0.05, clearance=80e-6, viscosity=0.03,
+                               load=2000.0)
+    t = journal.table(0.5)
+    for e in (0.137, 0.555, 0.9):
+        s = journal.state(0.5, e)
+        S = 2 * 0.5 / (PI * float(np.hypot(*s.force)))
+        omega = 2 * PI * S / b.sommerfeld(2 * PI)
+        op = journal.operating(b, omega)
+        assert op.eccentricity == pytest.approx(e, abs=2e-3)
+        _, K, C = in_load_frame(s, 0.5)
+        unit = b.load / b.clearance
+        np.testing.assert_allclose(op.K / unit, K, atol=0.01 * np.abs(K).max())
+        np.testing.assert_allclose(op.C * omega / unit, C, atol=0.01 * np.abs(C).max())
+    assert t.sommerfeld[0] > t.sommerfeld[-1]
+
+
+def test_a_grade_reads_its_viscosity_at_forty_degrees():
+    """ISO VG n is n mm^2/s at 40 C; hotter is thinner."""
+    for grade in (32, 46, 68):
+        assert oil.kinematic(grade, 40.0) == pytest.approx(grade * 1e-6, rel=1e-9)
+        assert oil.kinematic(grade, 100.0) == pytest.approx(oil.VI100_AT_100C[grade] * 1e-6,
+                                                            rel=1e-9)
+        assert oil.dynamic(grade, 60.0) < oil.dynamic(grade, 50.0)
+
+
+STEEL = {"name": "steel", "youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.3,
+         "density_kg_m3": 7810.0}
+
+
+def journal_rotor(mesh_mm: float = 25.0, **bearing) -> dict:
+    """A 1 m, 50 mm shaft with a 30 kg disk at its middle on two journal bearings."""
+    def support(name: str, z: float) -> dict:
+        return {"name": name, "position_mm": z, "width_mm": 25.0, "kind": "journal",
+                "radial_clearance_um": 50.0, "oil_iso_vg": 32, "oil_temperature_c": 50.0,
+                "load_n": 220.0, **bearing}
+    return {"name": "journal_rotor", "shaft": {"length_mm": 1000.0, "diameter_mm": 50.0},
+            "material": STEEL, "mesh": {"element_size_mm": mesh_mm}, "modes": {"count": 4},
+            "support": [support("left", 20.0), support("right", 980.0)],
+            "attachment": [{"name": "disk", "position_mm": 500.0, "width_mm": 40.0,
+                            "mass_kg": 30.0, "polar_inertia_kg_m2": 0.3,
+                            "diametral_inertia_kg_m2": 0.15, "joint": "distributing"}],
+            "rotor": {"speed_rpm": 4000.0, "max_speed_rpm": 12000.0, "campbell_points": 25}}
+
+
+@pytest.mark.parametrize("key, value, said", [
+    ("radial_clearance_um", 0.0, "radial_clearance_um"),
+    ("radial_clearance_um", 3000.0, "radial_clearance_um"),
+    ("viscosity_mpa_s", -3.0, "viscosity_mpa_s"),
+    ("load_n", 2e6, "load_n"),
+    ("oil_iso_vg", 33, "oil_iso_vg"),
+    ("cavitation", "elrod", "cavitation"),
+])
+def test_a_journal_refuses_what_no_film_can_be(key, value, said):
+    data = journal_rotor(**{key: value})
+    if key == "viscosity_mpa_s":
+        for s in data["support"]:
+            del s["oil_iso_vg"], s["oil_temperature_c"]
+    with pytest.raises(SceneError, match=said):
+        load_scene(data)
+
+
+def test_a_journal_needs_its_oil_once_and_a_speed():
+    data = journal_rotor(viscosity_mpa_s=20.0)
+    with pytest.raises(SceneError, match="viscosity_mpa_s, or as oil_iso_vg"):
+        load_scene(data)
+    data = journal_rotor()
+    del data["rotor"]
+    with pytest.raises(SceneError, match=r"add \[rotor\]"):
+        load_scene(data)
+    data = journal_rotor(radial_stiffness_n_per_mm=1e5)
+    with pytest.raises(SceneError, match="its film gives its stiffness"):
+        load_scene(data)
+
+
+def test_a_journal_scene_holds_its_film_against_speed():
+    scene = load_scene(journal_rotor())
+    s = scene.supports[0]
+    b = s.journal
+    assert b is not None and b.viscosity == pytest.approx(oil.dynamic(32, 50.0))
+    assert b.diameter == pytest.approx(0.05) and b.length == pytest.approx(0.025)
+    coefficients = s.bearing
+    # each speed's coefficients are the film's there
+    for w in (300.0, 700.0, 1200.0):
+        op = journal.operating(b, w)
+        np.testing.assert_allclose(coefficients.stiffness(w), op.K, rtol=2e-3,
+                                   atol=1e-3 * np.abs(op.K).max())
+        np.testing.assert_allclose(coefficients.damping(w), op.C, rtol=2e-3,
+                                   atol=1e-3 * np.abs(op.C).max())
+    # the standstill modes hold the film's direct stiffness at the operating speed
+    op = journal.operating(b, coefficients.reference)
+    assert s.radial_xy == pytest.approx((op.K[0, 0], op.K[1, 1]), rel=1e-3)
+
+
+@pytest.mark.slow
+def test_a_rotor_on_journals_whips_at_half_its_speed():
+    """Past its onset the film's cross-coupling drives the first forward mode, which
+    then whirls near half the running speed (Newkirk and Taylor's oil whip)."""
+    from shaftfem.workflows.campbell import run_campbell
+
+    c = run_campbell(load_scene(journal_rotor()))
+    assert c.onsets, "no onset of instability below 12,000 r/min"
+    first = c.onsets[0]
+    assert first.whirl == "forward"
+    assert 0.4 < first.frequency_hz / (first.speed_rpm / 60) < 0.55
+    # above the first critical speed, as Newkirk found it
+    assert first.speed_rpm > min(x.speed_rpm for x in c.critical_speeds
+                                 if x.whirl == "forward" and x.speed_rpm > 1000)
