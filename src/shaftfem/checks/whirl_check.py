@@ -153,6 +153,11 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     fails, warns = stability_findings(c)
     if c.coverage:
         warns.append(c.coverage)
+    warns += [(f"journal bearing {f.bearing!r} at {f.speed_rpm:,.0f} r/min: " + (
+        "its film does not lift the journal (eccentricity above "
+        f"{f.eccentricity:.2f}); the coefficients there are the film's at that eccentricity"
+        if not f.lifted else f"minimum film {f.min_film_um:.1f} um, below its "
+        f"{f.limit_um:g} um limit (min_film_um)")) for f in c.films if f.thin]
     check = c.crossing_check
     basis = (f"the shaft turning at {', '.join(_span_text(lo, hi) for lo, hi in spans)} "
              f"({c.frame} frame): critical speeds from 0 to {max(c.speeds_rpm):,.0f} r/min "

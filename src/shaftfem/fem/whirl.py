@@ -304,6 +304,38 @@ class Truncation:
 
 
 @dataclass(frozen=True)
+class FilmRow:
+    """A journal bearing at one operating speed (shaftfem.parts.journal): eccentricity
+    ratio, attitude angle (deg), minimum film (um), Sommerfeld number, its K (N/m) and
+    C (N s/m) as (xx, xy, yx, yy), its least allowed film (um), and whether the film
+    lifts the journal at all there (below its table's heaviest row it does not)."""
+
+    bearing: str
+    speed_rpm: float
+    eccentricity: float
+    attitude_deg: float
+    min_film_um: float
+    sommerfeld: float
+    K: tuple[float, ...]
+    C: tuple[float, ...]
+    limit_um: float
+    lifted: bool = True
+
+    @property
+    def thin(self) -> bool:
+        return not self.lifted or self.min_film_um < self.limit_um
+
+    def as_dict(self) -> dict:
+        names = ("xx", "xy", "yx", "yy")
+        return {"bearing": self.bearing, "speed_rpm": self.speed_rpm,
+                "eccentricity": self.eccentricity, "attitude_deg": self.attitude_deg,
+                "min_film_um": self.min_film_um, "sommerfeld": self.sommerfeld,
+                **{f"k{n}_n_per_m": k for n, k in zip(names, self.K)},
+                **{f"c{n}_n_s_per_m": c for n, c in zip(names, self.C)},
+                "min_film_limit_um": self.limit_um, "lifted": self.lifted}
+
+
+@dataclass(frozen=True)
 class Campbell:
     """The whirl of the turning shaft: the frame and why, the speeds (r/min) of the
     diagram, every mode at each (`whirl`), the operating speeds' rows (`operating`),
@@ -339,6 +371,8 @@ class Campbell:
     scene: Scene | None = None
     # where the highest order line leaves the frequencies searched for crossings
     coverage: str | None = None
+    # each journal bearing at each operating speed
+    films: tuple[FilmRow, ...] = ()
 
     @property
     def rotor_scene(self) -> Scene:
@@ -364,6 +398,7 @@ class Campbell:
                 "basis": {"modes": t.size, "checked_against": t.smaller,
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
+                "journal_bearings": [f.as_dict() for f in self.films],
                 "notes": list(self.notes)}
 
     def csv_rows(self) -> list[dict]:

@@ -461,6 +461,22 @@ def whirl_text(rows, title: str) -> str:
     return "\n".join(lines)
 
 
+def film_text(films) -> str:
+    """Each journal bearing's film at the operating speeds (fem.whirl.FilmRow)."""
+    head = (f"{'journal bearing':18s} {'speed':>12s} {'ecc.':>6s} {'attitude':>9s} "
+            f"{'min film':>10s} {'Sommerfeld':>10s}  K xx, xy, yx, yy (N/mm); C (N s/mm)")
+    lines = ["journal bearings at the operating speeds (Reynolds film):", head]
+    for f in films:
+        k = ", ".join(f"{v / 1e3:.4g}" for v in f.K)
+        c = ", ".join(f"{v / 1e3:.4g}" for v in f.C)
+        flag = ("  the film does not lift the journal here" if not f.lifted else
+                f"  below its {f.limit_um:g} um limit" if f.thin else "")
+        lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min {f.eccentricity:6.3f} "
+                     f"{f.attitude_deg:7.1f} deg {f.min_film_um:7.1f} um {f.sommerfeld:10.4g}  "
+                     f"K {k}; C {c}{flag}")
+    return "\n".join(lines)
+
+
 def campbell_text(c) -> str:
     """What `shaftfem campbell` prints: the frame, the whirl at each operating speed,
     the critical speeds and the basis check (a workflows.campbell.Campbell)."""
@@ -474,6 +490,8 @@ def campbell_text(c) -> str:
     for n in c.operating_rpm:
         rows = [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n]
         lines += ["", whirl_text(rows, f"at {n:,.0f} r/min ({n / 60:.2f} Hz), stationary frame:")]
+    if c.films:
+        lines += ["", film_text(c.films)]
     lines += ["", f"critical speeds, 0 to {max(c.speeds_rpm):,.0f} r/min "
               f"(orders {', '.join(f'{o}x' for o in c.orders)}; every curve):"]
     if not c.critical_speeds:

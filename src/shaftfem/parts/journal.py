@@ -34,6 +34,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -77,11 +78,11 @@ class Film:
     operators that do not depend on where the journal is."""
 
     ratio: float
-    basis: object
+    basis: Any
     free: np.ndarray          # the unknowns: nodes off the end Z = L / (2 R)
     cos: np.ndarray           # int cos(theta) v, int sin(theta) v (per node)
     sin: np.ndarray
-    periodic: object          # (nodes, unknowns): theta = pi is theta = -pi
+    periodic: Any             # (nodes, unknowns): theta = pi is theta = -pi
     at: np.ndarray            # (unknowns, 2): each unknown's (theta, Z)
 
 
@@ -334,12 +335,10 @@ def operating(b: JournalBearing, omega: float) -> Operating:
     t = table(round(b.ratio, 9), b.cavitation)
     S = b.sommerfeld(max(omega, 1e-12))
     logS = np.log(t.sommerfeld)
-    beyond = S < t.sommerfeld[-1]
-    if S > t.sommerfeld[0]:   # lighter than eps = 1e-3: the film's linear limit
+    beyond = t.sommerfeld[-1] > S
+    if t.sommerfeld[0] < S:   # lighter than the first row: the film's linear limit
         eps = t.eccentricity[0] * t.sommerfeld[0] / S
-        row = 0
-        scale_eps = eps / t.eccentricity[0]
-        phi, Fbar = t.attitude[0], t.force[0] * scale_eps
+        phi, Fbar = t.attitude[0], t.force[0] * eps / t.eccentricity[0]
         Kbar, Cbar = t.stiffness[0], t.damping[0]
     else:
         eps = float(PchipInterpolator(-logS, t.eccentricity)(-math.log(max(S, t.sommerfeld[-1]))))
@@ -347,8 +346,6 @@ def operating(b: JournalBearing, omega: float) -> Operating:
             t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4)]))(eps)
         phi, Fbar = float(at[0]), float(at[1])
         Kbar, Cbar = at[2:6].reshape(2, 2), at[6:10].reshape(2, 2)
-        row = -1
-    del row
     Q = rotation(math.atan2(b.direction[1], b.direction[0]) + math.pi / 2)
     unit = b.load / (b.clearance * Fbar)
     return Operating(speed=omega, eccentricity=float(eps), attitude=float(phi),

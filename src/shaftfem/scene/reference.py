@@ -14,7 +14,8 @@ UNITS = {
     "_mm": "mm", "_mpa": "MPa", "_kg_m3": "kg/m^3", "_rpm": "r/min", "_kw": "kW",
     "_deg": "deg", "_n_per_mm": "N/mm", "_n_s_per_mm": "N s/mm", "_nmm_per_rad": "N mm/rad",
     "_kg": "kg", "_g_mm": "g mm",
-    "_kg_m2": "kg m^2", "_percent": "%", "_hz": "Hz",
+    "_kg_m2": "kg m^2", "_percent": "%", "_hz": "Hz", "_um": "um", "_mpa_s": "mPa s",
+    "load_n": "N", "_temperature_c": "C",
 }
 
 HEAD = """\
@@ -25,6 +26,10 @@ supports and parts, and what excites it. `geometry/paper2018.toml` is the paper'
 copy a shipped scene and change it. Every key names its unit (`_mm`, `_mpa`, `_rpm`,
 ...); inside, shaftfem works in SI. Unknown keys, wrong types and values out of range
 are errors that name the file, the key, the value and what is allowed (exit status 2).
+
+A bearing given by its physics rather than its coefficients has its own page: [journal
+bearings](journal-bearing.md) (`kind = "journal"`: the oil film's model, equations,
+inputs and checks).
 
 This page is generated from the schema in `shaftfem.scene.schema` by
 `python scripts/write_docs.py`; a test fails when the two disagree.

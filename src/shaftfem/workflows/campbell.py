@@ -26,6 +26,7 @@ from shaftfem.fem.whirl import (
     CriticalSpeed,
     CrossingCheck,
     Curve,
+    FilmRow,
     Onset,
     Stability,
     Truncation,
@@ -421,7 +422,33 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     synchronous_check=check.largest_difference, crossing_check=check,
                     curves=tuple(curves), stability=stability,
                     ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges),
-                    scene=scene, coverage=coverage)
+                    scene=scene, coverage=coverage, films=film_rows(scene))
+
+
+def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
+    """Each journal bearing at each operating speed and range end: its film there."""
+    import math
+
+    from shaftfem.parts.journal import operating
+
+    rotor = scene.rotor
+    if rotor is None:
+        return ()
+    speeds = sorted({*rotor.speeds, *(w for span in rotor.spans for w in span)})
+    rows = []
+    for s in scene.held:
+        b = s.journal
+        if b is None:
+            continue
+        for w in speeds:
+            op = operating(b, w)
+            rows.append(FilmRow(
+                bearing=s.name, speed_rpm=w / RPM, eccentricity=op.eccentricity,
+                attitude_deg=math.degrees(op.attitude), min_film_um=op.min_film * 1e6,
+                sommerfeld=op.sommerfeld, K=tuple(float(v) for v in op.K.ravel()),
+                C=tuple(float(v) for v in op.C.ravel()), limit_um=b.min_film * 1e6,
+                lifted=not op.beyond))
+    return tuple(rows)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
