@@ -79,18 +79,22 @@ class RotorModel:
     turning: np.ndarray
     kinds: tuple[str, ...]
     shapes: np.ndarray | None = None   # the basis as nodal shapes (3 n, N), if kept
+    residual: int = 0   # the last columns: the bearings' residual modes (residual_modes)
 
     @property
     def size(self) -> int:
         return self.omega2.size
 
     def truncated(self, n: int) -> RotorModel:
-        """The same rotor on its first n modes."""
-        return replace(self, omega2=self.omega2[:n], G=self.G[:n, :n], K2=self.K2[:n, :n],
-                       bearings=tuple(replace(b, beta=b.beta[:, :n]) for b in self.bearings),
-                       lateral=self.lateral[:n, :n], turning=self.turning[:n, :n],
-                       kinds=self.kinds[:n],
-                       shapes=None if self.shapes is None else self.shapes[:, :n])
+        """The same rotor on its first n modes (and its residual modes)."""
+        k = np.r_[np.arange(min(n, self.size - self.residual)),
+                  np.arange(self.size - self.residual, self.size)]
+        box = np.ix_(k, k)
+        return replace(self, omega2=self.omega2[k], G=self.G[box], K2=self.K2[box],
+                       bearings=tuple(replace(b, beta=b.beta[:, k]) for b in self.bearings),
+                       lateral=self.lateral[box], turning=self.turning[box],
+                       kinds=tuple(self.kinds[i] for i in k),
+                       shapes=None if self.shapes is None else self.shapes[:, k])
 
     def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
         """(D, K) of q'' + D q' + K q = 0 at the spin omega (rad/s)."""
@@ -186,18 +190,29 @@ def lateral_rigid(result: ModalResult) -> np.ndarray:
     return np.asarray(inst.T @ q) if inst is not None else q
 
 
-def rotor_model(result: ModalResult, frame: str, rigid: bool = False) -> RotorModel:
+def rotor_model(result: ModalResult, frame: str, rigid: bool = False, residual: bool = True
+                ) -> RotorModel:
     """The turning shaft of `result` (an order-1 or order-2 modal run, its elastic
     modes the basis) in `frame` ("stationary" or "rotating"); with `rigid`, the basis
     also holds the sideways rigid motions the supports leave free (lateral_rigid), at
-    zero frequency: what a forced response needs of a shaft its bearings do not hold."""
+    zero frequency: what a forced response needs of a shaft its bearings do not hold.
+    With `residual` (and bearings), the basis also holds their residual modes
+    (residual_modes), last: the bearings' coefficients at any speed then enter exactly
+    to first order, whatever the standstill modes held of them."""
+    from shaftfem.fem.modes import classify, energy_split
+
     if frame not in FRAMES:
         raise ValueError(f"frame {frame!r}: one of {FRAMES}")
     system, modes = result.system, result.modes
     if system.order > 2:
         raise SolverError("the turning shaft takes element orders 1 and 2")
     free = lateral_rigid(result) if rigid else np.zeros((modes.shapes.shape[0], 0))
-    Phi = np.hstack([free, modes.shapes]) if free.shape[1] else modes.shapes   # (3 n, N)
+    seats = seat_loads(result) if residual else np.zeros((system.n_dofs, 0))
+    q = static_shapes(result, np.column_stack([spin_load(result), seats]), reduced=True)
+    inst = result.installed
+    spin_u = inst.T @ q[:, 0] if inst is not None else q[:, 0]
+    extra, w2 = residual_modes(result, q[:, 1:])
+    Phi = np.hstack([free, modes.shapes, extra])   # (3 n, N)
     Ms = system.mass_scalar
     X, Y = Phi[0::3], Phi[1::3]
     MX, MY = Ms @ X, Ms @ Y
@@ -205,7 +220,7 @@ def rotor_model(result: ModalResult, frame: str, rigid: bool = False) -> RotorMo
     lateral = X.T @ MX + Y.T @ MY
     turning = 1j * (Mxy - Mxy.T)
     basis = spin_basis(result)
-    Ksig, B = spin_stiffness(result, basis, with_flow=frame == "stationary")
+    Ksig, B = spin_stiffness(result, basis, with_flow=frame == "stationary", u=spin_u)
     components = (X, Y, Phi[2::3])
     K2 = sum(P.T @ (Ksig @ P) for P in components)
     if frame == "stationary":
@@ -220,11 +235,62 @@ def rotor_model(result: ModalResult, frame: str, rigid: bool = False) -> RotorMo
         Gp, Kp = part_matrices(part.mass, part.polar_inertia, part.diametral_inertia, frame)
         G = G + psi.T @ Gp @ psi
         K2 = K2 + psi.T @ Kp @ psi
-    omega2 = np.concatenate([np.zeros(free.shape[1]), (2 * math.pi * modes.frequencies) ** 2])
+    omega2 = np.concatenate([np.zeros(free.shape[1]), (2 * math.pi * modes.frequencies) ** 2,
+                             w2])
+    kinds = tuple(classify(e) for e in energy_split(extra, system.nodes, Ms))
     return RotorModel(frame=frame, omega2=omega2, G=0.5 * (G - G.T), K2=0.5 * (K2 + K2.T),
                       bearings=bearing_modal(result, Phi), lateral=lateral,
                       turning=0.5 * (turning + turning.conj().T),
-                      kinds=("rigid",) * free.shape[1] + tuple(modes.kinds), shapes=Phi)
+                      kinds=("rigid",) * free.shape[1] + tuple(modes.kinds) + kinds, shapes=Phi,
+                      residual=extra.shape[1])
+
+
+def seat_loads(result: ModalResult) -> np.ndarray:
+    """A unit force on each bearing's seat along x and along y, as its mean motion reads
+    it (the force c with q = c . u), (3 n, 2 b) N; no columns without bearings."""
+    from shaftfem.fem.installation import seat_radius
+    from shaftfem.fem.supports import seat_restraints, surface_weights
+
+    scene, system = result.scene, result.system
+    cols = []
+    for s in scene.held:
+        if s.bearing is None:
+            continue
+        radius = seat_radius(scene, system.nodes, s.seat)
+        w = surface_weights(result.mesh.to_skfem(), system.order, radius, s.seat)
+        unit = replace(s, kind="springs", radial=1.0, axial=0.0, tilting=0.0, bearing=None)
+        for r in seat_restraints(unit, system.nodes, w)[:2]:
+            f = np.zeros(system.n_dofs)
+            f[r.dofs] = r.coeffs
+            cols.append(f)
+    return np.column_stack(cols) if cols else np.zeros((system.n_dofs, 0))
+
+
+def residual_modes(result: ModalResult, static: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """What the bearings' static shapes `static` (reduced coordinates, as static_shapes
+    gives them) hold beyond the standstill modes: their part M-orthogonal to the modes,
+    diagonalised on its own, as pseudo-modes (3 n, r) with their w^2 (r,). The modes are
+    eigenvectors, so the two blocks are K- and M-orthogonal and the basis stays
+    diagonal. With them any change of the bearings' coefficients is taken exactly to
+    first order in (w / w_N)^2: a bearing's force on the shaft moves it along its seat's
+    static shape, which is in the basis (MacNeal's residual flexibility)."""
+    import scipy.linalg
+    from scipy.sparse.linalg import splu
+
+    inst = result.installed
+    if inst is None or static.shape[1] == 0:
+        return np.zeros((result.system.n_dofs, 0)), np.zeros(0)
+    T = inst.T.tocsc()
+    Q = splu((T.T @ T).tocsc()).solve(np.asarray(T.T @ result.modes.shapes))
+    R = static - Q @ (Q.T @ (inst.M @ static))
+    R = R - Q @ (Q.T @ (inst.M @ R))                 # twice is enough
+    Mr, Kr = R.T @ (inst.M @ R), R.T @ (inst.K @ R)
+    m, V = np.linalg.eigh(0.5 * (Mr + Mr.T))
+    keep = m > RESIDUAL_RANK * m.max()
+    B = V[:, keep] / np.sqrt(m[keep])                # M-orthonormal combinations
+    w2, U = scipy.linalg.eigh(B.T @ (0.5 * (Kr + Kr.T)) @ B)
+    return inst.T @ (R @ (B @ U)), w2
 
 
 def spin_basis(result: ModalResult):
@@ -251,17 +317,17 @@ def spin_derivative(result: ModalResult, basis) -> sp.csr_matrix:
     return (result.scene.material.density * flow.assemble(basis)).tocsr()
 
 
-def spin_stiffness(result: ModalResult, basis, with_flow: bool
+def spin_stiffness(result: ModalResult, basis, with_flow: bool, u: np.ndarray | None = None
                    ) -> tuple[sp.csr_matrix, sp.csr_matrix | None]:
     """Per (rad/s)^2, on the scalar basis: the stiffening by the stress of the shaft's
     own spin, int sigma_ij d_i phi_a d_j phi_b dV with sigma from K u = int rho P x
-    (the centrifugal load of a unit spin, its rigid part taken out), and, with
+    (the centrifugal load of a unit spin, its rigid part taken out; `u` if given), and, with
     `with_flow`, the stationary frame's softening int rho d_theta phi_a d_theta phi_b
     dV. On a solid of revolution the two cancel on a rigid tilt or turn (the spin
     stress's virial is its centrifugal load's moment)."""
     from skfem import BilinearForm
 
-    u = _spin_displacement(result)
+    u = static_shapes(result, spin_load(result)[:, None])[:, 0] if u is None else u
     grad = np.stack([basis.interpolate(u[c::3]).grad for c in range(3)])   # (3, 3, E, Q)
     eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
     lam, mu = result.scene.material.lame
@@ -288,6 +354,10 @@ def spin_stiffness(result: ModalResult, basis, with_flow: bool
     return Ksig, (rho * flow.assemble(basis)).tocsr()
 
 
+# A bearing's static shape whose part beyond the modes has less than this share of the
+# largest one's mass norm adds nothing new.
+RESIDUAL_RANK = 1e-10
+
 # The static solve of the spin load: shifted by this share of the lowest elastic
 # eigenvalue and iterated (each step gains about this factor) ...
 STATIC_SHIFT = 1e-2
@@ -295,22 +365,29 @@ STATIC_SHIFT = 1e-2
 STATIC_STEPS = 8
 
 
-def _spin_displacement(result: ModalResult) -> np.ndarray:
-    """The shaft's displacement under the centrifugal load of a unit spin (m per
-    (rad/s)^2) on every node, its rigid motions taken out: (K + s M) u_k+1 = f + s M u_k
-    from the run's pencil (installed or free), which converges to K u = f on the
-    elastic modes without a singular factorisation."""
+def spin_load(result: ModalResult) -> np.ndarray:
+    """The centrifugal load of a unit spin on every DOF (N per (rad/s)^2): rho x, rho y."""
+    system = result.system
+    f = np.zeros(system.n_dofs)
+    for c in (0, 1):
+        f[c::3] = system.mass_scalar @ system.nodes[:, c]
+    return f
+
+
+def static_shapes(result: ModalResult, loads: np.ndarray, reduced: bool = False) -> np.ndarray:
+    """The shaft's displacement (3 n, m) under each load (3 n, m; N on every DOF), its
+    rigid motions taken out: (K + s M) u_k+1 = f + s M u_k from the run's pencil
+    (installed or free), which converges to K u = f on the elastic modes without a
+    singular factorisation; one factorisation for every load. With `reduced`, in the
+    installed pencil's own coordinates."""
     from shaftfem.fem.factor import factorise
     from shaftfem.fem.supports import rigid_body_modes
 
     system, inst = result.system, result.installed
-    f = np.zeros(system.n_dofs)
-    for c in (0, 1):
-        f[c::3] = system.mass_scalar @ system.nodes[:, c]
     if inst is not None:
-        K, M, R, f = inst.K, inst.M, inst.rigid, inst.T.T @ f
+        K, M, R, f = inst.K, inst.M, inst.rigid, inst.T.T @ loads
     else:
-        K, M, R = system.K, system.M, rigid_body_modes(system.nodes)
+        K, M, R, f = system.K, system.M, rigid_body_modes(system.nodes), loads
     if R.shape[1]:
         lam, V = np.linalg.eigh(R.T @ (M @ R))
         R = R @ (V / np.sqrt(lam))               # M-orthonormal
@@ -319,9 +396,9 @@ def _spin_displacement(result: ModalResult) -> np.ndarray:
     f = f - M @ (R @ (R.T @ f))
     u = np.zeros_like(f)
     for _ in range(STATIC_STEPS):
-        u = solve(f + s * (M @ u))
+        u = np.column_stack([solve(np.ascontiguousarray(col)) for col in (f + s * (M @ u)).T])
         u = u - R @ (R.T @ (M @ u))
-    return inst.T @ u if inst is not None else u
+    return inst.T @ u if inst is not None and not reduced else u
 
 
 def part_matrices(mass: float, polar: float, diametral: float, frame: str

@@ -373,6 +373,14 @@ class Campbell:
     coverage: str | None = None
     # each journal bearing at each operating speed
     films: tuple[FilmRow, ...] = ()
+    # the basis the whirl is solved on, as nodal shapes (3 n, N): the standstill modes
+    # and the bearings' residual modes (None: the standstill modes alone)
+    basis: np.ndarray | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def basis_shapes(self) -> np.ndarray:
+        """u = basis_shapes @ y for the whirl's modal coordinates y."""
+        return self.result.modes.shapes if self.basis is None else self.basis
 
     @property
     def rotor_scene(self) -> Scene:

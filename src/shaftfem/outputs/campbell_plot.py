@@ -233,7 +233,7 @@ def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray]]:
         if cs.order != 1 or cv is None:
             continue
         i = int(np.argmin(np.abs(cv.speeds_rpm - cs.speed_rpm)))
-        u = r.modes.shapes @ cv.shapes[:, i]
+        u = c.basis_shapes @ cv.shapes[:, i]
         x = np.bincount(slot, mass * u[0::3].real, SLICES) + 1j * np.bincount(
             slot, mass * u[0::3].imag, SLICES)
         y = np.bincount(slot, mass * u[1::3].real, SLICES) + 1j * np.bincount(

@@ -25,7 +25,7 @@ def complex_shapes(c: Campbell, i: int) -> np.ndarray:
     scaled to a largest displacement of 1."""
     r = c.result
     Y = c.operating_shapes[i]
-    U = r.modes.shapes @ Y                                      # (3 n, m) complex
+    U = c.basis_shapes @ Y                                      # (3 n, m) complex
     pts = r.system.at_points(U.real) + 1j * r.system.at_points(U.imag)
     scale = np.abs(pts).reshape(pts.shape[0], -1).max(axis=1)
     return pts / scale[:, None, None]

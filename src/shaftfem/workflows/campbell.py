@@ -422,7 +422,8 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     synchronous_check=check.largest_difference, crossing_check=check,
                     curves=tuple(curves), stability=stability,
                     ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges),
-                    scene=scene, coverage=coverage, films=film_rows(scene))
+                    scene=scene, coverage=coverage, films=film_rows(scene),
+                    basis=model.shapes)
 
 
 def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
