@@ -257,6 +257,6 @@ def ring_stiffness(s: Support) -> tuple[float, ...]:
     if s.kind in rigid:
         radial, axial = rigid[s.kind]
         return (radial, radial, axial, 0.0, 0.0, 0.0)
-    tilting = s.tilting if s.kind in ("springs", "bearing", "journal") else 0.0
+    tilting = s.tilting if s.kind in ("springs", "bearing", "journal", "ball", "roller") else 0.0
     kx, ky = s.radial_xy
     return (kx, ky, s.axial, tilting, tilting, 0.0)

@@ -191,6 +191,10 @@ class Support(_Table):
     load_angle_deg: Number | None = None
     cavitation: str | None = None
     min_film_um: Number | None = None
+    elements: int | None = None
+    element_diameter_mm: Number | None = None
+    roller_length_mm: Number | None = None
+    contact_angle_deg: Number | None = None
     coupling: str | None = None
 
 

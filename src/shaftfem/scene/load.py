@@ -332,7 +332,38 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
 
 
 JOURNAL_KEYS = ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", "oil_iso_vg",
-                "oil_temperature_c", "load_n", "load_angle_deg", "cavitation", "min_film_um")
+                "oil_temperature_c", "cavitation", "min_film_um")
+ROLLING_KEYS = ("elements", "element_diameter_mm", "roller_length_mm", "contact_angle_deg")
+# the keys each kind of bearing from its physics takes
+PHYSICS_KEYS = {"journal": (*JOURNAL_KEYS, "load_n", "load_angle_deg"),
+                "ball": ("elements", "element_diameter_mm", "contact_angle_deg", "load_n",
+                         "load_angle_deg"),
+                "roller": ("elements", "roller_length_mm", "contact_angle_deg", "load_n",
+                           "load_angle_deg")}
+
+
+def _rolling(source: str, table: str, t: dict) -> BearingCoefficients:
+    """A ball or roller bearing's constant coefficients from its elements and load
+    (shaftfem.parts.rolling), turned onto the load's direction."""
+    from shaftfem.parts import rolling
+
+    size_key = "element_diameter_mm" if t["kind"] == "ball" else "roller_length_mm"
+    for key in ("elements", size_key, "load_n"):
+        if t[key] is None:
+            raise SceneError(f"{where(source, table, key)}: missing (kind = \"{t['kind']}\" "
+                             "needs the number of elements, their "
+                             + ("diameter" if t["kind"] == "ball" else "length")
+                             + ", mm, and the radial load, N)")
+    along, across = rolling.stiffness(t["kind"], t["elements"], t[size_key] * MM, t["load_n"],
+                                      math.radians(t["contact_angle_deg"]))
+    a = math.radians(t["load_angle_deg"])
+    c, s = math.cos(a), math.sin(a)
+    # along the load's direction (c, s), across it (-s, c)
+    kxx, kyy = along * c * c + across * s * s, along * s * s + across * c * c
+    kxy = (along - across) * c * s
+    d = rolling.DAMPING_TIME
+    return BearingCoefficients(speeds=(), kxx=(kxx,), kxy=(kxy,), kyx=(kxy,), kyy=(kyy,),
+                               cxx=(d * kxx,), cxy=(d * kxy,), cyx=(d * kxy,), cyy=(d * kyy,))
 
 
 def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
@@ -419,10 +450,12 @@ def _support(source: str, i: int, t: dict) -> Support:
         if t["radial_stiffness_n_per_mm"] is None:
             raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: missing "
                              "(kind = \"springs\" needs the bearing's radial stiffness, N/mm)")
-    elif t["kind"] == "journal":
+    elif t["kind"] in PHYSICS_KEYS:
         if t["radial_stiffness_n_per_mm"] is not None:
             raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: not with "
-                             "kind = \"journal\": its film gives its stiffness")
+                             f"kind = \"{t['kind']}\": its "
+                             + ("film gives" if t["kind"] == "journal" else "elements give")
+                             + " its stiffness")
     elif t["kind"] == "bearing":
         if t["radial_stiffness_n_per_mm"] is not None:
             raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: not with "
@@ -435,16 +468,19 @@ def _support(source: str, i: int, t: dict) -> Support:
         for key in springs:
             if t[key] is not None:
                 raise SceneError(f"{where(source, table, key)} = {t[key]:g}: only with kind = "
-                                 f"\"springs\", \"bearing\" or \"journal\" (this support is "
-                                 f"{t['kind']!r})")
-    if t["kind"] != "journal":
-        for key in JOURNAL_KEYS:
-            if t[key] is not None and SCHEMA["support"][key].default != t[key]:
-                raise SceneError(f"{where(source, table, key)} = {t[key]!r}: only with kind = "
-                                 f"\"journal\" (this support is {t['kind']!r})")
-    elif t["coupling"] == "rigid":
-        raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a journal's film "
-                         "acts on the seat's mean motion; leave coupling out")
+                                 "\"springs\", \"bearing\", \"journal\", \"ball\" or "
+                                 f"\"roller\" (this support is {t['kind']!r})")
+    takes = PHYSICS_KEYS.get(t["kind"], ())
+    for key in (*JOURNAL_KEYS, *ROLLING_KEYS, "load_n", "load_angle_deg"):
+        if key not in takes and t[key] is not None and SCHEMA["support"][key].default != t[key]:
+            kinds = " or ".join(f'"{k}"' for k, keys in PHYSICS_KEYS.items() if key in keys)
+            raise SceneError(f"{where(source, table, key)} = {t[key]!r}: only with kind = "
+                             f"{kinds} (this support is {t['kind']!r})")
+    if takes and t["coupling"] == "rigid":
+        raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a {t['kind']} "
+                         "bearing acts on the seat's mean motion; leave coupling out")
+    if t["kind"] in ("ball", "roller"):
+        bearing = _rolling(source, table, t)
     if t["kind"] != "bearing":
         for key in (*BEARING_KEYS, "speeds_rpm"):
             if t[key] is not None:

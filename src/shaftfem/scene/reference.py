@@ -27,9 +27,10 @@ copy a shipped scene and change it. Every key names its unit (`_mm`, `_mpa`, `_r
 ...); inside, shaftfem works in SI. Unknown keys, wrong types and values out of range
 are errors that name the file, the key, the value and what is allowed (exit status 2).
 
-A bearing given by its physics rather than its coefficients has its own page: [journal
-bearings](journal-bearing.md) (`kind = "journal"`: the oil film's model, equations,
-inputs and checks).
+A bearing given by its physics rather than its coefficients has its own page (the
+model, equations, inputs and checks): [journal bearings](journal-bearing.md)
+(`kind = "journal"`) and [rolling bearings](rolling-bearing.md) (`kind = "ball"`,
+`"roller"`).
 
 This page is generated from the schema in `shaftfem.scene.schema` by
 `python scripts/write_docs.py`; a test fails when the two disagree.

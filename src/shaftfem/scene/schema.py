@@ -23,7 +23,8 @@ MAX_DOFS_LIMIT = 20_000_000
 # element orders (1, 2: Lagrange; 3 on: hierarchical) and degrees of the elements' map
 ELEMENT_ORDERS = (1, 2, 3, 4, 5)
 GEOMETRY_ORDERS = (2, 3)
-SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs", "bearing", "journal")
+SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs", "bearing", "journal", "ball",
+                 "roller")
 CAVITATION = ("reynolds", "gumbel")
 # ISO 3448 viscosity grades shaftfem knows the temperature line of (shaftfem.parts.oil)
 ISO_VG = (10, 15, 22, 32, 46, 68, 100, 150, 220, 320, 460, 680)
@@ -221,8 +222,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
                     "stiffnesses below), \"bearing\" (a rotor bearing's stiffness and damping "
                     "coefficients kxx ... cyx, constant or against speed), \"journal\" (a plain "
                     "oil-film journal bearing from its clearance, oil and load: its coefficients "
-                    "at each speed from Reynolds' equation, docs/journal-bearing.md); rigid, "
-                    "springs, bearing and journal let the shaft tilt and turn",
+                    "at each speed from Reynolds' equation, docs/journal-bearing.md), \"ball\" "
+                    "or \"roller\" (a rolling bearing from its elements and load, Hertz "
+                    "contact, docs/rolling-bearing.md); all but rigid-radial and clamped let "
+                    "the shaft tilt and turn",
                     lambda v: v in SUPPORT_KINDS, ", ".join(f'"{k}"' for k in SUPPORT_KINDS)),
         "kxx_n_per_mm": coefficient(
             "direct stiffness along x, N/mm (kind = \"bearing\")", direct=True),
@@ -273,9 +276,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
                           required=False),
         "oil_temperature_c": Key(float, "the film's mean temperature, C (with oil_iso_vg)",
                                  lambda v: -20 <= v <= 200, "in [-20, 200] C", required=False),
-        "load_n": Key(float, "the static load the journal carries, N (kind = \"journal\")",
+        "load_n": Key(float, "the static radial load the bearing carries, N (kind = "
+                      "\"journal\", \"ball\", \"roller\")",
                       *upto(1e8, "up to 10^8 N"), required=False),
-        "load_angle_deg": Key(float, "direction of that load on the journal, deg from +x "
+        "load_angle_deg": Key(float, "direction of that load on the shaft, deg from +x "
                               "towards +y (default -90: along -y, the shaft's weight with y up)",
                               lambda v: -360 <= v <= 360, "in [-360, 360]", default=-90.0,
                               required=False),
@@ -287,6 +291,17 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "min_film_um": Key(float, "the thinnest film that is fine at an operating speed, um "
                            f"(kind = \"journal\"; default {DEFAULT_MIN_FILM_UM:g})",
                            *upto(10_000, "up to 10 mm"), required=False),
+        "elements": Key(int, "number of balls or rollers (kind = \"ball\", \"roller\")",
+                        lambda v: 6 <= v <= 24, "in [6, 24] (where the share across the load "
+                        "is known)", required=False),
+        "element_diameter_mm": Key(float, "ball diameter, mm (kind = \"ball\")",
+                                   *upto(500, "up to 500 mm"), required=False),
+        "roller_length_mm": Key(float, "effective roller length, mm (kind = \"roller\")",
+                                *upto(500, "up to 500 mm"), required=False),
+        "contact_angle_deg": Key(float, "contact angle, deg (kind = \"ball\", \"roller\"; "
+                                 "0 for a deep-groove or cylindrical roller bearing)",
+                                 lambda v: 0 <= v < 60, "in [0, 60)", default=0.0,
+                                 required=False),
         "coupling": coupling(
             "how the bearing holds its seat: \"distributing\" (default: the seat band's "
             "mean motion, the section under it free to deform, as a ball bearing on a "
