@@ -28,7 +28,7 @@ _LAZY = {
     **{name: "shaftfem.scene.builders" for name in (
         "make_scene", "vary", "Shaft", "Section", "Keyway", "Material", "Mesh", "Grooves",
         "Support", "Attachment", "Excitation", "Rotor", "Unbalance", "Resonance",
-        "ModesWanted", "Response")},
+        "ModesWanted", "Response", "Static", "Force")},
     "RunOptions": "shaftfem.runtime",
     "ModalResult": "shaftfem.fem.result",
     "run_modes": "shaftfem.workflows.pipeline",
@@ -76,6 +76,7 @@ if TYPE_CHECKING:
     from shaftfem.scene.builders import (
         Attachment,
         Excitation,
+        Force,
         Grooves,
         Keyway,
         Material,
@@ -86,6 +87,7 @@ if TYPE_CHECKING:
         Rotor,
         Section,
         Shaft,
+        Static,
         Support,
         Unbalance,
         make_scene,

@@ -169,6 +169,22 @@ def cmd_campbell(args) -> int:
     return 0
 
 
+def cmd_static(args) -> int:
+    from shaftfem.outputs.tables import static_text
+    from shaftfem.workflows.static import run_static
+
+    result = run_static(_scene(args), _options(args))
+    print(static_text(result))
+    if args.out:
+        from shaftfem.outputs.plots import save_png, static_figure
+
+        path = save_png(static_figure(result), Path(args.out) / "static.png")
+        print(f"wrote {path}")
+    if args.json:
+        _write_json(args.json, {"scene": result.scene.name, **result.as_dict()})
+    return 0
+
+
 def cmd_check(args) -> int:
     from shaftfem.checks.resonance import check_result
     from shaftfem.outputs.tables import verdict_text

@@ -131,6 +131,9 @@ def build_parser() -> argparse.ArgumentParser:
     cb.add_argument("--speeds-rpm", type=_speed_range, metavar="START:STOP:N",
                     help="the diagram's speeds, r/min (default: 0 to [rotor] max_speed_rpm at "
                     "[rotor] campbell_points)")
+    _modal_command(sub, "static", "the installed shaft under its static loads (its weight, "
+                   "[[force]]): each support's reaction and the deflection line; static.png "
+                   "in --out", cmd.cmd_static, out="optional")
     _modal_command(sub, "paper", "the paper's Table 2 and stated sizing beside ours",
                    cmd.cmd_paper, json=False)
     sw = _dask_command(sub, "sweep", "run many variants of a scene on Dask (resumable)",

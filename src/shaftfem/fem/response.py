@@ -33,6 +33,8 @@ from shaftfem.errors import SceneError
 from shaftfem.fem.supports import part_mass, rigid_body_modes
 
 if TYPE_CHECKING:
+    from shaftfem.fem.assembly import System
+    from shaftfem.fem.installation import Installed
     from shaftfem.fem.result import ModalResult
 
 # Base-motion directions: unit translations and the turn about the shaft axis.
@@ -82,32 +84,32 @@ class ModalBasis:
     totals: np.ndarray
 
 
+def inertia_load(system: System, inst: Installed, direction: str) -> tuple[np.ndarray, float]:
+    """The load (reduced coordinates, N) of a unit acceleration of the shaft and its parts
+    along `direction` (DIRECTIONS: rad/s^2 for the turn), M r, and r^T M r (kg)."""
+    M = system.M if inst.M_carried is None else system.M + inst.M_carried
+    r, rp = influence(system.nodes, len(inst.tied), direction)
+    Mr = M @ r
+    L = np.asarray(inst.T.T @ Mr).ravel()
+    total = float(r @ Mr)
+    first = inst.parts_from
+    for k, a in enumerate(inst.parts):
+        m6 = part_mass(a)
+        L[first + 6 * k:first + 6 * k + 6] += m6 @ rp[k]
+        total += float(rp[k] @ m6 @ rp[k])
+    return L, total
+
+
 def modal_basis(result: ModalResult) -> ModalBasis:
     """The result's modes in reduced coordinates with the base-motion loads."""
     inst, system = result.installed, result.system
     if inst is None or not result.scene.held:
         raise SceneError(f"{result.scene.source}: no [[support]] holds the shaft: base "
                          "motion needs supports to come through")
-    T = inst.T
-    M = system.M if inst.M_carried is None else system.M + inst.M_carried  # parts carried
-    # on distributing joints move with the band's mean: their loads come through M
-    Tt = T.T.tocsr()
-    normal = splu((Tt @ T).tocsc())
+    Tt = inst.T.T.tocsr()
+    normal = splu((Tt @ inst.T).tocsc())
     X = normal.solve(np.asarray(Tt @ result.modes.shapes))   # exact: the shapes are T q
-    n_parts = len(inst.tied)
-    first = inst.parts_from
-    masses = [part_mass(a) for a in inst.parts]
-    loads, totals = [], []
-    for d in DIRECTIONS:
-        r, rp = influence(system.nodes, n_parts, d)
-        Mr = M @ r
-        L = np.asarray(Tt @ Mr).ravel()
-        total = float(r @ Mr)
-        for k, m6 in enumerate(masses):
-            L[first + 6 * k:first + 6 * k + 6] += m6 @ rp[k]
-            total += float(rp[k] @ m6 @ rp[k])
-        loads.append(L)
-        totals.append(total)
+    loads, totals = zip(*(inertia_load(system, inst, d) for d in DIRECTIONS))
     R = inst.rigid
     if R.shape[1]:
         G = R.T @ (inst.M @ R)

@@ -254,6 +254,9 @@ def ring_stiffness(s: Support) -> tuple[float, ...]:
     where free (a bearing: its kxx and kyy at standstill; what it adds turning, the
     rotor model adds: fem.rotor)."""
     rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
+    if s.kind == "journal" and s.bearing is None:
+        raise SolverError(f"journal bearing {s.name!r} has no load yet: its film needs the "
+                          "static loads solved first (workflows.static.with_journal_loads)")
     if s.kind in rigid:
         radial, axial = rigid[s.kind]
         return (radial, radial, axial, 0.0, 0.0, 0.0)

@@ -162,3 +162,24 @@ def modes_figure(frequencies, low, high, kinds: list[str],
     ax.grid(True, axis="x", alpha=0.3)
     ax.legend(fontsize=7, loc="lower right")
     return fig
+
+
+def static_figure(result):
+    """The deflection line (um) along the shaft (mm), x and y, with the supports'
+    reactions (N) marked (a workflows.static.StaticResult)."""
+    s = result.solution
+    fig, ax = _figure((8, 3.6))
+    ax.plot(s.z * 1e3, s.y * 1e6, color="C0", label="y")
+    if abs(s.x).max() > 1e-3 * max(abs(s.y).max(), 1e-300):
+        ax.plot(s.z * 1e3, s.x * 1e6, color="C1", ls="--", label="x")
+    for r in s.reactions:
+        ax.axvline(r.position * 1e3, color="0.6", lw=0.8)
+        fx, fy = (v if abs(v) >= 0.5 else 0.0 for v in r.force[:2])   # no "-0"
+        ax.annotate(f"{r.name}\n{fx:,.0f}, {fy:,.0f} N", (r.position * 1e3, 0),
+                    textcoords="offset points", xytext=(3, 6), fontsize=8, color="0.3")
+    ax.axhline(0.0, color="0.8", lw=0.6)
+    ax.set_xlabel("z (mm)")
+    ax.set_ylabel("deflection (um)")
+    ax.set_title(f"{result.scene.name}: static deflection line and reactions (x, y)")
+    ax.legend(loc="best", fontsize=8)
+    return fig

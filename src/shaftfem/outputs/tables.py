@@ -571,3 +571,35 @@ def campbell_text(c) -> str:
                          f"{af}, margin {p.margin * 100:.1f} %, {need}{over}")
     lines += [f"note: {n}" for n in c.notes]
     return "\n".join(lines)
+
+
+def static_text(result) -> str:
+    """What `shaftfem static` prints: the loads, each support's reaction and the
+    deflection line's largest value and its value at the supports, parts and forces (a
+    workflows.static.StaticResult)."""
+    import numpy as np
+
+    s, scene = result.solution, result.scene
+    g = float(np.linalg.norm(scene.gravity))
+    lines = [f"scene {scene.name}: static loads, "
+             + (f"gravity {g:g} m/s^2 along ({', '.join(f'{v / g:.3g}' for v in scene.gravity)})"
+                if g else "no gravity")
+             + (f", {len(scene.forces)} force(s)" if scene.forces else ""),
+             f"loads: {s.load[0]:,.1f}, {s.load[1]:,.1f}, {s.load[2]:,.1f} N (x, y, z)", "",
+             f"{'support':24s} {'at':>10s} {'Fx':>12s} {'Fy':>12s} {'Fz':>12s}  (on the shaft)"]
+    for r in s.reactions:
+        fx, fy, fz = (v if abs(v) >= 0.05 else 0.0 for v in r.force)   # no "-0.0"
+        lines.append(f"{r.name[:24]:24s} {r.position * 1e3:7.1f} mm {fx:10,.1f} N "
+                     f"{fy:10,.1f} N {fz:10,.1f} N")
+    r = np.hypot(s.x, s.y)
+    k = int(np.argmax(r))
+    lines += ["", f"largest deflection {r[k] * 1e6:.2f} um at z = {s.z[k] * 1e3:.1f} mm "
+              f"(x {s.x[k] * 1e6:.2f} um, y {s.y[k] * 1e6:.2f} um)"]
+    places = ([(f"support {x.name}", x.position) for x in scene.held]
+              + [(f"part {a.name}", a.position) for a in scene.attachments]
+              + [(f"force {f.name}", f.position) for f in scene.forces])
+    for name, z in sorted(places, key=lambda p: p[1]):
+        x, y = s.deflection_at(z)
+        lines.append(f"  {name[:30]:30s} z = {z * 1e3:7.1f} mm: x {x * 1e6:8.2f} um, "
+                     f"y {y * 1e6:8.2f} um")
+    return "\n".join(lines)

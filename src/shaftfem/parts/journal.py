@@ -287,8 +287,9 @@ def table(ratio: float, cavitation: str = "reynolds") -> FilmTable:
 class JournalBearing:
     """A plain cylindrical journal bearing: its journal diameter, length and radial
     clearance (m), the oil's dynamic viscosity (Pa s), the static load on the journal
-    (N) and its direction (a unit vector in the xy plane), the cavitation condition,
-    and the least minimum film that is fine (m)."""
+    (N; 0 until the static solution gives it) and its direction (a unit vector in the
+    xy plane, the load on the journal), the cavitation condition, and the least minimum
+    film that is fine (m)."""
 
     diameter: float
     length: float

@@ -241,6 +241,27 @@ class Unbalance(_Table):
 
 
 @dataclass(frozen=True, kw_only=True)
+class Static(_Table):
+    """[static]: gravity, m/s^2, and the direction it pulls in."""
+
+    TABLE: ClassVar[str] = "static"
+    gravity_m_s2: Number | None = None
+    gravity_direction: Numbers | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class Force(_Table):
+    """[[force]]: a static radial force on a cross-section (mm) or a part, N."""
+
+    TABLE: ClassVar[str] = "force"
+    name: str | None = None
+    position_mm: Number | None = None
+    part: str | None = None
+    fx_n: Number | None = None
+    fy_n: Number | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
 class Resonance(_Table):
     """[resonance]: the separation margin (%) and how it is judged."""
 
@@ -271,9 +292,10 @@ class Response(_Table):
 # the single tables make_scene and vary take, by keyword, and the repeated ones
 SINGLE: dict[str, type[_Table]] = {"material": Material, "mesh": Mesh, "grooves": Grooves,
                                    "rotor": Rotor, "resonance": Resonance, "modes": ModesWanted,
-                                   "response": Response}
+                                   "response": Response, "static": Static}
 REPEATED: dict[str, type[_Table]] = {"supports": Support, "attachments": Attachment,
-                                     "excitations": Excitation, "unbalances": Unbalance}
+                                     "excitations": Excitation, "unbalances": Unbalance,
+                                     "forces": Force}
 class _Unset:
     """vary's default for a table it is not given: the scene's is kept."""
 
@@ -343,6 +365,8 @@ def make_scene(*, shaft: Shaft, material: Material | Mapping, mesh: Mesh | Mappi
                resonance: Resonance | Mapping | None = None,
                modes: ModesWanted | Mapping | None = None,
                response: Response | Mapping | None = None,
+               static: Static | Mapping | None = None,
+               forces: Iterable[Force | Mapping] = (),
                sizing: Mapping | None = None) -> Scene:
     """A scene from its tables, checked as a scene file is (SceneError naming the key)."""
     given = dict(locals())
@@ -358,7 +382,8 @@ def vary(scene: Scene, *, shaft: Shaft = _UNSET, material: Material | Mapping = 
          rotor: Rotor | Mapping | None = _UNSET,
          unbalances: Iterable[Unbalance | Mapping] = _UNSET,
          resonance: Resonance | Mapping | None = _UNSET, modes: ModesWanted | Mapping | None = _UNSET,
-         response: Response | Mapping | None = _UNSET, sizing: Mapping | None = _UNSET
+         response: Response | Mapping | None = _UNSET, static: Static | Mapping | None = _UNSET,
+         forces: Iterable[Force | Mapping] = _UNSET, sizing: Mapping | None = _UNSET
          ) -> Scene:
     """A variant of `scene`: each table given replaces the scene's (None leaves a single
     table out), the rest kept; checked as a scene file is. To add a support, pass the old

@@ -12,6 +12,7 @@ import tomllib
 import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from shaftfem.errors import SceneError
 from shaftfem.scene.checks import PlausibilityWarning, check_grooves, check_seats, implausible
@@ -24,6 +25,7 @@ from shaftfem.scene.model import (
     Material,
     MeshSettings,
     ModeRequest,
+    PointForce,
     Rotor,
     Scene,
     Shaft,
@@ -32,6 +34,9 @@ from shaftfem.scene.model import (
 )
 from shaftfem.scene.profile import shaft_from_tables
 from shaftfem.scene.schema import DEFAULT_SPEED_HEADROOM, SCHEMA
+
+if TYPE_CHECKING:
+    from shaftfem.parts.journal import JournalBearing
 from shaftfem.scene.toml_reading import (
     entry,
     read_toml,
@@ -204,7 +209,8 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                   response_point=None if point is None else point * MM,
                   criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
                   rotor=rotor,
-                  unbalances=_unbalances(source, data, shaft, attachments))
+                  unbalances=_unbalances(source, data, shaft, attachments),
+                  gravity=_static(source, data), forces=_forces(source, data, shaft, attachments))
     return scene.with_tables(_tables(data, shaft))
 
 
@@ -375,10 +381,9 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
 
     table = entry("support", i, raw)
     t = validate_table(source, table, _as_lists(raw, BEARING_KEYS), SCHEMA["support"])
-    for key in ("radial_clearance_um", "load_n"):
-        if t[key] is None:
-            raise SceneError(f"{where(source, table, key)}: missing (kind = \"journal\" needs "
-                             "the radial clearance, um, and the static load, N)")
+    if t["radial_clearance_um"] is None:
+        raise SceneError(f"{where(source, table, 'radial_clearance_um')}: missing (kind = "
+                         "\"journal\" needs the bearing's radial clearance, um)")
     if rotor is None:
         raise SceneError(f"{where(source, table, 'kind')} = \"journal\": a journal's film "
                          "comes from its speed; add [rotor] with the operating speed")
@@ -416,28 +421,40 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
     angle = math.radians(t["load_angle_deg"])
     bearing = journal.JournalBearing(
         diameter=diameter, length=s.width, clearance=clearance, viscosity=viscosity,
-        load=t["load_n"], direction=(math.cos(angle), math.sin(angle)),
+        load=t["load_n"] or 0.0, direction=(math.cos(angle), math.sin(angle)),
         cavitation=t["cavitation"],
         min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
         * 1e-6)
+    if t["load_n"] is None:   # its reaction to the static loads, once they are solved
+        return replace(s, journal=bearing)
+    try:
+        return replace(s, bearing=journal_coefficients(bearing, rotor), journal=bearing)
+    except ValueError as e:
+        raise SceneError(f"{where(source, table, 'load_n')} = {t['load_n']:g}: {e}") from None
+
+
+def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoefficients:
+    """A loaded journal bearing's coefficients against speed, up to the Campbell
+    diagram's end; its standstill ones at the lowest operating speed (or where its film
+    lifts the journal, if later). A ValueError if the film does not lift it by then."""
+    from shaftfem.parts import journal
+
     try:
         speeds = journal.speed_table(bearing, rotor.max_speed)
     except ValueError as e:
-        raise SceneError(f"{where(source, table, 'load_n')} = {t['load_n']:g}: {e}; the "
-                         "load is too large for this film (a larger clearance ratio, "
-                         "viscosity, length or speed carries more)") from None
-    K, C = speeds.K * 1.0, speeds.C * 1.0
+        raise ValueError(f"{e}; the load is too large for this film (a larger clearance "
+                         "ratio, viscosity, length or speed carries more)") from None
+    K, C = speeds.K, speeds.C
 
     def column(A, i: int, j: int) -> tuple[float, ...]:
         return tuple(float(v) for v in A[:, i, j])
 
     low = min(lo for lo, _ in rotor.spans)
-    coefficients = BearingCoefficients(
+    return BearingCoefficients(
         speeds=tuple(float(w) for w in speeds.speeds), kxx=column(K, 0, 0),
         kxy=column(K, 0, 1), kyx=column(K, 1, 0), kyy=column(K, 1, 1), cxx=column(C, 0, 0),
         cxy=column(C, 0, 1), cyx=column(C, 1, 0), cyy=column(C, 1, 1),
         reference=max(low, speeds.lift))
-    return replace(s, bearing=coefficients, journal=bearing)
 
 
 def _support(source: str, i: int, t: dict) -> Support:
@@ -498,6 +515,47 @@ def _support(source: str, i: int, t: dict) -> Support:
                    coupling=t["coupling"], bearing=bearing)
 
 
+def _placed(source: str, table: str, t: dict, shaft: Shaft,
+            attachments: tuple[Attachment, ...]) -> float:
+    """The axial position (mm) a table gives as position_mm, or as a part's centre."""
+    if (t["position_mm"] is None) == (t["part"] is None):
+        raise SceneError(f"{where(source, table, 'position_mm')}: give either position_mm "
+                         "or part (the name of an [[attachment]]), not both nor neither")
+    position = t["position_mm"]
+    if t["part"] is not None:
+        named = [a for a in attachments if a.name == t["part"]]
+        if not named:
+            raise SceneError(f"{where(source, table, 'part')} = {t['part']!r}: no "
+                             "[[attachment]] of that name; the scene's parts: "
+                             + (", ".join(repr(a.name) for a in attachments) or "none"))
+        position = named[0].position / MM
+    if shaft.step is None and position > shaft.length / MM:
+        raise SceneError(f"{where(source, table, 'position_mm')} = {position:g}: "
+                         f"must lie on the shaft, 0 to {shaft.length / MM:g} mm")
+    return position
+
+
+def _static(source: str, data: dict) -> tuple[float, float, float]:
+    """[static]'s gravity as an acceleration vector, m/s^2."""
+    t = validate_table(source, "static", data.get("static", {}), SCHEMA["static"])
+    d = t["gravity_direction"]
+    norm = math.sqrt(sum(x * x for x in d))
+    return tuple(t["gravity_m_s2"] * x / norm for x in d)
+
+
+def _forces(source: str, data: dict, shaft: Shaft,
+            attachments: tuple[Attachment, ...]) -> tuple[PointForce, ...]:
+    """[[force]] in SI (m, N), each at its position or its part's centre."""
+    out = []
+    for i, e in enumerate(_array(source, data, "force")):
+        table = entry("force", i, e)
+        t = validate_table(source, table, e, SCHEMA["force"])
+        position = _placed(source, table, t, shaft, attachments)
+        out.append(PointForce(name=t["name"] or t["part"] or f"force {i + 1}",
+                              position=position * MM, fx=t["fx_n"], fy=t["fy_n"]))
+    return tuple(out)
+
+
 def _unbalances(source: str, data: dict, shaft: Shaft,
                 attachments: tuple[Attachment, ...]) -> tuple[Unbalance, ...]:
     """[[unbalance]] in SI (m, kg m, rad), each at its position or its part's centre;
@@ -509,20 +567,7 @@ def _unbalances(source: str, data: dict, shaft: Shaft,
         if "rotor" not in data:
             raise SceneError(f"{source}: {table}: an unbalance needs the shaft turning: add "
                              "[rotor] with its speed_rpm")
-        if (t["position_mm"] is None) == (t["part"] is None):
-            raise SceneError(f"{where(source, table, 'position_mm')}: give either position_mm "
-                             "or part (the name of an [[attachment]]), not both nor neither")
-        position = t["position_mm"]
-        if t["part"] is not None:
-            named = [a for a in attachments if a.name == t["part"]]
-            if not named:
-                raise SceneError(f"{where(source, table, 'part')} = {t['part']!r}: no "
-                                 "[[attachment]] of that name; the scene's parts: "
-                                 + (", ".join(repr(a.name) for a in attachments) or "none"))
-            position = named[0].position / MM
-        if shaft.step is None and position > shaft.length / MM:
-            raise SceneError(f"{where(source, table, 'position_mm')} = {position:g}: "
-                             f"must lie on the shaft, 0 to {shaft.length / MM:g} mm")
+        position = _placed(source, table, t, shaft, attachments)
         out.append(Unbalance(name=t["name"] or t["part"] or f"unbalance {i + 1}",
                              position=position * MM, amount=t["amount_g_mm"] * 1e-6,
                              phase=math.radians(t["phase_deg"])))

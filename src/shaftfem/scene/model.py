@@ -12,6 +12,7 @@ from shaftfem.scene.schema import (
     DEFAULT_MARGIN_PERCENT,
     DEFAULT_MAX_DOFS,
     DEFAULT_MODE_COUNT,
+    STANDARD_GRAVITY,
 )
 
 if TYPE_CHECKING:
@@ -324,6 +325,16 @@ class Unbalance:
 
 
 @dataclass(frozen=True)
+class PointForce:
+    """A static radial force (fx, fy; N) on the shaft's cross-section at z = position (m)."""
+
+    name: str
+    position: float
+    fx: float
+    fy: float
+
+
+@dataclass(frozen=True)
 class Support:
     """A bearing seat: the band of shaft surface from z = position -+ width / 2 (m).
 
@@ -410,6 +421,9 @@ class Scene:
     hanging_free: bool = False
     rotor: Rotor | None = None  # [rotor]: the shaft turns (None: it stands still)
     unbalances: tuple[Unbalance, ...] = ()  # [[unbalance]]: what drives it at 1x
+    # the static loads: gravity's acceleration vector (m/s^2) and the [[force]] tables
+    gravity: tuple[float, float, float] = (0.0, -STANDARD_GRAVITY, 0.0)
+    forces: tuple[PointForce, ...] = ()
     # the tables the scene was made from, in the file's units (what to_toml writes), and
     # the scene they made: a copy changed in code since (with_mesh, free) is told apart
     tables: dict | None = field(default=None, compare=False, repr=False)
@@ -479,11 +493,12 @@ class Scene:
 
     def seat_cuts(self) -> tuple[float, ...]:
         """The axial positions (m) where a seat band begins or ends, the centres of parts
-        on distributing joints, the planes of unbalances and the rotor's probes (they act
-        on, or read, that cross-section): the mesh follows them."""
+        on distributing joints, the planes of unbalances, static forces and the rotor's
+        probes (they act on, or read, that cross-section): the mesh follows them."""
         zs = {z for part in self.supports + self.attachments for z in part.seat}
         zs |= {a.position for a in self.attachments if a.joint == "distributing"}
         zs |= {u.position for u in self.unbalances}
+        zs |= {f.position for f in self.forces}
         zs |= set(self.rotor.probes if self.rotor is not None else ())
         return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))
 

@@ -15,7 +15,7 @@ UNITS = {
     "_deg": "deg", "_n_per_mm": "N/mm", "_n_s_per_mm": "N s/mm", "_nmm_per_rad": "N mm/rad",
     "_kg": "kg", "_g_mm": "g mm",
     "_kg_m2": "kg m^2", "_percent": "%", "_hz": "Hz", "_um": "um", "_mpa_s": "mPa s",
-    "load_n": "N", "_temperature_c": "C",
+    "_n": "N", "_temperature_c": "C", "_m_s2": "m/s^2",
 }
 
 HEAD = """\

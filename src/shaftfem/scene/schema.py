@@ -36,6 +36,8 @@ ROTOR_FRAMES = ("auto", "stationary", "rotating")
 DEFAULT_SPEED_HEADROOM = 1.5
 COUPLINGS = ("distributing", "rigid")
 KEYWAY_FORMS = ("rounded", "sled")
+# The standard acceleration of gravity, m/s^2 (the default [static] gravity_m_s2).
+STANDARD_GRAVITY = 9.80665
 # Modal damping of a steel shaft in rolling bearings: 1-3 % of critical is usual.
 DEFAULT_DAMPING_PERCENT = 2.0
 
@@ -277,7 +279,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "oil_temperature_c": Key(float, "the film's mean temperature, C (with oil_iso_vg)",
                                  lambda v: -20 <= v <= 200, "in [-20, 200] C", required=False),
         "load_n": Key(float, "the static radial load the bearing carries, N (kind = "
-                      "\"journal\", \"ball\", \"roller\")",
+                      "\"journal\", \"ball\", \"roller\"; a journal's default: its reaction "
+                      "to the static loads, [static] and [[force]])",
                       *upto(1e8, "up to 10^8 N"), required=False),
         "load_angle_deg": Key(float, "direction of that load on the shaft, deg from +x "
                               "towards +y (default -90: along -y, the shaft's weight with y up)",
@@ -368,6 +371,29 @@ SCHEMA: dict[str, dict[str, Key]] = {
                            "speed up to the highest operating one (default 0, i.e. no mode "
                            "may grow; 0.1 with [resonance] criterion = \"api684\")",
                            *upto(10.0, "up to 10", closed_low=True), required=False),
+    },
+    "static": {  # the shaft's static loads (shaftfem.fem.static)
+        "gravity_m_s2": Key(float, "the acceleration of gravity, m/s^2 (0: no weight)",
+                            *upto(1000.0, "up to 100 g", closed_low=True),
+                            default=STANDARD_GRAVITY, required=False),
+        "gravity_direction": Key(("list", float), "the direction gravity pulls in, [x, y, z] "
+                                 "(default [0, -1, 0]: y is up)",
+                                 lambda v: len(v) == 3 and any(x != 0 for x in v)
+                                 and all(math.isfinite(x) for x in v),
+                                 "three finite numbers, not all zero", default=[0.0, -1.0, 0.0],
+                                 required=False),
+    },
+    "force": {  # an array of tables: [[force]], a static radial force on the shaft
+        "name": Key(str, "name of the force, e.g. belt pull", required=False),
+        "position_mm": Key(float, "axial position of the cross-section it acts on, from the "
+                           "shaft's left end, mm (or `part`)",
+                           *upto(20_000, "up to 20 m", closed_low=True), required=False),
+        "part": Key(str, "the [[attachment]] it acts on, by name: at the part's centre "
+                    "(instead of position_mm)", required=False),
+        "fx_n": Key(float, "its component along x, N", lambda v: abs(v) <= 1e8,
+                    "in [-1e8, 1e8]", default=0.0, required=False),
+        "fy_n": Key(float, "its component along y, N", lambda v: abs(v) <= 1e8,
+                    "in [-1e8, 1e8]", default=0.0, required=False),
     },
     "unbalance": {  # an array of tables: [[unbalance]], a mass off the axis (workflows.unbalance)
         "name": Key(str, "name of the unbalance, e.g. wheel", required=False),
@@ -514,6 +540,13 @@ TABLES: dict[str, Table] = {
         "The shaft turning: its operating speed(s) and the speed range of the Campbell "
         "diagram. With it, `shaftfem campbell` gives the whirl frequencies against speed "
         "(forward and backward), the critical speeds and the log decrements."),
+    "static": Table(
+        "The shaft's static loads: its weight and its parts' (gravity), and the [[force]] "
+        "tables. `shaftfem static` gives the deflection line and each bearing's reaction; a "
+        "journal bearing without load_n carries its reaction."),
+    "force": Table(
+        "A static radial force on a cross-section of the shaft (a belt pull, a gear's "
+        "mesh force), N.", repeated=True),
     "unbalance": Table(
         "A residual unbalance of the turning shaft (needs [rotor]): `shaftfem campbell` gives "
         "the response to it against speed (Bode plot), its peaks, their amplification "

@@ -40,7 +40,11 @@ def run_bounded(scene: Scene, estimate: bool = True,
     of each frequency): adapted to the scene's target_error when it has one (the mesh at
     order 2, the element orders up to the scene's order 3 to 5), else on its fixed mesh
     (bounded when `estimate`). `choose`: an order-2 scene's target may be met on another
-    discretisation, the one workflows.route chooses."""
+    discretisation, the one workflows.route chooses. Journal bearings without their load
+    carry their reactions to the static loads (workflows.static)."""
+    from shaftfem.workflows.static import with_journal_loads
+
+    scene = with_journal_loads(scene, options)
     if (choose and scene.target_error is not None and scene.mesh.order == 2
             and scene.mesh.geometry_order == 2):
         from shaftfem.workflows.route import choose_route

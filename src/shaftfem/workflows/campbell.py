@@ -322,7 +322,9 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
     whirl still moves by more than TRUNCATION on it."""
     from shaftfem.fem.rotor import rotor_model
     from shaftfem.workflows.pipeline import run_modes, with_modes
+    from shaftfem.workflows.static import with_journal_loads
 
+    scene = with_journal_loads(scene, options)
     frame, why = choose_frame(scene)
     if scene.mesh.order > 2:
         raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the turning shaft "
@@ -353,6 +355,9 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
     the Campbell diagram (`speeds_rpm`, default 0 to [rotor] max_speed_rpm at
     [rotor] campbell_points) and at the operating speeds, the critical speeds, the
     stability and the basis check, and the unbalance response."""
+    from shaftfem.workflows.static import with_journal_loads
+
+    scene = with_journal_loads(scene, options)
     result, model, why = turning(scene, options)
     return campbell_of(scene, result, model, why, speeds_rpm)
 

@@ -107,10 +107,19 @@ def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
     """Build, mesh, assemble and solve `scene`: the modes without a bound, with every
     intermediate result. Raises GeometryError, MeshError or SolverError, each naming
     what failed."""
+    watch = Stopwatch()
+    scene, shape, mesh = built(scene, options, watch)
+    return solve_mesh(scene, shape, mesh, options, watch)
+
+
+def built(scene: Scene, options: RunOptions = RunOptions(), watch: Stopwatch | None = None
+          ) -> tuple[Scene, ShaftShape, ShaftMesh]:
+    """The scene's solid and mesh (each from the cache when it holds them), checked
+    against the budgets; the scene as placed (a STEP shaft's)."""
     from shaftfem.cad.mesh import check_memory, check_mesh_budget
     from shaftfem.workflows import stages
 
-    watch = Stopwatch()
+    watch = watch or Stopwatch()
     check_buildable(scene)
     options.say("building the shaft's solid (CAD)")
     with watch.lap("cad"):
@@ -125,7 +134,7 @@ def run_modes(scene: Scene, options: RunOptions = RunOptions()) -> ModalResult:
     options.say(f"mesh: {mesh.n_elements} elements{' (from cache)' if mesh.from_cache else ''}; "
                 "assembling K and M")
     check_memory(check_mesh_budget(mesh, scene.mesh, scene.max_dofs))
-    return solve_mesh(scene, shape, mesh, options, watch)
+    return scene, shape, mesh
 
 
 def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
