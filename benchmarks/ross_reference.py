@@ -7,6 +7,8 @@ of packages): run this in an environment of its own,
 
     python3 -m venv .venv-ross && .venv-ross/bin/pip install "ross-rotordynamics==2.3.*" "plotly<6"
     .venv-ross/bin/python benchmarks/ross_reference.py tests/data/ross_rotors.json
+    .venv-ross/bin/python benchmarks/ross_reference.py --journals \
+        tests/data/journal_591.json tests/data/ross_rotors.json
 
 Every rotor is written as ross's own tests write it (ross/tests/test_examples.py), on
 48 shaft elements; speeds are rad/s, frequencies rad/s (ross's units).
@@ -63,6 +65,55 @@ def example_599(rs, steel):
     return rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL, 0.35)],
                     [rs.BearingElement(n=0, kxx=10e6, kyy=10e6, cxx=0, cyy=0),
                      rs.BearingElement(n=2 * N_EL // 3, kxx=10e6, kyy=10e6, cxx=0, cyy=0)])
+
+
+def journal_591(rs, steel, table: dict):
+    """5.9.1 on the two journal bearings of `table` (benchmarks/journal_tables.py: their
+    coefficients against speed, as shaftfem's film gives them) at nodes 1 and 47."""
+    keys = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
+    bearings = [rs.BearingElement(n=node, frequency=list(b["speeds"]),
+                                  **{k: list(b[k]) for k in keys})
+                for node, b in zip((1, N_EL - 1), table["bearings"])]
+    return rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL // 3, 0.28),
+                                       disk(rs, steel, 2 * N_EL // 3, 0.35)], bearings)
+
+
+def journal_reference(rs, steel, table: dict) -> dict:
+    """5.9.1 on journals: the whirl and log decrements at 1,000, 3,000 and 6,000 r/min,
+    where the first forward mode's log decrement falls through zero, and where the
+    first two lightly damped modes (log decrement below 1) meet 1x (bisection), rad/s."""
+    rotor = journal_591(rs, steel, table)
+    out: dict = {}
+    for rpm in (1000, 3000, 6000):
+        wd, dirs, ld = whirl(rotor, rpm * RPM, 6)
+        out[str(rpm)] = {"wd": list(map(float, wd)), "whirl": dirs,
+                         "log_dec": list(map(float, ld))}
+
+    def logdec(speed):
+        wd, dirs, ld = whirl(rotor, speed, 6)
+        return min(v for v, d in zip(ld, dirs) if d == "Forward")
+
+    lo, hi = 1000 * RPM, 6000 * RPM
+    assert logdec(lo) > 0 > logdec(hi), (logdec(lo), logdec(hi))
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if logdec(mid) > 0 else (lo, mid)
+    out["onset_speed"] = 0.5 * (lo + hi)
+
+    def lightly_damped(speed, k):
+        """The k-th lowest whirl frequency among the modes with a log decrement below 1
+        (the films' overdamped modes left out), rad/s."""
+        wd, _, ld = whirl(rotor, speed, 8)
+        return sorted(w for w, d in zip(wd, ld) if d < 1.0)[k]
+
+    out["critical_1x"] = {}
+    for k, name in ((0, "first"), (1, "second")):
+        lo, hi = 60.0, 200.0
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if lightly_damped(mid, k) > mid else (lo, mid)
+        out["critical_1x"][name] = 0.5 * (lo + hi)
+    return out
 
 
 def whirl(rotor, speed, n=8):
@@ -214,5 +265,24 @@ def main(path: str) -> None:
     print(json.dumps(out, indent=1))
 
 
+def journals(table_path: str, path: str) -> None:
+    """Add "5.9.1 journals" to the reference file at `path`, from the bearings of
+    `table_path`."""
+    import ross as rs
+    from ross.materials import steel
+
+    with open(table_path) as f:
+        table = json.load(f)
+    with open(path) as f:
+        out = json.load(f)
+    out["5.9.1 journals"] = journal_reference(rs, steel, table)
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps(out["5.9.1 journals"], indent=1))
+
+
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")
+    if len(sys.argv) > 1 and sys.argv[1] == "--journals":
+        journals(sys.argv[2], sys.argv[3])
+    else:
+        main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")

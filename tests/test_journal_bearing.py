@@ -234,3 +234,51 @@ def test_the_reduced_whirl_is_the_whirl_on_a_basis_made_for_each_speed():
             assert a.frequency_hz == pytest.approx(b.frequency_hz, rel=1e-6)
             assert a.log_dec == pytest.approx(b.log_dec, rel=1e-5, abs=1e-6)
     assert max(stiff) / min(stiff) > 30
+
+
+def friswell_journals() -> dict:
+    """Friswell's 5.9.1 rotor (1.5 m x 50 mm, disks of 280 and 350 mm at 0.5 and 1.0 m) on
+    two plain journals 25 mm long with 50 um clearance, 20 mPa s oil, at ross's nodes 1
+    and 47 (31.25 and 1468.75 mm); their loads from the static solution."""
+    from test_rotor import friswell, two_disks
+
+    def journal(name: str, z: float) -> dict:
+        return {"name": name, "position_mm": z, "width_mm": 25.0, "kind": "journal",
+                "radial_clearance_um": 50.0, "viscosity_mpa_s": 20.0}
+    return friswell([journal("left", 31.25), journal("right", 1468.75)], two_disks(),
+                    {"speed_rpm": 3000.0, "max_speed_rpm": 8000.0, "campbell_points": 33})
+
+
+@pytest.mark.slow
+def test_friswell_591_on_journals_against_ross():
+    """Friswell's 5.9.1 rotor on two journals, its bearings from shaftfem's film, against
+    ross-rotordynamics 2.3's beam model with the same bearings (tests/data/
+    journal_591.json, benchmarks/journal_tables.py; ross's values: ross_reference.py
+    --journals): the whirl and log decrements at 1,000, 3,000 and 6,000 r/min, the first
+    two 1x critical speeds and the onset of oil whip, each within 2 %."""
+    import json
+    from pathlib import Path
+
+    from shaftfem.workflows.campbell import run_campbell
+    from shaftfem.workflows.static import with_journal_loads
+
+    data = Path(__file__).parent / "data"
+    table = json.loads((data / "journal_591.json").read_text())
+    ross = json.loads((data / "ross_rotors.json").read_text())["5.9.1 journals"]
+    scene = with_journal_loads(load_scene(friswell_journals()))
+    for s, theirs in zip(scene.supports, table["bearings"]):   # the same bearings
+        assert s.journal.load == pytest.approx(theirs["load_n"], rel=1e-6)
+        for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"):
+            np.testing.assert_allclose(getattr(s.bearing, k), theirs[k], rtol=1e-6)
+    c = run_campbell(scene)
+    for rpm in ("1000", "3000", "6000"):
+        ours = sorted((w for w in c.whirl if w.speed_rpm == float(rpm)
+                       and w.kind not in ("torsion", "axial")), key=lambda w: w.frequency_hz)
+        for w, wd, dec in zip(ours, ross[rpm]["wd"], ross[rpm]["log_dec"]):
+            assert w.frequency_hz * 2 * PI == pytest.approx(wd, rel=0.02)
+            assert w.log_dec == pytest.approx(dec, rel=0.02, abs=0.002)
+    assert c.onsets[0].speed_rpm * PI / 30 == pytest.approx(ross["onset_speed"], rel=0.02)
+    light = sorted(x.speed_rpm for x in c.critical_speeds if x.order == 1 and x.log_dec < 1)
+    for ours, theirs in zip(light[:2], (ross["critical_1x"]["first"],
+                                         ross["critical_1x"]["second"])):
+        assert ours * PI / 30 == pytest.approx(theirs, rel=0.02)

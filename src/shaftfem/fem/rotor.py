@@ -80,21 +80,44 @@ class RotorModel:
     kinds: tuple[str, ...]
     shapes: np.ndarray | None = None   # the basis as nodal shapes (3 n, N), if kept
     residual: int = 0   # the last columns: the bearings' residual modes (residual_modes)
+    # the bearings' static shapes in the basis' coordinates (N, m): what a truncated
+    # basis keeps exactly
+    static: np.ndarray | None = None
 
     @property
     def size(self) -> int:
         return self.omega2.size
 
     def truncated(self, n: int) -> RotorModel:
-        """The same rotor on its first n modes (and its residual modes)."""
-        k = np.r_[np.arange(min(n, self.size - self.residual)),
-                  np.arange(self.size - self.residual, self.size)]
-        box = np.ix_(k, k)
-        return replace(self, omega2=self.omega2[k], G=self.G[box], K2=self.K2[box],
-                       bearings=tuple(replace(b, beta=b.beta[:, k]) for b in self.bearings),
-                       lateral=self.lateral[box], turning=self.turning[box],
-                       kinds=tuple(self.kinds[i] for i in k),
-                       shapes=None if self.shapes is None else self.shapes[:, k])
+        """The same rotor on its first n modes and, where it has residual modes, the
+        bearings' static shapes as the rest of the basis leaves them (its residual modes
+        made again for the n modes: a Rayleigh-Ritz of this model)."""
+        import scipy.linalg
+
+        kept = min(n, self.size - self.residual)
+        if kept == self.size - self.residual:
+            return self
+        E = np.eye(self.size)[:, :kept]
+        if self.residual and self.static is not None:
+            S = self.static.copy()
+            S[:kept] = 0.0                        # the static shapes beyond the kept modes
+            m, V = np.linalg.eigh(S.T @ S)
+            keep = m > RESIDUAL_RANK * m.max()
+            B = S @ (V[:, keep] / np.sqrt(m[keep]))
+            w2, U = scipy.linalg.eigh(B.T @ (self.omega2[:, None] * B))
+            P = B @ U
+            static = np.vstack([self.static[:kept], P.T @ self.static])
+        else:
+            P, w2, static = np.zeros((self.size, 0)), np.zeros(0), None
+        V = np.hstack([E, P])
+        turning = V.T @ self.turning @ V
+        return replace(self, omega2=np.concatenate([self.omega2[:kept], w2]),
+                       G=V.T @ self.G @ V, K2=V.T @ self.K2 @ V,
+                       bearings=tuple(replace(b, beta=b.beta @ V) for b in self.bearings),
+                       lateral=V.T @ self.lateral @ V, turning=0.5 * (turning + turning.conj().T),
+                       kinds=self.kinds[:kept] + ("bending",) * P.shape[1],
+                       shapes=None if self.shapes is None else self.shapes @ V,
+                       residual=P.shape[1], static=static)
 
     def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
         """(D, K) of q'' + D q' + K q = 0 at the spin omega (rad/s)."""
@@ -211,7 +234,8 @@ def rotor_model(result: ModalResult, frame: str, rigid: bool = False, residual: 
     q = static_shapes(result, np.column_stack([spin_load(result), seats]), reduced=True)
     inst = result.installed
     spin_u = inst.T @ q[:, 0] if inst is not None else q[:, 0]
-    extra, w2 = residual_modes(result, q[:, 1:])
+    res = residual_modes(result, q[:, 1:])
+    extra, w2 = res.shapes, res.omega2
     Phi = np.hstack([free, modes.shapes, extra])   # (3 n, N)
     Ms = system.mass_scalar
     X, Y = Phi[0::3], Phi[1::3]
@@ -242,7 +266,9 @@ def rotor_model(result: ModalResult, frame: str, rigid: bool = False, residual: 
                       bearings=bearing_modal(result, Phi), lateral=lateral,
                       turning=0.5 * (turning + turning.conj().T),
                       kinds=("rigid",) * free.shape[1] + tuple(modes.kinds) + kinds, shapes=Phi,
-                      residual=extra.shape[1])
+                      residual=extra.shape[1],
+                      static=np.vstack([np.zeros((free.shape[1], res.on_modes.shape[1])),
+                                        res.on_modes, res.on_residual]))
 
 
 def seat_loads(result: ModalResult) -> np.ndarray:
@@ -266,31 +292,46 @@ def seat_loads(result: ModalResult) -> np.ndarray:
     return np.column_stack(cols) if cols else np.zeros((system.n_dofs, 0))
 
 
-def residual_modes(result: ModalResult, static: np.ndarray
-                   ) -> tuple[np.ndarray, np.ndarray]:
+@dataclass(frozen=True)
+class Residual:
+    """The bearings' residual modes (residual_modes): their shapes (3 n, r) and w^2
+    (r,), and the static shapes they come from in the basis' coordinates: on the
+    standstill modes (N, m) and on the residual modes (r, m)."""
+
+    shapes: np.ndarray
+    omega2: np.ndarray
+    on_modes: np.ndarray
+    on_residual: np.ndarray
+
+
+def residual_modes(result: ModalResult, static: np.ndarray) -> Residual:
     """What the bearings' static shapes `static` (reduced coordinates, as static_shapes
     gives them) hold beyond the standstill modes: their part M-orthogonal to the modes,
-    diagonalised on its own, as pseudo-modes (3 n, r) with their w^2 (r,). The modes are
-    eigenvectors, so the two blocks are K- and M-orthogonal and the basis stays
-    diagonal. With them any change of the bearings' coefficients is taken exactly to
-    first order in (w / w_N)^2: a bearing's force on the shaft moves it along its seat's
-    static shape, which is in the basis (MacNeal's residual flexibility)."""
+    diagonalised on its own, as pseudo-modes with their w^2. The modes are eigenvectors,
+    so the two blocks are K- and M-orthogonal and the basis stays diagonal. With them
+    any change of the bearings' coefficients is taken exactly to first order in
+    (w / w_N)^2: a bearing's force on the shaft moves it along its seat's static shape,
+    which is in the basis (MacNeal's residual flexibility)."""
     import scipy.linalg
     from scipy.sparse.linalg import splu
 
     inst = result.installed
+    n = result.modes.shapes.shape[1]
     if inst is None or static.shape[1] == 0:
-        return np.zeros((result.system.n_dofs, 0)), np.zeros(0)
+        return Residual(np.zeros((result.system.n_dofs, 0)), np.zeros(0),
+                        np.zeros((n, static.shape[1])), np.zeros((0, static.shape[1])))
     T = inst.T.tocsc()
     Q = splu((T.T @ T).tocsc()).solve(np.asarray(T.T @ result.modes.shapes))
-    R = static - Q @ (Q.T @ (inst.M @ static))
+    A = Q.T @ (inst.M @ static)
+    R = static - Q @ A
     R = R - Q @ (Q.T @ (inst.M @ R))                 # twice is enough
     Mr, Kr = R.T @ (inst.M @ R), R.T @ (inst.K @ R)
     m, V = np.linalg.eigh(0.5 * (Mr + Mr.T))
     keep = m > RESIDUAL_RANK * m.max()
     B = V[:, keep] / np.sqrt(m[keep])                # M-orthonormal combinations
     w2, U = scipy.linalg.eigh(B.T @ (0.5 * (Kr + Kr.T)) @ B)
-    return inst.T @ (R @ (B @ U)), w2
+    W = B @ U
+    return Residual(inst.T @ (R @ W), w2, A, W.T @ (0.5 * (Mr + Mr.T)))
 
 
 def spin_basis(result: ModalResult):

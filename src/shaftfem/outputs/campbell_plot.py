@@ -101,6 +101,19 @@ def campbell_figure(c: Campbell):
                     color=COLOURS[cs.whirl], textcoords="offset points",
                     xytext=(-30, 6) if up else (6, -12))
     ax.plot([], [], "o", mfc="none", color="black", label="critical speed, r/min")
+    if any(s.journal is not None for s in c.rotor_scene.supports):
+        # an oil film's whirl turns at a little under half the shaft's speed
+        ax.plot(speeds, 0.5 * speeds / 60.0, ":", color="black", lw=0.9)
+        end = min(top_rpm, fmax * 120.0)
+        ax.annotate("0.5x", (end, 0.5 * end / 60.0), fontsize=8, textcoords="offset points",
+                    xytext=(-18, 4))
+    for o in c.onsets:
+        ax.plot(o.speed_rpm, o.frequency_hz, "X", color="tab:red", ms=8,
+                label="onset of instability" if o is c.onsets[0] else None)
+        ax.annotate(f"grows from {o.speed_rpm:,.0f}", (o.speed_rpm, o.frequency_hz), fontsize=7,
+                    color="tab:red", textcoords="offset points", xytext=(6, 6))
+        if damped:
+            dec.axvline(o.speed_rpm, color="tab:red", lw=0.8, ls=":")
     ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed" + (
         " range" if c.ranges_rpm else ""))
     ax.set_xlim(0, top_rpm)
