@@ -9,6 +9,7 @@ of packages): run this in an environment of its own,
     .venv-ross/bin/python benchmarks/ross_reference.py tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --journals \
         tests/data/journal_591.json tests/data/ross_rotors.json
+    .venv-ross/bin/python benchmarks/ross_reference.py --cylindrical tests/data/ross_rotors.json
 
 Every rotor is written as ross's own tests write it (ross/tests/test_examples.py), on
 48 shaft elements; speeds are rad/s, frequencies rad/s (ross's units).
@@ -265,6 +266,29 @@ def main(path: str) -> None:
     print(json.dumps(out, indent=1))
 
 
+def cylindrical(path: str) -> None:
+    """Add "cylindrical bearing" to the reference file at `path`: ross's
+    CylindricalBearing (the short-bearing closed form) on a bearing of L/D = 0.1 (its
+    docstring's bearing, 10 mm long), at 1,500 and 2,000 r/min; N/m, N s/m."""
+    import ross as rs
+    from ross.units import Q_
+
+    b = rs.CylindricalBearing(n=0, speed=Q_([1500, 2000], "RPM"), weight=525,
+                              bearing_length=Q_(10, "mm"), journal_diameter=Q_(100, "mm"),
+                              radial_clearance=Q_(0.1, "mm"), oil_viscosity=0.1)
+    entry = {"speed_rpm": [1500, 2000], "load_n": 525.0, "length_m": 0.01, "diameter_m": 0.1,
+             "clearance_m": 1e-4, "viscosity_pa_s": 0.1,
+             "eccentricity": [float(e) for e in b.eccentricity]}
+    for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"):
+        entry[k] = [float(v) for v in getattr(b, k)]
+    with open(path) as f:
+        out = json.load(f)
+    out["cylindrical bearing"] = entry
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps(entry, indent=1))
+
+
 def journals(table_path: str, path: str) -> None:
     """Add "5.9.1 journals" to the reference file at `path`, from the bearings of
     `table_path`."""
@@ -284,5 +308,7 @@ def journals(table_path: str, path: str) -> None:
 if __name__ == "__main__":
     if len(sys.argv) > 1 and sys.argv[1] == "--journals":
         journals(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) > 1 and sys.argv[1] == "--cylindrical":
+        cylindrical(sys.argv[2])
     else:
         main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")
