@@ -433,11 +433,17 @@ def static_shapes(result: ModalResult, loads: np.ndarray, reduced: bool = False)
         lam, V = np.linalg.eigh(R.T @ (M @ R))
         R = R @ (V / np.sqrt(lam))               # M-orthonormal
     s = STATIC_SHIFT * (2 * math.pi * result.modes.frequencies[0]) ** 2
-    solve, _ = factorise((K + s * M).tocsr())
+    one, backend = factorise((K + s * M).tocsr())
+
+    def solve(b: np.ndarray) -> np.ndarray:   # every load at once where the back-end can
+        if backend in ("pardiso", "superlu"):
+            return one(b)
+        return np.column_stack([one(np.ascontiguousarray(col)) for col in b.T])
+
     f = f - M @ (R @ (R.T @ f))
     u = np.zeros_like(f)
     for _ in range(STATIC_STEPS):
-        u = np.column_stack([solve(np.ascontiguousarray(col)) for col in (f + s * (M @ u)).T])
+        u = solve(f + s * (M @ u))
         u = u - R @ (R.T @ (M @ u))
     return inst.T @ u if inst is not None and not reduced else u
 
@@ -478,7 +484,8 @@ def part_motions(result: ModalResult, Phi: np.ndarray | None = None
 
 def bearing_modal(result: ModalResult, Phi: np.ndarray | None = None
                   ) -> tuple[BearingModal, ...]:
-    """The scene's bearings (kind "bearing" or "journal") on the shapes Phi (default the run's
+    """The scene's bearings (kind "bearing", "journal", "ball", "roller") and its stages'
+    cross-couplings (Wachel, on their parts) on the shapes Phi (default the run's
     modes)."""
     from shaftfem.fem.installation import seat_radius
     from shaftfem.fem.supports import seat_restraints, surface_weights
@@ -498,6 +505,11 @@ def bearing_modal(result: ModalResult, Phi: np.ndarray | None = None
         shapes = result.modes.shapes if Phi is None else Phi
         beta = np.vstack([x.coeffs @ shapes[x.dofs], y.coeffs @ shapes[y.dofs]])
         out.append(BearingModal(s.name, beta, s.bearing, s.radial_xy))
+    # a stage's cross-coupling acts on its part's translations as a bearing would
+    for psi, part in part_motions(result, Phi):
+        if part.cross_coupling is not None:
+            out.append(BearingModal(f"{part.name} (stage)", psi[:2], part.cross_coupling,
+                                    (0.0, 0.0)))
     return tuple(out)
 
 

@@ -209,6 +209,11 @@ class Attachment(_Table):
     mass_kg: Number | None = None
     polar_inertia_kg_m2: Number | None = None
     diametral_inertia_kg_m2: Number | None = None
+    stage_power_kw: Number | None = None
+    stage_diameter_mm: Number | None = None
+    stage_width_mm: Number | None = None
+    stage_kind: str | None = None
+    density_ratio: Number | None = None
     joint: str | None = None
 
 

@@ -188,6 +188,8 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                      for i, (e, s) in enumerate(zip(_array(source, data, "support"), supports)))
     attachments = tuple(_attachment(source, i, e)
                         for i, e in enumerate(_array(source, data, "attachment")))
+    attachments = tuple(_stage(source, i, e, a, rotor) for i, (e, a) in
+                        enumerate(zip(_array(source, data, "attachment"), attachments)))
     check_seats(source, shaft, grooves, supports, attachments, mesh)
     if mesh.order > 2 and (supports or attachments):
         raise SceneError(f"{where(source, 'mesh', 'order')} = {mesh.order}: cubic elements take "
@@ -623,7 +625,43 @@ def _attachment(source: str, i: int, t: dict) -> Attachment:
             f"{where(source, table, 'diametral_inertia_kg_m2')} = {diametral:g}: "
             f"a rigid part's moment about a diameter is at least half its polar moment "
             f"({polar / 2:g} kg m^2; a thin disk has exactly half)")
+    stage = ("stage_power_kw", "stage_diameter_mm", "stage_width_mm")
+    given = [k for k in stage if t[k] is not None]
+    if given and len(given) < 3:
+        missing = next(k for k in stage if t[k] is None)
+        raise SceneError(f"{where(source, table, missing)}: missing (a stage's cross-coupling "
+                         "needs its power, kW, its diameter and its flow width, mm)")
     return Attachment(name=t["name"] or f"attachment {i + 1}", position=t["position_mm"] * MM,
                       width=t["width_mm"] * MM, mass=t["mass_kg"],
                       polar_inertia=t["polar_inertia_kg_m2"],
                       diametral_inertia=t["diametral_inertia_kg_m2"], joint=t["joint"])
+
+
+# A stage's cross-coupling is tabled at this many speeds from 0 to the Campbell
+# diagram's end (q ~ speed^2; linear between them: 1e-5 of q at most).
+STAGE_POINTS = 161
+
+
+def _stage(source: str, i: int, raw: dict, a: Attachment, rotor: Rotor | None) -> Attachment:
+    """A part with a stage's cross-coupling (Wachel, shaftfem.parts.wachel): q at the
+    highest operating speed, by the fan law elsewhere."""
+    from shaftfem.parts import wachel
+
+    table = entry("attachment", i, raw)
+    t = validate_table(source, table, raw, SCHEMA["attachment"])
+    if t["stage_power_kw"] is None:
+        return a
+    if rotor is None:
+        raise SceneError(f"{where(source, table, 'stage_power_kw')}: a stage's cross-coupling "
+                         "needs the shaft turning: add [rotor] with its speed_rpm")
+    rated = rotor.top_speed
+    q = wachel.cross_coupling(t["stage_power_kw"] * 1e3, rated, t["stage_diameter_mm"] * MM,
+                              t["stage_width_mm"] * MM, t["stage_kind"], t["density_ratio"])
+    # the operating speeds in the table: q there exactly
+    speeds = sorted({*(rotor.max_speed * k / (STAGE_POINTS - 1) for k in range(STAGE_POINTS)),
+                     *rotor.speeds})
+    kxy = tuple(wachel.at_speed(q, rated, w) for w in speeds)
+    zero = (0.0,)
+    return replace(a, cross_coupling=BearingCoefficients(
+        speeds=tuple(speeds), kxx=zero, kxy=kxy, kyx=tuple(-k for k in kxy), kyy=zero,
+        cxx=zero, cxy=zero, cyx=zero, cyy=zero))

@@ -382,6 +382,8 @@ class Attachment:
     diametral_inertia: float
     joint: str = "rigid"   # or "distributing": on the mean motion of the section at its
                            # centre, no stiffness
+    # a stage's aerodynamic cross-coupling on the part's motion (Wachel), N/m against speed
+    cross_coupling: BearingCoefficients | None = None
 
     @property
     def seat(self) -> tuple[float, float]:

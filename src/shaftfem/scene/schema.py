@@ -325,6 +325,22 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "diametral_inertia_kg_m2": Key(
             float, "moment of inertia about a diameter through its centre, kg m^2",
             *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
+        "stage_power_kw": Key(float, "a compressor or turbine stage's power at the highest "
+                              "operating speed, kW: its aerodynamic cross-coupling on the part, "
+                              "Wachel's estimate (API 617; docs/cross-coupling.md)",
+                              *upto(1e6, "up to 1 GW"), required=False),
+        "stage_diameter_mm": Key(float, "the impeller's diameter (an axial stage's pitch "
+                                 "diameter), mm (with stage_power_kw)",
+                                 *upto(20_000, "up to 20 m"), required=False),
+        "stage_width_mm": Key(float, "the narrower of the impeller's discharge width and "
+                              "the diffuser's (an axial stage's blade height), mm (with "
+                              "stage_power_kw)", *upto(2_000, "up to 2 m"), required=False),
+        "stage_kind": Key(str, "\"centrifugal\" (B = 3, default) or \"axial\" (B = 1.5)",
+                          lambda v: v in ("centrifugal", "axial"), '"centrifugal", "axial"',
+                          default="centrifugal", required=False),
+        "density_ratio": Key(float, "the gas's density at discharge over suction (with "
+                             "stage_power_kw; default 1)", *upto(100.0, "up to 100"),
+                             default=1.0, required=False),
         "joint": coupling(
             "how the part is joined to its seat: \"rigid\" (default: a shrink or press fit, "
             "the hub much stiffer than the shaft: the shaft's slice under it moves with the "

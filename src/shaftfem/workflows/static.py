@@ -6,6 +6,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from shaftfem.errors import SceneError
 from shaftfem.fem.static import StaticSolution, static_solution
 from shaftfem.runtime import RunOptions
@@ -53,6 +55,48 @@ def run_static(scene: Scene, options: RunOptions = RunOptions()) -> StaticResult
     return StaticResult(scene=scene, solution=static_solution(placed, system, inst, skmesh))
 
 
+def reactions(scene: Scene, options: RunOptions = RunOptions()) -> dict[str, np.ndarray]:
+    """Each support's reaction (N) to the static loads, by name: from the cache where it
+    holds this scene's (keyed by all that makes them), else solved and kept there."""
+    from shaftfem.store import discard, load_arrays, save_arrays
+
+    path = _reactions_path(scene) if options.use_cache else None
+    if path is not None and path.exists():
+        fields, why = load_arrays(path, ("names", "forces"))
+        if fields is not None:
+            return dict(zip((str(n) for n in fields["names"]), fields["forces"]))
+        discard("static reactions", why, path)
+    solution = run_static(scene, options).solution
+    out = {r.name: r.force for r in solution.reactions}
+    if path is not None:
+        save_arrays(path, {"names": np.array(list(out), dtype=str),
+                           "forces": np.array(list(out.values()))})
+    return out
+
+
+def _reactions_path(scene: Scene):
+    """Where a scene's static reactions are kept: keyed by everything that makes them
+    (the shaft, its mesh, material, seats, parts and loads; a journal's film aside)."""
+    from dataclasses import asdict
+
+    from shaftfem.store import cache_dir, content_key
+
+    seats = [{"name": s.name, "position": s.position, "width": s.width,
+              "kind": "rigid-radial" if s.kind == "journal" else s.kind, "radial": s.radial,
+              "axial": s.axial, "tilting": s.tilting, "coupling": s.coupling,
+              "bearing": None if s.bearing is None or s.kind == "journal"
+              else asdict(s.bearing)} for s in scene.supports]
+    key = content_key({"version": 1, "shaft": asdict(scene.shaft),
+                       "grooves": asdict(scene.grooves) if scene.grooves else None,
+                       "material": asdict(scene.material), "mesh": asdict(scene.mesh),
+                       "supports": seats,
+                       "attachments": [asdict(a) for a in scene.attachments],
+                       "gravity": list(scene.gravity),
+                       "forces": [asdict(f) for f in scene.forces],
+                       "cuts": list(scene.seat_cuts())})
+    return cache_dir() / "static" / f"{key}.npz"
+
+
 def with_journal_loads(scene: Scene, options: RunOptions = RunOptions()) -> Scene:
     """The scene with every journal bearing that has no load_n loaded by its reaction to
     the static loads (the load on the journal: the reaction's opposite), and its film's
@@ -63,8 +107,7 @@ def with_journal_loads(scene: Scene, options: RunOptions = RunOptions()) -> Scen
     if not waiting:
         return scene
     assert scene.rotor is not None   # a journal needs [rotor] (scene.load)
-    static = run_static(scene, options).solution
-    reaction = {r.name: r.force for r in static.reactions}
+    reaction = reactions(scene, options)
     supports = []
     for s in scene.supports:
         if s.journal is None or s.bearing is not None:
