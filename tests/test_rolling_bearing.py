@@ -70,6 +70,7 @@ def test_a_ball_bearing_in_a_scene_is_its_stiffness_along_and_across_its_load():
     ("roller_length_mm", 10.0, "roller_length_mm"),
     ("radial_clearance_um", 30.0, "radial_clearance_um"),
     ("radial_stiffness_n_per_mm", 1e5, "its elements give its stiffness"),
+    ("pitch_diameter_mm", 20.0, "they do not fit"),
 ])
 def test_a_rolling_bearing_refuses_what_it_cannot_be(key, value, said):
     with pytest.raises(SceneError, match=said):

@@ -193,6 +193,7 @@ class Support(_Table):
     min_film_um: Number | None = None
     elements: int | None = None
     element_diameter_mm: Number | None = None
+    pitch_diameter_mm: Number | None = None
     roller_length_mm: Number | None = None
     contact_angle_deg: Number | None = None
     coupling: str | None = None

@@ -341,13 +341,14 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
 
 JOURNAL_KEYS = ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", "oil_iso_vg",
                 "oil_temperature_c", "cavitation", "min_film_um")
-ROLLING_KEYS = ("elements", "element_diameter_mm", "roller_length_mm", "contact_angle_deg")
+ROLLING_KEYS = ("elements", "element_diameter_mm", "pitch_diameter_mm", "roller_length_mm",
+                "contact_angle_deg")
 # the keys each kind of bearing from its physics takes
 PHYSICS_KEYS = {"journal": (*JOURNAL_KEYS, "load_n", "load_angle_deg"),
-                "ball": ("elements", "element_diameter_mm", "contact_angle_deg", "load_n",
-                         "load_angle_deg"),
-                "roller": ("elements", "roller_length_mm", "contact_angle_deg", "load_n",
-                           "load_angle_deg")}
+                "ball": ("elements", "element_diameter_mm", "pitch_diameter_mm",
+                         "contact_angle_deg", "load_n", "load_angle_deg"),
+                "roller": ("elements", "roller_length_mm", "pitch_diameter_mm",
+                           "contact_angle_deg", "load_n", "load_angle_deg")}
 
 
 def _rolling(source: str, table: str, t: dict) -> BearingCoefficients:
@@ -362,6 +363,11 @@ def _rolling(source: str, table: str, t: dict) -> BearingCoefficients:
                              "needs the number of elements, their "
                              + ("diameter" if t["kind"] == "ball" else "length")
                              + ", mm, and the radial load, N)")
+    pitch, d, n = t["pitch_diameter_mm"], t["element_diameter_mm"], t["elements"]
+    if pitch is not None and d is not None and n * d >= math.pi * pitch:
+        raise SceneError(f"{where(source, table, 'elements')} = {n}: {n} balls of {d:g} mm "
+                         f"need {n * d:.1f} mm of a pitch circle {math.pi * pitch:.1f} mm round "
+                         f"(pitch_diameter_mm = {pitch:g}): they do not fit")
     along, across = rolling.stiffness(t["kind"], t["elements"], t[size_key] * MM, t["load_n"],
                                       math.radians(t["contact_angle_deg"]))
     a = math.radians(t["load_angle_deg"])

@@ -299,6 +299,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
                         "is known)", required=False),
         "element_diameter_mm": Key(float, "ball diameter, mm (kind = \"ball\")",
                                    *upto(500, "up to 500 mm"), required=False),
+        "pitch_diameter_mm": Key(float, "the diameter of the circle through the elements' "
+                                 "centres, mm (kind = \"ball\", \"roller\"; optional: checks "
+                                 "that the elements fit around the shaft)",
+                                 *upto(5_000, "up to 5 m"), required=False),
         "roller_length_mm": Key(float, "effective roller length, mm (kind = \"roller\")",
                                 *upto(500, "up to 500 mm"), required=False),
         "contact_angle_deg": Key(float, "contact angle, deg (kind = \"ball\", \"roller\"; "
