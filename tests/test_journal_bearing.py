@@ -305,3 +305,26 @@ def test_a_short_bearing_against_ross_cylindrical_bearing():
         ours = [*op.K.ravel(), *op.C.ravel()]
         for name, v in zip(names, ours):
             assert v == pytest.approx(ref[name][i], rel=0.05), name
+
+
+def test_a_film_table_comes_back_from_the_cache_whole_or_not_at_all(tmp_path, monkeypatch):
+    """The film's table is kept in the cache and read back the same; a damaged entry is
+    discarded with a warning and solved again."""
+    from shaftfem.scene import load as scene_load
+    from shaftfem.store import CacheWarning
+
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
+    monkeypatch.setattr(journal, "_KNOWN", {})
+    scene_load._film_table(0.75, "gumbel")
+    (path,) = (tmp_path / "films").glob("*.npz")
+    solved = journal.table(0.75, "gumbel")
+    journal._KNOWN.clear()
+    scene_load._film_table(0.75, "gumbel")
+    read = journal._KNOWN[(0.75, "gumbel")]
+    for name in journal.TABLE_FIELDS:
+        np.testing.assert_array_equal(getattr(read, name), getattr(solved, name))
+    path.write_bytes(path.read_bytes()[:100])
+    journal._KNOWN.clear()
+    with pytest.warns(CacheWarning, match="journal film table"):
+        scene_load._film_table(0.75, "gumbel")
+    assert path.exists()

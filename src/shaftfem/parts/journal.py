@@ -266,9 +266,24 @@ class FilmTable:
     damping: np.ndarray
 
 
+# tables made elsewhere (read from a cache by the caller), by (L / D, cavitation)
+_KNOWN: dict[tuple[float, str], FilmTable] = {}
+# what a film table depends on besides its L / D and cavitation: a cache's key
+SETTINGS = {"version": 1, "eccentricities": list(ECCENTRICITIES), "theta_cells": THETA_CELLS,
+            "z_cells": Z_CELLS, "grading": GRADING, "feed": FEED, "coarsest": COARSEST}
+TABLE_FIELDS = ("eccentricity", "sommerfeld", "attitude", "force", "stiffness", "damping")
+
+
+def remember(t: FilmTable) -> None:
+    """Take `t` as the film table of its L / D and cavitation (one read from a cache)."""
+    _KNOWN[(t.ratio, t.cavitation)] = t
+
+
 @lru_cache(maxsize=16)
 def table(ratio: float, cavitation: str = "reynolds") -> FilmTable:
     """The film of a bearing of L / D = ratio at every eccentricity of ECCENTRICITIES."""
+    if (ratio, cavitation) in _KNOWN:
+        return _KNOWN[(ratio, cavitation)]
     rows = [state(ratio, e, cavitation) for e in ECCENTRICITIES]
     S, phi, F, K, C = [], [], [], [], []
     for r in rows:

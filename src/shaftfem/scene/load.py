@@ -441,12 +441,37 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         raise SceneError(f"{where(source, table, 'load_n')} = {t['load_n']:g}: {e}") from None
 
 
+def _film_table(ratio: float, cavitation: str) -> None:
+    """A journal film's table from the cache (keyed by its L / D, cavitation and the
+    film's settings), else solved and kept there: every run of a scene needs it, and it
+    takes seconds to solve."""
+    import numpy as np
+
+    from shaftfem.parts import journal
+    from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
+
+    key = content_key({"ratio": ratio, "cavitation": cavitation, **journal.SETTINGS})
+    path = cache_dir() / "films" / f"{key}.npz"
+    if path.exists():
+        fields, why = load_arrays(path, journal.TABLE_FIELDS)
+        if fields is not None:
+            journal.remember(journal.FilmTable(ratio, cavitation, **fields))
+            return
+        discard("journal film table", why, path)
+    t = journal.table(ratio, cavitation)
+    try:
+        save_arrays(path, {n: np.asarray(getattr(t, n)) for n in journal.TABLE_FIELDS})
+    except OSError:   # a cache that cannot be written costs time, not the result
+        pass
+
+
 def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoefficients:
     """A loaded journal bearing's coefficients against speed, up to the Campbell
     diagram's end; its standstill ones at the lowest operating speed (or where its film
     lifts the journal, if later). A ValueError if the film does not lift it by then."""
     from shaftfem.parts import journal
 
+    _film_table(round(bearing.ratio, 9), bearing.cavitation)
     try:
         speeds = journal.speed_table(bearing, rotor.max_speed)
     except ValueError as e:
