@@ -3,6 +3,7 @@ rad/s, Hz), made from a scene file by shaftfem.scene.load."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -256,22 +257,34 @@ class BearingCoefficients:
     cyy: tuple[float, ...]
     reference: float = 0.0   # rad/s: the speed whose kxx, kyy the standstill modes hold
 
-    def _at(self, values: tuple[float, ...], omega: float) -> float:
-        if len(values) == 1:
-            return values[0]
+    @functools.cached_property
+    def _table(self):
+        """The speeds and the eight coefficients as arrays, (n,) and (8, n): read at every
+        speed of a run, thousands of times."""
         import numpy as np
 
-        return float(np.interp(omega, self.speeds, values))
+        n = max(len(self.speeds), 1)
+        rows = [self.kxx, self.kxy, self.kyx, self.kyy, self.cxx, self.cxy, self.cyx, self.cyy]
+        return (np.asarray(self.speeds, dtype=float),
+                np.array([v * n if len(v) == 1 else v for v in rows], dtype=float))
+
+    def _values(self, omega: float) -> list[float]:
+        speeds, table = self._table
+        if speeds.size <= 1:
+            return [float(v) for v in table[:, 0]]
+        i = int(min(max(speeds.searchsorted(omega), 1), speeds.size - 1))
+        t = min(max((omega - speeds[i - 1]) / (speeds[i] - speeds[i - 1]), 0.0), 1.0)
+        return [float(v) for v in (1 - t) * table[:, i - 1] + t * table[:, i]]
 
     def stiffness(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
         """[[kxx, kxy], [kyx, kyy]] at the speed omega (rad/s), N/m."""
-        return ((self._at(self.kxx, omega), self._at(self.kxy, omega)),
-                (self._at(self.kyx, omega), self._at(self.kyy, omega)))
+        kxx, kxy, kyx, kyy = self._values(omega)[:4]
+        return ((kxx, kxy), (kyx, kyy))
 
     def damping(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
         """[[cxx, cxy], [cyx, cyy]] at the speed omega (rad/s), N s/m."""
-        return ((self._at(self.cxx, omega), self._at(self.cxy, omega)),
-                (self._at(self.cyx, omega), self._at(self.cyy, omega)))
+        cxx, cxy, cyx, cyy = self._values(omega)[4:]
+        return ((cxx, cxy), (cyx, cyy))
 
     @property
     def isotropic(self) -> bool:
