@@ -421,7 +421,7 @@ def static_shapes(result: ModalResult, loads: np.ndarray, reduced: bool = False)
     (installed or free), which converges to K u = f on the elastic modes without a
     singular factorisation; one factorisation for every load. With `reduced`, in the
     installed pencil's own coordinates."""
-    from shaftfem.fem.factor import factorise
+    from shaftfem.fem.static import elastic_solve
     from shaftfem.fem.supports import rigid_body_modes
 
     system, inst = result.system, result.installed
@@ -429,22 +429,8 @@ def static_shapes(result: ModalResult, loads: np.ndarray, reduced: bool = False)
         K, M, R, f = inst.K, inst.M, inst.rigid, inst.T.T @ loads
     else:
         K, M, R, f = system.K, system.M, rigid_body_modes(system.nodes), loads
-    if R.shape[1]:
-        lam, V = np.linalg.eigh(R.T @ (M @ R))
-        R = R @ (V / np.sqrt(lam))               # M-orthonormal
     s = STATIC_SHIFT * (2 * math.pi * result.modes.frequencies[0]) ** 2
-    one, backend = factorise((K + s * M).tocsr())
-
-    def solve(b: np.ndarray) -> np.ndarray:   # every load at once where the back-end can
-        if backend in ("pardiso", "superlu"):
-            return one(b)
-        return np.column_stack([one(np.ascontiguousarray(col)) for col in b.T])
-
-    f = f - M @ (R @ (R.T @ f))
-    u = np.zeros_like(f)
-    for _ in range(STATIC_STEPS):
-        u = solve(f + s * (M @ u))
-        u = u - R @ (R.T @ (M @ u))
+    u = elastic_solve(K, M, R, f, s, STATIC_STEPS)
     return inst.T @ u if inst is not None and not reduced else u
 
 
@@ -518,13 +504,10 @@ def section_motion(result: ModalResult, z: float, Phi: np.ndarray | None = None
     """The mean radial motion (x, y) of the shaft's cross-section at z (m) in each
     shape of Phi (default the run's modes), (2, N), m / sqrt(kg): where a beam model
     reads its node (the mesh follows the planes of the scene's parts and unbalances)."""
-    from shaftfem.fem.supports import carried, section_weights
+    from shaftfem.fem.supports import section_means
 
     system = result.system
-    w = section_weights(system.nodes, z, system.mass_scalar.diagonal())
-    probe = Attachment(name="probe", position=z, width=0.0, mass=0.0, polar_inertia=0.0,
-                       diametral_inertia=0.0, joint="distributing")
-    c = carried(probe, system.nodes, w)
+    c = section_means(system.nodes, system.mass_scalar.diagonal(), z)
     return c.C[:2] @ (result.modes.shapes if Phi is None else Phi)[c.dofs]
 
 

@@ -23,6 +23,10 @@ if TYPE_CHECKING:
     from shaftfem.fem.installation import Installed
     from shaftfem.scene.model import Scene
 
+# A shaft its supports leave free (axially, about its axis) is solved shifted by this
+# share of its largest stiffness, in this many steps.
+SHIFT = 1e-8
+STEPS = 4
 # The deflection line is drawn on this many slices along the shaft.
 SLICES = 200
 # The reactions balance the loads to this share of the loads (else a SolverError).
@@ -59,6 +63,35 @@ class StaticSolution:
         return float(np.interp(z, self.z, self.x)), float(np.interp(z, self.z, self.y))
 
 
+def elastic_solve(K, M, R: np.ndarray, f: np.ndarray, shift: float, steps: int
+                  ) -> np.ndarray:
+    """K u = f (loads as columns of f) on the elastic motions of the pencil (K, M), its
+    free rigid motions R taken out of the loads and of u: (K + s M) u_k+1 = f + s M u_k,
+    each step gaining about s / (lowest elastic eigenvalue); one factorisation, every
+    load at once where the back-end takes them. Without free motions, K u = f."""
+    from shaftfem.fem.factor import factorise
+
+    if not R.shape[1]:
+        shift, steps = 0.0, 1
+    one, backend = factorise((K + shift * M).tocsr() if shift else K.tocsr())
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        if backend in ("pardiso", "superlu"):
+            return one(b)
+        return np.column_stack([one(np.ascontiguousarray(col)) for col in b.T])
+
+    if R.shape[1]:
+        lam, V = np.linalg.eigh(R.T @ (M @ R))
+        R = R @ (V / np.sqrt(lam))               # M-orthonormal
+        f = f - M @ (R @ (R.T @ f))
+    u = np.zeros_like(f)
+    for _ in range(steps):
+        u = solve(f + shift * (M @ u))
+        if R.shape[1]:
+            u = u - R @ (R.T @ (M @ u))
+    return u
+
+
 def loads(scene: Scene, system: System, inst: Installed) -> tuple[np.ndarray, np.ndarray]:
     """The static loads in the installed coordinates (N): gravity on the shaft and every
     part, and each [[force]] on its cross-section's mean motion; and their resultant
@@ -74,22 +107,17 @@ def loads(scene: Scene, system: System, inst: Installed) -> tuple[np.ndarray, np
 def forces_on_nodes(scene: Scene, system: System) -> np.ndarray:
     """The [[force]] tables on the shaft's nodes (3 n,), N: each on its cross-section's
     mean motion, q = C u, as C^T F."""
-    from shaftfem.fem.supports import carried, section_weights
-    from shaftfem.scene.model import Attachment
+    from shaftfem.fem.supports import section_means
 
     nodal = np.zeros(system.n_dofs)
     for force in scene.forces:
-        w = section_weights(system.nodes, force.position, system.mass_scalar.diagonal())
-        probe = Attachment(name=force.name, position=force.position, width=0.0, mass=0.0,
-                           polar_inertia=0.0, diametral_inertia=0.0, joint="distributing")
-        c = carried(probe, system.nodes, w)
+        c = section_means(system.nodes, system.mass_scalar.diagonal(), force.position)
         nodal[c.dofs] += c.C[:2].T @ np.array([force.fx, force.fy])
     return nodal
 
 
 def static_solution(scene: Scene, system: System, inst: Installed, skmesh) -> StaticSolution:
     """The installed shaft of `scene` under its static loads."""
-    from shaftfem.fem.factor import factorise
     from shaftfem.fem.installation import seat_radius
     from shaftfem.fem.supports import band_nodes
 
@@ -107,15 +135,8 @@ def static_solution(scene: Scene, system: System, inst: Installed, skmesh) -> St
                              f"its supports leave free ({', '.join(inst.free)}): nothing holds "
                              "it there; hold it (an axial stiffness, a rigid seat) or turn "
                              "[static] gravity_direction across the shaft")
-        shift = 1e-8 * float(inst.K.diagonal().max())
-        solve, _ = factorise((inst.K + shift * inst.M).tocsr())
-        q = solve(f_q)
-        for _ in range(3):   # (K + s M) q = f + s M q, its free part taken out
-            q = solve(f_q + shift * (inst.M @ q))
-            q = q - R @ (R.T @ (inst.M @ q))
-    else:
-        solve, _ = factorise(inst.K.tocsr())
-        q = solve(f_q)
+    q = elastic_solve(inst.K, inst.M, inst.rigid, f_q[:, None],
+                      SHIFT * float(inst.K.diagonal().max()), STEPS)[:, 0]
     u = np.asarray(inst.T @ q)
     # what each band takes from the shaft: K_shaft u - f on its nodes
     nodal = loads_on_nodes(scene, system, inst)

@@ -225,6 +225,15 @@ def carried(part: Attachment, nodes: np.ndarray, weights: np.ndarray) -> Carried
     return Carried(part, (3 * on[:, None] + np.arange(3)).ravel(), C)
 
 
+def section_means(nodes: np.ndarray, mass_diagonal: np.ndarray, z: float) -> Carried:
+    """The mean motion of the cross-section at z (m), q = C u, as a part on a
+    distributing joint there would move (no mass): where a beam model reads its node,
+    and where a force on the section acts (as C^T F)."""
+    probe = Attachment(name="section", position=z, width=0.0, mass=0.0, polar_inertia=0.0,
+                       diametral_inertia=0.0, joint="distributing")
+    return carried(probe, nodes, section_weights(nodes, z, mass_diagonal))
+
+
 def carried_mass(parts: list[Carried], n_dofs: int) -> sp.csr_matrix:
     """sum C^T M_p C over the parts on distributing joints: their kinetic energy in the
     shaft's DOFs (kg)."""
