@@ -10,6 +10,7 @@ of packages): run this in an environment of its own,
     .venv-ross/bin/python benchmarks/ross_reference.py --journals \
         tests/data/journal_591.json tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --cylindrical tests/data/ross_rotors.json
+    .venv-ross/bin/python benchmarks/ross_reference.py --seal tests/data/ross_rotors.json
 
 Every rotor is written as ross's own tests write it (ross/tests/test_examples.py), on
 48 shaft elements; speeds are rad/s, frequencies rad/s (ross's units).
@@ -289,6 +290,56 @@ def cylindrical(path: str) -> None:
     print(json.dumps(entry, indent=1))
 
 
+# 5.9.1 with a water seal at mid-span (tests/test_seal.py): 25 mm long on the 50 mm shaft,
+# 150 um clearance, 1 MPa across it at 3,000 r/min; speeds up to 4,000 r/min
+SEAL = {"length_m": 0.025, "diameter_m": 0.05, "clearance_m": 150e-6,
+        "pressure_drop_pa": 1e6, "rated_rpm": 3000.0, "density_kg_m3": 998.0,
+        "viscosity_pa_s": 1e-3, "top_rpm": 4000.0}
+
+
+def seal(path: str) -> None:
+    """Add "5.9.1 seal" to the reference file at `path`: 5.9.1 with 500 N s/m in each
+    bearing and the seal SEAL at node 24 (0.75 m), its coefficients against speed as
+    shaftfem's seal model gives them (shaftfem.parts.seal, pure Python, read from src/),
+    in ross's SealElement; the whirl and log decrements at 1,000, 3,000 and 4,000 r/min."""
+    from pathlib import Path
+
+    import ross as rs
+    from ross.materials import steel
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src" / "shaftfem" / "parts"))
+    import seal as model  # shaftfem.parts.seal on its own: it imports nothing of shaftfem
+
+    s = model.AnnularSeal(length=SEAL["length_m"], diameter=SEAL["diameter_m"],
+                          clearance=SEAL["clearance_m"], pressure_drop=SEAL["pressure_drop_pa"],
+                          rated=SEAL["rated_rpm"] * RPM, density=SEAL["density_kg_m3"],
+                          viscosity=SEAL["viscosity_pa_s"])
+    speeds, states = model.speed_table(s, SEAL["top_rpm"] * RPM)
+    table = {"speeds": [0.0, *speeds]}
+    for name, key, sign in (("kxx", "K", 1), ("kyy", "K", 1), ("kxy", "k", 1), ("kyx", "k", -1),
+                            ("cxx", "C", 1), ("cyy", "C", 1), ("cxy", "c", 1), ("cyx", "c", -1),
+                            ("mxx", "M", 1), ("myy", "M", 1)):
+        table[name] = [0.0, *(sign * getattr(x, key) for x in states)]
+    c = 500.0
+    element = rs.SealElement(n=N_EL // 2, frequency=table["speeds"],
+                             **{k: v for k, v in table.items() if k != "speeds"})
+    rotor = rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL // 3, 0.28),
+                                        disk(rs, steel, 2 * N_EL // 3, 0.35)],
+                     [rs.BearingElement(n=0, kxx=1e6, kyy=1e6, cxx=c, cyy=c),
+                      rs.BearingElement(n=N_EL, kxx=1e6, kyy=1e6, cxx=c, cyy=c), element])
+    entry: dict = {"seal": SEAL, "bearing_damping_n_s_per_m": c, "table": table}
+    for rpm in (1000, 3000, 4000):
+        wd, dirs, ld = whirl(rotor, rpm * RPM, 6)
+        entry[str(rpm)] = {"wd": list(map(float, wd)), "whirl": dirs,
+                           "log_dec": list(map(float, ld))}
+    with open(path) as f:
+        out = json.load(f)
+    out["5.9.1 seal"] = entry
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps({k: v for k, v in entry.items() if k != "table"}, indent=1))
+
+
 def journals(table_path: str, path: str) -> None:
     """Add "5.9.1 journals" to the reference file at `path`, from the bearings of
     `table_path`."""
@@ -310,5 +361,7 @@ if __name__ == "__main__":
         journals(sys.argv[2], sys.argv[3])
     elif len(sys.argv) > 1 and sys.argv[1] == "--cylindrical":
         cylindrical(sys.argv[2])
+    elif len(sys.argv) > 1 and sys.argv[1] == "--seal":
+        seal(sys.argv[2])
     else:
         main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")

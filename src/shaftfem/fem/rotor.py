@@ -27,7 +27,8 @@ Omega C_b S to the stiffness.
 
 Bearings: K_b(Omega) and C_b(Omega) act on each seat's mean radial motion
 (q_x, q_y) = (c_x . u, c_y . u) (fem.supports); the standstill modes already hold
-kxx(0) and kyy(0), dK_b is the rest.
+kxx(0) and kyy(0), dK_b is the rest. A seal's added mass M_b there makes the mass
+I + beta^T M_b beta (turning with the shaft, M_b (q'' + 2 Omega S q' - Omega^2 q)).
 """
 
 from __future__ import annotations
@@ -120,7 +121,7 @@ class RotorModel:
                        residual=P.shape[1], static=static)
 
     def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
-        """(D, K) of q'' + D q' + K q = 0 at the spin omega (rad/s)."""
+        """(D, K) of M q'' + D q' + K q = 0 at the spin omega (rad/s)."""
         D = omega * self.G
         K = np.diag(self.omega2) + omega**2 * self.K2
         for b in self.bearings:
@@ -130,7 +131,21 @@ class RotorModel:
             K = K + b.beta.T @ Kb @ b.beta
             if self.frame == "rotating":
                 K = K + omega * (b.beta.T @ (Cb @ S2) @ b.beta)
+                if b.coefficients.has_mass:
+                    # a seal's fluid mass seen turning: M (q'' + 2 Omega S q' - Omega^2 q)
+                    Mb = np.array(b.coefficients.mass(omega))
+                    D = D + 2 * omega * (b.beta.T @ (Mb @ S2) @ b.beta)
+                    K = K - omega**2 * (b.beta.T @ Mb @ b.beta)
         return D, K
+
+    def mass(self, omega: float) -> np.ndarray:
+        """M of M q'' + D q' + K q = 0 at the spin omega (rad/s): the identity on the
+        mass-normalised modes, with the seals' added mass on their seats."""
+        M = np.eye(self.size)
+        for b in self.bearings:
+            if b.coefficients.has_mass:
+                M = M + b.beta.T @ np.array(b.coefficients.mass(omega)) @ b.beta
+        return M
 
 
 @dataclass(frozen=True)
@@ -145,12 +160,15 @@ class Roots:
 
 def roots(model: RotorModel, omega: float) -> Roots:
     """The eigenvalues of q'' + D q' + K q = 0 at the spin omega (rad/s), from its
-    first-order form [[0, I], [-K, -D]]: the oscillating ones (Im lam > 0), lowest
+    first-order form [[0, I], [-M^-1 K, -M^-1 D]]: the oscillating ones (Im lam > 0), lowest
     frequency first. Real ones (overdamped, or a divergence) are left out, the fastest
     growth among them kept (a shaft stiffer across one diameter than across the other
     diverges in the frame that turns with it between its pair's frequencies)."""
     D, K = model.matrices(omega)
     n = model.size
+    if any(b.coefficients.has_mass for b in model.bearings):
+        X = np.linalg.solve(model.mass(omega), np.hstack([D, K]))
+        D, K = X[:, :n], X[:, n:]
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -D]])
     lam, V = np.linalg.eig(A)
     scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
@@ -527,7 +545,7 @@ def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.nd
         else:
             F += omega**2 * (U.real * beta[0] + U.imag * beta[1])
     if model.frame == "stationary":
-        return np.linalg.solve(K - omega**2 * np.eye(model.size) + 1j * omega * D, F)
+        return np.linalg.solve(K - omega**2 * model.mass(omega) + 1j * omega * D, F)
     return np.linalg.solve(K.astype(complex), F)
 
 

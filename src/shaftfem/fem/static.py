@@ -143,6 +143,8 @@ def static_solution(scene: Scene, system: System, inst: Installed, skmesh) -> St
     residual = system.K @ u - nodal
     reactions = []
     for s in scene.held:
+        if s.kind == "seal":   # a seal carries no static load (its stiffness needs speed)
+            continue
         radius = seat_radius(scene, system.nodes, s.seat)
         idx = band_nodes(system.nodes, radius, s.seat)
         force = np.array([residual[3 * idx + c].sum() for c in range(3)])

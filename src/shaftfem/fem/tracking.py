@@ -506,7 +506,7 @@ def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> 
     for b in model.bearings:
         K0 = K0 + b.beta.T @ (np.array(b.coefficients.stiffness(0.0)) - np.diag(b.standstill)
                               ) @ b.beta
-    eye = np.eye(model.size)
+    eye = model.mass(0.0)
 
     from shaftfem.fem.rotor import dominant_kinds
 

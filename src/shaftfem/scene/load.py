@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from shaftfem.errors import SceneError
+from shaftfem.parts import seal
 from shaftfem.scene.checks import PlausibilityWarning, check_grooves, check_seats, implausible
 from shaftfem.scene.model import (
     MM,
@@ -184,7 +185,8 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
     mesh = _mesh_settings(source, mesh_t, shaft, grooves)
     supports = tuple(_support(source, i, e) for i, e in enumerate(_array(source, data, "support")))
     rotor = _rotor(source, data, shaft)
-    supports = tuple(_journal(source, i, e, s, shaft, rotor) if s.kind == "journal" else s
+    physics = {"journal": _journal, "seal": _seal}
+    supports = tuple(physics[s.kind](source, i, e, s, shaft, rotor) if s.kind in physics else s
                      for i, (e, s) in enumerate(zip(_array(source, data, "support"), supports)))
     attachments = tuple(_attachment(source, i, e)
                         for i, e in enumerate(_array(source, data, "attachment")))
@@ -343,8 +345,10 @@ JOURNAL_KEYS = ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", "oil_is
                 "oil_temperature_c", "cavitation", "min_film_um")
 ROLLING_KEYS = ("elements", "element_diameter_mm", "pitch_diameter_mm", "roller_length_mm",
                 "contact_angle_deg")
-# the keys each kind of bearing from its physics takes
+SEAL_KEYS = ("pressure_drop_mpa", "fluid_density_kg_m3", "inlet_loss")
+# the keys each kind of bearing or seal from its physics takes
 PHYSICS_KEYS = {"journal": (*JOURNAL_KEYS, "load_n", "load_angle_deg"),
+                "seal": ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", *SEAL_KEYS),
                 "ball": ("elements", "element_diameter_mm", "pitch_diameter_mm",
                          "contact_angle_deg", "load_n", "load_angle_deg"),
                 "roller": ("elements", "roller_length_mm", "pitch_diameter_mm",
@@ -465,6 +469,58 @@ def _film_table(ratio: float, cavitation: str) -> None:
         pass
 
 
+def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
+          rotor: Rotor | None) -> Support:
+    """A plain annular seal's support: its coefficients against speed, up to the
+    Campbell diagram's end (shaftfem.parts.seal), none at standstill."""
+    table = entry("support", i, raw)
+    t = validate_table(source, table, _as_lists(raw, BEARING_KEYS), SCHEMA["support"])
+    for key, what in (("radial_clearance_um", "the seal's radial clearance, um"),
+                      ("pressure_drop_mpa", "the pressure drop across it at the highest "
+                       "operating speed, MPa"),
+                      ("fluid_density_kg_m3", "the sealed fluid's density, kg/m^3"),
+                      ("viscosity_mpa_s", "the sealed fluid's viscosity, mPa s")):
+        if t[key] is None:
+            raise SceneError(f"{where(source, table, key)}: missing (kind = \"seal\" needs "
+                             f"{what})")
+    if rotor is None:
+        raise SceneError(f"{where(source, table, 'kind')} = \"seal\": a seal's forces come "
+                         "from its speed; add [rotor] with the operating speed")
+    diameter = t["diameter_mm"] * MM if t["diameter_mm"] is not None else None
+    if diameter is None:
+        radius = shaft.radius_at(s.position)
+        if radius is None:
+            raise SceneError(f"{where(source, table, 'diameter_mm')}: missing (on a STEP shaft "
+                             "give the seal's diameter, mm)")
+        diameter = 2 * radius
+    clearance = t["radial_clearance_um"] * 1e-6
+    if clearance > 0.02 * diameter:
+        raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "
+                         f"{t['radial_clearance_um']:g}: {clearance / diameter:.3g} of the "
+                         "diameter; a plain seal's radial clearance is about 0.001 to 0.005 "
+                         "of it (the bulk-flow model holds below 0.02)")
+    return replace(s, bearing=seal_coefficients(
+        seal.AnnularSeal(length=s.width, diameter=diameter, clearance=clearance,
+                         pressure_drop=t["pressure_drop_mpa"] * MPA, rated=rotor.top_speed,
+                         density=t["fluid_density_kg_m3"],
+                         viscosity=t["viscosity_mpa_s"] * 1e-3,
+                         inlet_loss=seal.INLET_LOSS if t["inlet_loss"] is None
+                         else t["inlet_loss"]), rotor))
+
+
+def seal_coefficients(s: seal.AnnularSeal, rotor: Rotor) -> BearingCoefficients:
+    """A seal's coefficients against speed up to the Campbell diagram's end: none at
+    standstill, where the pump makes no pressure."""
+    speeds, states = seal.speed_table(s, rotor.max_speed)
+
+    def row(name: str, sign: float = 1.0) -> tuple[float, ...]:
+        return (0.0, *(sign * getattr(x, name) for x in states))
+
+    return BearingCoefficients(speeds=(0.0, *speeds), kxx=row("K"), kxy=row("k"),
+                               kyx=row("k", -1.0), kyy=row("K"), cxx=row("C"), cxy=row("c"),
+                               cyx=row("c", -1.0), cyy=row("C"), mxx=row("M"), myy=row("M"))
+
+
 def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoefficients:
     """A loaded journal bearing's coefficients against speed, up to the Campbell
     diagram's end; its standstill ones at the lowest operating speed (or where its film
@@ -504,7 +560,8 @@ def _support(source: str, i: int, t: dict) -> Support:
         if t["radial_stiffness_n_per_mm"] is not None:
             raise SceneError(f"{where(source, table, 'radial_stiffness_n_per_mm')}: not with "
                              f"kind = \"{t['kind']}\": its "
-                             + ("film gives" if t["kind"] == "journal" else "elements give")
+                             + ("elements give" if t["kind"] in ("ball", "roller")
+                                else "film gives")
                              + " its stiffness")
     elif t["kind"] == "bearing":
         if t["radial_stiffness_n_per_mm"] is not None:
@@ -521,14 +578,15 @@ def _support(source: str, i: int, t: dict) -> Support:
                                  "\"springs\", \"bearing\", \"journal\", \"ball\" or "
                                  f"\"roller\" (this support is {t['kind']!r})")
     takes = PHYSICS_KEYS.get(t["kind"], ())
-    for key in (*JOURNAL_KEYS, *ROLLING_KEYS, "load_n", "load_angle_deg"):
+    for key in (*JOURNAL_KEYS, *ROLLING_KEYS, *SEAL_KEYS, "load_n", "load_angle_deg"):
         if key not in takes and t[key] is not None and SCHEMA["support"][key].default != t[key]:
             kinds = " or ".join(f'"{k}"' for k, keys in PHYSICS_KEYS.items() if key in keys)
             raise SceneError(f"{where(source, table, key)} = {t[key]!r}: only with kind = "
                              f"{kinds} (this support is {t['kind']!r})")
     if takes and t["coupling"] == "rigid":
-        raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a {t['kind']} "
-                         "bearing acts on the seat's mean motion; leave coupling out")
+        raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a {t['kind']}"
+                         f"{'' if t['kind'] == 'seal' else ' bearing'} acts on the seat's mean "
+                         "motion; leave coupling out")
     if t["kind"] in ("ball", "roller"):
         bearing = _rolling(source, table, t)
     if t["kind"] != "bearing":

@@ -239,9 +239,10 @@ class ModeRequest:
 
 @dataclass(frozen=True)
 class BearingCoefficients:
-    """A rotor bearing's stiffness (N/m) and damping (N s/m) coefficients on the seat's
-    mean radial motion (q_x, q_y), as rotor engineers give them: the force on the shaft
-    is -[[kxx, kxy], [kyx, kyy]] q - [[cxx, cxy], [cyx, cyy]] dq/dt. Each coefficient
+    """A rotor bearing's or seal's stiffness (N/m), damping (N s/m) and added mass (kg)
+    coefficients on the seat's mean radial motion (q_x, q_y), as rotor engineers give
+    them: the force on the shaft is -[[kxx, kxy], [kyx, kyy]] q - [[cxx, cxy], [cyx,
+    cyy]] dq/dt - diag(mxx, myy) d^2q/dt^2 (no mass: empty mxx, myy). Each coefficient
     holds one value per speed of `speeds` (rad/s, ascending), or one value when
     `speeds` is empty; between speeds interpolated linearly, outside them the nearest
     end's value."""
@@ -256,15 +257,18 @@ class BearingCoefficients:
     cyx: tuple[float, ...]
     cyy: tuple[float, ...]
     reference: float = 0.0   # rad/s: the speed whose kxx, kyy the standstill modes hold
+    mxx: tuple[float, ...] = ()
+    myy: tuple[float, ...] = ()
 
     @functools.cached_property
     def _table(self):
-        """The speeds and the eight coefficients as arrays, (n,) and (8, n): read at every
+        """The speeds and the ten coefficients as arrays, (n,) and (10, n): read at every
         speed of a run, thousands of times."""
         import numpy as np
 
         n = max(len(self.speeds), 1)
-        rows = [self.kxx, self.kxy, self.kyx, self.kyy, self.cxx, self.cxy, self.cyx, self.cyy]
+        rows = [self.kxx, self.kxy, self.kyx, self.kyy, self.cxx, self.cxy, self.cyx, self.cyy,
+                self.mxx or (0.0,), self.myy or (0.0,)]
         return (np.asarray(self.speeds, dtype=float),
                 np.array([v * n if len(v) == 1 else v for v in rows], dtype=float))
 
@@ -283,14 +287,23 @@ class BearingCoefficients:
 
     def damping(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
         """[[cxx, cxy], [cyx, cyy]] at the speed omega (rad/s), N s/m."""
-        cxx, cxy, cyx, cyy = self._values(omega)[4:]
+        cxx, cxy, cyx, cyy = self._values(omega)[4:8]
         return ((cxx, cxy), (cyx, cyy))
+
+    def mass(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
+        """[[mxx, 0], [0, myy]] at the speed omega (rad/s), kg."""
+        mxx, myy = self._values(omega)[8:]
+        return ((mxx, 0.0), (0.0, myy))
+
+    @property
+    def has_mass(self) -> bool:
+        return any(self.mxx) or any(self.myy)
 
     @property
     def isotropic(self) -> bool:
         """Whether the bearing looks the same from every angle about the axis (kxx = kyy,
         kxy = -kyx, and so for damping) at every speed: what a rotating frame needs."""
-        return (self.kxx == self.kyy and self.cxx == self.cyy
+        return (self.kxx == self.kyy and self.cxx == self.cyy and self.mxx == self.myy
                 and all(a == -b for a, b in zip(self.kxy, self.kyx))
                 and all(a == -b for a, b in zip(self.cxy, self.cyx)))
 

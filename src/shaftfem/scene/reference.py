@@ -30,7 +30,8 @@ are errors that name the file, the key, the value and what is allowed (exit stat
 A bearing given by its physics rather than its coefficients has its own page (the
 model, equations, inputs and checks): [journal bearings](journal-bearing.md)
 (`kind = "journal"`), [rolling bearings](rolling-bearing.md) (`kind = "ball"`,
-`"roller"`), and a stage's [aerodynamic cross-coupling](cross-coupling.md) on an
+`"roller"`), [annular seals](seal.md) (`kind = "seal"`), and a stage's
+[aerodynamic cross-coupling](cross-coupling.md) on an
 `[[attachment]]` (`stage_power_kw`).
 
 This page is generated from the schema in `shaftfem.scene.schema` by

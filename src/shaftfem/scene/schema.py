@@ -24,7 +24,7 @@ MAX_DOFS_LIMIT = 20_000_000
 ELEMENT_ORDERS = (1, 2, 3, 4, 5)
 GEOMETRY_ORDERS = (2, 3)
 SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs", "bearing", "journal", "ball",
-                 "roller")
+                 "roller", "seal")
 CAVITATION = ("reynolds", "gumbel")
 # ISO 3448 viscosity grades shaftfem knows the temperature line of (shaftfem.parts.oil)
 ISO_VG = (10, 15, 22, 32, 46, 68, 100, 150, 220, 320, 460, 680)
@@ -226,8 +226,9 @@ SCHEMA: dict[str, dict[str, Key]] = {
                     "oil-film journal bearing from its clearance, oil and load: its coefficients "
                     "at each speed from Reynolds' equation, docs/journal-bearing.md), \"ball\" "
                     "or \"roller\" (a rolling bearing from its elements and load, Hertz "
-                    "contact, docs/rolling-bearing.md); all but rigid-radial and clamped let "
-                    "the shaft tilt and turn",
+                    "contact, docs/rolling-bearing.md), \"seal\" (a plain annular seal from "
+                    "its clearance, pressure drop and fluid, docs/seal.md: it carries no static "
+                    "load); all but rigid-radial and clamped let the shaft tilt and turn",
                     lambda v: v in SUPPORT_KINDS, ", ".join(f'"{k}"' for k in SUPPORT_KINDS)),
         "kxx_n_per_mm": coefficient(
             "direct stiffness along x, N/mm (kind = \"bearing\")", direct=True),
@@ -263,14 +264,16 @@ SCHEMA: dict[str, dict[str, Key]] = {
                   "far beyond, the solve loses the digits it needs", closed_low=True),
             required=False),
         "radial_clearance_um": Key(
-            float, "radial clearance of a journal bearing (bore radius minus journal "
-            "radius), um (kind = \"journal\"; the bearing's length is width_mm)",
+            float, "radial clearance of a journal bearing or a seal (bore radius minus "
+            "shaft radius), um (kind = \"journal\", \"seal\"; the length is width_mm)",
             *upto(10_000, "up to 10 mm"), required=False),
-        "diameter_mm": Key(float, "journal diameter, mm (kind = \"journal\"; default: the "
+        "diameter_mm": Key(float, "journal or seal diameter, mm (kind = \"journal\", "
+                           "\"seal\"; default: the "
                            "shaft's diameter at the seat; needed on a STEP shaft)",
                            *upto(2_000, "up to 2 m"), required=False),
         "viscosity_mpa_s": Key(float, "the oil's dynamic viscosity in the film, mPa s (= cP; "
-                               "kind = \"journal\"; or oil_iso_vg and oil_temperature_c)",
+                               "kind = \"journal\"; or oil_iso_vg and oil_temperature_c), "
+                               "or the sealed fluid's (kind = \"seal\"; water at 20 C: 1.0)",
                                *upto(10_000, "up to 10^4 mPa s"), required=False),
         "oil_iso_vg": Key(int, "the oil's ISO 3448 viscosity grade (a VI-100 mineral oil; "
                           "kind = \"journal\", with oil_temperature_c)",
@@ -309,6 +312,15 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                  "0 for a deep-groove or cylindrical roller bearing)",
                                  lambda v: 0 <= v < 60, "in [0, 60)", default=0.0,
                                  required=False),
+        "pressure_drop_mpa": Key(float, "the pressure drop across the seal at the highest "
+                                 "operating speed, MPa (kind = \"seal\"; at other speeds as "
+                                 "the square of the speed, as a pump's head)",
+                                 *upto(1_000, "up to 1000 MPa"), required=False),
+        "fluid_density_kg_m3": Key(float, "the sealed fluid's density, kg/m^3 (kind = "
+                                   "\"seal\"; water: 998)", *upto(25_000, "up to 25000 kg/m^3"),
+                                   required=False),
+        "inlet_loss": Key(float, "the seal's inlet loss coefficient xi (kind = \"seal\"; "
+                          "default 0.1)", lambda v: 0 <= v <= 2, "in [0, 2]", required=False),
         "coupling": coupling(
             "how the bearing holds its seat: \"distributing\" (default: the seat band's "
             "mean motion, the section under it free to deform, as a ball bearing on a "
