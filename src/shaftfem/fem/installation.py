@@ -58,6 +58,7 @@ class Installed:
     rings: tuple[np.ndarray, ...]         # band nodes of each rigid-coupled seat
     carried: tuple[Carried, ...] = ()     # the parts on distributing joints
     M_carried: sp.csr_matrix | None = None   # their mass in the shaft's DOFs (kg)
+    trains: int = 0    # the coupled machines' turns: the last columns, moving no node
 
     @property
     def n_rigid(self) -> int:
@@ -66,6 +67,14 @@ class Installed:
     def expand(self, X: np.ndarray) -> np.ndarray:
         """Reduced vectors (n_q, m) as displacements of every node (3 n, m)."""
         return self.T @ X
+
+    def shaft_coordinates(self, U: np.ndarray) -> np.ndarray:
+        """The reduced coordinates (n_q - trains, m) of the shaft's displacements U = T q
+        (3 n, m) (the coupled machines' turns move no node: they are not in U)."""
+        from scipy.sparse.linalg import splu
+
+        T = self.T[:, :self.T.shape[1] - self.trains].tocsc()
+        return splu((T.T @ T).tocsc()).solve(np.asarray(T.T @ U))
 
 
 @dataclass
@@ -104,12 +113,14 @@ def install(scene: Scene, K: sp.csr_matrix, M: sp.csr_matrix, nodes: np.ndarray,
     K_r = ((K_r + K_r.T) * 0.5).tocsr()
     M_r = ((M_r + M_r.T) * 0.5).tocsr()
     rigid, target = _free_rigid_motions(nodes, T, Tt, seats)
+    n_shaft = T.shape[1]
+    K_r, M_r, T, rigid = _trains(seats, first, K_r, M_r, T, rigid)
     n_parts = len(seats.parts)
     return Installed(K=K_r, M=M_r, T=T, rigid=rigid, free=motion_names(target, nodes),
                      restraints=tuple(seats.restraints), clamped=seats.clamped,
                      tied=tuple(i for i, _ in seats.tied[:n_parts]), parts=tuple(seats.parts),
                      parts_from=first, rings=tuple(idx for _, idx in seats.rings),
-                     carried=tuple(seats.carried), M_carried=M_c)
+                     carried=tuple(seats.carried), M_carried=M_c, trains=T.shape[1] - n_shaft)
 
 
 def seat_radius(scene: Scene, nodes: np.ndarray, seat: tuple[float, float]) -> float:
@@ -177,6 +188,37 @@ def _parts_and_rings(scene: Scene, seats: _Seats, n_q: int, first: int
             elif stiff > 0:
                 extra_K[c + d, c + d] = stiff
     return extra_K.tocsr(), extra_M.tocsr(), keep
+
+
+def _trains(seats: _Seats, first: int, K_r: sp.csr_matrix, M_r: sp.csr_matrix,
+            T: sp.csr_matrix, rigid: np.ndarray
+            ) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix, np.ndarray]:
+    """Each coupled machine's rotor as one more coordinate, its turn phi (rad), last:
+    the coupling's 1/2 k_t (theta - phi)^2 with theta its hub's turn, and 1/2 J phi'^2.
+    phi moves no node of the shaft (T's column is zero); in the free turn about the
+    axis it turns with its hub."""
+    hubs: list[tuple[Attachment, np.ndarray]] = []
+    n_q = T.shape[1]
+    for k, a in enumerate(seats.parts):            # rigid joints: the part's own Theta_z
+        if a.coupling_stiffness > 0:
+            g = np.zeros(n_q)
+            g[first + 6 * k + 5] = 1.0
+            hubs.append((a, g))
+    for c in seats.carried:                        # distributing: the section's mean turn
+        if c.part.coupling_stiffness > 0:
+            u = np.zeros(T.shape[0])
+            u[c.dofs] = c.C[5]
+            hubs.append((c.part, np.asarray(T.T @ u).ravel()))
+    if not hubs:
+        return K_r, M_r, T, rigid
+    m = len(hubs)
+    G = sp.hstack([sp.csr_matrix(np.vstack([g for _, g in hubs])), -sp.eye(m)]).tocsr()
+    K_c = G.T @ sp.diags([a.coupling_stiffness for a, _ in hubs]) @ G   # g reads a few DOFs
+    K_r = (sp.block_diag([K_r, sp.csr_matrix((m, m))]) + K_c).tocsr()
+    M_r = sp.block_diag([M_r, sp.diags([a.coupled_inertia for a, _ in hubs])]).tocsr()
+    T = sp.hstack([T, sp.csr_matrix((T.shape[0], m))]).tocsr()
+    rigid = np.vstack([rigid, np.vstack([g for _, g in hubs]) @ rigid])
+    return ((K_r + K_r.T) * 0.5).tocsr(), M_r, T, rigid
 
 
 def _free_rigid_motions(nodes: np.ndarray, T: sp.csr_matrix, Tt: sp.csr_matrix,

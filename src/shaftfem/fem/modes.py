@@ -61,6 +61,9 @@ class Modes:
     # below s = inertia_shift (rad^2/s^2), as many as the solver found: none was skipped.
     inertia_count: int = 0
     inertia_shift: float = 0.0
+    # the coupled machines' turns in each mode (m, n), rad / sqrt(kg m^2): the shaft's
+    # shapes do not hold them (fem.installation, coupled_inertia_kg_m2)
+    trains: np.ndarray | None = None
 
     @property
     def inertia_shift_hz(self) -> float:
@@ -111,7 +114,9 @@ def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
                  orthonormality_error=float(np.max(np.abs(elastic.X.T @ elastic.MX
                                                           - np.eye(elastic.X.shape[1])))),
                  shift=-SHIFT_FACTOR * sol.scale, n_dofs=K.shape[0], factoriser=sol.factoriser,
-                 inertia_count=sol.inertia_count, inertia_shift=sol.inertia_shift)
+                 inertia_count=sol.inertia_count, inertia_shift=sol.inertia_shift,
+                 trains=elastic.X[elastic.X.shape[0] - installed.trains:]
+                 if installed is not None and installed.trains else None)
 
 
 # Eigenvalues closer than this (relative) are one within the solver's tolerance: the

@@ -27,7 +27,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.sparse.linalg import splu
 
 from shaftfem.errors import SceneError
 from shaftfem.fem.supports import part_mass, rigid_body_modes
@@ -106,9 +105,9 @@ def modal_basis(result: ModalResult) -> ModalBasis:
     if inst is None or not result.scene.held:
         raise SceneError(f"{result.scene.source}: no [[support]] holds the shaft: base "
                          "motion needs supports to come through")
-    Tt = inst.T.T.tocsr()
-    normal = splu((Tt @ inst.T).tocsc())
-    X = normal.solve(np.asarray(Tt @ result.modes.shapes))   # exact: the shapes are T q
+    X = inst.shaft_coordinates(result.modes.shapes)   # exact: the shapes are T q
+    if result.modes.trains is not None:
+        X = np.vstack([X, result.modes.trains])
     loads, totals = zip(*(inertia_load(system, inst, d) for d in DIRECTIONS))
     R = inst.rigid
     if R.shape[1]:

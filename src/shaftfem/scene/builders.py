@@ -218,6 +218,8 @@ class Attachment(_Table):
     stage_width_mm: Number | None = None
     stage_kind: str | None = None
     density_ratio: Number | None = None
+    coupling_stiffness_nm_per_rad: Number | None = None
+    coupled_inertia_kg_m2: Number | None = None
     joint: str | None = None
 
 

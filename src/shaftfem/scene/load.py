@@ -720,10 +720,19 @@ def _attachment(source: str, i: int, t: dict) -> Attachment:
         missing = next(k for k in stage if t[k] is None)
         raise SceneError(f"{where(source, table, missing)}: missing (a stage's cross-coupling "
                          "needs its power, kW, its diameter and its flow width, mm)")
+    train = ("coupling_stiffness_nm_per_rad", "coupled_inertia_kg_m2")
+    given = [k for k in train if t[k] is not None]
+    if len(given) == 1:
+        missing = next(k for k in train if t[k] is None)
+        raise SceneError(f"{where(source, table, missing)}: missing (a coupling to another "
+                         "machine needs its torsional stiffness, N m/rad, and that machine's "
+                         "polar inertia, kg m^2)")
     return Attachment(name=t["name"] or f"attachment {i + 1}", position=t["position_mm"] * MM,
                       width=t["width_mm"] * MM, mass=t["mass_kg"],
                       polar_inertia=t["polar_inertia_kg_m2"],
-                      diametral_inertia=t["diametral_inertia_kg_m2"], joint=t["joint"])
+                      diametral_inertia=t["diametral_inertia_kg_m2"], joint=t["joint"],
+                      coupling_stiffness=t["coupling_stiffness_nm_per_rad"] or 0.0,
+                      coupled_inertia=t["coupled_inertia_kg_m2"] or 0.0)
 
 
 # A stage's cross-coupling is tabled at this many speeds from 0 to the Campbell

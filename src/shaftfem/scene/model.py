@@ -396,9 +396,9 @@ class Support:
 
 @dataclass(frozen=True)
 class Attachment:
-    """A rigid part (gear, pulley) fixed on the band z = position -+ width / 2 (m): its
-    mass (kg) and its moments of inertia about the axis and a diameter (kg m^2), with
-    its centre of mass on the axis at `position`."""
+    """A rigid part (gear, pulley, coupling hub) fixed on the band z = position -+
+    width / 2 (m): its mass (kg) and its moments of inertia about the axis and a
+    diameter (kg m^2), with its centre of mass on the axis at `position`."""
 
     name: str
     position: float
@@ -410,6 +410,10 @@ class Attachment:
                            # centre, no stiffness
     # a stage's aerodynamic cross-coupling on the part's motion (Wachel), N/m against speed
     cross_coupling: BearingCoefficients | None = None
+    # a flexible coupling from the part's turn to another machine's rotor: its torsional
+    # stiffness (N m/rad) and that rotor's polar inertia (kg m^2); 0: none
+    coupling_stiffness: float = 0.0
+    coupled_inertia: float = 0.0
 
     @property
     def seat(self) -> tuple[float, float]:

@@ -32,7 +32,8 @@ model, equations, inputs and checks): [journal bearings](journal-bearing.md)
 (`kind = "journal"`), [rolling bearings](rolling-bearing.md) (`kind = "ball"`,
 `"roller"`), [annular seals](seal.md) (`kind = "seal"`), and a stage's
 [aerodynamic cross-coupling](cross-coupling.md) on an
-`[[attachment]]` (`stage_power_kw`).
+`[[attachment]]` (`stage_power_kw`), as is a [coupling to another machine](coupling.md)
+(`coupling_stiffness_nm_per_rad`).
 
 This page is generated from the schema in `shaftfem.scene.schema` by
 `python scripts/write_docs.py`; a test fails when the two disagree.

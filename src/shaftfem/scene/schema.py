@@ -357,6 +357,15 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "density_ratio": Key(float, "the gas's density at discharge over suction (with "
                              "stage_power_kw; default 1)", *upto(100.0, "up to 100"),
                              default=1.0, required=False),
+        "coupling_stiffness_nm_per_rad": Key(
+            float, "the torsional stiffness of a flexible coupling between this part (its "
+            "hub) and another machine's rotor, N m/rad (with coupled_inertia_kg_m2; "
+            "docs/coupling.md): the drive train's torsion", *upto(1e12, "up to 10^12 N m/rad"),
+            required=False),
+        "coupled_inertia_kg_m2": Key(
+            float, "the polar moment of inertia of the machine the coupling drives or is "
+            "driven by (a motor's rotor with its coupling half), kg m^2", *upto(1e6, "up to "
+            "10^6 kg m^2"), required=False),
         "joint": coupling(
             "how the part is joined to its seat: \"rigid\" (default: a shrink or press fit, "
             "the hub much stiffer than the shaft: the shaft's slice under it moves with the "
