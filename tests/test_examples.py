@@ -169,8 +169,8 @@ def test_turning_examples_against_ross(tmp_path):
 
 def test_bearings_from_their_physics_examples(tmp_path):
     """The pump on journal bearings and the spindle on ball bearings, as a user runs them
-    (`static`, `check --json`, whose JSON holds campbell's): each journal carries half the weight of
-    shaft and impeller (statics), its film at 3,000 r/min lifts the journal to a
+    (`static`, `check --json`, whose JSON holds campbell's): the journals carry the weight of
+    shaft, impeller and hub (statics), its film at 3,000 r/min lifts the journal to a
     mid-range eccentricity, the oil whip starts above the running speed and the check
     warns of it; the spindle's check passes and its first whirl pair stays below the
     free-free bar's first bending mode."""
@@ -181,9 +181,16 @@ def test_bearings_from_their_physics_examples(tmp_path):
                        str(tmp_path / "s.json"), cwd=tmp_path)
     assert static.returncode == 0, static.stderr[-2000:]
     s = json.loads((tmp_path / "s.json").read_text())
-    weight = (7810.0 * math.pi * 0.03**2 * 1.2 + 25.0) * 9.80665
-    for r in s["reactions"]:
-        assert r["force_n"][1] == pytest.approx(weight / 2, rel=1e-3)
+    # the shaft and impeller at mid-span, the 3 kg coupling hub at 18 mm; the journals
+    # at 60 and 1,140 mm carry it all (the wear ring carries no static load)
+    g = 9.80665
+    centred = (7810.0 * math.pi * 0.03**2 * 1.2 + 25.0) * g
+    hub = 3.0 * g
+    outboard = (centred * (600 - 60) + hub * (18 - 60)) / 1080
+    reactions = {r["support"]: r["force_n"][1] for r in s["reactions"]}
+    assert set(reactions) == {"drive-end journal", "outboard journal"}
+    assert reactions["outboard journal"] == pytest.approx(outboard, rel=1e-3)
+    assert reactions["drive-end journal"] == pytest.approx(centred + hub - outboard, rel=1e-3)
     check = _shaftfem("check", pump, "--mesh-size", "30", "-q", "--json",
                       str(tmp_path / "c.json"), cwd=tmp_path)   # its JSON holds campbell's
     assert check.returncode == 0, check.stderr[-2000:]
@@ -193,6 +200,8 @@ def test_bearings_from_their_physics_examples(tmp_path):
     assert len(films) == 2
     assert all(0.1 < f["eccentricity"] < 0.9 and f["min_film_um"] > 10.0 for f in films)
     assert c["instability_onsets"] and c["instability_onsets"][0]["speed_rpm"] > 3000.0
+    # the train's torsion: the impeller against the motor across the coupling, ~25 Hz
+    assert any(w["kind"] == "torsion" and 20.0 < w["frequency_hz"] < 30.0 for w in c["whirl"])
     spindle = str(EXAMPLES / "ball_spindle.toml")
     check = _shaftfem("check", spindle, "--mesh-size", "16", "-q", "--json",
                       str(tmp_path / "b.json"), cwd=tmp_path)

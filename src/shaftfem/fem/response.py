@@ -105,9 +105,7 @@ def modal_basis(result: ModalResult) -> ModalBasis:
     if inst is None or not result.scene.held:
         raise SceneError(f"{result.scene.source}: no [[support]] holds the shaft: base "
                          "motion needs supports to come through")
-    X = inst.shaft_coordinates(result.modes.shapes)   # exact: the shapes are T q
-    if result.modes.trains is not None:
-        X = np.vstack([X, result.modes.trains])
+    X = result.reduced_shapes()
     loads, totals = zip(*(inertia_load(system, inst, d) for d in DIRECTIONS))
     R = inst.rigid
     if R.shape[1]:

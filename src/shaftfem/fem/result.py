@@ -49,6 +49,15 @@ class ModalResult:
     warnings: tuple[str, ...] = ()
     installed: Installed | None = None  # the seats and parts (None: free-free)
 
+    def reduced_shapes(self) -> np.ndarray:
+        """The modes in the installed shaft's reduced coordinates (n_q, n): the shapes are
+        T q exactly, and the coupled machines' turns are kept beside them."""
+        import numpy as np
+
+        assert self.installed is not None
+        q = self.installed.shaft_coordinates(self.modes.shapes)
+        return q if self.modes.trains is None else np.vstack([q, self.modes.trains])
+
     def shapes_at_points(self) -> np.ndarray:
         """Mode shapes at the mesh's points: (n_modes, n_points, 3), m / sqrt(kg)."""
         return self.system.at_points(self.modes.shapes)

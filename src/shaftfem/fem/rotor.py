@@ -331,15 +331,13 @@ def residual_modes(result: ModalResult, static: np.ndarray) -> Residual:
     (w / w_N)^2: a bearing's force on the shaft moves it along its seat's static shape,
     which is in the basis (MacNeal's residual flexibility)."""
     import scipy.linalg
-    from scipy.sparse.linalg import splu
 
     inst = result.installed
     n = result.modes.shapes.shape[1]
     if inst is None or static.shape[1] == 0:
         return Residual(np.zeros((result.system.n_dofs, 0)), np.zeros(0),
                         np.zeros((n, static.shape[1])), np.zeros((0, static.shape[1])))
-    T = inst.T.tocsc()
-    Q = splu((T.T @ T).tocsc()).solve(np.asarray(T.T @ result.modes.shapes))
+    Q = result.reduced_shapes()
     A = Q.T @ (inst.M @ static)
     R = static - Q @ A
     R = R - Q @ (Q.T @ (inst.M @ R))                 # twice is enough

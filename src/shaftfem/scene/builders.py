@@ -196,6 +196,7 @@ class Support(_Table):
     pitch_diameter_mm: Number | None = None
     roller_length_mm: Number | None = None
     contact_angle_deg: Number | None = None
+    preload_n: Number | None = None
     pressure_drop_mpa: Number | None = None
     fluid_density_kg_m3: Number | None = None
     inlet_loss: Number | None = None

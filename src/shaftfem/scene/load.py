@@ -344,13 +344,13 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
 JOURNAL_KEYS = ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", "oil_iso_vg",
                 "oil_temperature_c", "cavitation", "min_film_um")
 ROLLING_KEYS = ("elements", "element_diameter_mm", "pitch_diameter_mm", "roller_length_mm",
-                "contact_angle_deg")
+                "contact_angle_deg", "preload_n")
 SEAL_KEYS = ("pressure_drop_mpa", "fluid_density_kg_m3", "inlet_loss")
 # the keys each kind of bearing or seal from its physics takes
 PHYSICS_KEYS = {"journal": (*JOURNAL_KEYS, "load_n", "load_angle_deg"),
                 "seal": ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", *SEAL_KEYS),
                 "ball": ("elements", "element_diameter_mm", "pitch_diameter_mm",
-                         "contact_angle_deg", "load_n", "load_angle_deg"),
+                         "contact_angle_deg", "preload_n", "load_n", "load_angle_deg"),
                 "roller": ("elements", "roller_length_mm", "pitch_diameter_mm",
                            "contact_angle_deg", "load_n", "load_angle_deg")}
 
@@ -361,19 +361,30 @@ def _rolling(source: str, table: str, t: dict) -> BearingCoefficients:
     from shaftfem.parts import rolling
 
     size_key = "element_diameter_mm" if t["kind"] == "ball" else "roller_length_mm"
-    for key in ("elements", size_key, "load_n"):
+    preload = t["preload_n"]
+    for key in ("elements", size_key, *(("load_n",) if preload is None else ())):
         if t[key] is None:
             raise SceneError(f"{where(source, table, key)}: missing (kind = \"{t['kind']}\" "
                              "needs the number of elements, their "
                              + ("diameter" if t["kind"] == "ball" else "length")
-                             + ", mm, and the radial load, N)")
+                             + ", mm, and the radial load, N, or an angular-contact ball "
+                             "bearing's preload_n)")
+    if preload is not None and t["contact_angle_deg"] <= 0:
+        raise SceneError(f"{where(source, table, 'preload_n')} = {preload:g}: an axial preload "
+                         "needs an angular-contact bearing; give its contact_angle_deg (15 to "
+                         "40 deg for a spindle bearing)")
     pitch, d, n = t["pitch_diameter_mm"], t["element_diameter_mm"], t["elements"]
     if pitch is not None and d is not None and n * d >= math.pi * pitch:
         raise SceneError(f"{where(source, table, 'elements')} = {n}: {n} balls of {d:g} mm "
                          f"need {n * d:.1f} mm of a pitch circle {math.pi * pitch:.1f} mm round "
                          f"(pitch_diameter_mm = {pitch:g}): they do not fit")
-    along, across = rolling.stiffness(t["kind"], t["elements"], t[size_key] * MM, t["load_n"],
-                                      math.radians(t["contact_angle_deg"]))
+    angle = math.radians(t["contact_angle_deg"])
+    if preload is not None:
+        along, across = rolling.preloaded(t["elements"], t[size_key] * MM, angle, preload,
+                                          t["load_n"] or 0.0)
+    else:
+        along, across = rolling.stiffness(t["kind"], t["elements"], t[size_key] * MM,
+                                          t["load_n"], angle)
     a = math.radians(t["load_angle_deg"])
     c, s = math.cos(a), math.sin(a)
     # along the load's direction (c, s), across it (-s, c)

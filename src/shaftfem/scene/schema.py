@@ -312,6 +312,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                  "0 for a deep-groove or cylindrical roller bearing)",
                                  lambda v: 0 <= v < 60, "in [0, 60)", default=0.0,
                                  required=False),
+        "preload_n": Key(float, "the axial preload of an angular-contact ball bearing, N "
+                         "(kind = \"ball\", contact_angle_deg > 0): every ball loaded, their "
+                         "loads shared ball by ball (Palmgren's contacts; load_n then optional)",
+                         *upto(1e7, "up to 10^7 N"), required=False),
         "pressure_drop_mpa": Key(float, "the pressure drop across the seal at the highest "
                                  "operating speed, MPa (kind = \"seal\"; at other speeds as "
                                  "the square of the speed, as a pump's head)",
