@@ -381,7 +381,8 @@ def spin_stiffness(result: ModalResult, basis, with_flow: bool, u: np.ndarray | 
     (the centrifugal load of a unit spin, its rigid part taken out; `u` if given), and, with
     `with_flow`, the stationary frame's softening int rho d_theta phi_a d_theta phi_b
     dV. On a solid of revolution the two cancel on a rigid tilt or turn (the spin
-    stress's virial is its centrifugal load's moment)."""
+    stress's virial is its centrifugal load's moment; see tied_cells for the slices
+    under rigid parts)."""
     from skfem import BilinearForm
 
     u = static_shapes(result, spin_load(result)[:, None])[:, 0] if u is None else u
@@ -391,6 +392,16 @@ def spin_stiffness(result: ModalResult, basis, with_flow: bool, u: np.ndarray | 
     sigma = 2 * mu * eps
     for i in range(3):
         sigma[i, i] += lam * (eps[0, 0] + eps[1, 1] + eps[2, 2])
+    tied = tied_cells(result)
+    if tied.any():
+        # a slice tied to a rigid part moves as one body with it, unstrained (its part
+        # holds its centrifugal load); it takes the stress whose virial a free spinning
+        # body has, rho x_i x_j across the axis, which is all a rigid motion reads
+        x = basis.global_coordinates().value[:, tied]          # (3, E_tied, Q)
+        sigma[:, :, tied] = 0.0
+        for i in range(2):
+            for j in range(2):
+                sigma[i, j, tied] = result.scene.material.density * x[i] * x[j]
     fields = {f"s{i}{j}": sigma[i, j] for i in range(3) for j in range(3)}
 
     @BilinearForm
@@ -409,6 +420,16 @@ def spin_stiffness(result: ModalResult, basis, with_flow: bool, u: np.ndarray | 
 
     rho = result.scene.material.density
     return Ksig, (rho * flow.assemble(basis)).tocsr()
+
+
+def tied_cells(result: ModalResult) -> np.ndarray:
+    """Whether each cell of the mesh lies in a slice tied to a rigid part or ring."""
+    t = result.mesh.to_skfem().t
+    inst = result.installed
+    tied = np.zeros(int(t.max()) + 1, dtype=bool)
+    for idx in (*inst.tied, *inst.rings) if inst is not None else ():
+        tied[idx[idx < tied.size]] = True
+    return tied[t].all(axis=0)
 
 
 # A bearing's static shape whose part beyond the modes has less than this share of the
