@@ -440,7 +440,7 @@ RESIDUAL_RANK = 1e-10
 # eigenvalue and iterated (each step gains about this factor) ...
 STATIC_SHIFT = 1e-2
 # ... this many times.
-STATIC_STEPS = 8
+STATIC_STEPS = 5
 
 
 def spin_load(result: ModalResult) -> np.ndarray:

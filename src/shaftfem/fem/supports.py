@@ -109,7 +109,17 @@ def section_weights(nodes: np.ndarray, z0: float, mass_diagonal: np.ndarray) -> 
 def surface_weights(skmesh, order: int, radius: float, seat: tuple[float, float]
                     ) -> np.ndarray:
     """The band's area lumped to the scalar nodes, as fractions summing to 1 (zero off
-    the band): the diagonal of the P2 (P1) surface mass, scaled."""
+    the band): the diagonal of the P2 (P1) surface mass, scaled. Kept on the mesh: the
+    installation, the bearings' residual modes and their modal motions each ask."""
+    known = skmesh.__dict__.setdefault("_band_weights", {})
+    key = (order, radius, seat)
+    if key not in known:
+        known[key] = _surface_weights(skmesh, order, radius, seat)
+    return known[key]
+
+
+def _surface_weights(skmesh, order: int, radius: float, seat: tuple[float, float]
+                     ) -> np.ndarray:
     from skfem import BilinearForm, ElementTetP1, ElementTetP2, FacetBasis
 
     facets = skmesh.boundary_facets()

@@ -400,7 +400,7 @@ SCHEMA: dict[str, dict[str, Key]] = {
                          "bearings)", lambda v: all(0 <= x <= 20_000 for x in v),
                          "numbers in [0, 20000]", default=[], required=False),
         "basis_modes": Key(int, "undamped standstill modes the whirl is solved on (default: "
-                           "3 times [modes] count, at least 30)",
+                           "3 times [modes] count, at least 18)",
                            lambda v: 2 <= v <= MAX_MODE_COUNT, f"in [2, {MAX_MODE_COUNT}]",
                            required=False),
         "speed_range_rpm": Key(("list", float), "operating speed range of a variable-speed "
