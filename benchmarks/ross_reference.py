@@ -11,6 +11,7 @@ of packages): run this in an environment of its own,
         tests/data/journal_591.json tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --cylindrical tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --seal tests/data/ross_rotors.json
+    .venv-ross/bin/python benchmarks/ross_reference.py --ucs tests/data/ross_rotors.json
 
 Every rotor is written as ross's own tests write it (ross/tests/test_examples.py), on
 48 shaft elements; speeds are rad/s, frequencies rad/s (ross's units).
@@ -340,6 +341,24 @@ def seal(path: str) -> None:
     print(json.dumps({k: v for k, v in entry.items() if k != "table"}, indent=1))
 
 
+def ucs(path: str) -> None:
+    """Add "ucs" to the reference file at `path`: ross's run_ucs (standstill, 4 branches)
+    of 5.9.1 and of 5.9.9 (overhung) over 1e5 to 1e9 N/m, 20 stiffnesses; rad/s."""
+    import ross as rs
+    from ross.materials import steel
+
+    out_ucs = {"stiffness_n_per_m": [float(k) for k in np.logspace(5, 9, 20)]}
+    for name, rotor in (("5.9.1", example_591(rs, steel)), ("5.9.9", example_599(rs, steel))):
+        r = rotor.run_ucs(stiffness_range=(5, 9), num=20, num_modes=16)
+        out_ucs[name] = [[float(v) for v in row] for row in np.asarray(r.wn)]
+    with open(path) as f:
+        out = json.load(f)
+    out["ucs"] = out_ucs
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps(out_ucs, indent=1))
+
+
 def journals(table_path: str, path: str) -> None:
     """Add "5.9.1 journals" to the reference file at `path`, from the bearings of
     `table_path`."""
@@ -363,5 +382,7 @@ if __name__ == "__main__":
         cylindrical(sys.argv[2])
     elif len(sys.argv) > 1 and sys.argv[1] == "--seal":
         seal(sys.argv[2])
+    elif len(sys.argv) > 1 and sys.argv[1] == "--ucs":
+        ucs(sys.argv[2])
     else:
         main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")

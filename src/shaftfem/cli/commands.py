@@ -169,6 +169,42 @@ def cmd_campbell(args) -> int:
     return 0
 
 
+UCS_MANIFEST = "ucs.manifest.json"   # the files of the last complete ucs run
+
+
+def cmd_ucs(args) -> int:
+    import json
+
+    import numpy as np
+
+    from shaftfem.outputs.tables import ucs_csv, ucs_text
+    from shaftfem.workflows.ucs import run_ucs
+
+    scene = _scene(args)
+    ks = None
+    if args.stiffness_n_per_mm:
+        a, b, n = args.stiffness_n_per_mm
+        ks = np.logspace(np.log10(a * 1e3), np.log10(b * 1e3), n)
+    m = run_ucs(scene, ks, _options(args))
+    print(ucs_text(m))
+    if args.out:
+        from shaftfem.outputs.plots import save_png
+        from shaftfem.outputs.ucs_plot import ucs_figure
+        from shaftfem.store import staged_directory
+
+        out = Path(args.out)
+        with staged_directory(out, UCS_MANIFEST) as stage:
+            save_png(ucs_figure(m), stage / "ucs.png", dpi=130)
+            (stage / "ucs.csv").write_text(ucs_csv(m))
+            (stage / "ucs.json").write_text(json.dumps({"scene": scene.name, **m.as_dict()},
+                                                       indent=1))
+        for name in ("ucs.png", "ucs.csv", "ucs.json"):
+            print(f"wrote {out / name}")
+    if args.json:
+        _write_json(args.json, {"scene": scene.name, **m.as_dict()})
+    return 0
+
+
 def cmd_static(args) -> int:
     from shaftfem.outputs.tables import static_text
     from shaftfem.workflows.static import run_static

@@ -68,6 +68,20 @@ def _speed_range(text: str) -> tuple[float, float, int]:
     return start, stop, count
 
 
+def _stiffness_range(text: str) -> tuple[float, float, int]:
+    """A:B:N, N/mm: N stiffnesses from A to B, evenly in log."""
+    try:
+        a, b, n = text.split(":")
+        start, stop, count = float(a), float(b), int(n)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected A:B:N, e.g. 100:1e6:40 (N/mm, "
+                                         "and how many stiffnesses)") from None
+    if not (0 < start < stop <= 1e12 and 2 <= count <= 400):
+        raise argparse.ArgumentTypeError(f"{text!r}: need 0 < A < B <= 1e12 N/mm and N in "
+                                         "[2, 400]")
+    return start, stop, count
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, with its errors on one line like every other error (exit 2)."""
 
@@ -131,6 +145,13 @@ def build_parser() -> argparse.ArgumentParser:
     cb.add_argument("--speeds-rpm", type=_speed_range, metavar="START:STOP:N",
                     help="the diagram's speeds, r/min (default: 0 to [rotor] max_speed_rpm at "
                     "[rotor] campbell_points)")
+    u = _modal_command(sub, "ucs", "the undamped critical speed map: the lateral critical "
+                       "speeds against the bearings' stiffness, every bearing alike, with the "
+                       "scene's bearings drawn over it; ucs.png, ucs.csv and ucs.json in --out",
+                       cmd.cmd_ucs, out="optional")
+    u.add_argument("--stiffness-n-per-mm", type=_stiffness_range, metavar="A:B:N",
+                   help="N stiffnesses from A to B, N/mm, evenly in log (default: four decades "
+                   "about the scene's bearings, 40 of them)")
     _modal_command(sub, "static", "the installed shaft under its static loads (its weight, "
                    "[[force]]): each support's reaction and the deflection line; static.png "
                    "in --out", cmd.cmd_static, out="optional")

@@ -417,3 +417,54 @@ class Campbell:
 def category(w: Whirl) -> str:
     """How a mode is drawn: its whirl, or "none" for a mode that does not orbit."""
     return w.whirl if w.kind in WHIRLING else "none"
+
+
+@dataclass(frozen=True)
+class BearingCurve:
+    """A scene bearing's direct stiffnesses against speed (N/m, r/min), and where each
+    meets a branch: (branch, direction "x" or "y", stiffness N/m, speed r/min)."""
+
+    name: str
+    speeds_rpm: np.ndarray
+    kxx: np.ndarray
+    kyy: np.ndarray
+    crossings: tuple[tuple[int, str, float, float], ...]
+
+
+@dataclass(frozen=True)
+class UcsMap:
+    """The map: the stiffnesses (N/m), each branch's frequency there (branches, n) Hz,
+    its deflected line at the soft and the stiff end ((branches, slices) each, largest
+    1, at z m), the scene's bearing curves, the reference stiffness of the basis, the
+    basis' size and how far the map moves on two thirds of it."""
+
+    scene: Scene
+    stiffness: np.ndarray
+    frequencies: np.ndarray
+    z: np.ndarray
+    soft_lines: np.ndarray
+    stiff_lines: np.ndarray
+    bearings: tuple[BearingCurve, ...]
+    reference: float
+    basis: int
+    change: float
+
+    @property
+    def speeds_rpm(self) -> np.ndarray:
+        """Each branch's critical speed, r/min: its frequency as a speed (1x)."""
+        return 60.0 * self.frequencies
+
+    def as_dict(self) -> dict:
+        return {"stiffness_n_per_mm": [float(k) / 1e3 for k in self.stiffness],
+                "branches": [{"branch": i + 1,
+                              "critical_speed_rpm": [float(v) for v in self.speeds_rpm[i]]}
+                             for i in range(self.frequencies.shape[0])],
+                "bearings": [{"name": b.name, "speeds_rpm": [float(v) for v in b.speeds_rpm],
+                              "kxx_n_per_mm": [float(v) / 1e3 for v in b.kxx],
+                              "kyy_n_per_mm": [float(v) / 1e3 for v in b.kyy],
+                              "crossings": [{"branch": i + 1, "direction": d,
+                                             "stiffness_n_per_mm": k / 1e3, "speed_rpm": n}
+                                            for i, d, k, n in b.crossings]}
+                             for b in self.bearings],
+                "basis": {"modes": self.basis, "reference_stiffness_n_per_mm":
+                          self.reference / 1e3, "largest_change_on_two_thirds": self.change}}

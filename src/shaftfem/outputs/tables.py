@@ -603,3 +603,40 @@ def static_text(result) -> str:
         lines.append(f"  {name[:30]:30s} z = {z * 1e3:7.1f} mm: x {x * 1e6:8.2f} um, "
                      f"y {y * 1e6:8.2f} um")
     return "\n".join(lines)
+
+
+def ucs_text(m) -> str:
+    """The critical speed map: each branch's critical speed at a few stiffnesses, and
+    where the scene's bearings cross the branches."""
+    ks = m.stiffness
+    picks = sorted({0, len(ks) // 4, len(ks) // 2, 3 * len(ks) // 4, len(ks) - 1})
+    lines = [f"scene {m.scene.name}: undamped critical speed map, every bearing alike "
+             f"(isotropic, undamped; seals left out), {len(ks)} stiffnesses from "
+             f"{ks[0] / 1e3:.3g} to {ks[-1] / 1e3:.3g} N/mm",
+             "", "stiffness (N/mm) " + "".join(f"  branch {i + 1} (r/min)"
+                                                for i in range(m.frequencies.shape[0]))]
+    for j in picks:
+        lines.append(f"{ks[j] / 1e3:16.4g} " + "".join(f"{v:19,.0f}"
+                                                       for v in m.speeds_rpm[:, j]))
+    if m.bearings:
+        lines += ["", "the scene's bearings on the map (their stiffness at each speed meets "
+                  "a branch at its critical speed):"]
+        for b in m.bearings:
+            if not b.crossings:
+                lines.append(f"  {b.name}: meets no branch within the map")
+            for i, d, k, n in b.crossings:
+                lines.append(f"  {b.name}: k{d}{d} {k / 1e3:,.4g} N/mm meets branch {i + 1} "
+                             f"at {n:,.0f} r/min")
+    lines += ["", f"basis: {m.basis} standstill and residual modes with the bearings at "
+              f"{m.reference / 1e3:.4g} N/mm; on two thirds of it the map moves by at most "
+              f"{m.change * 100:.2g} %"]
+    return "\n".join(lines)
+
+
+def ucs_csv(m) -> str:
+    """stiffness (N/mm), then each branch's critical speed (r/min), one row a stiffness."""
+    head = "stiffness_n_per_mm," + ",".join(f"branch_{i + 1}_rpm"
+                                            for i in range(m.frequencies.shape[0]))
+    rows = [f"{k / 1e3:.6g}," + ",".join(f"{v:.6g}" for v in m.speeds_rpm[:, j])
+            for j, k in enumerate(m.stiffness)]
+    return "\n".join([head, *rows]) + "\n"

@@ -1,0 +1,199 @@
+"""The undamped critical speed map (API 684): the shaft's lateral natural frequencies at
+standstill against the stiffness of its bearings, all alike, isotropic and undamped,
+over decades of stiffness (as ross's `run_ucs` and MESYS's critical speeds against
+bearing stiffness). With the scene's own bearings' stiffness against speed drawn on
+it, their crossings with the branches are the critical speeds the bearings give.
+
+One standstill solve with the bearings at the range's geometric mean, the bearings'
+residual modes beside the modes (fem.rotor): a bearing's stiffness k then enters
+exactly as diag(w^2) + sum_b beta_b^T (k - k_ref) beta_b on the basis, every stiffness
+one small symmetric eigenproblem, and the map is checked on two thirds of the basis.
+Seals are left out (they hold nothing at standstill), as in ross.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.errors import SceneError
+from shaftfem.fem.whirl import BearingCurve, UcsMap
+from shaftfem.runtime import RunOptions
+from shaftfem.scene.model import BearingCoefficients, Scene
+
+if TYPE_CHECKING:
+    from shaftfem.fem.result import ModalResult
+    from shaftfem.fem.rotor import RotorModel
+
+# Branches drawn (each a pair of lateral modes on a shaft of revolution), and the
+# stiffnesses of the default range: four decades about the scene's bearings, 40 of them.
+BRANCHES = 4
+POINTS = 40
+DECADES = 4.0
+# the map may move by this much (relative) on two thirds of the basis; above, the
+# basis is doubled
+TRUNCATION = 1e-3
+BASIS_MIN = 24
+
+
+def default_range(scene: Scene) -> np.ndarray:
+    """POINTS stiffnesses (N/m) over DECADES about the geometric mean of the scene's
+    bearings' direct stiffness (at the highest operating speed where it changes), or
+    about 10^7 N/m where none has one."""
+    ks = []
+    top = scene.rotor.top_speed if scene.rotor is not None else 0.0
+    for s in scene.supports:
+        if s.kind == "seal":
+            continue
+        if s.bearing is not None:
+            (kxx, _), (_, kyy) = s.bearing.stiffness(top)
+            ks += [kxx, kyy]
+        elif s.kind in ("springs",) and s.radial > 0:
+            ks.append(s.radial)
+    ks = [k for k in ks if k > 0]
+    centre = math.exp(sum(math.log(k) for k in ks) / len(ks)) if ks else 1e7
+    return np.logspace(math.log10(centre) - DECADES / 2, math.log10(centre) + DECADES / 2,
+                       POINTS)
+
+
+def uniform_bearings(scene: Scene, k: float) -> Scene:
+    """The scene with every support but its seals an isotropic undamped bearing of radial
+    stiffness k (N/m) on its seat's mean motion, free to tilt; its axial hold kept."""
+    if not scene.held:
+        raise SceneError(f"{scene.source}: no [[support]]: the critical speed map varies the "
+                         "bearings' stiffness; give the bearings' seats")
+    const = BearingCoefficients(speeds=(), kxx=(k,), kxy=(0.0,), kyx=(0.0,), kyy=(k,),
+                                cxx=(0.0,), cxy=(0.0,), cyx=(0.0,), cyy=(0.0,))
+    supports = tuple(
+        replace(s, kind="bearing", bearing=const, journal=None, coupling="distributing",
+                radial=0.0, tilting=0.0,
+                axial=s.axial if s.kind not in ("rigid", "clamped") else 1e3 * k)
+        for s in scene.supports if s.kind != "seal")
+    return replace(scene, supports=supports, rotor=None, unbalances=())
+
+
+def lateral_frequencies(model: RotorModel, k: float, count: int
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """The lowest `count` lateral branches (Hz) at the bearing stiffness k (N/m): one of
+    each pair of lateral modes at standstill, and their modal coordinates (N, count)."""
+    from shaftfem.fem.rotor import dominant_kinds
+
+    const = BearingCoefficients(speeds=(), kxx=(k,), kxy=(0.0,), kyx=(0.0,), kyy=(k,),
+                                cxx=(0.0,), cxy=(0.0,), cyx=(0.0,), cyy=(0.0,))
+    at = replace(model, bearings=tuple(replace(b, coefficients=const) for b in model.bearings))
+    K = at.matrices(0.0)[1]
+    lam, V = np.linalg.eigh(0.5 * (K + K.T))
+    kinds = dominant_kinds(model, V)
+    keep = [i for i, kind in enumerate(kinds) if kind not in ("torsion", "axial")][::2][:count]
+    return np.sqrt(np.maximum(lam[keep], 0.0)) / (2 * math.pi), V[:, keep]
+
+
+def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
+            options: RunOptions = RunOptions(), branches: int = BRANCHES) -> UcsMap:
+    """The scene's undamped critical speed map over `stiffness` (N/m; default
+    default_range)."""
+    from shaftfem.fem.rotor import rotor_model
+    from shaftfem.fem.static import line
+    from shaftfem.workflows.pipeline import run_modes, with_modes
+    from shaftfem.workflows.static import with_journal_loads
+
+    if scene.mesh.order > 2:
+        raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the critical "
+                         "speed map takes orders 1 and 2")
+    if scene.rotor is not None:
+        scene = with_journal_loads(scene, options)
+    ks = default_range(scene) if stiffness is None else np.asarray(stiffness, dtype=float)
+    reference = float(math.exp(np.log(ks).mean()))
+    uniform = uniform_bearings(scene, reference)
+    size = max(BASIS_MIN, 3 * (2 * branches + 2))
+    while True:
+        options.say(f"critical speed map: {size} standstill modes with the bearings at "
+                    f"{reference / 1e3:.3g} N/mm")
+        result = run_modes(with_modes(uniform, count=size), options)
+        model = rotor_model(result, "stationary")
+        freqs = np.column_stack([lateral_frequencies(model, k, branches)[0] for k in ks])
+        smaller = model.truncated(2 * size // 3)
+        check = np.column_stack([lateral_frequencies(smaller, k, branches)[0] for k in ks])
+        n = min(freqs.shape[0], check.shape[0])
+        change = float(np.max(np.abs(check[:n] / freqs[:n] - 1))) if n else 0.0
+        if change <= TRUNCATION or size >= 96:
+            break
+        size *= 2
+    z, soft, stiff = _end_lines(result, model, ks, branches, line)
+    return UcsMap(scene=scene, stiffness=ks, frequencies=freqs, z=z, soft_lines=soft,
+                  stiff_lines=stiff, bearings=_bearing_curves(scene, ks, freqs),
+                  reference=reference, basis=model.size, change=change)
+
+
+def _end_lines(result: ModalResult, model: RotorModel, ks: np.ndarray, branches: int, line
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each branch's deflected line at the softest and the stiffest bearings."""
+    assert model.shapes is not None
+    out = []
+    for k in (ks[0], ks[-1]):
+        _, Y = lateral_frequencies(model, k, branches)
+        rows = []
+        for j in range(Y.shape[1]):
+            z, x, y = line(result.system, model.shapes @ Y[:, j])
+            amp = np.hypot(x, y)
+            rows.append(amp / max(float(amp.max()), 1e-300))
+        out.append(np.array(rows))
+    return z, out[0], out[1]
+
+
+def _bearing_curves(scene: Scene, ks: np.ndarray, freqs: np.ndarray
+                    ) -> tuple[BearingCurve, ...]:
+    """The scene's bearings' kxx and kyy against speed (over their table, or the rotor's
+    range for a constant one), and where each meets a branch: the speed n at which the
+    branch's critical speed at the bearing's k(n) is n itself."""
+    curves = []
+    top = scene.rotor.max_speed if scene.rotor is not None else 0.0
+    for s in scene.supports:
+        b = s.bearing
+        if s.kind == "seal" or (b is None and s.kind != "springs"):
+            continue
+        omegas = (np.asarray(b.speeds) if b is not None and b.speeds
+                  else np.linspace(0.0, max(top, 1.0), 2))
+        if b is not None:
+            kxx = np.array([b.stiffness(w)[0][0] for w in omegas])
+            kyy = np.array([b.stiffness(w)[1][1] for w in omegas])
+        else:
+            kxx = kyy = np.full(omegas.size, s.radial)
+        rpm = omegas * 30 / math.pi
+        found = []
+        pairs = (("x", kxx),) if np.array_equal(kxx, kyy) else (("x", kxx), ("y", kyy))
+        for direction, kd in pairs:
+            for i in range(freqs.shape[0]):
+                found += _crossings(i, direction, ks, 60.0 * freqs[i], kd, rpm)
+        curves.append(BearingCurve(s.name, rpm, kxx, kyy, tuple(found)))
+    return tuple(curves)
+
+
+def _crossings(branch: int, direction: str, ks: np.ndarray, branch_rpm: np.ndarray,
+               kd: np.ndarray, rpm: np.ndarray) -> list[tuple[int, str, float, float]]:
+    """Where the bearing's curve (kd against rpm) meets the branch (branch_rpm against
+    ks, interpolated in log k): sign changes of branch(k(n)) - n along the curve."""
+    logk = np.log(ks)
+
+    def gap(k: float, n: float) -> float:
+        return float(np.interp(math.log(k), logk, branch_rpm)) - n
+
+    if len(rpm) == 2 and kd[0] == kd[1]:   # a constant bearing: its vertical line
+        k = float(kd[0])
+        if not ks[0] <= k <= ks[-1]:
+            return []
+        return [(branch, direction, k, float(np.interp(math.log(k), logk, branch_rpm)))]
+    out = []
+    inside = (kd >= ks[0]) & (kd <= ks[-1])
+    for j in range(len(rpm) - 1):
+        if not (inside[j] and inside[j + 1]):
+            continue
+        g0, g1 = gap(kd[j], rpm[j]), gap(kd[j + 1], rpm[j + 1])
+        if g0 == 0.0 or g0 * g1 < 0:
+            t = g0 / (g0 - g1) if g0 != g1 else 0.0
+            out.append((branch, direction, float(kd[j] + t * (kd[j + 1] - kd[j])),
+                        float(rpm[j] + t * (rpm[j + 1] - rpm[j]))))
+    return out

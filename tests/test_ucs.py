@@ -1,0 +1,105 @@
+"""The undamped critical speed map (shaftfem.workflows.ucs) against ross-rotordynamics
+2.3's run_ucs on two of Friswell's rotors (tests/data/ross_rotors.json, written by
+benchmarks/ross_reference.py --ucs), against its two limits (bearings far stiffer
+than the shaft: the shaft held at its seats; far softer: the free shaft), and as a
+user runs it."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shaftfem.scene.load import load_scene
+from shaftfem.workflows.pipeline import run_modes
+from shaftfem.workflows.ucs import run_ucs
+
+ROSS = json.loads((Path(__file__).parent / "data" / "ross_rotors.json").read_text())["ucs"]
+
+
+def rotor(name: str) -> dict:
+    """Friswell's 5.9.1 (two disks between bearings at the ends) or 5.9.9 (bearings at
+    0 and 1 m, the 350 mm disk overhung at the end, on the 2 mm there), as
+    tests/test_rotor.py writes them."""
+    from test_rotor import bearing, disk, ends, friswell, two_disks
+
+    if name == "5.9.1":
+        return friswell(ends(kxx_n_per_mm=1000.0), two_disks(), {"speed_rpm": 3000.0})
+    return friswell([bearing(1.0, "left", kxx_n_per_mm=1e4),
+                     bearing(1000.0, "right", kxx_n_per_mm=1e4)],
+                    [{**disk(1465.0, 0.35, "disk"), "position_mm": 1499.0, "width_mm": 2.0}],
+                    {"speed_rpm": 3000.0})
+
+
+@pytest.mark.parametrize("name", ["5.9.1", "5.9.9"])
+def test_every_branch_against_ross_over_four_decades(name):
+    """Four branches at 20 stiffnesses from 1e5 to 1e9 N/m, each within 1 %."""
+    ks = np.array(ROSS["stiffness_n_per_m"])
+    m = run_ucs(load_scene(rotor(name)), ks)
+    ours = m.frequencies * 2 * math.pi
+    theirs = np.array(ROSS[name])
+    assert ours.shape == theirs.shape
+    np.testing.assert_allclose(ours, theirs, rtol=0.01)
+    assert m.change < 1e-3
+
+
+def test_the_map_ends_at_the_held_and_at_the_free_shaft():
+    """With bearings 10^4 times stiffer than the shaft's first bending (1e11 N/m) the
+    branches are the modes of the shaft held at its seats, within 1 %; with bearings
+    10^4 times softer (1e3 N/m) the first two branches are the rigid shaft with its disks
+    bouncing and rocking on them (the two-degree-of-freedom closed form) and the third
+    is the free shaft's first bending, each within 1 %."""
+    from dataclasses import replace
+
+    scene = load_scene(rotor("5.9.1"))
+    m = run_ucs(scene, np.logspace(3, 11, 17))
+    held = replace(scene, supports=tuple(replace(s, kind="rigid-radial", bearing=None)
+                                         for s in scene.supports), rotor=None)
+    modes = run_modes(held).modes
+    bending = [f for f, k in zip(modes.frequencies, modes.kinds) if k == "bending"][::2]
+    np.testing.assert_allclose(m.frequencies[:, -1], bending[:4], rtol=0.01)
+    free = run_modes(replace(scene.free(), rotor=None)).modes
+    first = [f for f, k in zip(free.frequencies, free.kinds) if k == "bending"][0]
+    assert m.frequencies[2, 0] == pytest.approx(first, rel=0.01)
+    # the rigid shaft with its disks bouncing and rocking on the two springs
+    rho, r, length = 7810.0, 0.025, 1.5
+    parts = [(rho * math.pi * r**2 * length, 0.75,
+              rho * math.pi * r**2 * length * (length**2 / 12 + r**2 / 4))]
+    for a in scene.attachments:
+        parts.append((a.mass, a.position, a.diametral_inertia))
+    mass = sum(p[0] for p in parts)
+    zc = sum(p[0] * p[1] for p in parts) / mass
+    inertia = sum(i + mp * (z - zc) ** 2 for mp, z, i in parts)
+    k = m.stiffness[0]
+    d = [s.position - zc for s in scene.supports]
+    K = k * np.array([[len(d), sum(d)], [sum(d), sum(x * x for x in d)]])
+    rigid = np.sqrt(np.linalg.eigvals(np.linalg.solve(np.diag([mass, inertia]), K)).real)
+    np.testing.assert_allclose(m.frequencies[:2, 0], np.sort(rigid) / (2 * math.pi), rtol=0.01)
+
+
+def test_ucs_as_a_user_runs_it(tmp_path):
+    """`shaftfem ucs --out` writes the picture, a CSV of N rows and the JSON; the
+    pump's journals meet the first branch below the first critical speed of its
+    stiffest bearings; a wrong range is refused (exit 2)."""
+    import subprocess
+    import sys
+
+    pump = str(Path(__file__).parents[1] / "examples" / "pump_on_journals.toml")
+    cmd = [sys.executable, "-m", "shaftfem", "ucs", pump, "--mesh-size", "30", "-q",
+           "--stiffness-n-per-mm", "100:1e6:24", "--out", str(tmp_path / "u")]
+    run = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    rows = (tmp_path / "u" / "ucs.csv").read_text().splitlines()
+    assert len(rows) == 25 and rows[0].startswith("stiffness_n_per_mm,branch_1_rpm")
+    data = json.loads((tmp_path / "u" / "ucs.json").read_text())
+    first = np.array(data["branches"][0]["critical_speed_rpm"])
+    assert np.all(np.diff(first) > 0)            # stiffer bearings, higher criticals
+    crossings = [c for b in data["bearings"] for c in b["crossings"] if c["branch"] == 1]
+    assert crossings and all(c["speed_rpm"] < first[-1] for c in crossings)
+    assert (tmp_path / "u" / "ucs.png").stat().st_size > 10_000
+    bad = subprocess.run([*cmd[:5], "--stiffness-n-per-mm", "1e6:100:24"], capture_output=True,
+                         text=True, cwd=tmp_path)
+    assert bad.returncode == 2 and "need 0 < A < B <= 1e12 N/mm" in bad.stderr
