@@ -1,6 +1,6 @@
-"""What the turning shaft costs: a Campbell diagram of 31 speeds and a critical speed map
-of 40 stiffnesses against one `shaftfem modes` of the same scene, each as a user runs
-them, warm (solid and mesh cached),
+"""What the turning shaft costs: a Campbell diagram of 31 speeds, a critical speed map of
+40 stiffnesses and a Level I screening of 20 Q against one `shaftfem modes` of the same
+scene, each as a user runs them, warm (solid and mesh cached),
 alternating, in fresh processes. Two rotors: the paper's shaft in its bearings
 (geometry/paper2018_installed.toml with [rotor] added: 0 to 10,000 r/min, the grooved
 shaft in the rotating frame), and the pump on two journal bearings
@@ -51,16 +51,17 @@ def measure(rotor: str, scene: Path, shaftfem: str, repeat: int) -> None:
     """One row per run of `scene`: modes, the 31-speed Campbell diagram, the map."""
     commands = {"shaftfem modes (bound included)": [shaftfem, "modes", str(scene), "-q"],
                 "shaftfem campbell, 31 speeds": [shaftfem, "campbell", str(scene), "-q"],
-                "shaftfem ucs, 40 stiffnesses": [shaftfem, "ucs", str(scene), "-q"]}
+                "shaftfem ucs, 40 stiffnesses": [shaftfem, "ucs", str(scene), "-q"],
+                "shaftfem level1, 20 Q": [shaftfem, "level1", str(scene), "-q"]}
     for command in commands.values():   # the solid and mesh into the cache
         run = run_measured(command)
-        assert run["returncode"] == 0, run["stderr"][-2000:]
+        assert run["returncode"] in (0, 1), run["stderr"][-2000:]   # level1 may fail
     walls: dict[str, list[float]] = {name: [] for name in commands}
     peaks: dict[str, list[float]] = {name: [] for name in commands}
     for _ in range(repeat):
         for name, command in commands.items():
             run = run_measured(command)
-            assert run["returncode"] == 0, run["stderr"][-2000:]
+            assert run["returncode"] in (0, 1), run["stderr"][-2000:]
             walls[name].append(run["wall"])
             peaks[name].append(run["peak"])
     base = statistics.median(walls["shaftfem modes (bound included)"])

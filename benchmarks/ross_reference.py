@@ -12,6 +12,7 @@ of packages): run this in an environment of its own,
     .venv-ross/bin/python benchmarks/ross_reference.py --cylindrical tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --seal tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --ucs tests/data/ross_rotors.json
+    .venv-ross/bin/python benchmarks/ross_reference.py --level1 tests/data/ross_rotors.json
 
 Every rotor is written as ross's own tests write it (ross/tests/test_examples.py), on
 48 shaft elements; speeds are rad/s, frequencies rad/s (ross's units).
@@ -359,6 +360,42 @@ def ucs(path: str) -> None:
     print(json.dumps(out_ucs, indent=1))
 
 
+def level1(path: str) -> None:
+    """Add "level1" to the reference file at `path`: ross's run_level1 on 5.9.1 with 500
+    N s/m in each bearing at 3,000 r/min, the cross-coupling Q at mid-span (node 24): the
+    first forward mode's log decrement at five Q, and Q_0 where it is zero, found by
+    bisection on the same construction (ross's run_level1 gives the curve only)."""
+    import ross as rs
+    from ross.materials import steel
+
+    speed, node = 3000 * RPM, N_EL // 2
+    rotor = example_591(rs, steel, c=500.0)
+    rotor.rated_w = speed
+
+    def logdec(q: float) -> float:
+        b = [*rotor.bearing_elements, rs.BearingElement(n=node, kxx=0, cxx=0, kxy=q, kyx=-q)]
+        modal = rs.Rotor(rotor.shaft_elements, rotor.disk_elements, b).run_modal(speed=speed)
+        return float(modal.log_dec[modal.whirl_direction() != "Backward"][0])
+
+    lo, hi = 0.0, 1e5
+    assert logdec(lo) > 0 > logdec(hi)
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if logdec(mid) > 0 else (lo, mid)
+    q0 = 0.5 * (lo + hi)
+    qs = [0.0, 0.15 * q0, 0.3 * q0, 0.45 * q0, 0.6 * q0]   # log decs well off zero
+    r = rotor.run_level1(n=node, stiffness_range=(qs[0], qs[-1]), num=5)
+    entry = {"speed_rpm": 3000.0, "bearing_damping_n_s_per_m": 500.0, "at_m": 0.75,
+             "q_n_per_m": [float(q) for q in r.stiffness_range],
+             "log_dec": [float(v) for v in r.log_dec], "q0_n_per_m": q0}
+    with open(path) as f:
+        out = json.load(f)
+    out["level1"] = entry
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps(entry, indent=1))
+
+
 def journals(table_path: str, path: str) -> None:
     """Add "5.9.1 journals" to the reference file at `path`, from the bearings of
     `table_path`."""
@@ -384,5 +421,7 @@ if __name__ == "__main__":
         seal(sys.argv[2])
     elif len(sys.argv) > 1 and sys.argv[1] == "--ucs":
         ucs(sys.argv[2])
+    elif len(sys.argv) > 1 and sys.argv[1] == "--level1":
+        level1(sys.argv[2])
     else:
         main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")

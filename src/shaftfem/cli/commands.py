@@ -205,6 +205,31 @@ def cmd_ucs(args) -> int:
     return 0
 
 
+def cmd_level1(args) -> int:
+    import numpy as np
+
+    from shaftfem.outputs.tables import level1_text
+    from shaftfem.workflows.level1 import run_level1
+
+    scene = _scene(args)
+    qs = None
+    if args.q_n_per_mm:
+        a, b, n = args.q_n_per_mm
+        qs = np.linspace(a * 1e3, b * 1e3, n)
+    at = None if args.at_mm is None else args.at_mm * 1e-3
+    qa = None if args.qa_n_per_mm is None else args.qa_n_per_mm * 1e3
+    r = run_level1(scene, qs, at, qa, _options(args))
+    print(level1_text(r))
+    if args.out:
+        from shaftfem.outputs.plots import level1_figure, save_png
+
+        path = save_png(level1_figure(r), Path(args.out) / "level1.png")
+        print(f"wrote {path}")
+    if args.json:
+        _write_json(args.json, {"scene": scene.name, **r.as_dict()})
+    return 1 if r.passed is False else 0
+
+
 def cmd_static(args) -> int:
     from shaftfem.outputs.tables import static_text
     from shaftfem.workflows.static import run_static

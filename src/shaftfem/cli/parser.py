@@ -82,6 +82,20 @@ def _stiffness_range(text: str) -> tuple[float, float, int]:
     return start, stop, count
 
 
+def _q_range(text: str) -> tuple[float, float, int]:
+    """A:B:N, N/mm: N values of Q from A to B, evenly."""
+    try:
+        a, b, n = text.split(":")
+        start, stop, count = float(a), float(b), int(n)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected A:B:N, e.g. 0:5000:20 (N/mm, and "
+                                         "how many values)") from None
+    if not (0 <= start < stop <= 1e10 and 2 <= count <= 400):
+        raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= A < B <= 1e10 N/mm and N in "
+                                         "[2, 400]")
+    return start, stop, count
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, with its errors on one line like every other error (exit 2)."""
 
@@ -152,6 +166,19 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--stiffness-n-per-mm", type=_stiffness_range, metavar="A:B:N",
                    help="N stiffnesses from A to B, N/mm, evenly in log (default: four decades "
                    "about the scene's bearings, 40 of them)")
+    lv = _modal_command(sub, "level1", "API 684 Level I stability screening: the first "
+                        "forward mode's log decrement against an applied cross-coupling Q at "
+                        "the highest operating speed, Q_0 and the API 617 criteria; level1.png "
+                        "in --out", cmd.cmd_level1, out="optional")
+    lv.add_argument("--q-n-per-mm", type=_q_range, metavar="A:B:N",
+                    help="N values of Q from A to B, N/mm (default: 20 from 0 to 1.5 Q_0, or to "
+                    "2 Q_A if more)")
+    lv.add_argument("--at-mm", type=float, metavar="Z",
+                    help="where Q acts, mm from the shaft's left end (default: the stage with "
+                    "the largest Wachel estimate, else mid-span between the bearings)")
+    lv.add_argument("--qa-n-per-mm", type=float, metavar="Q",
+                    help="the anticipated cross-coupling Q_A, N/mm (default: the stages' "
+                    "Wachel estimates)")
     _modal_command(sub, "static", "the installed shaft under its static loads (its weight, "
                    "[[force]]): each support's reaction and the deflection line; static.png "
                    "in --out", cmd.cmd_static, out="optional")

@@ -468,3 +468,41 @@ class UcsMap:
                              for b in self.bearings],
                 "basis": {"modes": self.basis, "reference_stiffness_n_per_mm":
                           self.reference / 1e3, "largest_change_on_two_thirds": self.change}}
+
+
+@dataclass(frozen=True)
+class Level1:
+    """API 684's Level I screening (workflows.level1): at the speed (r/min), Q (N/m)
+    applied at the plane z (m, and why there), the first forward mode's log decrement
+    at each Q and without any, Q_0 where it is zero (None: not unstable below 1e13 N/m,
+    or unstable already), the anticipated Q_A (N/m, and where from; None: not known),
+    the log decrement there, Q_0 / Q_A, whether API 617's criteria pass (None: no Q_A),
+    and the mode's frequency without Q (Hz)."""
+
+    scene: Scene
+    speed_rpm: float
+    plane: float
+    plane_why: str
+    q: np.ndarray
+    log_dec: np.ndarray
+    log_dec_0: float
+    q0: float | None
+    qa: float | None
+    qa_from: str
+    log_dec_a: float | None
+    ratio: float | None
+    passed: bool | None
+    frequency_hz: float
+
+    def as_dict(self) -> dict:
+        def num(v):
+            return None if v is None or not math.isfinite(v) else float(v)
+        return {"speed_rpm": self.speed_rpm, "plane_mm": self.plane * 1e3,
+                "plane": self.plane_why, "criteria": "API 617 8th ed. (2014) 2.6.5: "
+                "Q_0 / Q_A >= 2 and log dec at Q_A >= 0.1",
+                "q_n_per_mm": [float(q) / 1e3 for q in self.q],
+                "log_dec": [float(v) for v in self.log_dec], "log_dec_without_q": self.log_dec_0,
+                "q0_n_per_mm": None if self.q0 is None else self.q0 / 1e3,
+                "qa_n_per_mm": None if self.qa is None else self.qa / 1e3, "qa_from": self.qa_from,
+                "log_dec_at_qa": num(self.log_dec_a), "q0_over_qa": num(self.ratio),
+                "passed": self.passed, "first_forward_hz": self.frequency_hz}

@@ -183,3 +183,27 @@ def static_figure(result):
     ax.set_title(f"{result.scene.name}: static deflection line and reactions (x, y)")
     ax.legend(loc="best", fontsize=8)
     return fig
+
+
+def level1_figure(r):
+    """API 684 Level I: the first forward mode's log decrement against the applied
+    cross-coupling Q, Q_0 and Q_A marked, API 617's 0.1 drawn."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7.5, 4.5))
+    ax = fig.subplots()
+    ax.plot(r.q / 1e3, r.log_dec, "o-", ms=3, lw=1.5, label="first forward mode")
+    ax.axhline(0.0, color="black", lw=0.8)
+    ax.axhline(0.1, color="grey", lw=0.8, ls="--", label="log dec 0.1 (API 617)")
+    if r.q0 is not None:
+        ax.axvline(r.q0 / 1e3, color="crimson", lw=1.0, ls=":", label=f"Q_0 {r.q0 / 1e3:,.0f} N/mm")
+    if r.qa is not None:
+        ax.axvline(r.qa / 1e3, color="tab:green", lw=1.0, ls="--",
+                   label=f"Q_A {r.qa / 1e3:,.0f} N/mm")
+    ax.set_xlabel("applied cross-coupled stiffness Q, N/mm")
+    ax.set_ylabel("log decrement")
+    ax.set_title(f"API 684 Level I screening: {r.scene.name}, {r.speed_rpm:,.0f} r/min, "
+                 f"Q at {r.plane * 1e3:g} mm", fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return fig

@@ -640,3 +640,32 @@ def ucs_csv(m) -> str:
     rows = [f"{k / 1e3:.6g}," + ",".join(f"{v:.6g}" for v in m.speeds_rpm[:, j])
             for j, k in enumerate(m.stiffness)]
     return "\n".join([head, *rows]) + "\n"
+
+
+def level1_text(r) -> str:
+    """API 684's Level I screening: log decrement against Q, Q_0, Q_A and the criteria."""
+    lines = [f"scene {r.scene.name}: API 684 Level I stability screening at {r.speed_rpm:,.0f} "
+             f"r/min (the highest operating speed), Q applied at {r.plane * 1e3:g} mm "
+             f"({r.plane_why}); the stages' cross-coupling and the seals left out",
+             f"first forward mode {r.frequency_hz:.2f} Hz, log decrement {r.log_dec_0:.4g} "
+             "without Q", "", "      Q (N/mm)   log dec"]
+    lines += [f"{q / 1e3:14,.1f}  {d:8.4f}" for q, d in zip(r.q, r.log_dec)]
+    lines.append("")
+    if r.q0 is None:
+        lines.append("Q_0: " + ("none: the mode is unstable without Q" if r.log_dec_0 <= 0
+                                else "the mode stays stable up to 1e10 N/mm"))
+    else:
+        lines.append(f"Q_0 = {r.q0 / 1e3:,.1f} N/mm: the log decrement falls to zero there")
+    if r.qa is None:
+        lines.append(f"Q_A: {r.qa_from}; give --qa-n-per-mm (or the stages' power) for the "
+                     "criteria")
+        return "\n".join(lines)
+    ratio = "-" if r.ratio is None else f"{r.ratio:.2f}"
+    da = "-" if r.log_dec_a is None else f"{r.log_dec_a:.4f}"
+    lines.append(f"Q_A = {r.qa / 1e3:,.1f} N/mm ({r.qa_from}): log decrement {da} there, "
+                 f"Q_0 / Q_A = {ratio}")
+    verdict = ("PASS: Level I screening met" if r.passed else
+               "FAIL: a Level II analysis is required")
+    lines.append(f"{verdict} (API 617 8th ed. 2.6.5: Q_0 / Q_A >= 2 and log dec at Q_A "
+                 ">= 0.1)")
+    return "\n".join(lines)

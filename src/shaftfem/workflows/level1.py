@@ -1,0 +1,146 @@
+"""API 684's Level I stability screening (API 617, 8th edition, 2014, section 2.6.5): a
+cross-coupled stiffness Q (kxy = Q, kyx = -Q) applied at the impeller, or at mid-span
+between the bearings, at the highest operating speed; the first forward mode's log
+decrement against Q; Q_0, where it falls to zero; and at the anticipated Q_A (the
+stages' Wachel estimate, or a value given) the log decrement delta_A and the ratio
+Q_0 / Q_A.
+
+API 617's criteria: the rotor passes the screening when Q_0 / Q_A >= 2 and
+delta_A >= 0.1; otherwise a Level II analysis (every destabilising source modelled) is
+required. As ross's run_level1 does, the stages' own cross-coupling and the seals are
+left out of the rotor the screening loads (Q stands for them).
+
+The rotor is the turning shaft's reduced model (workflows.campbell.turning); Q acts on
+the mean motion of the shaft's section at its plane, as a bearing would, so each Q is
+one small eigenproblem, and Q_0 is found by root finding on them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.errors import SceneError
+from shaftfem.fem.whirl import Level1
+from shaftfem.runtime import RunOptions
+from shaftfem.scene.model import BearingCoefficients, Scene
+
+if TYPE_CHECKING:
+    from shaftfem.fem.rotor import BearingModal, RotorModel
+
+# API 617's Level I criteria
+RATIO_MIN = 2.0
+LOG_DEC_MIN = 0.1
+POINTS = 20
+
+
+def cross(q: float) -> BearingCoefficients:
+    """A cross-coupled stiffness q (N/m): the force a quarter turn ahead of the motion."""
+    return BearingCoefficients(speeds=(), kxx=(0.0,), kxy=(q,), kyx=(-q,), kyy=(0.0,),
+                               cxx=(0.0,), cxy=(0.0,), cyx=(0.0,), cyy=(0.0,))
+
+
+def first_forward(model: RotorModel, omega: float) -> tuple[float, float]:
+    """The first forward lateral mode's log decrement and frequency (Hz) at the spin
+    omega (rad/s)."""
+    from shaftfem.workflows.campbell import whirl_at
+
+    rows = whirl_at(model, omega, model.size)
+    ahead = [w for w in rows if w.whirl == "forward" and w.kind not in ("torsion", "axial")]
+    if not ahead:
+        raise SceneError("no forward whirling mode in the basis at the highest operating "
+                         "speed: Level I screens the first forward mode")
+    w = min(ahead, key=lambda w: w.frequency_hz)
+    return w.log_dec, w.frequency_hz
+
+
+def screening_plane(scene: Scene, at: float | None) -> tuple[float, str]:
+    """Where Q is applied (m) and why: `at`, else the stage with the largest Wachel
+    estimate, else mid-span between the outermost bearings."""
+    if at is not None:
+        return at, "as asked"
+    stages = [a for a in scene.attachments if a.cross_coupling is not None]
+    if stages:
+        top = scene.rotor.top_speed if scene.rotor is not None else 0.0
+        a = max(stages, key=lambda a: _stage_q(a, top))
+        return a.position, f"at the stage {a.name!r}"
+    zs = [s.position for s in scene.supports if s.kind != "seal"]
+    if len(zs) < 2:
+        raise SceneError(f"{scene.source}: Level I applies Q at mid-span between the bearings, "
+                         "or at a stage: give two bearings, a stage (stage_power_kw) or the "
+                         "plane")
+    return 0.5 * (min(zs) + max(zs)), "at mid-span between the bearings"
+
+
+def _stage_q(part, omega: float) -> float:
+    """A stage's Wachel q (N/m) at the spin omega."""
+    assert part.cross_coupling is not None
+    return float(part.cross_coupling.stiffness(omega)[0][1])
+
+
+def anticipated(scene: Scene, given: float | None) -> tuple[float | None, str]:
+    """Q_A (N/m) and where it comes from: given, else the sum of the stages' Wachel
+    estimates at the highest operating speed, else none."""
+    if given is not None:
+        return given, "given"
+    stages = [a for a in scene.attachments if a.cross_coupling is not None]
+    if not stages:
+        return None, "none: no stage gives its power and no Q_A is given"
+    top = scene.rotor.top_speed if scene.rotor is not None else 0.0
+    return (float(sum(_stage_q(a, top) for a in stages)),
+            f"Wachel's estimate of {len(stages)} stage(s) at the highest operating speed")
+
+
+def run_level1(scene: Scene, q_values: np.ndarray | None = None, at: float | None = None,
+               q_anticipated: float | None = None,
+               options: RunOptions = RunOptions()) -> Level1:
+    """The Level I screening of the scene's rotor at its highest operating speed: the log
+    decrement at each of `q_values` (N/m; default 20 from 0 to 1.5 Q_0, or to 2 Q_A if
+    more), Q_0 and, with an anticipated Q_A, the criteria."""
+    import scipy.optimize
+
+    from shaftfem.fem.rotor import BearingModal, section_motion
+    from shaftfem.workflows.campbell import RPM, turning
+
+    if scene.rotor is None:
+        raise SceneError(f"{scene.source}: no [rotor] table: Level I screens the shaft at its "
+                         "highest operating speed; add [rotor] speed_rpm")
+    z, where = screening_plane(scene, at)
+    qa, qa_from = anticipated(scene, q_anticipated)
+    bare = replace(scene, supports=tuple(s for s in scene.supports if s.kind != "seal"),
+                   attachments=tuple(replace(a, cross_coupling=None)
+                                     for a in scene.attachments))
+    result, model, _ = turning(bare, options)
+    omega = scene.rotor.top_speed
+    beta = section_motion(result, z, model.shapes)
+    plane: BearingModal = BearingModal("applied Q", beta, cross(0.0), (0.0, 0.0))
+
+    def log_dec(q: float) -> float:
+        loaded = replace(model, bearings=(*model.bearings, replace(plane, coefficients=cross(q))))
+        return first_forward(loaded, omega)[0]
+
+    d0 = log_dec(0.0)
+    q0 = None
+    if d0 > 0:
+        hi = 1e3
+        while log_dec(hi) > 0 and hi < 1e13:
+            hi *= 4
+        if hi < 1e13:
+            q0 = float(scipy.optimize.brentq(log_dec, hi / 4 if hi > 1e3 else 0.0, hi,
+                                             xtol=1e-9 * hi, rtol=1e-10))
+    if q_values is None:
+        top = max(1.5 * (q0 or 0.0), 2.0 * (qa or 0.0)) or 1e6
+        q_values = np.linspace(0.0, top, POINTS)
+    decs = np.array([log_dec(float(q)) for q in q_values])
+    da = log_dec(qa) if qa is not None else None
+    ratio = q0 / qa if (q0 is not None and qa) else None
+    passed = None
+    if qa is not None:
+        passed = bool(da is not None and da >= LOG_DEC_MIN and ratio is not None
+                      and ratio >= RATIO_MIN)
+    return Level1(scene=scene, speed_rpm=omega / RPM, plane=z, plane_why=where,
+                  q=np.asarray(q_values, dtype=float), log_dec=decs, log_dec_0=d0, q0=q0,
+                  qa=qa, qa_from=qa_from, log_dec_a=da, ratio=ratio, passed=passed,
+                  frequency_hz=first_forward(model, omega)[1])
