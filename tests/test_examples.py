@@ -23,7 +23,7 @@ def run_example(name: str, cwd: Path, *args: str) -> subprocess.CompletedProcess
 
 def test_every_example_is_tested():
     tested = {"modes_of_my_shaft.py", "check_in_ci.py", "installed_response.py", "sweep.py",
-              "calibrate_from_measurements.py"}
+              "calibrate_from_measurements.py", "rotor_study.py"}
     assert {p.name for p in EXAMPLES.glob("*.py")} == tested
 
 
@@ -210,3 +210,21 @@ def test_bearings_from_their_physics_examples(tmp_path):
     b = json.loads((tmp_path / "b.json").read_text())["campbell"]
     first = min(w["frequency_hz"] for w in b["whirl"] if w["kind"] == "bending")
     assert first < timoshenko_free_free_hz(1, 0.4, 0.025, 211e9, 0.3, 7810.0)[0]
+
+
+def test_rotor_study(tmp_path):
+    """The pump's study from Python: oil whip above the running speed; on the critical
+    speed map each journal meets the first branch higher along its stiffer direction
+    (kxx above kyy: the stiffer bearing, the higher critical speed); Level I's ratio is
+    its Q_0 over the 2 N/mm asked, and the Campbell diagram is drawn."""
+    run = run_example("rotor_study.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    onset = float(re.search(r"unstable from ([\d,]+) r/min", run.stdout)[1].replace(",", ""))
+    assert onset > 3000
+    for name in ("drive-end journal", "outboard journal"):
+        meets = dict(re.findall(rf"map: {name} (k\w\w) [\d,]+ N/mm meets branch 1 at "
+                                r"([\d,]+) r/min", run.stdout))
+        assert float(meets["kxx"].replace(",", "")) > float(meets["kyy"].replace(",", ""))
+    q0, ratio = re.search(r"Q_0 ([\d.,]+) N/mm, Q_0 / Q_A ([\d.]+)", run.stdout).groups()
+    assert float(ratio) == pytest.approx(float(q0.replace(",", "")) / 2.0, rel=1e-3)
+    assert (tmp_path / "campbell.png").stat().st_size > 10_000

@@ -41,6 +41,9 @@ _LAZY = {
     "run_design": "shaftfem.workflows.design",
     "Modes": "shaftfem.fem.modes",
     "run_campbell": "shaftfem.workflows.campbell",
+    "run_ucs": "shaftfem.workflows.ucs",
+    "run_level1": "shaftfem.workflows.level1",
+    "run_static": "shaftfem.workflows.static",
     "Run": "shaftfem.workflows.results",
     "solve": "shaftfem.workflows.results",
     "load_run": "shaftfem.workflows.results",
@@ -98,5 +101,8 @@ if TYPE_CHECKING:
     from shaftfem.workflows.bounded import Bounded, run_bounded, with_accuracy
     from shaftfem.workflows.campbell import run_campbell
     from shaftfem.workflows.design import DesignResult, run_design
+    from shaftfem.workflows.level1 import run_level1
     from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
     from shaftfem.workflows.results import Run, Turning, campbell, load_run, solve
+    from shaftfem.workflows.static import run_static
+    from shaftfem.workflows.ucs import run_ucs

@@ -3,7 +3,10 @@ cross-coupled stiffness Q (kxy = Q, kyx = -Q) applied at the impeller, or at mid
 between the bearings, at the highest operating speed; the first forward mode's log
 decrement against Q; Q_0, where it falls to zero; and at the anticipated Q_A (the
 stages' Wachel estimate, or a value given) the log decrement delta_A and the ratio
-Q_0 / Q_A.
+Q_0 / Q_A. Q_0 is where the first of the lowest four forward lateral modes turns
+unstable, and the mode screened is that one, followed over Q by its frequency: on stiff
+bearings it is the first forward mode (as in ross), but on soft ones heavily damped
+rigid-body modes can lie below the forward bending mode that Q destabilises.
 
 API 617's criteria: the rotor passes the screening when Q_0 / Q_A >= 2 and
 delta_A >= 0.1; otherwise a Level II analysis (every destabilising source modelled) is
@@ -34,6 +37,8 @@ if TYPE_CHECKING:
 RATIO_MIN = 2.0
 LOG_DEC_MIN = 0.1
 POINTS = 20
+# the lowest forward modes screened; the least damped of them is the one judged
+FORWARD = 4
 
 
 def cross(q: float) -> BearingCoefficients:
@@ -42,18 +47,18 @@ def cross(q: float) -> BearingCoefficients:
                                cxx=(0.0,), cxy=(0.0,), cyx=(0.0,), cyy=(0.0,))
 
 
-def first_forward(model: RotorModel, omega: float) -> tuple[float, float]:
-    """The first forward lateral mode's log decrement and frequency (Hz) at the spin
-    omega (rad/s)."""
+def forward_modes(model: RotorModel, omega: float) -> list[tuple[float, float]]:
+    """The lowest FORWARD forward lateral modes at the spin omega (rad/s): (frequency Hz,
+    log decrement) each, lowest first."""
     from shaftfem.workflows.campbell import whirl_at
 
     rows = whirl_at(model, omega, model.size)
-    ahead = [w for w in rows if w.whirl == "forward" and w.kind not in ("torsion", "axial")]
+    ahead = sorted((w for w in rows if w.whirl == "forward"
+                    and w.kind not in ("torsion", "axial")), key=lambda w: w.frequency_hz)
     if not ahead:
         raise SceneError("no forward whirling mode in the basis at the highest operating "
-                         "speed: Level I screens the first forward mode")
-    w = min(ahead, key=lambda w: w.frequency_hz)
-    return w.log_dec, w.frequency_hz
+                         "speed: Level I screens the first forward modes")
+    return [(w.frequency_hz, w.log_dec) for w in ahead[:FORWARD]]
 
 
 def screening_plane(scene: Scene, at: float | None) -> tuple[float, str]:
@@ -117,24 +122,44 @@ def run_level1(scene: Scene, q_values: np.ndarray | None = None, at: float | Non
     beta = section_motion(result, z, model.shapes)
     plane: BearingModal = BearingModal("applied Q", beta, cross(0.0), (0.0, 0.0))
 
-    def log_dec(q: float) -> float:
+    def modes(q: float) -> list[tuple[float, float]]:
         loaded = replace(model, bearings=(*model.bearings, replace(plane, coefficients=cross(q))))
-        return first_forward(loaded, omega)[0]
+        return forward_modes(loaded, omega)
 
-    d0 = log_dec(0.0)
+    def least(q: float) -> float:
+        return min(d for _, d in modes(q))
+
     q0 = None
-    if d0 > 0:
+    if least(0.0) > 0:
         hi = 1e3
-        while log_dec(hi) > 0 and hi < 1e13:
+        while least(hi) > 0 and hi < 1e13:
             hi *= 4
         if hi < 1e13:
-            q0 = float(scipy.optimize.brentq(log_dec, hi / 4 if hi > 1e3 else 0.0, hi,
+            q0 = float(scipy.optimize.brentq(least, hi / 4 if hi > 1e3 else 0.0, hi,
                                              xtol=1e-9 * hi, rtol=1e-10))
     if q_values is None:
         top = max(1.5 * (q0 or 0.0), 2.0 * (qa or 0.0)) or 1e6
         q_values = np.linspace(0.0, top, POINTS)
-    decs = np.array([log_dec(float(q)) for q in q_values])
-    da = log_dec(qa) if qa is not None else None
+    # the mode Q turns unstable (the least damped at Q_0; without Q_0 the least damped
+    # without Q), followed over Q by its frequency, from Q_0 outwards in small steps
+    start = q0 if q0 is not None else 0.0
+    f_start = min(modes(start), key=lambda m: m[1])[0]
+    wanted = sorted({*map(float, q_values), *([qa] if qa is not None else []), 0.0})
+
+    def follow(targets: list[float]) -> dict[float, tuple[float, float]]:
+        out, q, f = {}, start, f_start
+        for t in targets:
+            for step in np.linspace(q, t, 6)[1:] if t != q else [t]:
+                f, d = min(modes(float(step)), key=lambda m: abs(m[0] - f))
+            out[t], q = (f, d), t
+        return out
+
+    seen = {start: (f_start, min(modes(start), key=lambda m: m[1])[1])}
+    seen.update(follow([t for t in reversed(wanted) if t < start]))
+    seen.update(follow([t for t in wanted if t > start]))
+    decs = np.array([seen[float(q)][1] for q in q_values])
+    d0, f0 = seen[0.0][1], seen[0.0][0]
+    da = seen[qa][1] if qa is not None else None
     ratio = q0 / qa if (q0 is not None and qa) else None
     passed = None
     if qa is not None:
@@ -143,4 +168,4 @@ def run_level1(scene: Scene, q_values: np.ndarray | None = None, at: float | Non
     return Level1(scene=scene, speed_rpm=omega / RPM, plane=z, plane_why=where,
                   q=np.asarray(q_values, dtype=float), log_dec=decs, log_dec_0=d0, q0=q0,
                   qa=qa, qa_from=qa_from, log_dec_a=da, ratio=ratio, passed=passed,
-                  frequency_hz=first_forward(model, omega)[1])
+                  frequency_hz=f0)
