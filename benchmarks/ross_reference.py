@@ -13,6 +13,7 @@ of packages): run this in an environment of its own,
     .venv-ross/bin/python benchmarks/ross_reference.py --seal tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --ucs tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --level1 tests/data/ross_rotors.json
+    .venv-ross/bin/python benchmarks/ross_reference.py --runup tests/data/ross_rotors.json
 
 Every rotor is written as ross's own tests write it (ross/tests/test_examples.py), on
 48 shaft elements; speeds are rad/s, frequencies rad/s (ross's units).
@@ -396,6 +397,48 @@ def level1(path: str) -> None:
     print(json.dumps(entry, indent=1))
 
 
+def runup(path: str) -> None:
+    """Add "runup" to the reference file at `path`: 5.9.1 with 2,000 N s/m in each
+    bearing run from 500 to 1,300 r/min at 100 r/min per s, 100 g mm at the 350 mm disk
+    (node 32), integrated by ross's Newmark (run_time_response with the speed against
+    time): the largest orbit radius at that node in each turn, its peak and the speed
+    there."""
+    import ross as rs
+    from ross.materials import steel
+
+    rotor = example_591(rs, steel, c=2000.0)
+    start, stop, accel = 500 * RPM, 1300 * RPM, 100 * RPM
+    duration = (stop - start) / accel
+    n = int(np.ceil(duration / (2 * np.pi / stop / 100)))
+    t = np.linspace(0.0, duration, n + 1)
+    speed = start + accel * t
+    phi = start * t + 0.5 * accel * t**2
+    me, node = 1e-4, 2 * N_EL // 3
+    F = np.zeros((t.size, rotor.ndof))
+    F[:, rotor.number_dof * node + 0] = me * (speed**2 * np.cos(phi) + accel * np.sin(phi))
+    F[:, rotor.number_dof * node + 1] = me * (speed**2 * np.sin(phi) - accel * np.cos(phi))
+    response = rotor.run_time_response(speed, F, t)
+    x = response.yout[:, rotor.number_dof * node + 0]
+    y = response.yout[:, rotor.number_dof * node + 1]
+    turn = np.floor(phi / (2 * np.pi)).astype(int)
+    r = np.hypot(x, y)
+    peaks = np.zeros(turn.max() + 1)
+    np.maximum.at(peaks, turn, r)
+    mean = np.bincount(turn, speed) / np.bincount(turn)
+    peaks, mean = peaks[:-1], mean[:-1]
+    i = int(np.argmax(peaks))
+    entry = {"bearing_damping_n_s_per_m": 2000.0, "start_rpm": 500.0, "stop_rpm": 1300.0,
+             "accel_rpm_per_s": 100.0, "unbalance_kg_m": me, "node_z_m": 1.0,
+             "steps": int(n), "peak_speed_rpm": float(mean[i] / RPM),
+             "peak_radius_m": float(peaks[i])}
+    with open(path) as f:
+        out = json.load(f)
+    out["runup"] = entry
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps(entry, indent=1))
+
+
 def journals(table_path: str, path: str) -> None:
     """Add "5.9.1 journals" to the reference file at `path`, from the bearings of
     `table_path`."""
@@ -423,5 +466,7 @@ if __name__ == "__main__":
         ucs(sys.argv[2])
     elif len(sys.argv) > 1 and sys.argv[1] == "--level1":
         level1(sys.argv[2])
+    elif len(sys.argv) > 1 and sys.argv[1] == "--runup":
+        runup(sys.argv[2])
     else:
         main(sys.argv[1] if len(sys.argv) > 1 else "ross_rotors.json")

@@ -230,6 +230,32 @@ def cmd_level1(args) -> int:
     return 1 if r.passed is False else 0
 
 
+def cmd_runup(args) -> int:
+    from shaftfem.outputs.tables import runup_text
+    from shaftfem.workflows.runup import run_run_up
+
+    scene = _scene(args)
+    if scene.rotor is None:
+        raise SceneError(f"{scene.source}: no [rotor] table: a run-up needs the shaft turning")
+    accel = args.accel_rpm_per_s
+    top = scene.rotor.max_speed * 30 / 3.141592653589793
+    start, stop = args.speeds_rpm or ((0.0, top) if accel > 0 else (top, 0.0))
+    if accel == 0 or (stop - start) / accel <= 0:
+        raise SceneError(f"--accel-rpm-per-s {accel:g}: takes the speed from {start:g} to "
+                         f"{stop:g} r/min the other way (give a positive acceleration for a "
+                         "run-up, a negative one for a coast-down)")
+    r = run_run_up(scene, start, stop, accel, _options(args))
+    print(runup_text(r))
+    if args.out:
+        from shaftfem.outputs.plots import runup_figure, save_png
+
+        path = save_png(runup_figure(r), Path(args.out) / "runup.png")
+        print(f"wrote {path}")
+    if args.json:
+        _write_json(args.json, {"scene": scene.name, **r.as_dict()})
+    return 0
+
+
 def cmd_static(args) -> int:
     from shaftfem.outputs.tables import static_text
     from shaftfem.workflows.static import run_static

@@ -96,6 +96,20 @@ def _q_range(text: str) -> tuple[float, float, int]:
     return start, stop, count
 
 
+def _span(text: str) -> tuple[float, float]:
+    """START:STOP, r/min."""
+    try:
+        a, b = text.split(":")
+        start, stop = float(a), float(b)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected START:STOP, e.g. 500:3000 "
+                                         "(r/min)") from None
+    if not (0 <= start <= 1e6 and 0 <= stop <= 1e6 and start != stop):
+        raise argparse.ArgumentTypeError(f"{text!r}: need two different speeds in [0, 1e6] "
+                                         "r/min")
+    return start, stop
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, with its errors on one line like every other error (exit 2)."""
 
@@ -179,6 +193,14 @@ def build_parser() -> argparse.ArgumentParser:
     lv.add_argument("--qa-n-per-mm", type=float, metavar="Q",
                     help="the anticipated cross-coupling Q_A, N/mm (default: the stages' "
                     "Wachel estimates)")
+    ru = _modal_command(sub, "runup", "a run-up (or coast-down) through the critical speeds: "
+                        "the unbalance response integrated in time at a constant acceleration, "
+                        "its envelope beside the steady one; runup.png in --out", cmd.cmd_runup,
+                        out="optional")
+    ru.add_argument("--accel-rpm-per-s", type=float, required=True, metavar="A",
+                    help="the angular acceleration, r/min per s (negative: a coast-down)")
+    ru.add_argument("--speeds-rpm", type=_span, metavar="START:STOP",
+                    help="from and to, r/min (default: 0 to [rotor] max_speed_rpm, or back)")
     _modal_command(sub, "static", "the installed shaft under its static loads (its weight, "
                    "[[force]]): each support's reaction and the deflection line; static.png "
                    "in --out", cmd.cmd_static, out="optional")

@@ -506,3 +506,32 @@ class Level1:
                 "qa_n_per_mm": None if self.qa is None else self.qa / 1e3, "qa_from": self.qa_from,
                 "log_dec_at_qa": num(self.log_dec_a), "q0_over_qa": num(self.ratio),
                 "passed": self.passed, "first_forward_hz": self.frequency_hz}
+
+
+@dataclass(frozen=True)
+class RunUp:
+    """A run-up or coast-down (workflows.runup) at accel_rpm_per_s: per probe (names),
+    the orbit's largest radius in each turn of the shaft (m) at its mean speed (r/min),
+    the steady unbalance response's major semi-axis at the same speeds (m), the peak
+    (speed r/min, radius m), the orbit (x, y; m) over the turns around the peak; and the
+    number of time steps."""
+
+    scene: Scene
+    accel_rpm_per_s: float
+    names: tuple[str, ...]
+    speeds_rpm: np.ndarray
+    envelopes: tuple[np.ndarray, ...]
+    steady: tuple[np.ndarray, ...]
+    peaks: tuple[tuple[float, float], ...]
+    orbits: tuple[np.ndarray, ...] = field(repr=False)
+    steps: int = 0
+
+    def as_dict(self) -> dict:
+        return {"accel_rpm_per_s": self.accel_rpm_per_s, "steps": self.steps,
+                "speeds_rpm": [float(v) for v in self.speeds_rpm],
+                "probes": [{"name": n, "peak_speed_rpm": p[0], "peak_um": p[1] * 1e6,
+                            "steady_peak_um": float(s.max()) * 1e6,
+                            "steady_peak_speed_rpm": float(self.speeds_rpm[int(np.argmax(s))]),
+                            "envelope_um": [float(v) * 1e6 for v in e]}
+                           for n, p, e, s in zip(self.names, self.peaks, self.envelopes,
+                                                 self.steady)]}

@@ -207,3 +207,34 @@ def level1_figure(r):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     return fig
+
+
+def runup_figure(r):
+    """The run-up's envelope (the orbit's largest radius in each turn) against speed
+    beside the steady unbalance response, per probe, and the orbit at the first probe's
+    peak."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(11, 4.5))
+    ax, ax2 = fig.subplots(1, 2, gridspec_kw={"width_ratios": (2.2, 1.0)})
+    for k, (name, env, steady) in enumerate(zip(r.names, r.envelopes, r.steady)):
+        line, = ax.plot(r.speeds_rpm, env * 1e6, lw=1.4, label=f"{name}: run")
+        ax.plot(r.speeds_rpm, steady * 1e6, lw=1.0, ls="--", color=line.get_color(),
+                label=f"{name}: steady")
+        n, amp = r.peaks[k]
+        ax.plot([n], [amp * 1e6], "o", color=line.get_color(), ms=4)
+    kind = "run-up" if r.accel_rpm_per_s > 0 else "coast-down"
+    ax.set_xlabel("speed, r/min")
+    ax.set_ylabel("orbit radius, um (0-peak)")
+    ax.set_title(f"{kind.capitalize()} at {abs(r.accel_rpm_per_s):,.4g} r/min per s: "
+                 f"{r.scene.name}", fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    xy = r.orbits[0] * 1e6
+    ax2.plot(xy[0], xy[1], lw=1.0)
+    ax2.set_aspect("equal", adjustable="datalim")
+    ax2.set_title(f"orbit at the peak, {r.names[0]} ({r.peaks[0][0]:,.0f} r/min)", fontsize=9)
+    ax2.set_xlabel("x, um")
+    ax2.set_ylabel("y, um")
+    ax2.grid(True, alpha=0.3)
+    return fig

@@ -669,3 +669,20 @@ def level1_text(r) -> str:
     lines.append(f"{verdict} (API 617 8th ed. 2.6.5: Q_0 / Q_A >= 2 and log dec at Q_A "
                  ">= 0.1)")
     return "\n".join(lines)
+
+
+def runup_text(r) -> str:
+    """A run-up's peaks beside the steady ones."""
+    kind = "run-up" if r.accel_rpm_per_s > 0 else "coast-down"
+    lines = [f"scene {r.scene.name}: {kind} at {abs(r.accel_rpm_per_s):,.4g} r/min per s from "
+             f"{r.speeds_rpm[0]:,.0f} to {r.speeds_rpm[-1]:,.0f} r/min ({r.steps:,} time steps, "
+             "Newmark), driven by the unbalances", "",
+             "probe                        peak (um, 0-peak)   at (r/min)   steady peak (um)   "
+             "at (r/min)"]
+    for name, (n, amp), steady in zip(r.names, r.peaks, r.steady):
+        i = int(steady.argmax())
+        lines.append(f"{name:28s} {amp * 1e6:17.3f} {n:12,.0f} {steady[i] * 1e6:18.3f} "
+                     f"{r.speeds_rpm[i]:12,.0f}")
+    lines += ["", "passed at a finite rate, the resonance has no time to build up: the peak "
+              "is lower than the steady one, and later in the direction of travel"]
+    return "\n".join(lines)

@@ -114,10 +114,13 @@ def run_level1(scene: Scene, q_values: np.ndarray | None = None, at: float | Non
                          "highest operating speed; add [rotor] speed_rpm")
     z, where = screening_plane(scene, at)
     qa, qa_from = anticipated(scene, q_anticipated)
-    bare = replace(scene, supports=tuple(s for s in scene.supports if s.kind != "seal"),
-                   attachments=tuple(replace(a, cross_coupling=None)
-                                     for a in scene.attachments))
-    result, model, _ = turning(bare, options)
+    result, model, _ = turning(scene, options)
+    # the seals and the stages' own cross-coupling out of the loaded rotor (Q stands for
+    # them); their seats stay in the mesh and the basis, as the Campbell run has them
+    seals = {s.name for s in scene.supports if s.kind == "seal"}
+    stages = {f"{a.name} (stage)" for a in scene.attachments if a.cross_coupling is not None}
+    model = replace(model, bearings=tuple(b for b in model.bearings
+                                          if b.name not in seals | stages))
     omega = scene.rotor.top_speed
     beta = section_motion(result, z, model.shapes)
     plane: BearingModal = BearingModal("applied Q", beta, cross(0.0), (0.0, 0.0))

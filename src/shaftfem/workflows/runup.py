@@ -1,0 +1,173 @@
+"""A run-up (or coast-down) through the critical speeds: the turning shaft's reduced
+model (workflows.campbell.turning) integrated in time at a constant angular
+acceleration alpha, driven by the scene's unbalances.
+
+The spin Omega(t) = Omega_0 + alpha t turns the shaft by phi(t) = Omega_0 t + alpha t^2 / 2;
+an unbalance m e at the phase theta pushes on its plane with
+
+    F = m e (Omega^2 cos(phi + theta) + alpha sin(phi + theta),
+             Omega^2 sin(phi + theta) - alpha cos(phi + theta))
+
+(its centripetal and its tangential reaction). M q'' + D(Omega) q' + K(Omega) q = F is
+integrated by Newmark's average acceleration (unconditionally stable, no numerical
+damping) at STEPS steps per turn of the fastest speed, D and K taken at each step's
+speed. A peak passed quickly is lower and later than the steady one (Lewis 1932): the
+resonance has no time to build up.
+
+The stationary frame only (a shaft of revolution): in the frame turning with the shaft
+an accelerating spin is not a constant-coefficient system.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.errors import SceneError
+from shaftfem.fem.whirl import RunUp
+from shaftfem.runtime import RunOptions
+from shaftfem.scene.model import Scene
+
+if TYPE_CHECKING:
+    from shaftfem.fem.rotor import RotorModel
+
+# Newmark steps per turn at the fastest speed, and speeds of the coefficient table the
+# steps interpolate D and K in
+STEPS = 100
+TABLE = 400
+MAX_STEPS = 5_000_000
+
+
+def newmark_run_up(model: RotorModel, start: float, stop: float, accel: float,
+                   forces: list[tuple[np.ndarray, complex]], probes: list[np.ndarray],
+                   steps_per_turn: int = STEPS) -> tuple[np.ndarray, np.ndarray, list[np.ndarray]]:
+    """The time (s), the spin (rad/s) and each probe's (x, y) motion (2, n_t) (m) of the
+    model run from `start` to `stop` (rad/s) at `accel` (rad/s^2, negative for a
+    coast-down), from rest at the start. forces: (beta, m e e^{i theta}) per unbalance;
+    probes: each section's beta (2, N)."""
+    if accel == 0 or (stop - start) / accel <= 0:
+        raise SceneError("a run-up needs an acceleration taking the speed from the start to "
+                         "the stop")
+    duration = (stop - start) / accel
+    dt = 2 * math.pi / max(abs(start), abs(stop)) / steps_per_turn
+    n = int(math.ceil(duration / dt))
+    if n > MAX_STEPS:
+        raise SceneError(f"a run-up of {duration:.4g} s takes {n:,} steps of {dt:.3g} s "
+                         f"(more than {MAX_STEPS:,}): accelerate faster or span fewer speeds")
+    dt = duration / n
+    speeds = np.linspace(min(start, stop), max(start, stop), TABLE)
+    DK = [model.matrices(float(w)) for w in speeds]
+    D_tab = np.array([d for d, _ in DK])
+    K_tab = np.array([k for _, k in DK])
+    M_tab = np.array([model.mass(float(w)) for w in speeds]) if any(
+        b.coefficients.has_mass for b in model.bearings) else None
+    eye = np.eye(model.size)
+
+    def at(w: float):
+        s = (w - speeds[0]) / (speeds[-1] - speeds[0]) * (TABLE - 1)
+        i = int(min(max(math.floor(s), 0), TABLE - 2))
+        f = s - i
+
+        def mix(A: np.ndarray) -> np.ndarray:
+            return (1 - f) * A[i] + f * A[i + 1]
+        return (eye if M_tab is None else mix(M_tab)), mix(D_tab), mix(K_tab)
+
+    B = np.array([beta for beta, _ in forces])             # (u, 2, N)
+    U = np.array([u for _, u in forces])                    # m e e^{i theta}
+    P = np.array(probes)                                    # (p, 2, N)
+
+    def load(t: float) -> np.ndarray:
+        w = start + accel * t
+        phi = start * t + 0.5 * accel * t * t
+        c = U * np.exp(1j * phi)
+        fx = w * w * c.real + accel * c.imag
+        fy = w * w * c.imag - accel * c.real
+        return np.einsum("u,un->n", fx, B[:, 0]) + np.einsum("u,un->n", fy, B[:, 1])
+
+    q = np.zeros(model.size)
+    v = np.zeros(model.size)
+    M, D, K = at(start)
+    a = np.linalg.solve(M, load(0.0) - D @ v - K @ q)
+    times = np.linspace(0.0, duration, n + 1)
+    out = np.empty((P.shape[0], 2, n + 1))
+    out[:, :, 0] = P @ q
+    beta_n, gamma = 0.25, 0.5
+    for k in range(1, n + 1):
+        t = times[k]
+        M, D, K = at(start + accel * t)
+        pred_q = q + dt * v + (0.5 - beta_n) * dt * dt * a
+        pred_v = v + (1 - gamma) * dt * a
+        a = np.linalg.solve(M + gamma * dt * D + beta_n * dt * dt * K,
+                            load(t) - D @ pred_v - K @ pred_q)
+        q = pred_q + beta_n * dt * dt * a
+        v = pred_v + gamma * dt * a
+        out[:, :, k] = P @ q
+    return times, start + accel * times, [out[i] for i in range(P.shape[0])]
+
+
+def envelope(times: np.ndarray, speeds: np.ndarray, xy: np.ndarray, start: float,
+             accel: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per turn of the shaft: its mean speed (rad/s) and the largest radius of the
+    orbit (m) in it."""
+    phi = start * times + 0.5 * accel * times**2
+    turn = np.floor(np.abs(phi) / (2 * math.pi)).astype(int)
+    r = np.hypot(xy[0], xy[1])
+    n = int(turn.max()) + 1
+    peak = np.zeros(n)
+    np.maximum.at(peak, turn, r)
+    mean = np.bincount(turn, speeds, n) / np.maximum(np.bincount(turn, None, n), 1)
+    keep = np.bincount(turn, None, n) > 0
+    return mean[keep][:-1], peak[keep][:-1]       # the last turn is partial
+
+
+def run_run_up(scene: Scene, start_rpm: float, stop_rpm: float, accel_rpm_per_s: float,
+               options: RunOptions = RunOptions(), steps_per_turn: int = STEPS) -> RunUp:
+    """The scene's rotor run from start_rpm to stop_rpm at accel_rpm_per_s (negative:
+    a coast-down) with its unbalances: each probe's envelope against speed, its peak,
+    the orbit there, and the steady response at the same speeds."""
+    from shaftfem.fem.rotor import lateral_rigid, orbit, rotor_model, section_motion
+    from shaftfem.fem.rotor import unbalance_response as steady
+    from shaftfem.workflows.campbell import RPM, turning
+    from shaftfem.workflows.unbalance import _bearings_of
+
+    if scene.rotor is None or not scene.unbalances:
+        raise SceneError(f"{scene.source}: a run-up needs [rotor] and an [[unbalance]] to "
+                         "drive it")
+    result, model, _ = turning(scene, options)
+    if model.frame != "stationary":
+        raise SceneError(f"{scene.source}: a run-up is integrated in the stationary frame: the "
+                         "shaft must be a solid of revolution")
+    if lateral_rigid(result).shape[1]:
+        model = replace(rotor_model(result, "stationary", rigid=True),
+                        bearings=_bearings_of(model, rotor_model(result, "stationary",
+                                                                 rigid=True)))
+    forces = [(section_motion(result, u.position, model.shapes),
+               u.amount * complex(math.cos(u.phase), math.sin(u.phase)))
+              for u in scene.unbalances]
+    names = [u.name for u in scene.unbalances] + [f"probe at {p * 1e3:g} mm"
+                                                  for p in scene.rotor.probes]
+    probes = [beta for beta, _ in forces] + [section_motion(result, p, model.shapes)
+                                            for p in scene.rotor.probes]
+    start, stop, accel = start_rpm * RPM, stop_rpm * RPM, accel_rpm_per_s * RPM
+    times, speeds, xy = newmark_run_up(model, start, stop, accel, forces, probes,
+                                       steps_per_turn)
+    envelopes, peaks, orbits, steady_major = [], [], [], []
+    for track in xy:
+        w, r = envelope(times, speeds, track, start, accel)
+        envelopes.append((w / RPM, r))
+        i = int(np.argmax(r))
+        peaks.append((float(w[i] / RPM), float(r[i])))
+        t_peak = (w[i] - start) / accel
+        window = np.abs(times - t_peak) <= 2 * math.pi / max(w[i], 1e-9)
+        orbits.append(track[:, window])
+    grid = envelopes[0][0]
+    for beta in probes:
+        steady_major.append(np.array([orbit(model, beta, steady(model, w * RPM, forces))[1]
+                                      for w in grid]))
+    return RunUp(scene=scene, accel_rpm_per_s=accel_rpm_per_s, names=tuple(names),
+                 speeds_rpm=grid, envelopes=tuple(r for _, r in envelopes),
+                 steady=tuple(steady_major), peaks=tuple(peaks), orbits=tuple(orbits),
+                 steps=len(times) - 1)
