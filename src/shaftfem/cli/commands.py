@@ -256,6 +256,34 @@ def cmd_runup(args) -> int:
     return 0
 
 
+def cmd_frf(args) -> int:
+    import numpy as np
+
+    from shaftfem.outputs.tables import frf_text
+    from shaftfem.workflows.frf import run_frequency_response
+
+    scene = _scene(args)
+    if scene.rotor is None:
+        raise SceneError(f"{scene.source}: no [rotor] table: the frequency response of the "
+                         "running machine needs its speed")
+    a, b, n = args.frequencies_hz
+    freqs = np.linspace(a, b, n)
+    speeds = np.array(args.speeds_rpm if args.speeds_rpm else
+                      [0.0, *(w * 30 / np.pi for w in scene.rotor.speeds)])
+    at = args.at_mm * 1e-3
+    probe = at if args.probe_mm is None else args.probe_mm * 1e-3
+    r = run_frequency_response(scene, at, probe, freqs, speeds, _options(args))
+    print(frf_text(r))
+    if args.out:
+        from shaftfem.outputs.plots import frf_figure, save_png
+
+        path = save_png(frf_figure(r), Path(args.out) / "frf.png")
+        print(f"wrote {path}")
+    if args.json:
+        _write_json(args.json, {"scene": scene.name, **r.as_dict()})
+    return 0
+
+
 def cmd_static(args) -> int:
     from shaftfem.outputs.tables import static_text
     from shaftfem.workflows.static import run_static

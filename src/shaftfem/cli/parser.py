@@ -201,6 +201,18 @@ def build_parser() -> argparse.ArgumentParser:
                     help="the angular acceleration, r/min per s (negative: a coast-down)")
     ru.add_argument("--speeds-rpm", type=_span, metavar="START:STOP",
                     help="from and to, r/min (default: 0 to [rotor] max_speed_rpm, or back)")
+    fr = _modal_command(sub, "frf", "the running machine's frequency response (a hammer "
+                        "test while it turns): the receptance of a section to a force on "
+                        "another, against frequency, at each speed; frf.png in --out",
+                        cmd.cmd_frf, out="optional")
+    fr.add_argument("--at-mm", type=float, required=True, metavar="Z",
+                    help="where the force acts, mm from the shaft's left end")
+    fr.add_argument("--probe-mm", type=float, metavar="Z",
+                    help="where the response is read, mm (default: where the force acts)")
+    fr.add_argument("--frequencies-hz", type=_speed_range, metavar="START:STOP:N",
+                    required=True, help="the force's frequencies, Hz")
+    fr.add_argument("--speeds-rpm", type=float, nargs="+", metavar="N",
+                    help="the speeds, r/min (default: standstill and the operating speeds)")
     _modal_command(sub, "static", "the installed shaft under its static loads (its weight, "
                    "[[force]]): each support's reaction and the deflection line; static.png "
                    "in --out", cmd.cmd_static, out="optional")

@@ -27,6 +27,10 @@ if TYPE_CHECKING:
 # share of its largest stiffness, in this many steps.
 SHIFT = 1e-8
 STEPS = 4
+# the most steps a solve to a tolerance takes
+MAX_STEPS = 200
+# ... and the tolerance the static loads' solve is taken to
+CONVERGED = 1e-13
 # The deflection line is drawn on this many slices along the shaft.
 SLICES = 200
 # The reactions balance the loads to this share of the loads (else a SolverError).
@@ -63,12 +67,14 @@ class StaticSolution:
         return float(np.interp(z, self.z, self.x)), float(np.interp(z, self.z, self.y))
 
 
-def elastic_solve(K, M, R: np.ndarray, f: np.ndarray, shift: float, steps: int
-                  ) -> np.ndarray:
+def elastic_solve(K, M, R: np.ndarray, f: np.ndarray, shift: float, steps: int,
+                  until: float | None = None) -> np.ndarray:
     """K u = f (loads as columns of f) on the elastic motions of the pencil (K, M), its
     free rigid motions R taken out of the loads and of u: (K + s M) u_k+1 = f + s M u_k,
     each step gaining about s / (lowest elastic eigenvalue); one factorisation, every
-    load at once where the back-end takes them. Without free motions, K u = f."""
+    load at once where the back-end takes them. Without free motions, K u = f. With
+    `until`, at least `steps` steps and then on until a step moves u by less than that
+    share of it (soft supports gain less per step)."""
     from shaftfem.fem.factor import factorise
 
     if not R.shape[1]:
@@ -85,10 +91,14 @@ def elastic_solve(K, M, R: np.ndarray, f: np.ndarray, shift: float, steps: int
         R = R @ (V / np.sqrt(lam))               # M-orthonormal
         f = f - M @ (R @ (R.T @ f))
     u = np.zeros_like(f)
-    for _ in range(steps):
-        u = solve(f + shift * (M @ u))
+    for k in range(MAX_STEPS if until is not None else steps):
+        new = solve(f + shift * (M @ u))
         if R.shape[1]:
-            u = u - R @ (R.T @ (M @ u))
+            new = new - R @ (R.T @ (M @ new))
+        moved = float(np.abs(new - u).max())
+        u = new
+        if until is not None and k + 1 >= steps and moved <= until * float(np.abs(u).max()):
+            break
     return u
 
 
@@ -136,7 +146,7 @@ def static_solution(scene: Scene, system: System, inst: Installed, skmesh) -> St
                              "it there; hold it (an axial stiffness, a rigid seat) or turn "
                              "[static] gravity_direction across the shaft")
     q = elastic_solve(inst.K, inst.M, inst.rigid, f_q[:, None],
-                      SHIFT * float(inst.K.diagonal().max()), STEPS)[:, 0]
+                      SHIFT * float(inst.K.diagonal().max()), STEPS, until=CONVERGED)[:, 0]
     u = np.asarray(inst.T @ q)
     # what each band takes from the shaft: K_shaft u - f on its nodes
     nodal = loads_on_nodes(scene, system, inst)

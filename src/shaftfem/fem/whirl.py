@@ -535,3 +535,27 @@ class RunUp:
                             "envelope_um": [float(v) * 1e6 for v in e]}
                            for n, p, e, s in zip(self.names, self.peaks, self.envelopes,
                                                  self.steady)]}
+
+
+@dataclass(frozen=True)
+class Receptance:
+    """The running machine's receptance (workflows.frf): a force on the section at
+    force_at (m), the response of the section at probe_at (m); H (speeds, frequencies,
+    2, 2) complex, m/N: row the response along x, y, column the force along x, y."""
+
+    scene: Scene
+    force_at: float
+    probe_at: float
+    frequencies_hz: np.ndarray
+    speeds_rpm: np.ndarray
+    H: np.ndarray = field(repr=False)
+
+    def as_dict(self) -> dict:
+        return {"force_mm": self.force_at * 1e3, "probe_mm": self.probe_at * 1e3,
+                "frequencies_hz": [float(f) for f in self.frequencies_hz],
+                "speeds": [{"speed_rpm": float(n),
+                            "hxx_um_per_n": [float(abs(h[0, 0])) * 1e6 for h in row],
+                            "hyy_um_per_n": [float(abs(h[1, 1])) * 1e6 for h in row],
+                            "hxx_phase_deg": [math.degrees(float(np.angle(h[0, 0])))
+                                              for h in row]}
+                           for n, row in zip(self.speeds_rpm, self.H)]}

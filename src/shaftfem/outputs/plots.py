@@ -238,3 +238,26 @@ def runup_figure(r):
     ax2.set_ylabel("y, um")
     ax2.grid(True, alpha=0.3)
     return fig
+
+
+def frf_figure(r):
+    """|H_xx| against frequency at each speed (log), and its phase."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8, 6))
+    ax, ph = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (2, 1)})
+    for n, row in zip(r.speeds_rpm, r.H):
+        h = row[:, 0, 0]
+        line, = ax.semilogy(r.frequencies_hz, np.abs(h) * 1e6, lw=1.3, label=f"{n:,.0f} r/min")
+        ph.plot(r.frequencies_hz, np.degrees(np.unwrap(np.angle(h))), lw=1.0,
+                color=line.get_color())
+    ax.set_ylabel("|H_xx|, um/N")
+    ax.set_title(f"Receptance at {r.probe_at * 1e3:g} mm, force at {r.force_at * 1e3:g} mm: "
+                 f"{r.scene.name}", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ph.set_xlabel("frequency, Hz")
+    ph.set_ylabel("phase, deg")
+    ph.grid(True, alpha=0.3)
+    return fig

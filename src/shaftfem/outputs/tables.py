@@ -686,3 +686,18 @@ def runup_text(r) -> str:
     lines += ["", "passed at a finite rate, the resonance has no time to build up: the peak "
               "is lower than the steady one, and later in the direction of travel"]
     return "\n".join(lines)
+
+
+def frf_text(r) -> str:
+    """Each speed's largest receptance |H_xx| and |H_yy| and the frequency of it."""
+    import numpy as np
+
+    lines = [f"scene {r.scene.name}: receptance at {r.probe_at * 1e3:g} mm to a force at "
+             f"{r.force_at * 1e3:g} mm, {r.frequencies_hz[0]:g} to {r.frequencies_hz[-1]:g} Hz",
+             "", "   speed (r/min)   peak |H_xx| (um/N)   at (Hz)   peak |H_yy| (um/N)   at (Hz)"]
+    for n, row in zip(r.speeds_rpm, r.H):
+        hx, hy = np.abs(row[:, 0, 0]), np.abs(row[:, 1, 1])
+        i, j = int(hx.argmax()), int(hy.argmax())
+        lines.append(f"{n:16,.0f} {hx[i] * 1e6:20.4g} {r.frequencies_hz[i]:9.2f} "
+                     f"{hy[j] * 1e6:20.4g} {r.frequencies_hz[j]:9.2f}")
+    return "\n".join(lines)
