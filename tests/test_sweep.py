@@ -210,3 +210,39 @@ def test_a_variant_keeps_no_mode_shapes_but_a_single_run_does(tmp_path, monkeypa
     assert not list((tmp_path / "cache" / "solves").glob("*.npz"))
     run_modes(with_modes(with_mesh(load_scene("plain_cylinder"), 16.0), count=4))
     assert len(list((tmp_path / "cache" / "solves").glob("*.npz"))) == 1
+
+
+def test_an_overhang_sweep_of_a_turning_pump_resumes_after_a_kill(tmp_path):
+    """examples/overhang_sweep.toml: 12 positions of the overhung impeller on two Dask
+    workers, killed after three rows and resumed: each variant once, its critical speeds,
+    margin and unbalance peak; the further out the impeller, the lower both critical
+    speeds, the smaller the margin from the running speed and the larger the peak (a
+    longer, softer overhang); the critical speeds drawn against the overhang."""
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    sweep_file = examples / "overhang_sweep.toml"
+    out = tmp_path / "out"
+    p = subprocess.Popen([sys.executable, "-m", "shaftfem", "sweep", str(sweep_file), "--out",
+                          str(out), "--workers", "2", "-q"], start_new_session=True,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 300
+    while time.time() < deadline and len(read_results(out / "results.csv")) < 3:
+        time.sleep(0.05)
+    os.killpg(p.pid, signal.SIGKILL)
+    p.wait()
+    _released(out / ".sweep.lock")
+    before = read_results(out / "results.csv")
+    assert 3 <= len(before) < 12
+    sweep = load_sweep(sweep_file)
+    rows = run_sweep(sweep, out / "results.csv", workers=2)
+    assert len(rows) == 12 and len({r["id"] for r in rows}) == 12
+    assert all(r["status"] == "ok" for r in rows), [r["error"] for r in rows]
+    rows.sort(key=lambda r: float(r["attachment[0].position_mm"]))
+    for key, sign in (("crit1_rpm", -1), ("crit2_rpm", -1), ("critical_margin", -1),
+                      ("unbalance_peak_um", 1)):
+        values = [float(r[key]) for r in rows]
+        assert all(sign * (b - a) > 0 for a, b in zip(values, values[1:])), (key, values)
+    pics = sweep_plots(rows, sweep.parameters, sweep.n_modes, out)
+    plot = out / "critical_speeds_vs_attachment0_position_mm.png"
+    assert plot in pics and plot.stat().st_size > 10_000

@@ -84,7 +84,41 @@ def sweep_plots(rows: list[dict], parameters: list[str], n_modes: int,
         p.replace(".", "_").replace("[", "").replace("]", ""))) for p in parameters]
     if ok[0].get("min_margin") not in (None, ""):
         written.append(save_png(margin_figure(ok, parameters), out / "resonance_margin.png"))
+    if any(r.get("crit1_rpm") not in (None, "") for r in ok):
+        written += [save_png(critical_figure(ok, p, parameters),
+                             out / "critical_speeds_vs_{}.png".format(
+                                 p.replace(".", "_").replace("[", "").replace("]", "")))
+                    for p in parameters]
     return written
+
+
+def critical_figure(rows: list[dict], parameter: str, parameters: list[str]):
+    """A turning shaft's lowest two 1x critical speeds against a swept parameter (the
+    other parameters' values as separate lines)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7, 4.5))
+    ax = fig.subplots()
+    others = [k for k in parameters if k != parameter]
+    groups: dict[tuple, list[dict]] = {}
+    for r in rows:
+        groups.setdefault(tuple(r[k] for k in others), []).append(r)
+    for key, group in groups.items():
+        group = sorted(group, key=lambda r: float(r[parameter]))
+        x = [float(r[parameter]) for r in group]
+        label = ", ".join(f"{k} {v}" for k, v in zip(others, key))
+        for c, ls in (("crit1_rpm", "-"), ("crit2_rpm", "--")):
+            pts = [(xi, float(r[c])) for xi, r in zip(x, group) if r.get(c) not in (None, "")]
+            if pts:
+                ax.plot(*zip(*pts), ls, marker="o", ms=3,
+                        label=f"{'first' if c == 'crit1_rpm' else 'second'} 1x critical"
+                        + (f" ({label})" if label else ""))
+    ax.set_xlabel(parameter)
+    ax.set_ylabel("critical speed, r/min")
+    ax.set_title(f"Critical speeds against {parameter}", fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    return fig
 
 
 def response_figure(fr, marks: list[tuple[str, float, float]], title: str = ""):

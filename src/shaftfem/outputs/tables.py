@@ -679,12 +679,19 @@ def runup_text(r) -> str:
              "Newmark), driven by the unbalances", "",
              "probe                        peak (um, 0-peak)   at (r/min)   steady peak (um)   "
              "at (r/min)"]
+    notes = []
     for name, (n, amp), steady in zip(r.names, r.peaks, r.steady):
         i = int(steady.argmax())
         lines.append(f"{name:28s} {amp * 1e6:17.3f} {n:12,.0f} {steady[i] * 1e6:18.3f} "
                      f"{r.speeds_rpm[i]:12,.0f}")
-    lines += ["", "passed at a finite rate, the resonance has no time to build up: the peak "
-              "is lower than the steady one, and later in the direction of travel"]
+        change = amp / steady[i] - 1
+        later = (n - r.speeds_rpm[i]) * (1 if r.accel_rpm_per_s > 0 else -1)
+        notes.append(f"{name}: the peak {abs(change) * 100:.2g} % "
+                     f"{'below' if change < 0 else 'above'} the steady one, "
+                     f"{abs(later):,.0f} r/min {'later' if later >= 0 else 'earlier'} in the "
+                     "direction of travel")
+    lines += ["", *notes, "(passed at a finite rate, a lightly damped resonance has no time "
+              "to build up: its peak comes lower and later)"]
     return "\n".join(lines)
 
 

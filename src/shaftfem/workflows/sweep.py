@@ -55,6 +55,8 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
         scene = with_mesh(load_scene(base, overrides=overrides), mesh_size_mm)
         scene = with_modes(scene, count=n_modes or scene.modes.count)
         options = replace(options, keep_solves=False)  # each variant is solved once
+        if scene.rotor is not None:
+            return _rotor_row(row, scene, n_modes or scene.modes.count, options, t0)
         r = run_modes(scene, options)
         m = r.modes
         for i in range(m.count):
@@ -81,12 +83,61 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
     return row
 
 
-def columns(parameters: list[str], n_modes: int) -> list[str]:
-    """The results table's columns: the swept parameters, then per mode f, kind, error."""
+# a turning shaft's columns: its lowest 1x critical speeds, the separation margin
+# check_whirl judges (the closest approach), the least log decrement up to the highest
+# operating speed, the largest unbalance peak and its speed, and Level I's Q_0 / Q_A
+ROTOR_COLUMNS = ["crit1_rpm", "crit2_rpm", "critical_margin", "least_log_dec",
+                 "unbalance_peak_um", "unbalance_peak_rpm", "level1_ratio"]
+
+
+def columns(parameters: list[str], n_modes: int, rotor: bool = False) -> list[str]:
+    """The results table's columns: the swept parameters, then per mode f, kind, error
+    (and a turning shaft's ROTOR_COLUMNS)."""
     per_mode = [f"{c}{i + 1}{u}" for c, u in (("f", "_hz"), ("kind", ""), ("err", ""))
                 for i in range(n_modes)]
-    return (["id"] + parameters + ["dofs"] + per_mode
+    return (["id"] + parameters + ["dofs"] + per_mode + (ROTOR_COLUMNS if rotor else [])
             + ["min_margin", "margin_ok", "status", "error", "wall_s", "worker_pid"])
+
+
+def _rotor_row(row: dict, scene, n_modes: int, options: RunOptions, t0: float) -> dict:
+    """A turning shaft's variant: its Campbell run (the standstill modes are its basis's
+    first), the verdict's margin, the unbalance peak and, where a stage gives Q_A, Level I."""
+    try:
+        from shaftfem.checks.whirl_check import check_whirl
+        from shaftfem.workflows.campbell import run_campbell
+
+        c = run_campbell(scene, options)
+        m = c.result.modes
+        for i in range(min(n_modes, m.count)):
+            row[f"f{i + 1}_hz"] = float(m.frequencies[i])
+            row[f"kind{i + 1}"] = m.kinds[i]
+        crit = sorted(cs.speed_rpm for cs in c.critical_speeds if cs.order == 1)
+        for k in (0, 1):
+            row[f"crit{k + 1}_rpm"] = float(crit[k]) if len(crit) > k else ""
+        v = check_whirl(c)
+        if v.approaches:
+            row["critical_margin"] = row["min_margin"] = float(v.approaches[0].margin)
+        row["margin_ok"] = v.ok
+        if c.stability is not None:
+            row["least_log_dec"] = float(c.stability.log_dec)
+        if c.unbalance is not None and c.unbalance.peaks:
+            top = max(c.unbalance.peaks, key=lambda p: p.amplitude)
+            row["unbalance_peak_um"] = float(top.amplitude) * 1e6
+            row["unbalance_peak_rpm"] = float(top.speed_rpm)
+        if any(a.cross_coupling is not None for a in scene.attachments):
+            from shaftfem.workflows.level1 import run_level1
+
+            level1 = run_level1(scene, options=options)
+            row["level1_ratio"] = "" if level1.ratio is None else float(level1.ratio)
+        row["dofs"] = m.n_dofs
+        row["status"] = "ok"
+        row["error"] = ""
+    except Exception as exc:  # recorded, so that one bad variant does not stop the sweep
+        row["status"] = "failed"
+        row["error"] = f"{type(exc).__name__}: {exc}".replace("\n", " ")
+    row["wall_s"] = round(time.perf_counter() - t0, 3)
+    row["worker_pid"] = os.getpid()
+    return row
 
 
 def worker_version() -> str:
@@ -253,7 +304,8 @@ def _run_sweep(sweep: Sweep, results: Path, workers: int, scheduler: str | None,
         futures = [client.submit(run_variant, sweep.base, v, sweep.mesh_size_mm, estimate,
                                  sweep.n_modes, worker, pure=False) for v in todo]
         with open(results, "a", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=columns(sweep.parameters, sweep.n_modes),
+            turning = load_scene(sweep.base).rotor is not None
+            w = csv.DictWriter(fh, fieldnames=columns(sweep.parameters, sweep.n_modes, turning),
                                extrasaction="ignore")
             if new_file:
                 w.writeheader()
