@@ -113,3 +113,66 @@ def test_report_html_loads_offline_without_errors_and_its_3d_view_steps(report, 
         assert cols[-1] - cols[0] > 0.4 * shown.shape[1]   # and filling the view's width
         assert one[shown].std() > 20   # shaded and coloured, not one flat colour
     assert (a ^ b).sum() > 0.2 * (a | b).sum()   # mode 3 is not mode 1
+
+
+# Marks, once the page has loaded, how many of the rotordynamic section's pictures the
+# browser decoded (a picture that failed has no natural width).
+PICTURES = """<script>
+window.addEventListener("load", () => {
+  const imgs = [...document.querySelectorAll("#rotordynamics img")];
+  document.body.dataset.rotorPictures = imgs.length;
+  document.body.dataset.rotorDecoded = imgs.filter((i) => i.naturalWidth > 100).length;
+});
+</script>"""
+
+
+@pytest.fixture(scope="module")
+def pump_report(tmp_path_factory) -> Path:
+    """design on the pump on journals (a wear ring, a coupled motor), coarse and quick."""
+    out = tmp_path_factory.mktemp("pump")
+    assert main(["design", str(REPO / "examples" / "pump_on_journals.toml"), "--out", str(out),
+                 "--mesh-size", "30", "--modes", "4", "--no-estimate", "-q"]) == 0
+    page = out / "report.html"
+    text = page.read_text()
+    page.write_text(text.replace("<head>", "<head>" + WATCH, 1).replace(
+        "</body>", PICTURES + "</body>", 1))
+    return page
+
+
+def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
+    """The pump's report.html in Chromium: no error, the API 684 summary with each item
+    judged, and the Campbell diagram, the critical speed map, the critical speeds'
+    shapes, the unbalance response and Level I drawn in the section (decoded by the
+    browser); report.md has the same section. A screenshot is kept to look at."""
+    import re
+
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    run = _chromium(tmp_path / "r", pump_report.as_uri(), "--enable-logging=stderr", "--v=0")
+    console = [line for line in run.stderr.splitlines() if ":CONSOLE" in line]
+    assert not [line for line in console if "PAGE-ERROR" in line or "Uncaught" in line]
+    dom = _chromium(tmp_path / "d", pump_report.as_uri(), "--dump-dom").stdout
+    # the section on its own page with the report's style, to look at
+    text = pump_report.read_text()
+    start = text.index('<section id="rotordynamics">')
+    alone = tmp_path / "section.html"
+    alone.write_text("<html><head>" + re.findall(r"<style>.*?</style>", text, re.S)[-1]
+                     + "</head><body>" + text[start:text.index("</section>", start) + 10]
+                     + "</body></html>")
+    _chromium(tmp_path / "s", alone.as_uri(), "--window-size=1100,3000",
+              f"--screenshot={SHOTS / 'rotordynamics.png'}")
+    assert (SHOTS / "rotordynamics.png").stat().st_size > 50_000
+    assert 'data-rotor-pictures="5"' in dom and 'data-rotor-decoded="5"' in dom
+    section = dom[dom.index('<section id="rotordynamics">'):]
+    section = section[:section.index("</section>")]
+    for heading in ("Summary against API 684", "Campbell diagram", "Critical speed map",
+                    "Deflected shapes at the critical speeds", "Unbalance response",
+                    "Level I screening"):
+        assert f"<h3>{heading}</h3>" in section, heading
+    for item in ("separation margin of the critical speeds", "least log decrement",
+                 "onset of instability", "unbalance peak at impeller",
+                 "Level I screening (API 617 8th ed.)"):
+        assert item in section, item
+    assert section.count('<td class="text">pass</td>') + section.count(
+        '<td class="text">FAIL</td>') >= 4
+    markdown = (pump_report.parent / "report.md").read_text()
+    assert "## Rotordynamics (API 684)" in markdown and "![Critical speed map](ucs.png)" in markdown

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -15,6 +16,48 @@ if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
+    from shaftfem.fem.whirl import Campbell, Level1, UcsMap
+
+
+@dataclass(frozen=True)
+class RotorStudy:
+    """A turning shaft's study for the report: its Campbell run and verdict, the
+    critical speed map and Level I (None where not made), and what `shaftfem campbell`
+    prints."""
+
+    campbell: Campbell
+    verdict: ResonanceVerdict
+    ucs: UcsMap | None
+    level1: Level1 | None
+    text: str
+
+
+STUDY_NOTE = ("The verdict at the top (and the exit status) takes the scene's flat "
+              "separation margin unless [resonance] criterion = \"api684\"; this summary "
+              "judges every item as API 684 (and API 617's Level I) do.")
+# the study's pictures, in the order the section shows them, with their headings
+STUDY_PICTURES = (("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),
+                  ("critical_shapes.png", "Deflected shapes at the critical speeds"),
+                  ("bode.png", "Unbalance response"), ("level1.png", "Level I screening"),
+                  ("runup.png", "Run-up"))
+
+
+def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[str]:
+    """The report's rotordynamic section: the API 684 summary, then each picture with
+    its heading, then the whirl and critical speed tables."""
+    names = {Path(p).name for p in pictures}
+    lines = ["## Rotordynamics (API 684)", "", "### Summary against API 684", ""]
+    head, rows = tables.api684_rows(study)
+    lines += tables.markdown(head, rows) + ["", STUDY_NOTE, ""]
+    for name, title in STUDY_PICTURES:
+        if name in names:
+            lines += [f"### {title}", "", f"![{title}]({name})", ""]
+            if name == "level1.png" and study.level1 is not None:
+                lines += ["```text", tables.level1_text(study.level1), "```", ""]
+            if name == "ucs.png" and study.ucs is not None:
+                lines += ["```text", tables.ucs_text(study.ucs), "```", ""]
+    lines += ["### Whirl, critical speeds and stability", "", "```text", study.text, "```"]
+    return lines
 
 
 def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
@@ -22,9 +65,9 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                     free: ModalResult | None = None,
                     participation: Participation | None = None,
-                    turning: str | None = None) -> str:
+                    rotor: RotorStudy | None = None) -> str:
     """report.md's text; picture and file names are relative to the report's folder;
-    `turning`: what `shaftfem campbell` prints, for a shaft with [rotor]."""
+    `rotor`: the rotordynamic study, for a shaft with [rotor]."""
     scene = result.scene
     lines = [f"# Modal design report: {scene.name}", ""]
     lines += [x for line in tables.verdict_lines(verdict) for x in (line, "")]
@@ -45,8 +88,10 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
     if participation is not None:
         lines += ["", "### Effective modal mass for base motion at the supports", ""]
         lines += tables.participation_markdown(result, participation)
-    if turning is not None:
-        lines += ["", "## The shaft turning", "", "```text", turning, "```"]
+    if rotor is not None:
+        lines += ["", *rotordynamics_markdown(rotor, pictures)]
+        shown = {name for name, _ in STUDY_PICTURES}
+        pictures = [p for p in pictures if Path(p).name not in shown]
     lines += ["", "## Resonance check", ""]
     lines += (tables.verdict_markdown(verdict) if verdict is not None
               else ["No [[excitation]] sources in the scene: nothing to check against."])
@@ -85,6 +130,7 @@ def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdic
                  sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                  files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                  free: ModalResult | None = None,
-                 participation: Participation | None = None, turning: str | None = None) -> Path:
+                 participation: Participation | None = None,
+                 rotor: RotorStudy | None = None) -> Path:
     return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,
-                                            free, participation, turning))
+                                            free, participation, rotor))

@@ -26,11 +26,13 @@ if TYPE_CHECKING:
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
     from shaftfem.outputs.render import Drawing
+    from shaftfem.outputs.report import RotorStudy
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1100px; padding: 1em 2em;
        height: auto; color: #222; line-height: 1.45; }
 h1 { font-size: 1.6em; } h2 { font-size: 1.25em; margin-top: 1.6em; }
+pre { white-space: pre-wrap; overflow-wrap: anywhere; }
 table { border-collapse: collapse; margin: 0.6em 0; font-variant-numeric: tabular-nums; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
 th { background: #f2f4f7; } td.text, th.text { text-align: left; }
@@ -68,6 +70,29 @@ def _picture(path: Path) -> str:
             f"<figcaption class=\"note\">{html.escape(path.name)}</figcaption></figure>")
 
 
+def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
+    """The rotordynamic section: the API 684 summary, each picture under its heading,
+    the whirl and critical speeds."""
+    from shaftfem.outputs.report import STUDY_NOTE, STUDY_PICTURES
+
+    by_name = {Path(p).name: Path(p) for p in pictures}
+    head, rows = tables.api684_rows(study)
+    parts = ['<section id="rotordynamics"><h2>Rotordynamics (API 684)</h2>',
+             "<h3>Summary against API 684</h3>", _table((head, rows), ("item", "the rotor",
+                                                                        "required", "result")),
+             _paragraphs([STUDY_NOTE])]
+    for name, title in STUDY_PICTURES:
+        if name in by_name:
+            parts += [f"<h3>{html.escape(title)}</h3>", _picture(by_name[name])]
+            if name == "level1.png" and study.level1 is not None:
+                parts.append(f"<pre>{html.escape(tables.level1_text(study.level1))}</pre>")
+            if name == "ucs.png" and study.ucs is not None:
+                parts.append(f"<pre>{html.escape(tables.ucs_text(study.ucs))}</pre>")
+    parts += ["<h3>Whirl, critical speeds and stability</h3>",
+              f"<pre>{html.escape(study.text)}</pre></section>"]
+    return "\n".join(parts)
+
+
 def _verdict(verdict: ResonanceVerdict | None) -> str:
     lines = tables.verdict_lines(verdict)
     cls = "none" if verdict is None else "pass" if verdict.ok else "fail"
@@ -102,12 +127,12 @@ The motion is drawn large (a mode shape has no amplitude of its own).</p>
 def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
                 sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                 estimate: ErrorEstimate | None = None, free: ModalResult | None = None,
-                participation: Participation | None = None, turning: str | None = None,
+                participation: Participation | None = None, rotor: RotorStudy | None = None,
                 drawing: Drawing | None = None) -> str:
     """report.html's text: the vtk.js viewer page with the report around its view
-    (`turning`: what `shaftfem campbell` prints, for a shaft with [rotor]; `drawing`: the
-    modes' drawing the pictures were made from, where there is one)."""
-    from shaftfem.outputs.report import shaft_facts
+    (`rotor`: the rotordynamic study, for a shaft with [rotor]; `drawing`: the modes'
+    drawing the pictures were made from, where there is one)."""
+    from shaftfem.outputs.report import STUDY_PICTURES, shaft_facts
     from shaftfem.outputs.web_scene import viewer_html
 
     scene = result.scene
@@ -134,8 +159,10 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     if participation is not None:
         parts += ["<h3>Effective modal mass for base motion at the supports</h3>",
                   _table(tables.participation_rows(result, participation))]
-    if turning is not None:
-        parts += ["<h2>The shaft turning</h2>", f"<pre>{html.escape(turning)}</pre>"]
+    if rotor is not None:
+        parts.append(_rotordynamics(rotor, pictures))
+        shown = {name for name, _ in STUDY_PICTURES}
+        pictures = [p for p in pictures if Path(p).name not in shown]
     parts.append("<h2>Resonance check</h2>")
     parts.append(_table(tables.verdict_rows(verdict), ("source", "kind", "")) if verdict
                  is not None else _paragraphs(["No [[excitation]] sources in the scene: "
@@ -163,6 +190,6 @@ def write_report_html(path: str | Path, result: ModalResult,
                       pictures: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                       free: ModalResult | None = None,
                       participation: Participation | None = None,
-                      turning: str | None = None, drawing: Drawing | None = None) -> Path:
+                      rotor: RotorStudy | None = None, drawing: Drawing | None = None) -> Path:
     return write_text(path, report_html(result, verdict, sizing, pictures, estimate, free,
-                                        participation, turning, drawing))
+                                        participation, rotor, drawing))

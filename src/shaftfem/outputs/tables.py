@@ -708,3 +708,60 @@ def frf_text(r) -> str:
         lines.append(f"{n:16,.0f} {hx[i] * 1e6:20.4g} {r.frequencies_hz[i]:9.2f} "
                      f"{hy[j] * 1e6:20.4g} {r.frequencies_hz[j]:9.2f}")
     return "\n".join(lines)
+
+
+def api684_rows(study) -> tuple[list[str], list[list[str]]]:
+    """The rotordynamic study against API 684 (and API 617's Level I criteria): each
+    item, what the rotor does, what is required, and the result."""
+    c, verdict = study.campbell, study.verdict
+    head = ["item", "the rotor", "required", "result"]
+    rows = []
+    crit = [a for a in verdict.approaches if "critical" in a.kind]
+    if crit:
+        a = min(crit, key=lambda a: a.margin - a.required)
+        rows.append(["separation margin of the critical speeds from the operating speeds",
+                     f"{a.margin * 100:.1f} % ({a.kind})", f"{a.required * 100:.1f} %",
+                     "pass" if a.margin >= a.required else "FAIL"])
+    else:
+        rows.append(["separation margin of the critical speeds from the operating speeds",
+                     "no critical speed in the range", "-", "pass"])
+    st = c.stability
+    if st is not None:
+        judged = st.judged
+        rows.append(["least log decrement up to the highest operating speed",
+                     f"{st.log_dec:.3g} ({st.whirl} whirl, {st.frequency_hz:.1f} Hz)",
+                     f"above {st.required:g}" if judged else "not judged (no damping)",
+                     ("pass" if st.log_dec > st.required else "FAIL") if judged else "-"])
+    top = c.rotor_scene.rotor.top_speed * 30 / math.pi if c.rotor_scene.rotor else 0.0
+    inside = [o for o in c.onsets if o.speed_rpm <= top]
+    rows.append(["onset of instability", (f"from {c.onsets[0].speed_rpm:,.0f} r/min"
+                                          if c.onsets else "none in the diagram"),
+                 f"above {top:,.0f} r/min", "FAIL" if inside else "pass"])
+    if c.unbalance is not None:
+        for p in c.unbalance.peaks:
+            need = p.required_margin
+            ok = p.unbounded is False and (need is None or p.margin >= need)
+            rows.append([f"unbalance peak at {p.probe}",
+                         f"{p.amplitude * 1e6:,.3g} um at {p.speed_rpm:,.0f} r/min, margin "
+                         f"{p.margin * 100:.1f} %",
+                         "-" if need is None else f"{need * 100:.1f} % (AF "
+                         f"{p.amplification:.1f})" if p.amplification else "-",
+                         "pass" if ok else "FAIL"])
+        limit = c.rotor_scene.rotor.amplitude_limit if c.rotor_scene.rotor else None
+        if limit is not None and c.unbalance.peaks:
+            worst = max(p.amplitude for p in c.unbalance.peaks)
+            rows.append(["largest unbalance response", f"{worst * 1e6:,.3g} um",
+                         f"{limit * 1e6:,.3g} um", "pass" if worst <= limit else "FAIL"])
+    lv = study.level1
+    if lv is not None:
+        if lv.qa is None:
+            rows.append(["Level I screening (API 617 8th ed.)",
+                         "Q_0 " + ("-" if lv.q0 is None else f"{lv.q0 / 1e3:,.1f} N/mm"),
+                         "Q_0 / Q_A >= 2, log dec at Q_A >= 0.1", "no Q_A given"])
+        else:
+            rows.append(["Level I screening (API 617 8th ed.)",
+                         f"Q_0 / Q_A {lv.ratio:.2f}, log dec at Q_A {lv.log_dec_a:.3f}"
+                         if lv.ratio is not None and lv.log_dec_a is not None else "-",
+                         "Q_0 / Q_A >= 2, log dec at Q_A >= 0.1",
+                         "pass" if lv.passed else "Level II required"])
+    return head, rows

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from shaftfem.errors import SceneError
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
@@ -77,16 +78,18 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     bounded = run_bounded(scene, estimate, options, choose)
     result, est = bounded.result, bounded.estimate
     verdict = check_result(result, margin)
-    campbell, turning = None, None
+    campbell, study = None, None
     if scene.rotor is not None:
         from shaftfem.checks.whirl_check import check_whirl
+        from shaftfem.outputs.report import RotorStudy
         from shaftfem.outputs.tables import campbell_text
         from shaftfem.workflows.campbell import run_campbell
 
         say("the shaft turning: whirl, Campbell diagram, critical speeds")
         campbell = run_campbell(scene, options)
         verdict = check_whirl(campbell, margin)
-        turning = campbell_text(campbell)
+        ucs, level1 = _map_and_level1(scene, options)
+        study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell))
     free, part, response, basis = None, None, None, None
     if scene.held:
         from shaftfem.fem.response import modal_basis, participation, response_sweep
@@ -111,15 +114,16 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
             from shaftfem.outputs.whirl_files import write_whirl_files
 
             pictures += campbell_pictures(campbell, stage)
+            pictures += study_pictures(study, stage)
             files += write_whirl_files(campbell, stage)
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
-                     free=free, participation=part, turning=turning)
+                     free=free, participation=part, rotor=study)
         if html:
             from shaftfem.outputs.report_html import write_report_html
 
             say("report.html: the report with a 3D view of every mode")
             write_report_html(stage / "report.html", result, verdict, sizing, pictures, est,
-                              free=free, participation=part, turning=turning, drawing=d)
+                              free=free, participation=part, rotor=study, drawing=d)
     files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
     report = out / "report.md"
     say(f"report written: {report}")
@@ -151,6 +155,35 @@ def write_campbell_csv(c, path: Path) -> Path:
     for row in c.csv_rows():
         w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
     return write_text(path, buf.getvalue())
+
+
+def _map_and_level1(scene: Scene, options: RunOptions):
+    """The turning shaft's critical speed map and Level I screening for the report; each
+    None where the scene does not allow it (no bearings to vary, no forward mode)."""
+    from shaftfem.workflows.level1 import run_level1
+    from shaftfem.workflows.ucs import run_ucs
+
+    out: list = []
+    for what, run in (("the critical speed map", run_ucs), ("Level I", run_level1)):
+        options.say(f"the rotordynamic study: {what}")
+        try:
+            out.append(run(scene, options=options))
+        except SceneError:
+            out.append(None)
+    return out
+
+
+def study_pictures(study, folder: Path) -> list[Path]:
+    """ucs.png and level1.png of the rotordynamic study, where it has them."""
+    from shaftfem.outputs.plots import level1_figure, save_png
+    from shaftfem.outputs.ucs_plot import ucs_figure
+
+    out = []
+    if study is not None and study.ucs is not None:
+        out.append(save_png(ucs_figure(study.ucs), folder / "ucs.png", dpi=130))
+    if study is not None and study.level1 is not None:
+        out.append(save_png(level1_figure(study.level1), folder / "level1.png", dpi=130))
+    return out
 
 
 def campbell_pictures(c, folder: Path) -> list[Path]:
