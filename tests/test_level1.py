@@ -73,3 +73,21 @@ def test_level1_as_a_user_runs_it(tmp_path):
     data = json.loads((tmp_path / "l.json").read_text())
     assert data["q0_over_qa"] == pytest.approx(data["q0_n_per_mm"] / 2, rel=1e-9)
     assert len(data["q_n_per_mm"]) == 20 and (tmp_path / "o" / "level1.png").exists()
+
+
+def test_check_screens_level1_when_the_scene_asks(tmp_path):
+    """[rotor] level1 = true: `check` runs the screening and fails (exit 1) where API 617's
+    criteria fail, saying so; without it the same rotor passes its check."""
+    import subprocess
+    import sys
+
+    asked = tmp_path / "asked.toml"
+    # at 1,500 r/min, clear of both critical speeds (826 and 2,760 r/min)
+    load_scene(rotor(speed_rpm=1500.0, level1=True, level1_qa_n_per_mm=8.0)).to_toml(asked)
+    plain = tmp_path / "plain.toml"
+    load_scene(rotor(speed_rpm=1500.0)).to_toml(plain)
+    runs = [subprocess.run([sys.executable, "-m", "shaftfem", "check", str(p), "-q"],
+                           capture_output=True, text=True, cwd=tmp_path) for p in (asked, plain)]
+    assert runs[0].returncode == 1, runs[0].stderr[-2000:]
+    assert "Level I screening fails API 617's criteria" in runs[0].stdout
+    assert runs[1].returncode == 0, runs[1].stdout[-2000:]

@@ -182,3 +182,22 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     return ResonanceVerdict(approaches=out, required=flat, free_free=not scene.held,
                             free_free_intended=scene.free_free_intended or scene.hanging_free,
                             turning=basis, unstable=fails, warnings=warns)
+
+
+def with_level1(verdict: ResonanceVerdict, level1) -> ResonanceVerdict:
+    """The verdict with API 684's Level I screening (workflows.level1) in it: a failed
+    screening fails it, one without Q_A is a warning."""
+    from dataclasses import replace
+
+    if level1.passed is None:
+        return replace(verdict, warnings=[*verdict.warnings, "Level I: no Q_A (give [rotor] "
+                                          "level1_qa_n_per_mm or the stages' power): Q_0 "
+                                          + ("-" if level1.q0 is None else
+                                             f"{level1.q0 / 1e3:,.1f} N/mm")])
+    if level1.passed:
+        return verdict
+    ratio = "-" if level1.ratio is None else f"{level1.ratio:.2f}"
+    dec = "-" if level1.log_dec_a is None else f"{level1.log_dec_a:.3f}"
+    return replace(verdict, unstable=[*verdict.unstable, (
+        f"Level I screening fails API 617's criteria: Q_0 / Q_A = {ratio} (2 required), log "
+        f"decrement at Q_A {dec} (0.1 required): a Level II analysis is required")])

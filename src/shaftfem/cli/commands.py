@@ -312,6 +312,11 @@ def cmd_check(args) -> int:
 
         c = run_campbell(scene, _options(args))
         turning = check_whirl(c, _margin(args))
+        if scene.rotor.level1:
+            from shaftfem.checks.whirl_check import with_level1
+            from shaftfem.workflows.level1 import run_level1
+
+            turning = with_level1(turning, run_level1(scene, options=_options(args)))
         print(campbell_text(c) + "\n")
         print(verdict_text(turning))
         if args.json:

@@ -238,6 +238,8 @@ class Rotor(_Table):
     speed_range_rpm: Numbers | None = None
     amplitude_limit_um: Number | None = None
     min_log_dec: Number | None = None
+    level1: bool | None = None
+    level1_qa_n_per_mm: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -710,7 +710,10 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
                  ranges=() if band is None else ((band[0] * RPM, band[1] * RPM),),
                  min_log_dec=t["min_log_dec"],
                  amplitude_limit=(None if t["amplitude_limit_um"] is None
-                                  else t["amplitude_limit_um"] * 1e-6))
+                                  else t["amplitude_limit_um"] * 1e-6),
+                 level1=t["level1"],
+                 level1_qa=(None if t["level1_qa_n_per_mm"] is None
+                            else t["level1_qa_n_per_mm"] * 1e3))
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:

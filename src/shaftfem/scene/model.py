@@ -324,6 +324,8 @@ class Rotor:
     ranges: tuple[tuple[float, float], ...] = ()   # operating speed ranges (rad/s)
     min_log_dec: float | None = None   # None: 0, or API 684's 0.1 with criterion "api684"
     amplitude_limit: float | None = None   # m, 0-peak, at any probe
+    level1: bool = False   # check and design screen it by API 684's Level I
+    level1_qa: float | None = None   # its Q_A, N/m (None: the stages' Wachel estimates)
 
     @property
     def spans(self) -> tuple[tuple[float, float], ...]:

@@ -416,6 +416,13 @@ SCHEMA: dict[str, dict[str, Key]] = {
                            "speed up to the highest operating one (default 0, i.e. no mode "
                            "may grow; 0.1 with [resonance] criterion = \"api684\")",
                            *upto(10.0, "up to 10", closed_low=True), required=False),
+        "level1": Key(bool, "screen the rotor by API 684's Level I in check and design: a "
+                      "failed screening (API 617: Q_0 / Q_A below 2, or a log decrement "
+                      "below 0.1 at Q_A) fails the check (docs/rotating.md)", default=False,
+                      required=False),
+        "level1_qa_n_per_mm": Key(float, "the anticipated cross-coupling Q_A of the Level I "
+                                  "screening, N/mm (default: the stages' Wachel estimates)",
+                                  *upto(1e10, "up to 10^10 N/mm"), required=False),
     },
     "static": {  # the shaft's static loads (shaftfem.fem.static)
         "gravity_m_s2": Key(float, "the acceleration of gravity, m/s^2 (0: no weight)",

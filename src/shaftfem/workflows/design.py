@@ -89,6 +89,10 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         campbell = run_campbell(scene, options)
         verdict = check_whirl(campbell, margin)
         ucs, level1 = _map_and_level1(scene, options)
+        if scene.rotor.level1 and level1 is not None:
+            from shaftfem.checks.whirl_check import with_level1
+
+            verdict = with_level1(verdict, level1)
         study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell))
     free, part, response, basis = None, None, None, None
     if scene.held:

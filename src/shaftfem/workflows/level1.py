@@ -113,6 +113,8 @@ def run_level1(scene: Scene, q_values: np.ndarray | None = None, at: float | Non
         raise SceneError(f"{scene.source}: no [rotor] table: Level I screens the shaft at its "
                          "highest operating speed; add [rotor] speed_rpm")
     z, where = screening_plane(scene, at)
+    if q_anticipated is None and scene.rotor.level1_qa is not None:
+        q_anticipated = scene.rotor.level1_qa
     qa, qa_from = anticipated(scene, q_anticipated)
     result, model, _ = turning(scene, options)
     # the seals and the stages' own cross-coupling out of the loaded rotor (Q stands for
