@@ -301,7 +301,7 @@ SEAL = {"length_m": 0.025, "diameter_m": 0.05, "clearance_m": 150e-6,
 
 
 def seal(path: str) -> None:
-    """Add "5.9.1 seal" to the reference file at `path`: 5.9.1 with 500 N s/m in each
+    """Add "5.9.1 seal" to the reference file at `path`: 5.9.1 with 2,000 N s/m in each
     bearing and the seal SEAL at node 24 (0.75 m), its coefficients against speed as
     shaftfem's seal model gives them (shaftfem.parts.seal, pure Python, read from src/),
     in ross's SealElement; the whirl and log decrements at 1,000, 3,000 and 4,000 r/min."""
@@ -323,7 +323,7 @@ def seal(path: str) -> None:
                             ("cxx", "C", 1), ("cyy", "C", 1), ("cxy", "c", 1), ("cyx", "c", -1),
                             ("mxx", "M", 1), ("myy", "M", 1)):
         table[name] = [0.0, *(sign * getattr(x, key) for x in states)]
-    c = 500.0
+    c = 2000.0
     element = rs.SealElement(n=N_EL // 2, frequency=table["speeds"],
                              **{k: v for k, v in table.items() if k != "speeds"})
     rotor = rs.Rotor(shaft(rs, steel), [disk(rs, steel, N_EL // 3, 0.28),
