@@ -228,3 +228,36 @@ def test_rotor_study(tmp_path):
     q0, ratio = re.search(r"Q_0 ([\d.,]+) N/mm, Q_0 / Q_A ([\d.]+)", run.stdout).groups()
     assert float(ratio) == pytest.approx(float(q0.replace(",", "")) / 2.0, rel=1e-3)
     assert (tmp_path / "campbell.png").stat().st_size > 10_000
+
+
+def test_the_rotordynamic_commands_on_the_pump(tmp_path):
+    """Each command of the pump's study as examples.md gives it (coarse): `campbell`;
+    `runup`, whose peak lies by the steady peak (a 300 r/min per s passage of a
+    well-damped mode: within 5 % of its speed, not far above it); `level1`, whose ratio
+    is its Q_0 over the 2 N/mm asked; and `frf`, whose standstill peak is a standstill
+    whirl frequency of the Campbell run."""
+    import json
+
+    pump = str(EXAMPLES / "pump_on_journals.toml")
+
+    def run(*args: str) -> dict:
+        out = tmp_path / f"{args[0]}.json"
+        done = _shaftfem(*args[:1], pump, *args[1:], "--mesh-size", "30", "-q", "--json",
+                         str(out), cwd=tmp_path)
+        assert done.returncode == 0, (args, done.stderr[-2000:])
+        return json.loads(out.read_text())
+
+    c = run("campbell")
+    still = [w["frequency_hz"] for w in c["whirl"] if w["speed_rpm"] == 0.0
+             and w["kind"] == "bending"]
+    r = run("runup", "--accel-rpm-per-s", "300", "--speeds-rpm", "1000:6000")["probes"][0]
+    assert r["peak_speed_rpm"] == pytest.approx(r["steady_peak_speed_rpm"], rel=0.05)
+    assert r["peak_um"] < 1.05 * r["steady_peak_um"]
+    lv = run("level1", "--qa-n-per-mm", "2")
+    assert lv["q0_over_qa"] == pytest.approx(lv["q0_n_per_mm"] / 2, rel=1e-9)
+    f = run("frf", "--at-mm", "600", "--frequencies-hz", "5:150:300")
+    standstill = f["speeds"][0]
+    assert standstill["speed_rpm"] == 0.0
+    hxx = standstill["hxx_um_per_n"]
+    peak = f["frequencies_hz"][max(range(len(hxx)), key=hxx.__getitem__)]
+    assert min(abs(peak / s - 1) for s in still) < 0.03, (peak, still)

@@ -142,8 +142,9 @@ def pump_report(tmp_path_factory) -> Path:
 def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
     """The pump's report.html in Chromium: no error, the API 684 summary with each item
     judged, and the Campbell diagram, the critical speed map, the critical speeds'
-    shapes, the unbalance response and Level I drawn in the section (decoded by the
-    browser); report.md has the same section. A screenshot is kept to look at."""
+    shapes, the unbalance response, Level I and the run-up the scene asks for drawn in
+    the section (decoded by the browser); report.md has the same section. A screenshot
+    is kept to look at."""
     import re
 
     SHOTS.mkdir(parents=True, exist_ok=True)
@@ -161,12 +162,12 @@ def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
     _chromium(tmp_path / "s", alone.as_uri(), "--window-size=1100,3000",
               f"--screenshot={SHOTS / 'rotordynamics.png'}")
     assert (SHOTS / "rotordynamics.png").stat().st_size > 50_000
-    assert 'data-rotor-pictures="5"' in dom and 'data-rotor-decoded="5"' in dom
+    assert 'data-rotor-pictures="6"' in dom and 'data-rotor-decoded="6"' in dom
     section = dom[dom.index('<section id="rotordynamics">'):]
     section = section[:section.index("</section>")]
     for heading in ("Summary against API 684", "Campbell diagram", "Critical speed map",
                     "Deflected shapes at the critical speeds", "Unbalance response",
-                    "Level I screening"):
+                    "Level I screening", "Run-up"):
         assert f"<h3>{heading}</h3>" in section, heading
     for item in ("separation margin of the critical speeds", "least log decrement",
                  "onset of instability", "unbalance peak at impeller",

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
-    from shaftfem.fem.whirl import Campbell, Level1, UcsMap
+    from shaftfem.fem.whirl import Campbell, Level1, RunUp, UcsMap
 
 
 @dataclass(frozen=True)
@@ -30,6 +30,7 @@ class RotorStudy:
     ucs: UcsMap | None
     level1: Level1 | None
     text: str
+    runup: RunUp | None = None
 
 
 STUDY_NOTE = ("The verdict at the top (and the exit status) takes the scene's flat "
@@ -56,6 +57,8 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
                 lines += ["```text", tables.level1_text(study.level1), "```", ""]
             if name == "ucs.png" and study.ucs is not None:
                 lines += ["```text", tables.ucs_text(study.ucs), "```", ""]
+            if name == "runup.png" and study.runup is not None:
+                lines += ["```text", tables.runup_text(study.runup), "```", ""]
     lines += ["### Whirl, critical speeds and stability", "", "```text", study.text, "```"]
     return lines
 

@@ -88,6 +88,8 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
                 parts.append(f"<pre>{html.escape(tables.level1_text(study.level1))}</pre>")
             if name == "ucs.png" and study.ucs is not None:
                 parts.append(f"<pre>{html.escape(tables.ucs_text(study.ucs))}</pre>")
+            if name == "runup.png" and study.runup is not None:
+                parts.append(f"<pre>{html.escape(tables.runup_text(study.runup))}</pre>")
     parts += ["<h3>Whirl, critical speeds and stability</h3>",
               f"<pre>{html.escape(study.text)}</pre></section>"]
     return "\n".join(parts)

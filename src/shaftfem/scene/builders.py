@@ -240,6 +240,7 @@ class Rotor(_Table):
     min_log_dec: Number | None = None
     level1: bool | None = None
     level1_qa_n_per_mm: Number | None = None
+    runup_rpm_per_s: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -713,7 +713,9 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
                                   else t["amplitude_limit_um"] * 1e-6),
                  level1=t["level1"],
                  level1_qa=(None if t["level1_qa_n_per_mm"] is None
-                            else t["level1_qa_n_per_mm"] * 1e3))
+                            else t["level1_qa_n_per_mm"] * 1e3),
+                 runup=(None if t["runup_rpm_per_s"] is None
+                        else t["runup_rpm_per_s"] * RPM))
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:

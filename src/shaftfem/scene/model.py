@@ -326,6 +326,7 @@ class Rotor:
     amplitude_limit: float | None = None   # m, 0-peak, at any probe
     level1: bool = False   # check and design screen it by API 684's Level I
     level1_qa: float | None = None   # its Q_A, N/m (None: the stages' Wachel estimates)
+    runup: float | None = None   # design runs it up at this acceleration, rad/s^2
 
     @property
     def spans(self) -> tuple[tuple[float, float], ...]:

@@ -423,6 +423,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "level1_qa_n_per_mm": Key(float, "the anticipated cross-coupling Q_A of the Level I "
                                   "screening, N/mm (default: the stages' Wachel estimates)",
                                   *upto(1e10, "up to 10^10 N/mm"), required=False),
+        "runup_rpm_per_s": Key(float, "design's report also runs the shaft up from standstill "
+                               "to max_speed_rpm at this acceleration, r/min per s, with its "
+                               "unbalances (shaftfem runup; docs/rotating.md)",
+                               *upto(1e6, "up to 10^6 r/min per s"), required=False),
     },
     "static": {  # the shaft's static loads (shaftfem.fem.static)
         "gravity_m_s2": Key(float, "the acceleration of gravity, m/s^2 (0: no weight)",

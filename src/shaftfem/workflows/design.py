@@ -12,6 +12,7 @@ skips the sizing.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -89,11 +90,18 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         campbell = run_campbell(scene, options)
         verdict = check_whirl(campbell, margin)
         ucs, level1 = _map_and_level1(scene, options)
+        runup = None
+        if scene.rotor.runup is not None and scene.unbalances:
+            from shaftfem.workflows.runup import run_run_up
+
+            say("the rotordynamic study: the run-up")
+            top = scene.rotor.max_speed * 30 / math.pi
+            runup = run_run_up(scene, 0.0, top, scene.rotor.runup * 30 / math.pi, options)
         if scene.rotor.level1 and level1 is not None:
             from shaftfem.checks.whirl_check import with_level1
 
             verdict = with_level1(verdict, level1)
-        study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell))
+        study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell), runup)
     free, part, response, basis = None, None, None, None
     if scene.held:
         from shaftfem.fem.response import modal_basis, participation, response_sweep
@@ -187,6 +195,10 @@ def study_pictures(study, folder: Path) -> list[Path]:
         out.append(save_png(ucs_figure(study.ucs), folder / "ucs.png", dpi=130))
     if study is not None and study.level1 is not None:
         out.append(save_png(level1_figure(study.level1), folder / "level1.png", dpi=130))
+    if study is not None and study.runup is not None:
+        from shaftfem.outputs.plots import runup_figure
+
+        out.append(save_png(runup_figure(study.runup), folder / "runup.png", dpi=130))
     return out
 
 
