@@ -85,3 +85,17 @@ def test_the_cad_and_fem_stages_leave_the_cache_to_the_workflows():
             if any(n == "shaftfem.store" for n in names):
                 inside.append(str(path.relative_to(SRC)))
     assert not inside, inside
+
+
+def test_every_subpackage_is_packaged():
+    """pyproject.toml lists its packages by name: a subpackage left off installs
+    without it, and an installed shaftfem fails on its first import of it."""
+    import tomllib
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    listed = set(tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]
+                 ["packages"])
+    found = {".".join(p.parent.relative_to(root / "src").parts)
+             for p in (root / "src" / "shaftfem").rglob("__init__.py")}
+    assert found <= listed, sorted(found - listed)
