@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
 from shaftfem.cli import commands as cmd
@@ -54,46 +55,35 @@ def _sizes(text: str) -> list[float]:
     return v
 
 
-def _speed_range(text: str) -> tuple[float, float, int]:
-    """START:STOP:N, r/min: N speeds from START to STOP."""
-    try:
-        a, b, n = text.split(":")
-        start, stop, count = float(a), float(b), int(n)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected START:STOP:N, e.g. 0:12000:31 "
-                                         "(r/min, and how many speeds)") from None
-    if not (0 <= start < stop <= 1e6 and 2 <= count <= 1001):
-        raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= START < STOP <= 1e6 r/min and "
-                                         "N in [2, 1001]")
-    return start, stop, count
+def _grid(first: str, last: str, example: str, unit: str, what: str, high: float,
+          most: int, positive: bool = False):
+    """A parser of FIRST:LAST:N: N values from FIRST to LAST in `unit`, 0 <= FIRST (or
+    0 < FIRST where `positive`) < LAST <= high, N in [2, most]."""
+    form = f"{first}:{last}:N"
+    below = "<" if positive else "<="
+    top = f"1e{round(math.log10(high))}"
+
+    def parse(text: str) -> tuple[float, float, int]:
+        try:
+            a, b, n = text.split(":")
+            start, stop, count = float(a), float(b), int(n)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: expected {form}, e.g. {example} "
+                                             f"({unit}, and how many {what})") from None
+        if not ((start > 0 if positive else start >= 0) and start < stop <= high
+                and 2 <= count <= most):
+            raise argparse.ArgumentTypeError(f"{text!r}: need 0 {below} {first} < {last} <= "
+                                             f"{top} {unit} and N in [2, {most}]")
+        return start, stop, count
+    return parse
 
 
-def _stiffness_range(text: str) -> tuple[float, float, int]:
-    """A:B:N, N/mm: N stiffnesses from A to B, evenly in log."""
-    try:
-        a, b, n = text.split(":")
-        start, stop, count = float(a), float(b), int(n)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected A:B:N, e.g. 100:1e6:40 (N/mm, "
-                                         "and how many stiffnesses)") from None
-    if not (0 < start < stop <= 1e12 and 2 <= count <= 400):
-        raise argparse.ArgumentTypeError(f"{text!r}: need 0 < A < B <= 1e12 N/mm and N in "
-                                         "[2, 400]")
-    return start, stop, count
-
-
-def _q_range(text: str) -> tuple[float, float, int]:
-    """A:B:N, N/mm: N values of Q from A to B, evenly."""
-    try:
-        a, b, n = text.split(":")
-        start, stop, count = float(a), float(b), int(n)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected A:B:N, e.g. 0:5000:20 (N/mm, and "
-                                         "how many values)") from None
-    if not (0 <= start < stop <= 1e10 and 2 <= count <= 400):
-        raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= A < B <= 1e10 N/mm and N in "
-                                         "[2, 400]")
-    return start, stop, count
+# N speeds (r/min), frequencies (Hz), stiffnesses (N/mm, evenly in log) and values of Q
+_speed_range = _grid("START", "STOP", "0:12000:31", "r/min", "speeds", 1e6, 1001)
+_frequency_range = _grid("START", "STOP", "5:150:300", "Hz", "frequencies", 1e6, 100_001)
+_stiffness_range = _grid("A", "B", "100:1e6:40", "N/mm", "stiffnesses", 1e12, 400,
+                         positive=True)
+_q_range = _grid("A", "B", "0:5000:20", "N/mm", "values", 1e10, 400)
 
 
 def _span(text: str) -> tuple[float, float]:
@@ -209,7 +199,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="where the force acts, mm from the shaft's left end")
     fr.add_argument("--probe-mm", type=float, metavar="Z",
                     help="where the response is read, mm (default: where the force acts)")
-    fr.add_argument("--frequencies-hz", type=_speed_range, metavar="START:STOP:N",
+    fr.add_argument("--frequencies-hz", type=_frequency_range, metavar="START:STOP:N",
                     required=True, help="the force's frequencies, Hz")
     fr.add_argument("--speeds-rpm", type=float, nargs="+", metavar="N",
                     help="the speeds, r/min (default: standstill and the operating speeds)")

@@ -423,13 +423,7 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
             raise SceneError(f"{where(source, table, 'oil_temperature_c')}: only with "
                              "oil_iso_vg (viscosity_mpa_s is the film's viscosity already)")
         viscosity = t["viscosity_mpa_s"] * 1e-3
-    diameter = t["diameter_mm"] * MM if t["diameter_mm"] is not None else None
-    if diameter is None:
-        radius = shaft.radius_at(s.position)
-        if radius is None:
-            raise SceneError(f"{where(source, table, 'diameter_mm')}: missing (on a STEP shaft "
-                             "give the journal's diameter, mm)")
-        diameter = 2 * radius
+    diameter = _seat_diameter(source, table, t, shaft, s, "journal")
     clearance = t["radial_clearance_um"] * 1e-6
     if clearance > 0.05 * diameter:
         raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "
@@ -480,6 +474,18 @@ def _film_table(ratio: float, cavitation: str) -> None:
         pass
 
 
+def _seat_diameter(source: str, table: str, t: dict, shaft: Shaft, s: Support,
+                   what: str) -> float:
+    """A journal's or seal's diameter (m): diameter_mm, else the shaft's at the seat."""
+    if t["diameter_mm"] is not None:
+        return t["diameter_mm"] * MM
+    radius = shaft.radius_at(s.position)
+    if radius is None:
+        raise SceneError(f"{where(source, table, 'diameter_mm')}: missing (on a STEP shaft "
+                         f"give the {what}'s diameter, mm)")
+    return 2 * radius
+
+
 def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
           rotor: Rotor | None) -> Support:
     """A plain annular seal's support: its coefficients against speed, up to the
@@ -497,13 +503,7 @@ def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
     if rotor is None:
         raise SceneError(f"{where(source, table, 'kind')} = \"seal\": a seal's forces come "
                          "from its speed; add [rotor] with the operating speed")
-    diameter = t["diameter_mm"] * MM if t["diameter_mm"] is not None else None
-    if diameter is None:
-        radius = shaft.radius_at(s.position)
-        if radius is None:
-            raise SceneError(f"{where(source, table, 'diameter_mm')}: missing (on a STEP shaft "
-                             "give the seal's diameter, mm)")
-        diameter = 2 * radius
+    diameter = _seat_diameter(source, table, t, shaft, s, "seal")
     clearance = t["radial_clearance_um"] * 1e-6
     if clearance > 0.02 * diameter:
         raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "

@@ -25,11 +25,10 @@ def run_frequency_response(scene: Scene, force_at: float, probe_at: float,
                            options: RunOptions = RunOptions()) -> Receptance:
     """H at each speed (r/min) and frequency (Hz): (speeds, frequencies, 2, 2), m/N, for a
     force on the section at force_at (m) and the response of the section at probe_at."""
-    from dataclasses import replace
 
-    from shaftfem.fem.rotor import lateral_rigid, rotor_model, section_motion
+    from shaftfem.fem.rotor import section_motion
     from shaftfem.workflows.campbell import RPM, turning
-    from shaftfem.workflows.unbalance import _bearings_of
+    from shaftfem.workflows.unbalance import forced
 
     if scene.rotor is None:
         raise SceneError(f"{scene.source}: no [rotor] table: the frequency response of the "
@@ -42,10 +41,7 @@ def run_frequency_response(scene: Scene, force_at: float, probe_at: float,
     if model.frame != "stationary":
         raise SceneError(f"{scene.source}: the frequency response is solved in the stationary "
                          "frame: the shaft must be a solid of revolution")
-    if lateral_rigid(result).shape[1]:
-        model = replace(rotor_model(result, "stationary", rigid=True),
-                        bearings=_bearings_of(model, rotor_model(result, "stationary",
-                                                                 rigid=True)))
+    model = forced(result, model)
     bf = section_motion(result, force_at, model.shapes)
     bp = section_motion(result, probe_at, model.shapes)
     H = np.zeros((len(speeds_rpm), len(frequencies_hz), 2, 2), dtype=complex)

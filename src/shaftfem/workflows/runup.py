@@ -21,7 +21,6 @@ an accelerating spin is not a constant-coefficient system.
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -128,10 +127,10 @@ def run_run_up(scene: Scene, start_rpm: float, stop_rpm: float, accel_rpm_per_s:
     """The scene's rotor run from start_rpm to stop_rpm at accel_rpm_per_s (negative:
     a coast-down) with its unbalances: each probe's envelope against speed, its peak,
     the orbit there, and the steady response at the same speeds."""
-    from shaftfem.fem.rotor import lateral_rigid, orbit, rotor_model, section_motion
+    from shaftfem.fem.rotor import orbit, section_motion
     from shaftfem.fem.rotor import unbalance_response as steady
     from shaftfem.workflows.campbell import RPM, turning
-    from shaftfem.workflows.unbalance import _bearings_of
+    from shaftfem.workflows.unbalance import forced
 
     if scene.rotor is None or not scene.unbalances:
         raise SceneError(f"{scene.source}: a run-up needs [rotor] and an [[unbalance]] to "
@@ -140,10 +139,7 @@ def run_run_up(scene: Scene, start_rpm: float, stop_rpm: float, accel_rpm_per_s:
     if model.frame != "stationary":
         raise SceneError(f"{scene.source}: a run-up is integrated in the stationary frame: the "
                          "shaft must be a solid of revolution")
-    if lateral_rigid(result).shape[1]:
-        model = replace(rotor_model(result, "stationary", rigid=True),
-                        bearings=_bearings_of(model, rotor_model(result, "stationary",
-                                                                 rigid=True)))
+    model = forced(result, model)
     forces = [(section_motion(result, u.position, model.shapes),
                u.amount * complex(math.cos(u.phase), math.sin(u.phase)))
               for u in scene.unbalances]

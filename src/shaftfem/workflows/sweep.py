@@ -56,10 +56,15 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
         scene = with_modes(scene, count=n_modes or scene.modes.count)
         options = replace(options, keep_solves=False)  # each variant is solved once
         if scene.rotor is not None:
-            return _rotor_row(row, scene, n_modes or scene.modes.count, options, t0)
-        r = run_modes(scene, options)
+            r = _turning_fields(row, scene, options)
+        else:
+            r = run_modes(scene, options)
+            v = check_result(r)
+            if v is not None:
+                row["min_margin"] = v.approaches[0].margin
+                row["margin_ok"] = v.ok
         m = r.modes
-        for i in range(m.count):
+        for i in range(min(n_modes or scene.modes.count, m.count)):
             row[f"f{i + 1}_hz"] = float(m.frequencies[i])
             row[f"kind{i + 1}"] = m.kinds[i]
         if estimate:
@@ -68,10 +73,6 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
             est = estimate_errors(r, options)
             for i in range(m.count):
                 row[f"err{i + 1}"] = float(est.relative_error[i])
-        v = check_result(r)
-        if v is not None:
-            row["min_margin"] = v.approaches[0].margin
-            row["margin_ok"] = v.ok
         row["dofs"] = m.n_dofs
         row["status"] = "ok"
         row["error"] = ""
@@ -99,45 +100,33 @@ def columns(parameters: list[str], n_modes: int, rotor: bool = False) -> list[st
             + ["min_margin", "margin_ok", "status", "error", "wall_s", "worker_pid"])
 
 
-def _rotor_row(row: dict, scene, n_modes: int, options: RunOptions, t0: float) -> dict:
-    """A turning shaft's variant: its Campbell run (the standstill modes are its basis's
-    first), the verdict's margin, the unbalance peak and, where a stage gives Q_A, Level I."""
-    try:
-        from shaftfem.checks.whirl_check import check_whirl
-        from shaftfem.workflows.campbell import run_campbell
+def _turning_fields(row: dict, scene, options: RunOptions):
+    """A turning shaft's columns of its row (ROTOR_COLUMNS, and the verdict's margin):
+    its Campbell run (whose standstill basis the frequencies are read from), the
+    unbalance peak and, where a stage gives Q_A, Level I. Returns the standstill run."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.workflows.campbell import run_campbell
 
-        c = run_campbell(scene, options)
-        m = c.result.modes
-        for i in range(min(n_modes, m.count)):
-            row[f"f{i + 1}_hz"] = float(m.frequencies[i])
-            row[f"kind{i + 1}"] = m.kinds[i]
-        crit = sorted(cs.speed_rpm for cs in c.critical_speeds if cs.order == 1)
-        for k in (0, 1):
-            row[f"crit{k + 1}_rpm"] = float(crit[k]) if len(crit) > k else ""
-        v = check_whirl(c)
-        if v.approaches:
-            row["critical_margin"] = row["min_margin"] = float(v.approaches[0].margin)
-        row["margin_ok"] = v.ok
-        if c.stability is not None:
-            row["least_log_dec"] = float(c.stability.log_dec)
-        if c.unbalance is not None and c.unbalance.peaks:
-            top = max(c.unbalance.peaks, key=lambda p: p.amplitude)
-            row["unbalance_peak_um"] = float(top.amplitude) * 1e6
-            row["unbalance_peak_rpm"] = float(top.speed_rpm)
-        if any(a.cross_coupling is not None for a in scene.attachments):
-            from shaftfem.workflows.level1 import run_level1
+    c = run_campbell(scene, options)
+    crit = sorted(cs.speed_rpm for cs in c.critical_speeds if cs.order == 1)
+    for k in (0, 1):
+        row[f"crit{k + 1}_rpm"] = float(crit[k]) if len(crit) > k else ""
+    v = check_whirl(c)
+    if v.approaches:
+        row["critical_margin"] = row["min_margin"] = float(v.approaches[0].margin)
+    row["margin_ok"] = v.ok
+    if c.stability is not None:
+        row["least_log_dec"] = float(c.stability.log_dec)
+    if c.unbalance is not None and c.unbalance.peaks:
+        top = max(c.unbalance.peaks, key=lambda p: p.amplitude)
+        row["unbalance_peak_um"] = float(top.amplitude) * 1e6
+        row["unbalance_peak_rpm"] = float(top.speed_rpm)
+    if any(a.cross_coupling is not None for a in scene.attachments):
+        from shaftfem.workflows.level1 import run_level1
 
-            level1 = run_level1(scene, options=options)
-            row["level1_ratio"] = "" if level1.ratio is None else float(level1.ratio)
-        row["dofs"] = m.n_dofs
-        row["status"] = "ok"
-        row["error"] = ""
-    except Exception as exc:  # recorded, so that one bad variant does not stop the sweep
-        row["status"] = "failed"
-        row["error"] = f"{type(exc).__name__}: {exc}".replace("\n", " ")
-    row["wall_s"] = round(time.perf_counter() - t0, 3)
-    row["worker_pid"] = os.getpid()
-    return row
+        level1 = run_level1(scene, options=options)
+        row["level1_ratio"] = "" if level1.ratio is None else float(level1.ratio)
+    return c.result
 
 
 def worker_version() -> str:

@@ -40,7 +40,7 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     basis also holds those rigid motions. In a model with no damping a peak is
     unbounded: the peaks are the 1x critical speeds (`criticals`, r/min; by default
     found directly) whose mode the unbalances drive, each given by its speed."""
-    from shaftfem.fem.rotor import lateral_rigid, orbit, rotor_model, section_motion
+    from shaftfem.fem.rotor import orbit, section_motion
     from shaftfem.fem.rotor import unbalance_response as solve
 
     if not scene.unbalances:
@@ -52,10 +52,7 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
         _on_shaft(scene, f"[[unbalance]] {u.name!r}: position_mm", u.position, z)
     for p in rotor.probes:
         _on_shaft(scene, "[rotor] probes_mm", p, z)
-    if lateral_rigid(result).shape[1]:
-        model = replace(rotor_model(result, model.frame, rigid=True),
-                        bearings=_bearings_of(model, rotor_model(result, model.frame,
-                                                                 rigid=True)))
+    model = forced(result, model)
     shapes = model.shapes
     forces = [(section_motion(result, u.position, shapes),
                u.amount * complex(math.cos(u.phase), math.sin(u.phase)))
@@ -144,6 +141,18 @@ def poles(name: str, amplitude, criticals: list[float],
 # Below this share of the rigid rotor's eccentricity (sum |U| / mass) a response is
 # round-off: the unbalances cancel.
 ROUND_OFF = 1e-9
+
+
+def forced(result, model):
+    """The model a forced response is solved on: where the supports leave the shaft free
+    to move sideways (damping only, or no support), with those rigid motions in its
+    basis, its bearings (their coefficients as `model` has them) on the new shapes."""
+    from shaftfem.fem.rotor import lateral_rigid, rotor_model
+
+    if not lateral_rigid(result).shape[1]:
+        return model
+    rigid = rotor_model(result, model.frame, rigid=True)
+    return replace(rigid, bearings=_bearings_of(model, rigid))
 
 
 def _bearings_of(model, rigid):
