@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from shaftfem.fem.whirl import CRITICALLY_DAMPED_AF
 from shaftfem.scene.model import Excitation
 from shaftfem.scene.schema import DEFAULT_MARGIN_PERCENT
 
@@ -44,6 +45,8 @@ class Approach:
     # installed shaft: transmissibility at the response point for lateral base motion at
     # k f_exc (shaftfem.fem.response); None for a free shaft
     amplification: float | None = None
+    # listed, never judged nor the closest: a critically damped crossing (AF < 2.5)
+    exempt: bool = False
 
     @property
     def ok(self) -> bool:
@@ -87,14 +90,27 @@ class ResonanceVerdict:
     def violations(self) -> list[Approach]:
         return [a for a in self.approaches if not a.ok]
 
+    @property
+    def judged(self) -> list[Approach]:
+        """The pairs the verdict rests on, tightest first (margin less required)."""
+        return sorted((a for a in self.approaches if not a.exempt),
+                      key=lambda a: a.margin - a.required)
+
     def closest_per_harmonic(self) -> list[Approach]:
-        """For each source harmonic, the mode closest to it."""
+        """For each source harmonic, its tightest judged pair (least margin beyond the
+        required one; an exempt pair only where nothing else meets that harmonic), and
+        every pair that fails: the rows a reader checks the verdict against."""
         best: dict[tuple[str, int], Approach] = {}
+
+        def tighter(a: Approach, b: Approach) -> bool:
+            return (a.exempt, a.margin - a.required) < (b.exempt, b.margin - b.required)
+
         for a in self.approaches:
             key = (a.source, a.order)
-            if key not in best or a.margin < best[key].margin:
+            if key not in best or tighter(a, best[key]):
                 best[key] = a
-        return sorted(best.values(), key=lambda a: a.margin)
+        rows = list(best.values()) + [a for a in self.violations if a not in best.values()]
+        return sorted(rows, key=lambda a: (a.ok, a.exempt, a.margin - a.required))
 
     def as_dict(self) -> dict:
         return {
@@ -134,7 +150,7 @@ def check_resonance(frequencies: np.ndarray, kinds: list[str],
 
 
 # API 684: no margin below this amplification factor (a critically damped mode) ...
-AF_CRITICALLY_DAMPED = 2.5
+AF_CRITICALLY_DAMPED = CRITICALLY_DAMPED_AF
 # ... and this much more for a critical speed above the operating speed.
 API684_ABOVE = 0.10
 

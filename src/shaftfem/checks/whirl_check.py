@@ -8,15 +8,19 @@ source's harmonics.
   ([rotor] speed_range_rpm) 0 inside it and measured to its nearer end outside. At 1x
   an unbalance drives forward whirl only on a shaft of revolution in isotropic
   bearings, so there backward 1x crossings are not judged;
-  elsewhere (anisotropic bearings, a shaft that is not of revolution) both are.
+  elsewhere (anisotropic bearings, a shaft that is not of revolution) both are. A
+  crossing of a critically damped mode (AF below 2.5, an oil film's rigid-body roots)
+  is not a critical speed to keep clear of: listed, never judged (API 684).
 - Any other source's harmonic k f is met by the whirl frequencies at each operating
   speed, forward and backward, margin |f - k f| / (k f).
 - Torsion and axial modes do not whirl: they meet every harmonic as at standstill.
 
-- Stability: a whirling mode that grows, or whose log decrement is at or below
-  [rotor] min_log_dec (API 684's 0.1 with criterion "api684"), at a speed up to the
-  highest operating one fails; so does a divergence band inside the running range.
-  Onsets and bands beyond it are warnings with their margin.
+- Stability, judged where the shaft runs (API 684): a whirling mode that grows, or
+  whose log decrement is at or below [rotor] min_log_dec (API 684's 0.1 with criterion
+  "api684"), at an operating speed or inside a running range fails; so does a
+  divergence band inside the running range. Growth the shaft passes through below its
+  range, onsets and bands beyond it are warnings with their speeds. Below the journals'
+  lift-off the film's coefficients are placeholders: no verdict there.
 
 The required margin is the scene's flat one, or with criterion "api684" that of each
 mode's amplification factor AF = pi / log dec (none below AF 2.5; an undamped model
@@ -67,10 +71,12 @@ def _span_text(lo: float, hi: float) -> str:
 
 
 def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
-    """What fails the turning shaft's stability, and what is only warned of: a whirling
-    mode that grows, or is damped less than required, at a speed up to the highest
-    operating one; an onset of growth or a divergence band inside the running range
-    (fails) or beyond it (a warning with its margin)."""
+    """What fails the turning shaft's stability, and what is only warned of. Judged
+    where API 684 judges it, where the shaft runs: a whirling mode that grows, or is
+    damped less than required, at an operating speed or inside a running range fails,
+    as does an onset of growth or a divergence band inside the running range. A band of
+    growth the shaft passes through below its range, and an onset beyond it, are
+    warnings with their speeds. Below the journals' lift-off there is no verdict."""
     rotor = c.rotor_scene.rotor
     assert rotor is not None
     spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans]
@@ -89,23 +95,55 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
     elif st is not None and not st.judged:
         warns.append("stability not judged: no damping in the model (every log decrement is "
                      "zero); give the bearings' damping, or [rotor] min_log_dec")
+    lift = lift_speed_rpm(c)
+    below = [lo for lo, _ in spans if lo < lift]
+    if below:
+        warns.append(
+            f"no stability verdict at {', '.join(f'{n:,.0f}' for n in below)} r/min: the "
+            f"journals' films lift their journals only from {lift:,.0f} r/min (below it the "
+            "journal runs on its shell and the film's coefficients are placeholders)"
+            + ("" if st is not None else "; no operating speed lies above it, so the "
+               "stability is not judged at all"))
+    for n, whirl, a, b in (st.passed if st is not None else ()):
+        warns.append(f"curve {n} ({whirl} whirl) grows from about {a:,.0f} to {b:,.0f} r/min, "
+                     "below the running range: a run-up passes through it")
+
+    def inside(n: float) -> tuple[float, float] | None:
+        return next(((lo, hi) for lo, hi in spans
+                     if lo * (1 - 1e-9) <= n <= hi * (1 + 1e-9)), None)
+
     for o in c.onsets:
         text = (f"curve {o.curve_text} starts to grow at {o.speed_rpm:,.0f} r/min "
                 f"({o.frequency_hz:.2f} Hz)")
-        if o.speed_rpm <= top * (1 + 1e-9):
-            fails.append(text + f", below the highest operating speed ({top:,.0f} r/min)")
+        span = inside(o.speed_rpm)
+        if o.speed_rpm < lift:
+            continue
+        if span is not None:
+            fails.append(text + f", inside the running range {_span_text(*span)}")
+        elif o.speed_rpm <= top:
+            warns.append(text + ", below the highest operating speed "
+                         f"({top:,.0f} r/min), outside where the shaft runs")
         else:
             warns.append(text + f": {100 * (o.speed_rpm - top) / top:.1f} % above the highest "
                          f"operating speed ({top:,.0f} r/min)")
     for lo, hi in c.divergent:
-        inside = [s for s in spans if lo <= s[1] and hi >= s[0]]
+        hit = [s for s in spans if lo <= s[1] and hi >= s[0]]
         text = f"divergence (a mode locks to the shaft and grows) from {lo:,.0f} to {hi:,.0f} r/min"
-        if inside:
-            fails.append(text + f", inside the running range {_span_text(*inside[0])}")
+        if hit:
+            fails.append(text + f", inside the running range {_span_text(*hit[0])}")
         else:
             gap = min(min(abs(lo - b), abs(hi - a)) / (b if lo > b else a) for a, b in spans)
             warns.append(text + f": {100 * gap:.1f} % from the nearest running speed")
     return fails, warns
+
+
+def lift_speed_rpm(c: Campbell) -> float:
+    """The speed (r/min) from which the scene's journals are lifted by their films."""
+    if c.stability is not None:
+        return c.stability.lift_rpm
+    from shaftfem.workflows.campbell import lift_speed
+
+    return lift_speed(c.rotor_scene) / RPM
 
 
 def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
@@ -132,11 +170,17 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
             need = api684_margin(amplification(cs.log_dec), above=above) if api else flat
             curve = f"curve {cs.mode}" if cs.mode else "found directly"
             edge = min(max(cs.speed_rpm, lo), hi)   # the running speed nearest to it
+            # API 684: a critically damped crossing (AF < 2.5) needs no margin, whatever
+            # the criterion; it is listed, never judged
+            damped = (f", critically damped (AF {cs.amplification:.2g}): no margin required"
+                      if cs.critically_damped else "")
             out.append(Approach(mode=cs.mode, frequency=cs.frequency_hz,
                                 kind=f"{cs.whirl} whirl ({curve}), critical at "
-                                     f"{cs.speed_rpm:,.0f} r/min",
+                                     f"{cs.speed_rpm:,.0f} r/min{damped}",
                                 source=f"shaft at {_span_text(lo, hi)}", order=cs.order,
-                                excitation=cs.order * edge / 60, margin=margin, required=need))
+                                excitation=cs.order * edge / 60, margin=margin,
+                                required=0.0 if cs.critically_damped else need,
+                                exempt=cs.critically_damped))
     rows = {n: [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n] for n in speeds}
     for n, ws in rows.items():
         for w in ws:
@@ -149,7 +193,7 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
                     out.append(Approach(mode=w.mode, frequency=w.frequency_hz, kind=kind,
                                         source=e.name, order=k, excitation=fk,
                                         margin=abs(w.frequency_hz - fk) / fk, required=need))
-    out.sort(key=lambda a: a.margin - a.required)
+    out.sort(key=lambda a: (a.exempt, a.margin - a.required))
     fails, warns = stability_findings(c)
     if c.coverage:
         warns.append(c.coverage)

@@ -139,6 +139,17 @@ def cmd_modes(args) -> int:
     return _accuracy_status(args, adapted)
 
 
+def _publish_figure(out: str, name: str, record) -> None:
+    """NAME.png of a study's record in `out`, published with NAME.manifest.json: all its
+    files or none (an interrupt, a failure), as every command with --out."""
+    from shaftfem.outputs import plots
+    from shaftfem.store import staged_directory
+
+    with staged_directory(out, f"{name}.manifest.json") as stage:
+        plots.save_png(getattr(plots, f"{name}_figure")(record), stage / f"{name}.png")
+    print(f"wrote {Path(out) / f'{name}.png'}")
+
+
 CAMPBELL_MANIFEST = "campbell.manifest.json"   # the files of the last complete campbell run
 
 
@@ -221,10 +232,7 @@ def cmd_level1(args) -> int:
     r = run_level1(scene, qs, at, qa, _options(args))
     print(level1_text(r))
     if args.out:
-        from shaftfem.outputs.plots import level1_figure, save_png
-
-        path = save_png(level1_figure(r), Path(args.out) / "level1.png")
-        print(f"wrote {path}")
+        _publish_figure(args.out, "level1", r)
     if args.json:
         _write_json(args.json, {"scene": scene.name, **r.as_dict()})
     return 1 if r.passed is False else 0
@@ -247,10 +255,7 @@ def cmd_runup(args) -> int:
     r = run_run_up(scene, start, stop, accel, _options(args))
     print(runup_text(r))
     if args.out:
-        from shaftfem.outputs.plots import runup_figure, save_png
-
-        path = save_png(runup_figure(r), Path(args.out) / "runup.png")
-        print(f"wrote {path}")
+        _publish_figure(args.out, "runup", r)
     if args.json:
         _write_json(args.json, {"scene": scene.name, **r.as_dict()})
     return 0
@@ -270,15 +275,15 @@ def cmd_frf(args) -> int:
     freqs = np.linspace(a, b, n)
     speeds = np.array(args.speeds_rpm if args.speeds_rpm else
                       [0.0, *(w * 30 / np.pi for w in scene.rotor.speeds)])
+    if any(n < 0 or not np.isfinite(n) for n in speeds):
+        raise SceneError(f"--speeds-rpm {' '.join(f'{n:g}' for n in speeds)}: speeds are "
+                         "0 r/min or more")
     at = args.at_mm * 1e-3
     probe = at if args.probe_mm is None else args.probe_mm * 1e-3
     r = run_frequency_response(scene, at, probe, freqs, speeds, _options(args))
     print(frf_text(r))
     if args.out:
-        from shaftfem.outputs.plots import frf_figure, save_png
-
-        path = save_png(frf_figure(r), Path(args.out) / "frf.png")
-        print(f"wrote {path}")
+        _publish_figure(args.out, "frf", r)
     if args.json:
         _write_json(args.json, {"scene": scene.name, **r.as_dict()})
     return 0
@@ -291,10 +296,7 @@ def cmd_static(args) -> int:
     result = run_static(_scene(args), _options(args))
     print(static_text(result))
     if args.out:
-        from shaftfem.outputs.plots import save_png, static_figure
-
-        path = save_png(static_figure(result), Path(args.out) / "static.png")
-        print(f"wrote {path}")
+        _publish_figure(args.out, "static", result)
     if args.json:
         _write_json(args.json, {"scene": result.scene.name, **result.as_dict()})
     return 0

@@ -123,12 +123,19 @@ class _Parser(argparse.ArgumentParser):
         return {}
 
 
+def _version() -> str:
+    from shaftfem import __version__
+
+    return __version__
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(
         prog="shaftfem",
         description="Finite-element modal analysis of machine shafts: free-free, or installed "
         "in the bearings of the scene's [[support]] tables.",
     )
+    p.add_argument("--version", action="version", version=f"shaftfem {_version()}")
     sub = p.add_subparsers(dest="command", required=True)
     m = _modal_command(sub, "modes", "natural frequencies with their error bounds (in the "
                        "scene's supports if it has any, else free-free)", cmd.cmd_modes,

@@ -94,15 +94,30 @@ def slice_nodes(nodes: np.ndarray, seat: tuple[float, float]) -> np.ndarray:
     return np.flatnonzero((z > seat[0] - ON_SURFACE) & (z < seat[1] + ON_SURFACE))
 
 
+# A section between the mesh's nodes is read on a slab around it holding at least this
+# many nodes on each side (a few layers of elements).
+SLAB_NODES = 100
+
+
 def section_weights(nodes: np.ndarray, z0: float, mass_diagonal: np.ndarray) -> np.ndarray:
-    """The shaft's cross-section at z0 (its nodes on the plane, which the mesh follows),
-    weighted by the mass lumped to them (the mass matrix's diagonal), as fractions
-    summing to 1 (zero off the section)."""
-    idx = np.flatnonzero(np.abs(nodes[:, 2] - z0) < ON_SURFACE)
-    if idx.size == 0:
-        raise SolverError(f"no mesh node on the cross-section at {z0 * 1e3:g} mm")
+    """The shaft's cross-section at z0, weighted by the mass lumped to its nodes (the
+    mass matrix's diagonal), as fractions summing to 1 (zero off the section). Where the
+    mesh has a node plane at z0 (a part's or a seat's centre), its nodes; elsewhere the
+    nodes of a slab around z0, weighted by mass times a hat in z, from which `carried`
+    fits the section's motion linear in z (so any position on the shaft is read)."""
+    d = nodes[:, 2] - z0
+    idx = np.flatnonzero(np.abs(d) < ON_SURFACE)
     w = np.zeros(nodes.shape[0])
-    w[idx] = mass_diagonal[idx]
+    if idx.size >= 3 and np.linalg.matrix_rank(nodes[idx, :2] - nodes[idx[0], :2]) == 2:
+        w[idx] = mass_diagonal[idx]
+        return w / w.sum()
+    below, above = np.sort(-d[d < 0]), np.sort(d[d > 0])
+    if below.size + above.size < 4:
+        raise SolverError(f"no mesh node near the cross-section at {z0 * 1e3:g} mm")
+    h = max(side[min(SLAB_NODES, side.size) - 1] for side in (below, above) if side.size)
+    h *= 1 + 1e-9
+    on = np.abs(d) < h
+    w[on] = mass_diagonal[on] * (1 - np.abs(d[on]) / h)
     return w / w.sum()
 
 
@@ -225,12 +240,16 @@ def carried(part: Attachment, nodes: np.ndarray, weights: np.ndarray) -> Carried
     on = np.flatnonzero(weights)            # the section's nodes
     w = weights[on]
     seen = _seen(nodes[on], part.position)   # (U, Theta) at the part's centre
-    # in its own plane a section does not see the tilts: x and y read the translation
-    # and the turn only
-    seen = {0: seen[0][::2], 1: seen[1][::2], 2: seen[2]}
+    turn = 2
+    if np.ptp(nodes[on, 2]) < ON_SURFACE:
+        # in its own plane a section does not see the tilts: x and y read the
+        # translation and the turn only (on a slab the tilt's column fits x and y
+        # linear in z, so the translation read is the section's at the centre)
+        seen = {0: seen[0][::2], 1: seen[1][::2], 2: seen[2]}
+        turn = 1
     C = np.zeros((6, 3 * on.size))
     for row, c, own, share in ((0, 0, 0, 1.0), (1, 1, 0, 1.0), (2, 2, 0, 1.0), (3, 2, 1, 1.0),
-                               (4, 2, 2, 1.0), (5, 0, 1, 0.5), (5, 1, 1, 0.5)):
+                               (4, 2, 2, 1.0), (5, 0, turn, 0.5), (5, 1, turn, 0.5)):
         C[row, c::3] += share * weighted_mean(w, seen[c], own)
     return Carried(part, (3 * on[:, None] + np.arange(3)).ravel(), C)
 

@@ -190,6 +190,10 @@ class Curve:
                                             self.index, self.log_dec, self.kinds)]
 
 
+# API 684: below this amplification factor a mode is critically damped (no margin).
+CRITICALLY_DAMPED_AF = 2.5
+
+
 @dataclass(frozen=True)
 class CriticalSpeed:
     """Where a whirl curve crosses the excitation order line f = order x n / 60: the
@@ -209,9 +213,23 @@ class CriticalSpeed:
     share: float = 1.0
     found: str = "curve"
 
+    @property
+    def amplification(self) -> float:
+        """The amplification factor AF = pi / log dec (infinite undamped)."""
+        return math.pi / self.log_dec if self.log_dec > 0 else math.inf
+
+    @property
+    def critically_damped(self) -> bool:
+        """API 684: a crossing of a mode with AF below 2.5 is critically damped; it
+        needs no separation margin (an oil film's heavily damped rigid-body roots)."""
+        return self.amplification < CRITICALLY_DAMPED_AF
+
     def as_dict(self) -> dict:
         return {"order": self.order, "whirl": self.whirl, "speed_rpm": self.speed_rpm,
                 "frequency_hz": self.frequency_hz, "curve": self.mode, "log_dec": self.log_dec,
+                "amplification_factor": (None if math.isinf(self.amplification)
+                                         else self.amplification),
+                "critically_damped": self.critically_damped,
                 "component": self.component, "share": self.share, "found": self.found}
 
 
@@ -239,7 +257,8 @@ class CrossingCheck:
 
 @dataclass(frozen=True)
 class Stability:
-    """The least damped whirling mode at the speeds up to the highest operating one: its
+    """The least damped whirling mode where the shaft runs (its operating speeds and
+    ranges, above the journals' lift-off): its
     curve, speed (r/min), frequency (Hz), whirl and log decrement; the required
     minimum log decrement and whether it is judged (an undamped model's decrements are
     zero: judged only where the scene sets min_log_dec or a mode grows)."""
@@ -254,6 +273,13 @@ class Stability:
     growing: bool
     # every other whirling curve that fails too: (curve, speed r/min, Hz, whirl, log dec)
     others: tuple[tuple[int, float, float, str, float], ...] = ()
+    # the speed (r/min) from which every journal's film lifts its journal (0: none);
+    # the operating speeds below it, where no stability verdict is given
+    lift_rpm: float = 0.0
+    unjudged_rpm: tuple[float, ...] = ()
+    # the bands below the running range where a whirling curve grows (a run-up passes
+    # them): (curve, whirl, from r/min, to r/min) sampled on the diagram's speeds
+    passed: tuple[tuple[int, str, float, float], ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -268,7 +294,12 @@ class Stability:
                 "judged": self.judged, "growing": self.growing, "ok": self.ok,
                 "others_failing": [{"curve": n, "speed_rpm": sp, "frequency_hz": f,
                                     "whirl": w, "log_dec": d}
-                                   for n, sp, f, w, d in self.others]}
+                                   for n, sp, f, w, d in self.others],
+                "journals_lift_off_rpm": self.lift_rpm,
+                "not_judged_below_lift_off_rpm": list(self.unjudged_rpm),
+                "growth_below_running_range": [
+                    {"curve": n, "whirl": w, "from_rpm": a, "to_rpm": b}
+                    for n, w, a, b in self.passed]}
 
 
 @dataclass(frozen=True)

@@ -92,6 +92,8 @@ def campbell_figure(c: Campbell):
         ax.annotate(f"{order}x", (end, order * end / 60.0), fontsize=8,
                     textcoords="offset points", xytext=(-14, 4))
     for cs in c.critical_speeds:
+        if cs.critically_damped:   # API 684: no critical speed (AF < 2.5)
+            continue
         ax.plot(cs.speed_rpm, cs.frequency_hz, "o", mfc="none", color=COLOURS[cs.whirl], ms=8,
                 mew=1.8)
         # forward labels above and left, backward below and right: a pair's two crossings
@@ -243,7 +245,7 @@ def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray]]:
     curves = {cv.number: cv for cv in c.curves}
     for cs in c.critical_speeds:
         cv = curves.get(cs.mode)
-        if cs.order != 1 or cv is None:
+        if cs.order != 1 or cv is None or cs.critically_damped:
             continue
         i = int(np.argmin(np.abs(cv.speeds_rpm - cs.speed_rpm)))
         u = c.basis_shapes @ cv.shapes[:, i]

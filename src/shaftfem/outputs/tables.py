@@ -309,6 +309,13 @@ FREE_FREE_MEANT = (
     "half as high for a shaft on two bearings).")
 
 
+def _spans_text(spans) -> str:
+    """Where the shaft runs, r/min: '3,000 r/min' or '30 and 2,800-3,200 r/min'."""
+    parts = [f"{lo:,.0f}" if lo == hi else f"{lo:,.0f}-{hi:,.0f}" for lo, hi in spans]
+    return (" and ".join(parts) if len(parts) < 3 else
+            ", ".join(parts[:-1]) + " and " + parts[-1]) + " r/min"
+
+
 def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
     """The verdict line, and for a free-free shaft the caveat under it (Markdown bold)."""
     lines = [verdict_line(v)]
@@ -335,7 +342,7 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
         return (f"**VERDICT: PASS{free}** - stable, and no critical speed or whirl frequency "
                 "meets an excitation harmonic in the range checked")
     if v.ok:
-        a = v.approaches[0]
+        a = (v.judged or v.approaches)[0]
         if v.turning:
             return (f"**VERDICT: PASS{free}** - every critical speed and whirl frequency "
                     f"clears its required margin (closest: {a.kind}, "
@@ -346,11 +353,14 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
                 f"{' on the shaft hanging free' if free else ''} (closest: mode {a.mode}, "
                 f"{a.frequency:.1f} Hz, vs {a.source} x{a.order} at {a.excitation:.1f} Hz: "
                 f"{100 * a.margin:.0f} % apart)")
-    a = v.violations[0]
-    return (f"**VERDICT: FAIL{free}** - {len(v.violations)} mode/harmonic pair(s) closer than "
-            f"{100 * v.required:.3g} %; closest: mode {a.mode} ({a.frequency:.1f} Hz, {a.kind}) "
+    bad = sorted(v.violations, key=lambda a: a.margin - a.required)
+    a = bad[0]
+    flat = all(abs(b.required - v.required) <= 1e-12 for b in bad)
+    return (f"**VERDICT: FAIL{free}** - {len(bad)} mode/harmonic pair(s) closer than "
+            + (f"{100 * v.required:.3g} %" if flat else "their required margin")
+            + f"; the tightest: mode {a.mode} ({a.frequency:.1f} Hz, {a.kind}) "
             f"is only {100 * a.margin:.1f} % from {a.source} x{a.order} at "
-            f"{a.excitation:.1f} Hz")
+            f"{a.excitation:.1f} Hz ({100 * a.required:.3g} % required)")
 
 
 def verdict_markdown(v: ResonanceVerdict) -> list[str]:
@@ -508,6 +518,9 @@ def campbell_text(c) -> str:
         part = (f", its {cs.component} component ({100 * cs.share:.0f} % of the motion)"
                 if cs.component and cs.share < 0.95 else "")
         dec = f", log dec {cs.log_dec:.3g}" if cs.log_dec else ""
+        if cs.critically_damped:
+            where = (f"critically damped (AF {cs.amplification:.2g}, below 2.5): not a "
+                     "critical speed, no margin required")
         lines.append(f"  {cs.order}x {cs.whirl:8s} {cs.speed_rpm:10,.0f} r/min "
                      f"({cs.frequency_hz:.2f} Hz, {curve}{part}{dec}): {where}")
     x = c.crossing_check
@@ -525,7 +538,9 @@ def campbell_text(c) -> str:
               f"(at {', '.join(f'{s:,.0f}' for s in t.speeds_rpm)} r/min)"]
     st = c.stability
     if st is not None:
-        lines.append(f"stability up to {max(hi for _, hi in spans):,.0f} r/min: least log "
+        lines.append(f"stability where the shaft runs ({_spans_text(spans)}"
+                     + (f", journals lifted from {st.lift_rpm:,.0f} r/min" if st.lift_rpm else "")
+                     + "): least log "
                      f"decrement {st.log_dec:.3g} (curve {st.curve}, {st.whirl} whirl, "
                      f"{st.frequency_hz:.2f} Hz, at {st.speed_rpm:,.0f} r/min)"
                      + ("" if not st.judged else f", required above {st.required:g}"))
@@ -716,7 +731,7 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
     c, verdict = study.campbell, study.verdict
     head = ["item", "the rotor", "required", "result"]
     rows = []
-    crit = [a for a in verdict.approaches if "critical" in a.kind]
+    crit = [a for a in verdict.approaches if "critical" in a.kind and not a.exempt]
     if crit:
         a = min(crit, key=lambda a: a.margin - a.required)
         rows.append(["separation margin of the critical speeds from the operating speeds",
@@ -728,15 +743,19 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
     st = c.stability
     if st is not None:
         judged = st.judged
-        rows.append(["least log decrement up to the highest operating speed",
+        rows.append(["least log decrement where the shaft runs",
                      f"{st.log_dec:.3g} ({st.whirl} whirl, {st.frequency_hz:.1f} Hz)",
                      f"above {st.required:g}" if judged else "not judged (no damping)",
                      ("pass" if st.log_dec > st.required else "FAIL") if judged else "-"])
     top = c.rotor_scene.rotor.top_speed * 30 / math.pi if c.rotor_scene.rotor else 0.0
-    inside = [o for o in c.onsets if o.speed_rpm <= top]
+    spans = [(lo * 30 / math.pi, hi * 30 / math.pi)
+             for lo, hi in (c.rotor_scene.rotor.spans if c.rotor_scene.rotor else ())]
+    inside = [o for o in c.onsets if any(lo * (1 - 1e-9) <= o.speed_rpm <= hi * (1 + 1e-9)
+                                         for lo, hi in spans)]
     rows.append(["onset of instability", (f"from {c.onsets[0].speed_rpm:,.0f} r/min"
                                           if c.onsets else "none in the diagram"),
-                 f"above {top:,.0f} r/min", "FAIL" if inside else "pass"])
+                 f"outside {_spans_text(spans)}" if spans else f"above {top:,.0f} r/min",
+                 "FAIL" if inside else "pass"])
     if c.unbalance is not None:
         for p in c.unbalance.peaks:
             need = p.required_margin

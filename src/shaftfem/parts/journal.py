@@ -389,11 +389,36 @@ class SpeedTable:
     lift: float
 
 
+def table_end(b: JournalBearing) -> float:
+    """The speed (rad/s) below which the film is thinner than its table's last row
+    (eccentricity 0.98): the values there are that row's."""
+    t = table(round(b.ratio, 9), b.cavitation)
+    return 2 * math.pi * t.sommerfeld[-1] / b.sommerfeld(2 * math.pi)
+
+
+def lift_off(b: JournalBearing) -> float:
+    """The lift-off speed (rad/s): from it the least film h_min = c (1 - eps) is at least
+    the bearing's `min_film` (the surfaces' roughness it must clear), so the journal
+    runs on a full film. Below it the journal rubs its shell and the film's
+    coefficients are placeholders; Sommerfeld's number grows with the speed, so it is
+    the speed where the film table's S meets that eccentricity."""
+    from scipy.interpolate import PchipInterpolator
+
+    t = table(round(b.ratio, 9), b.cavitation)
+    eps = 1 - b.min_film / b.clearance
+    if eps <= t.eccentricity[0]:   # a film that thick is met only in the linear limit
+        S = t.sommerfeld[0] * t.eccentricity[0] / max(eps, 1e-12)
+    elif eps >= t.eccentricity[-1]:
+        S = t.sommerfeld[-1]
+    else:
+        S = float(np.exp(PchipInterpolator(t.eccentricity, np.log(t.sommerfeld))(eps)))
+    return max(2 * math.pi * S / b.sommerfeld(2 * math.pi), table_end(b))
+
+
 def speed_table(b: JournalBearing, top: float, points: int = SPEED_POINTS) -> SpeedTable:
     """The bearing's coefficients from its lift-off speed to `top` (rad/s); a
     ValueError if the film does not lift the journal below `top`."""
-    t = table(round(b.ratio, 9), b.cavitation)
-    lift = 2 * math.pi * t.sommerfeld[-1] / b.sommerfeld(2 * math.pi)
+    lift = table_end(b)
     if lift >= top:
         raise ValueError(f"the film lifts the journal (eccentricity {ECCENTRICITIES[-1]:g}) "
                          f"only at {lift * 60 / (2 * math.pi):,.0f} r/min, above the top "

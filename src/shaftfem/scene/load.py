@@ -193,6 +193,12 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
     attachments = tuple(_stage(source, i, e, a, rotor) for i, (e, a) in
                         enumerate(zip(_array(source, data, "attachment"), attachments)))
     check_seats(source, shaft, grooves, supports, attachments, mesh)
+    if (rotor is not None and rotor.level1 and rotor.level1_qa is None
+            and not any(a.cross_coupling is not None for a in attachments)):
+        raise SceneError(f"{where(source, 'rotor', 'level1')} = true: the Level I screening "
+                         "needs the anticipated cross-coupling Q_A: give [rotor] "
+                         "level1_qa_n_per_mm, or a stage's stage_power_kw on an [[attachment]] "
+                         "(Wachel's estimate)")
     if mesh.order > 2 and (supports or attachments):
         raise SceneError(f"{where(source, 'mesh', 'order')} = {mesh.order}: cubic elements take "
                          "free shafts only for now; use order 2 with [[support]] or "
@@ -476,10 +482,26 @@ def _film_table(ratio: float, cavitation: str) -> None:
 
 def _seat_diameter(source: str, table: str, t: dict, shaft: Shaft, s: Support,
                    what: str) -> float:
-    """A journal's or seal's diameter (m): diameter_mm, else the shaft's at the seat."""
-    if t["diameter_mm"] is not None:
-        return t["diameter_mm"] * MM
+    """A journal's or seal's diameter (m): diameter_mm, else the shaft's at the seat. A
+    journal is the shaft's own surface there (within 1 %: make a sleeve a section of
+    the shaft); a seal runs on the shaft or on a larger ring (an impeller's eye), never
+    inside the shaft."""
     radius = shaft.radius_at(s.position)
+    if t["diameter_mm"] is not None:
+        d = t["diameter_mm"] * MM
+        if radius is not None:
+            shaft_d = 2 * radius
+            if what == "journal" and abs(d / shaft_d - 1) > 0.01:
+                raise SceneError(f"{where(source, table, 'diameter_mm')} = {t['diameter_mm']:g}: "
+                                 f"the shaft is {shaft_d / MM:g} mm at the journal "
+                                 f"({s.position / MM:g} mm); a journal's diameter is the "
+                                 "shaft's there (within 1 %), or leave diameter_mm out")
+            if what == "seal" and d < shaft_d * (1 - 0.01):
+                raise SceneError(f"{where(source, table, 'diameter_mm')} = {t['diameter_mm']:g}: "
+                                 f"smaller than the shaft ({shaft_d / MM:g} mm at "
+                                 f"{s.position / MM:g} mm); a seal runs on the shaft or on a "
+                                 "larger ring, or leave diameter_mm out")
+        return d
     if radius is None:
         raise SceneError(f"{where(source, table, 'diameter_mm')}: missing (on a STEP shaft "
                          f"give the {what}'s diameter, mm)")

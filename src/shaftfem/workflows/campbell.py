@@ -232,30 +232,56 @@ def onsets(model: RotorModel, curves: list[Curve]) -> list[Onset]:
     return sorted(out, key=lambda o: o.speed_rpm)
 
 
+def lift_speed(scene: Scene) -> float:
+    """The speed (rad/s) from which every journal's film lifts its journal (0 without
+    journals): below it the films' coefficients are placeholders, and no stability
+    verdict rests on them."""
+    from shaftfem.parts.journal import lift_off
+
+    return max((lift_off(s.journal) for s in scene.held if s.journal is not None),
+               default=0.0)
+
+
 def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
-    """The least damped whirling mode at the speeds up to the highest operating one,
-    against the required least log decrement ([rotor] min_log_dec; 0, or API 684's 0.1
-    with criterion "api684"). An undamped model (every decrement zero to round-off) is
-    judged only when min_log_dec is set; a mode that grows always fails."""
+    """The least damped whirling mode where the shaft runs (its operating speeds and
+    ranges, as API 684 judges stability), against the required least log decrement
+    ([rotor] min_log_dec; 0, or API 684's 0.1 with criterion "api684"); and every band
+    below the running range where a mode grows (a run-up passes through it: a warning).
+    Speeds below the journals' lift-off are not judged. An undamped model (every
+    decrement zero to round-off) is judged only when min_log_dec is set; a mode that
+    grows always fails."""
     rotor = scene.rotor
     assert rotor is not None
-    top = rotor.top_speed / RPM * (1 + 1e-9)
-    worst = []   # each whirling curve's least damped point up to the top speed
+    lift = lift_speed(scene) / RPM
+    spans = [(lo / RPM * (1 - 1e-9), hi / RPM * (1 + 1e-9)) for lo, hi in rotor.spans]
+    start = min(lo for lo, _ in spans)
+
+    def running(n: float) -> bool:
+        return n >= lift and any(lo <= n <= hi for lo, hi in spans)
+
+    worst = []   # each whirling curve's least damped point where the shaft runs
+    passed: list[tuple[int, str, float, float]] = []   # growth bands below the range
     for c in curves:
         if not c.whirling:
             continue
         seen_hz, logdec, words = c.seen_hz, c.log_dec, c.whirl
         best = None
-        for i in np.flatnonzero(c.speeds_rpm <= top):
+        grow: list[float] = []
+        for i, n in enumerate(c.speeds_rpm):
             if c.kinds[i] not in WHIRLING:
                 continue
             d = float(logdec[i])
             if abs(d) <= 1e-6:
                 d = 0.0
-            if best is None or d < best[0]:
-                best = (d, c.number, float(c.speeds_rpm[i]), float(seen_hz[i]), words[i])
+            if running(float(n)):
+                if best is None or d < best[0]:
+                    best = (d, c.number, float(n), float(seen_hz[i]), words[i])
+            elif lift <= n < start and d < 0:
+                grow.append(float(n))
         if best is not None:
             worst.append(best)
+        if grow:
+            passed.append((c.number, words[0], min(grow), max(grow)))
     if not worst:
         return None
     worst.sort()
@@ -266,8 +292,10 @@ def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
     judged = damped or rotor.min_log_dec is not None
     failing = tuple((n, s, fr, w, x) for x, n, s, fr, w in worst[1:]
                     if x < 0 or (judged and x <= required))
+    below = [n for n in sorted({lo / RPM for lo, _ in rotor.spans}) if n < lift]
     return Stability(curve=number, speed_rpm=speed, frequency_hz=f, whirl=whirl, log_dec=d,
-                     required=required, judged=judged, growing=d < 0, others=failing)
+                     required=required, judged=judged, growing=d < 0, others=failing,
+                     lift_rpm=lift, unjudged_rpm=tuple(below), passed=tuple(passed))
 
 
 def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, float]]:
@@ -421,8 +449,9 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     if scene.unbalances:
         from shaftfem.workflows.unbalance import forward_only, unbalance_response
 
-        driven = [cs.speed_rpm for cs in critical if cs.order == 1 and not (
-            forward_only(scene, frame) and cs.whirl == "backward")]
+        driven = [cs.speed_rpm for cs in critical if cs.order == 1
+                  and not cs.critically_damped
+                  and not (forward_only(scene, frame) and cs.whirl == "backward")]
         response = unbalance_response(scene, result, model, criticals=driven)
     return Campbell(frame=frame, why=why, speeds_rpm=tuple(grid / RPM),
                     whirl=tuple(w for r in rows for w in r), operating=tuple(operating),

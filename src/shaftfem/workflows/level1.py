@@ -20,6 +20,8 @@ one small eigenproblem, and Q_0 is found by root finding on them.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -65,6 +67,9 @@ def screening_plane(scene: Scene, at: float | None) -> tuple[float, str]:
     """Where Q is applied (m) and why: `at`, else the stage with the largest Wachel
     estimate, else mid-span between the outermost bearings."""
     if at is not None:
+        if not 0.0 <= at <= scene.shaft.length:
+            raise SceneError(f"--at-mm {at * 1e3:g}: where Q acts must lie on the shaft, 0 to "
+                             f"{scene.shaft.length * 1e3:g} mm")
         return at, "as asked"
     stages = [a for a in scene.attachments if a.cross_coupling is not None]
     if stages:
@@ -89,6 +94,9 @@ def anticipated(scene: Scene, given: float | None) -> tuple[float | None, str]:
     """Q_A (N/m) and where it comes from: given, else the sum of the stages' Wachel
     estimates at the highest operating speed, else none."""
     if given is not None:
+        if not (math.isfinite(given) and given > 0):
+            raise SceneError(f"--qa-n-per-mm {given / 1e3:g}: the anticipated cross-coupling "
+                             "Q_A must be a positive number of N/mm")
         return given, "given"
     stages = [a for a in scene.attachments if a.cross_coupling is not None]
     if not stages:

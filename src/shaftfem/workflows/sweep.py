@@ -108,7 +108,8 @@ def _turning_fields(row: dict, scene, options: RunOptions):
     from shaftfem.workflows.campbell import run_campbell
 
     c = run_campbell(scene, options)
-    crit = sorted(cs.speed_rpm for cs in c.critical_speeds if cs.order == 1)
+    crit = sorted(cs.speed_rpm for cs in c.critical_speeds
+                  if cs.order == 1 and not cs.critically_damped)
     for k in (0, 1):
         row[f"crit{k + 1}_rpm"] = float(crit[k]) if len(crit) > k else ""
     v = check_whirl(c)

@@ -1,0 +1,268 @@
+"""An API 684 study on an oil-film rotor gives the verdicts its definitions give:
+stability judged where the shaft runs and only above the journals' lift-off, no
+critical speed from a critically damped root (AF below 2.5), a FAIL whose message
+agrees with its table, and bad options refused at once (exit 2).
+
+The rotor is our own: a 45 mm, 800 mm shaft with a 20 kg wheel between two plain
+journals (L/D 0.49, 45 um clearance, ISO VG 46 at 45 C), slow roll at 25 r/min and
+running at 3,600 r/min.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from shaftfem.cli import main
+from shaftfem.fem.whirl import RPM, WHIRLING
+from shaftfem.scene.load import load_scene
+
+STEEL = {"name": "steel", "youngs_modulus_mpa": 206000.0, "poisson_ratio": 0.29,
+         "density_kg_m3": 7850.0}
+SLOW_ROLL, RUNNING = 25.0, 3600.0
+
+
+def wheel_on_journals(**rotor) -> dict:
+    def journal(name: str, z: float) -> dict:
+        return {"name": name, "position_mm": z, "width_mm": 22.0, "kind": "journal",
+                "radial_clearance_um": 45.0, "oil_iso_vg": 46, "oil_temperature_c": 45.0}
+    return {"name": "wheel_on_journals", "shaft": {"length_mm": 800.0, "diameter_mm": 45.0},
+            "material": STEEL, "mesh": {"element_size_mm": 22.0}, "modes": {"count": 6},
+            "resonance": {"criterion": "api684"},
+            "support": [journal("inboard", 40.0), journal("outboard", 760.0)],
+            "attachment": [{"name": "wheel", "position_mm": 430.0, "width_mm": 50.0,
+                            "mass_kg": 20.0, "polar_inertia_kg_m2": 0.16,
+                            "diametral_inertia_kg_m2": 0.09, "joint": "distributing"}],
+            "rotor": {"speed_rpm": [SLOW_ROLL, RUNNING], "max_speed_rpm": 9000.0,
+                      "campbell_points": 19, **rotor}}
+
+
+@pytest.fixture(scope="module")
+def wheel():
+    """The rotor loaded on its journals, its basis and model, and its Campbell diagram."""
+    from shaftfem.workflows.campbell import campbell_of, turning
+    from shaftfem.workflows.static import with_journal_loads
+
+    scene = with_journal_loads(load_scene(wheel_on_journals()))
+    result, model, why = turning(scene)
+    return scene, result, model, why, campbell_of(scene, result, model, why)
+
+
+def test_the_lift_off_speed_is_where_the_least_film_clears_its_limit(wheel):
+    """parts.journal.lift_off inverts the film: there the least film is the bearing's
+    min_film, thinner below it, thicker above."""
+    from shaftfem.parts.journal import lift_off, operating
+
+    scene = wheel[0]
+    for s in scene.held:
+        b = s.journal
+        w = lift_off(b)
+        assert operating(b, w).min_film == pytest.approx(b.min_film, rel=1e-3)
+        assert operating(b, 0.8 * w).min_film < b.min_film < operating(b, 1.25 * w).min_film
+        assert SLOW_ROLL * RPM < w < RUNNING * RPM
+
+
+def test_stability_is_judged_where_the_shaft_runs_above_lift_off(wheel):
+    """At standstill and at slow roll some whirling mode has a log decrement far below
+    API 684's 0.1 (the films are stiff and damp little there): no verdict rests on
+    it. The least log decrement judged is the running speed's, as whirl_at gives it."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.workflows.campbell import whirl_at
+
+    scene, _, model, _, c = wheel
+    still = [w.log_dec for w in whirl_at(model, 0.0, 6) if w.kind in WHIRLING]
+    assert min(still) < 0.1
+    st = c.stability
+    assert st is not None and st.speed_rpm == pytest.approx(RUNNING)
+    there = [w.log_dec for w in whirl_at(model, RUNNING * RPM, 6) if w.kind in WHIRLING]
+    assert st.log_dec == pytest.approx(min(there), rel=1e-6, abs=1e-9)
+    assert st.unjudged_rpm == (SLOW_ROLL,)
+    v = check_whirl(c)
+    if st.log_dec > 0.1:
+        assert not v.unstable
+    assert any("no stability verdict at 25 r/min" in w for w in v.warnings)
+
+
+def test_a_critically_damped_crossing_is_no_critical_speed(wheel):
+    """The films' rigid-body roots cross 1x near the slow roll with AF = pi / log dec far
+    below 2.5: listed as critically damped, never judged, never the closest pair,
+    whatever the criterion; drawn nowhere as a critical speed."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.outputs.campbell_plot import deflected_lines
+    from shaftfem.outputs.tables import campbell_text, verdict_rows
+
+    c = wheel[4]
+    damped = [cs for cs in c.critical_speeds if cs.critically_damped]
+    assert damped, "the rotor should have heavily damped crossings to test"
+    for cs in damped:
+        assert math.pi / cs.log_dec < 2.5
+    for flat in (None, 0.15):
+        v = check_whirl(c, flat)
+        exempt = [a for a in v.approaches if a.exempt]
+        assert len(exempt) >= len(damped)
+        assert all(a.required == 0.0 and a.ok for a in exempt)
+        assert all(not a.exempt for a in v.judged)
+        assert all(f"{cs.speed_rpm:,.0f} r/min" not in r[5] for cs in damped
+                   for r in verdict_rows(v)[1] if v.judged)
+    assert "critically damped" in campbell_text(c)
+    shown = " ".join(label for label, *_ in deflected_lines(c))
+    for cs in damped:
+        assert f"{cs.speed_rpm:,.0f} r/min" not in shown
+
+
+def test_a_fail_names_its_tightest_pair_and_the_table_shows_every_failing_one(wheel):
+    """Running just below the first critical speed: the FAIL line names the pair with
+    the least margin beyond its own required one, with that margin, and every failing
+    pair is a row of the table."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.outputs.tables import verdict_line, verdict_rows
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why, c = wheel
+    first = min(cs.speed_rpm for cs in c.critical_speeds
+                if not cs.critically_damped and cs.order == 1)
+    # the separation alone: no least log decrement asked (API 684's 0.1 is judged above)
+    near = replace(scene, rotor=replace(scene.rotor, min_log_dec=0.0,
+                                        speeds=(SLOW_ROLL * RPM, 0.93 * first * RPM)))
+    v = check_whirl(campbell_of(near, result, model, why))
+    assert v.violations
+    tight = min(v.violations, key=lambda a: a.margin - a.required)
+    line = verdict_line(v)
+    assert f"only {100 * tight.margin:.1f} %" in line
+    assert f"({100 * tight.required:.3g} % required)" in line
+    rows = verdict_rows(v)[1]
+    for a in v.violations:
+        assert any(r[5] == a.kind and r[0] == a.source and r[-1] == "TOO CLOSE" for r in rows)
+
+
+def test_a_section_between_the_mesh_nodes_is_read_as_exactly_as_one_on_them(wheel):
+    """fem.supports.section_means at a position with no node plane: each rigid motion of
+    the section reads exactly (translation 1, tilt its angle, turn its angle), and a
+    field linear along the shaft reads its value there."""
+    from shaftfem.fem.supports import section_means
+
+    result = wheel[1]
+    nodes, mass = result.system.nodes, result.system.mass_scalar.diagonal()
+    z0 = 0.3217
+    assert not np.any(np.abs(nodes[:, 2] - z0) < 1e-7)
+    c = section_means(nodes, mass, z0)
+    x, y, z = nodes.T
+    d = z - z0
+    a = 1e-3
+    fields = {
+        "ux": (np.ones_like(z), 0 * z, 0 * z, 0),
+        "uy": (0 * z, np.ones_like(z), 0 * z, 1),
+        "tilt about y": (a * d, 0 * z, -a * x, 4),
+        "tilt about x": (0 * z, -a * d, a * y, 3),
+        "turn": (-a * y, a * x, 0 * z, 5),
+    }
+    for name, (ux, uy, uz, row) in fields.items():
+        u = np.column_stack([ux, uy, uz]).ravel()[c.dofs]
+        q = c.C @ u
+        want = np.zeros(6)
+        want[row] = a if row > 2 else 1.0
+        np.testing.assert_allclose(q, want, atol=1e-9 * (1 if row < 3 else a), err_msg=name)
+    bend = np.column_stack([5e-3 + 2e-2 * d, 0 * z, 0 * z]).ravel()[c.dofs]
+    assert (c.C @ bend)[0] == pytest.approx(5e-3, rel=1e-9)
+
+
+# --------------------------------------------------------------------------------------
+# Options and scenes refused at once
+
+
+@pytest.fixture()
+def no_turning(monkeypatch):
+    """Any turning solve is an error: a refusal must come before the work."""
+    from shaftfem.workflows import campbell
+
+    def never(*_a, **_k):
+        raise AssertionError("the solve ran")
+
+    monkeypatch.setattr(campbell, "turning", never)
+
+
+def _exit_2(capsys, argv, named):
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert named in err and "Traceback" not in err and len(err.splitlines()) == 1, err
+
+
+@pytest.fixture()
+def scene_file(tmp_path):
+    import tomli_w
+
+    def write(data: dict) -> str:
+        f = tmp_path / "rotor.toml"
+        f.write_bytes(tomli_w.dumps(data).encode())
+        return str(f)
+    return write
+
+
+@pytest.mark.parametrize("argv,named", [
+    (["level1", "--at-mm", "5000"], "--at-mm 5000"),
+    (["level1", "--at-mm", "-10"], "--at-mm -10"),
+    (["level1", "--qa-n-per-mm", "0"], "--qa-n-per-mm 0"),
+    (["level1", "--qa-n-per-mm", "-5"], "--qa-n-per-mm -5"),
+    (["frf", "--at-mm", "430", "--frequencies-hz", "1:100:5", "--speeds-rpm=-100"],
+     "--speeds-rpm -100"),
+])
+def test_an_option_no_rotor_can_mean_is_refused_before_the_solve(capsys, no_turning,
+                                                                  scene_file, argv, named):
+    _exit_2(capsys, [argv[0], scene_file(wheel_on_journals()), *argv[1:]], named)
+
+
+def test_level1_asked_with_nothing_to_screen_against_is_refused(capsys, scene_file):
+    data = wheel_on_journals(level1=True)
+    _exit_2(capsys, ["check", scene_file(data)], "level1")
+    data["rotor"]["level1_qa_n_per_mm"] = 500.0
+    load_scene(data)   # with Q_A it loads
+
+
+@pytest.mark.parametrize("diameter,ok", [(30.0, False), (45.0, True), (45.3, True),
+                                         (47.0, False)])
+def test_a_journal_is_the_shaft_s_own_diameter(capsys, scene_file, diameter, ok):
+    data = wheel_on_journals()
+    data["support"][0]["diameter_mm"] = diameter
+    if ok:
+        assert load_scene(data).supports[0].journal.diameter == pytest.approx(diameter * 1e-3)
+    else:
+        _exit_2(capsys, ["check", scene_file(data)], "diameter_mm")
+
+
+def test_a_study_figure_is_published_whole_with_its_manifest_or_not_at_all(tmp_path,
+                                                                            monkeypatch):
+    """runup --out (and level1, frf, static): the picture and its manifest, or on an
+    interrupt nothing in the folder."""
+    import json
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from shaftfem.cli.commands import _publish_figure
+    from shaftfem.outputs import plots
+
+    monkeypatch.setattr(plots, "runup_figure", lambda r: plt.figure())
+    out = tmp_path / "out"
+    _publish_figure(str(out), "runup", object())
+    manifest = json.loads((out / "runup.manifest.json").read_text())
+    assert set(manifest["files"]) == {"runup.png"}
+    assert (out / "runup.png").read_bytes()[:4] == b"\x89PNG"
+
+    def interrupted(_r):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(plots, "runup_figure", interrupted)
+    fresh = tmp_path / "fresh"
+    with pytest.raises(KeyboardInterrupt):
+        _publish_figure(str(fresh), "runup", object())
+    assert not fresh.exists()
+
+
+def test_the_version_is_printed(capsys):
+    from shaftfem import __version__
+
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == f"shaftfem {__version__}"
