@@ -344,18 +344,25 @@ def seal(path: str) -> None:
 
 
 def ucs(path: str) -> None:
-    """Add "ucs" to the reference file at `path`: ross's run_ucs (standstill, 4 branches)
-    of 5.9.1 and of 5.9.9 (overhung) over 1e5 to 1e9 N/m, 20 stiffnesses; rad/s."""
+    """Add "ucs" and "ucs_synchronous" to the reference file at `path`: ross's run_ucs
+    (standstill, and synchronous=True; 4 branches) of 5.9.1 and of 5.9.9 (overhung) over
+    1e5 to 1e9 N/m, 20 stiffnesses; rad/s."""
     import ross as rs
     from ross.materials import steel
 
     out_ucs = {"stiffness_n_per_m": [float(k) for k in np.logspace(5, 9, 20)]}
+    synchronous = dict(out_ucs)
     for name, rotor in (("5.9.1", example_591(rs, steel)), ("5.9.9", example_599(rs, steel))):
         r = rotor.run_ucs(stiffness_range=(5, 9), num=20, num_modes=16)
         out_ucs[name] = [[float(v) for v in row] for row in np.asarray(r.wn)]
+        # the synchronous map: gyroscopic moments at Omega = omega (forward branches)
+        r = rotor.run_ucs(stiffness_range=(5, 9), num=20, num_modes=16, synchronous=True)
+        synchronous[name] = [[float(v) for v in row] for row in np.asarray(r.wn)]
     with open(path) as f:
         out = json.load(f)
     out["ucs"] = out_ucs
+    out["ucs_synchronous"] = synchronous
+    out_ucs = {"standstill": out_ucs, "synchronous": synchronous}
     with open(path, "w") as f:
         json.dump(out, f, indent=1)
     print(json.dumps(out_ucs, indent=1))

@@ -196,7 +196,8 @@ def cmd_ucs(args) -> int:
     if args.stiffness_n_per_mm:
         a, b, n = args.stiffness_n_per_mm
         ks = np.logspace(np.log10(a * 1e3), np.log10(b * 1e3), n)
-    m = run_ucs(scene, ks, _options(args))
+    kind = "standstill" if args.standstill else "backward" if args.backward else "forward"
+    m = run_ucs(scene, ks, _options(args), kind=kind)
     print(ucs_text(m))
     if args.out:
         from shaftfem.outputs.plots import save_png

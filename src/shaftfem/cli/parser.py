@@ -174,6 +174,13 @@ def build_parser() -> argparse.ArgumentParser:
                        "speeds against the bearings' stiffness, every bearing alike, with the "
                        "scene's bearings drawn over it; ucs.png, ucs.csv and ucs.json in --out",
                        cmd.cmd_ucs, out="optional")
+    which = u.add_mutually_exclusive_group()
+    which.add_argument("--backward", action="store_true",
+                       help="the synchronous backward critical speeds (default: forward)")
+    which.add_argument("--standstill", action="store_true",
+                       help="the natural frequencies at standstill instead (ross's run_ucs "
+                       "default; a rotor with gyroscopic moments has its critical speeds "
+                       "elsewhere)")
     u.add_argument("--stiffness-n-per-mm", type=_stiffness_range, metavar="A:B:N",
                    help="N stiffnesses from A to B, N/mm, evenly in log (default: four decades "
                    "about the scene's bearings, 40 of them)")

@@ -496,27 +496,39 @@ class Direct:
     index: float
 
 
-def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> list[Direct]:
-    """Every undamped crossing with each order line up to the spin `top` (rad/s), from
-    the linear eigenproblem in Omega^2 of the module's docstring (constant, undamped
-    bearings only: see direct_applies)."""
+def order_roots(model: RotorModel, m: int, top: float = math.inf
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The undamped whirling roots that meet the line f = m n (n the spin) up to the spin
+    `top` (rad/s): the speeds Omega (rad/s, ascending), their whirl indices and modal
+    shapes (N, found), from the linear eigenproblem in Omega^2 of the module's
+    docstring (constant, undamped bearings; torsion and axial modes meet the lines as
+    at standstill and are left out). m = 1 in the stationary frame: the synchronous
+    critical speeds, gyroscopic moments at Omega = omega."""
     import scipy.linalg
+
+    from shaftfem.fem.rotor import dominant_kinds
 
     K0 = np.diag(model.omega2).astype(complex)
     for b in model.bearings:
         K0 = K0 + b.beta.T @ (np.array(b.coefficients.stiffness(0.0)) - np.diag(b.standstill)
                               ) @ b.beta
-    eye = model.mass(0.0)
+    lam, A = scipy.linalg.eig(K0, m * m * model.mass(0.0) - 1j * m * model.G - model.K2)
+    ok = (np.isfinite(lam) & (np.abs(lam.imag) <= 1e-8 * np.abs(lam)) & (lam.real > 0)
+          & (lam.real <= top**2 * (1 + 1e-9)))
+    ok[ok] = [k in WHIRLING for k in dominant_kinds(model, A[:, ok])]
+    order = np.argsort(lam.real[ok])
+    A = A[:, ok][:, order]
+    return np.sqrt(lam.real[ok][order]), whirl_index(model, A), A
 
-    from shaftfem.fem.rotor import dominant_kinds
+
+def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> list[Direct]:
+    """Every undamped crossing with each order line up to the spin `top` (rad/s), from
+    the linear eigenproblem in Omega^2 of the module's docstring (constant, undamped
+    bearings only: see direct_applies)."""
 
     def solve(m: int) -> tuple[np.ndarray, np.ndarray]:
-        """The whirling roots (torsion and axial modes meet the lines as at standstill)."""
-        lam, A = scipy.linalg.eig(K0, m * m * eye - 1j * m * model.G - model.K2)
-        ok = (np.isfinite(lam) & (np.abs(lam.imag) <= 1e-8 * np.abs(lam)) & (lam.real > 0)
-              & (lam.real <= top**2 * (1 + 1e-9)))
-        ok[ok] = [k in WHIRLING for k in dominant_kinds(model, A[:, ok])]
-        return np.sqrt(lam.real[ok]), whirl_index(model, A[:, ok])
+        speeds, index, _ = order_roots(model, m, top)
+        return speeds, index
 
     out = []
     for k in orders:

@@ -479,6 +479,16 @@ class UcsMap:
     reference: float
     basis: int
     change: float
+    # "forward" or "backward": synchronous critical speeds (gyroscopic moments at
+    # Omega = omega); "standstill": the natural frequencies at rest
+    kind: str = "forward"
+
+    @property
+    def title(self) -> str:
+        """What the branches are, in words."""
+        return ("natural frequencies at standstill (as 1x speeds)" if self.kind == "standstill"
+                else f"synchronous {self.kind} critical speeds (gyroscopic moments at "
+                "Omega = omega)")
 
     @property
     def speeds_rpm(self) -> np.ndarray:
@@ -486,9 +496,11 @@ class UcsMap:
         return 60.0 * self.frequencies
 
     def as_dict(self) -> dict:
-        return {"stiffness_n_per_mm": [float(k) / 1e3 for k in self.stiffness],
+        return {"kind": self.kind, "title": self.title,
+                "stiffness_n_per_mm": [float(k) / 1e3 for k in self.stiffness],
                 "branches": [{"branch": i + 1,
-                              "critical_speed_rpm": [float(v) for v in self.speeds_rpm[i]]}
+                              "critical_speed_rpm": [None if not np.isfinite(v) else float(v)
+                                                     for v in self.speeds_rpm[i]]}
                              for i in range(self.frequencies.shape[0])],
                 "bearings": [{"name": b.name, "speeds_rpm": [float(v) for v in b.speeds_rpm],
                               "kxx_n_per_mm": [float(v) / 1e3 for v in b.kxx],

@@ -625,14 +625,14 @@ def ucs_text(m) -> str:
     where the scene's bearings cross the branches."""
     ks = m.stiffness
     picks = sorted({0, len(ks) // 4, len(ks) // 2, 3 * len(ks) // 4, len(ks) - 1})
-    lines = [f"scene {m.scene.name}: undamped critical speed map, every bearing alike "
-             f"(isotropic, undamped; seals left out), {len(ks)} stiffnesses from "
+    lines = [f"scene {m.scene.name}: undamped critical speed map, {m.title}; every bearing "
+             f"alike (isotropic, undamped; seals left out), {len(ks)} stiffnesses from "
              f"{ks[0] / 1e3:.3g} to {ks[-1] / 1e3:.3g} N/mm",
              "", "stiffness (N/mm) " + "".join(f"  branch {i + 1} (r/min)"
                                                 for i in range(m.frequencies.shape[0]))]
     for j in picks:
-        lines.append(f"{ks[j] / 1e3:16.4g} " + "".join(f"{v:19,.0f}"
-                                                       for v in m.speeds_rpm[:, j]))
+        lines.append(f"{ks[j] / 1e3:16.4g} " + "".join(
+            f"{v:19,.0f}" if math.isfinite(v) else f"{'-':>19}" for v in m.speeds_rpm[:, j]))
     if m.bearings:
         lines += ["", "the scene's bearings on the map (their stiffness at each speed meets "
                   "a branch at its critical speed):"]
@@ -652,7 +652,8 @@ def ucs_csv(m) -> str:
     """stiffness (N/mm), then each branch's critical speed (r/min), one row a stiffness."""
     head = "stiffness_n_per_mm," + ",".join(f"branch_{i + 1}_rpm"
                                             for i in range(m.frequencies.shape[0]))
-    rows = [f"{k / 1e3:.6g}," + ",".join(f"{v:.6g}" for v in m.speeds_rpm[:, j])
+    rows = [f"{k / 1e3:.6g}," + ",".join(f"{v:.6g}" if math.isfinite(v) else ""
+                                         for v in m.speeds_rpm[:, j])
             for j, k in enumerate(m.stiffness)]
     return "\n".join([head, *rows]) + "\n"
 

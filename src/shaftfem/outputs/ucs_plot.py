@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 if TYPE_CHECKING:
     from shaftfem.fem.whirl import UcsMap
 
@@ -28,11 +30,12 @@ def ucs_figure(m: UcsMap):
         for _, _, kc, n in b.crossings:
             ax.plot(kc / 1e3, n, "o", ms=5, mfc="none", mec="crimson")
     ax.set_xlim(k[0], k[-1])
-    low = float(m.speeds_rpm[m.speeds_rpm > 0].min()) if (m.speeds_rpm > 0).any() else 1.0
-    ax.set_ylim(low / 1.5, float(m.speeds_rpm.max()) * 1.5)
+    ok = m.speeds_rpm[np.isfinite(m.speeds_rpm) & (m.speeds_rpm > 0)]
+    low = float(ok.min()) if ok.size else 1.0
+    ax.set_ylim(low / 1.5, (float(ok.max()) if ok.size else 10.0) * 1.5)
     ax.set_xlabel("bearing stiffness, N/mm (every bearing alike)")
     ax.set_ylabel("undamped critical speed, r/min")
-    ax.set_title(f"Undamped critical speed map: {m.scene.name}", fontsize=10)
+    ax.set_title(f"Undamped critical speed map: {m.scene.name}\n{m.title}", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="upper left")
     for j, (lines, where) in enumerate(((m.soft_lines, k[0]), (m.stiff_lines, k[-1]))):

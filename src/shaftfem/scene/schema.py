@@ -414,7 +414,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                   *upto(1e6, "up to 1 m"), required=False),
         "min_log_dec": Key(float, "the least log decrement a whirling mode may have where "
                            "the shaft runs: at its operating speeds and in its ranges, above "
-                           "its journals' lift-off (default 0, i.e. no mode may grow; 0.1 with [resonance] criterion = \"api684\")",
+                           "its journals' lift-off (default 0, i.e. no mode may grow; 0.1 "
+                           "with [resonance] criterion = \"api684\")",
                            *upto(10.0, "up to 10", closed_low=True), required=False),
         "level1": Key(bool, "screen the rotor by API 684's Level I in check and design: a "
                       "failed screening (API 617: Q_0 / Q_A below 2, or a log decrement "

@@ -21,7 +21,6 @@ one small eigenproblem, and Q_0 is found by root finding on them.
 from __future__ import annotations
 
 import math
-
 from dataclasses import replace
 from typing import TYPE_CHECKING
 

@@ -1,13 +1,23 @@
-"""The undamped critical speed map (API 684): the shaft's lateral natural frequencies at
-standstill against the stiffness of its bearings, all alike, isotropic and undamped,
-over decades of stiffness (as ross's `run_ucs` and MESYS's critical speeds against
-bearing stiffness). With the scene's own bearings' stiffness against speed drawn on
-it, their crossings with the branches are the critical speeds the bearings give.
+"""The undamped critical speed map (API 684): the shaft's undamped critical speeds
+against the stiffness of its bearings, all alike, isotropic and undamped, over decades
+of stiffness (as ross's `run_ucs` and MESYS's critical speeds against bearing
+stiffness). With the scene's own bearings' stiffness against speed drawn on it, their
+crossings with the branches are the critical speeds the bearings give.
+
+A critical speed is where the whirl meets the shaft's own speed, so the map is
+synchronous by default: at each stiffness, the speeds Omega at which a forward (or,
+asked, backward) whirl at omega = Omega is free, gyroscopic moments included,
+
+    (K(k) - Omega^2 (M -+ i G)) a = 0,
+
+a linear eigenproblem in Omega^2 (fem.tracking.order_roots). Its bearing crossings are
+then the Campbell diagram's undamped 1x critical speeds. The standstill map (ross's
+`run_ucs` default: natural frequencies at rest) is kept as kind "standstill".
 
 One standstill solve with the bearings at the range's geometric mean, the bearings'
 residual modes beside the modes (fem.rotor): a bearing's stiffness k then enters
 exactly as diag(w^2) + sum_b beta_b^T (k - k_ref) beta_b on the basis, every stiffness
-one small symmetric eigenproblem, and the map is checked on two thirds of the basis.
+one small eigenproblem, and the map is checked on two thirds of the basis.
 Seals are left out (they hold nothing at standstill), as in ross.
 """
 
@@ -75,26 +85,65 @@ def uniform_bearings(scene: Scene, k: float) -> Scene:
     return replace(scene, supports=supports, rotor=None, unbalances=())
 
 
+# The maps: synchronous forward (the default), synchronous backward, standstill.
+KINDS = ("forward", "backward", "standstill")
+
+
+def at_stiffness(model: RotorModel, k: float) -> RotorModel:
+    """The model with every bearing isotropic, undamped, of radial stiffness k (N/m)."""
+    const = BearingCoefficients(speeds=(), kxx=(k,), kxy=(0.0,), kyx=(0.0,), kyy=(k,),
+                                cxx=(0.0,), cxy=(0.0,), cyx=(0.0,), cyy=(0.0,))
+    return replace(model, bearings=tuple(replace(b, coefficients=const)
+                                         for b in model.bearings))
+
+
 def lateral_frequencies(model: RotorModel, k: float, count: int
                         ) -> tuple[np.ndarray, np.ndarray]:
     """The lowest `count` lateral branches (Hz) at the bearing stiffness k (N/m): one of
     each pair of lateral modes at standstill, and their modal coordinates (N, count)."""
     from shaftfem.fem.rotor import dominant_kinds
 
-    const = BearingCoefficients(speeds=(), kxx=(k,), kxy=(0.0,), kyx=(0.0,), kyy=(k,),
-                                cxx=(0.0,), cxy=(0.0,), cyx=(0.0,), cyy=(0.0,))
-    at = replace(model, bearings=tuple(replace(b, coefficients=const) for b in model.bearings))
-    K = at.matrices(0.0)[1]
+    K = at_stiffness(model, k).matrices(0.0)[1]
     lam, V = np.linalg.eigh(0.5 * (K + K.T))
     kinds = dominant_kinds(model, V)
     keep = [i for i, kind in enumerate(kinds) if kind not in ("torsion", "axial")][::2][:count]
     return np.sqrt(np.maximum(lam[keep], 0.0)) / (2 * math.pi), V[:, keep]
 
 
+def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "forward"
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """The lowest `count` synchronous critical speeds of `whirl` (as Hz: Omega / 2 pi) at
+    the bearing stiffness k (N/m), and their modal shapes (N, count); NaN where fewer
+    exist (a backward branch of a disk whose polar inertia outweighs its diametral one
+    has no synchronous crossing)."""
+    from shaftfem.fem.tracking import order_roots
+    from shaftfem.fem.whirl import FORWARD
+
+    speeds, index, A = order_roots(at_stiffness(model, k), 1)
+    keep = np.flatnonzero(index > FORWARD if whirl == "forward" else index < -FORWARD)[:count]
+    out = np.full(count, np.nan)
+    out[:keep.size] = speeds[keep] / (2 * math.pi)
+    Y = np.zeros((A.shape[0], count), dtype=complex)
+    Y[:, :keep.size] = A[:, keep]
+    return out, Y
+
+
+def branches_at(model: RotorModel, k: float, count: int, kind: str
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """The map's `count` branches (Hz) at stiffness k and their shapes, of its kind."""
+    if kind == "standstill":
+        return lateral_frequencies(model, k, count)
+    return synchronous_speeds(model, k, count, kind)
+
+
 def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
-            options: RunOptions = RunOptions(), branches: int = BRANCHES) -> UcsMap:
+            options: RunOptions = RunOptions(), branches: int = BRANCHES,
+            kind: str = "forward") -> UcsMap:
     """The scene's undamped critical speed map over `stiffness` (N/m; default
-    default_range)."""
+    default_range): synchronous forward (`kind` "forward", the default) or backward
+    critical speeds, or the standstill natural frequencies ("standstill")."""
+    if kind not in KINDS:
+        raise SceneError(f"critical speed map of kind {kind!r}: one of {', '.join(KINDS)}")
     from shaftfem.fem.rotor import rotor_model
     from shaftfem.fem.static import line
     from shaftfem.workflows.pipeline import run_modes, with_modes
@@ -114,41 +163,52 @@ def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
                     f"{reference / 1e3:.3g} N/mm")
         result = run_modes(with_modes(uniform, count=size), options)
         model = rotor_model(result, "stationary")
-        freqs = np.column_stack([lateral_frequencies(model, k, branches)[0] for k in ks])
+        freqs = np.column_stack([branches_at(model, k, branches, kind)[0] for k in ks])
         smaller = model.truncated(2 * size // 3)
-        check = np.column_stack([lateral_frequencies(smaller, k, branches)[0] for k in ks])
+        check = np.column_stack([branches_at(smaller, k, branches, kind)[0] for k in ks])
         n = min(freqs.shape[0], check.shape[0])
-        change = float(np.max(np.abs(check[:n] / freqs[:n] - 1))) if n else 0.0
+        both = np.isfinite(freqs[:n]) & np.isfinite(check[:n])
+        change = float(np.max(np.abs(check[:n][both] / freqs[:n][both] - 1))) if both.any() else 0.0
         if change <= TRUNCATION or size >= 96:
             break
         size *= 2
-    z, soft, stiff = _end_lines(result, model, ks, branches, line)
+    z, soft, stiff = _end_lines(result, model, ks, branches, line, kind)
+
+    def branch_rpm(k: float, i: int) -> float:   # branch i at stiffness k, solved again
+        return 60.0 * float(branches_at(model, k, branches, kind)[0][i])
+
     return UcsMap(scene=scene, stiffness=ks, frequencies=freqs, z=z, soft_lines=soft,
-                  stiff_lines=stiff, bearings=_bearing_curves(scene, ks, freqs),
-                  reference=reference, basis=model.size, change=change)
+                  stiff_lines=stiff, bearings=_bearing_curves(scene, ks, freqs, branch_rpm),
+                  reference=reference, basis=model.size, change=change, kind=kind)
 
 
-def _end_lines(result: ModalResult, model: RotorModel, ks: np.ndarray, branches: int, line
-               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each branch's deflected line at the softest and the stiffest bearings."""
+def _end_lines(result: ModalResult, model: RotorModel, ks: np.ndarray, branches: int, line,
+               kind: str = "standstill") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each branch's deflected line at the softest and the stiffest bearings (the
+    orbit's major semi-axis along the shaft for a synchronous branch)."""
     assert model.shapes is not None
     out = []
     for k in (ks[0], ks[-1]):
-        _, Y = lateral_frequencies(model, k, branches)
+        _, Y = branches_at(model, k, branches, kind)
         rows = []
         for j in range(Y.shape[1]):
-            z, x, y = line(result.system, model.shapes @ Y[:, j])
-            amp = np.hypot(x, y)
+            u = model.shapes @ Y[:, j]
+            z, xr, yr = line(result.system, u.real)
+            _, xi, yi = line(result.system, u.imag)
+            x, y = xr + 1j * xi, yr + 1j * yi
+            amp = 0.5 * (np.abs(x + 1j * y) + np.abs(x - 1j * y))
             rows.append(amp / max(float(amp.max()), 1e-300))
         out.append(np.array(rows))
     return z, out[0], out[1]
 
 
-def _bearing_curves(scene: Scene, ks: np.ndarray, freqs: np.ndarray
+def _bearing_curves(scene: Scene, ks: np.ndarray, freqs: np.ndarray, branch_rpm=None
                     ) -> tuple[BearingCurve, ...]:
     """The scene's bearings' kxx and kyy against speed (over their table, or the rotor's
     range for a constant one), and where each meets a branch: the speed n at which the
-    branch's critical speed at the bearing's k(n) is n itself."""
+    branch's critical speed at the bearing's k(n) is n itself; found between the map's
+    stiffnesses, then solved on the model itself (`branch_rpm(k, i)`, r/min) so that it
+    is the critical speed those bearings give, not an interpolation."""
     curves = []
     top = scene.rotor.max_speed if scene.rotor is not None else 0.0
     for s in scene.supports:
@@ -167,9 +227,37 @@ def _bearing_curves(scene: Scene, ks: np.ndarray, freqs: np.ndarray
         pairs = (("x", kxx),) if np.array_equal(kxx, kyy) else (("x", kxx), ("y", kyy))
         for direction, kd in pairs:
             for i in range(freqs.shape[0]):
-                found += _crossings(i, direction, ks, 60.0 * freqs[i], kd, rpm)
+                rough = _crossings(i, direction, ks, 60.0 * freqs[i], kd, rpm)
+                found += [_refined(x, kd, rpm, branch_rpm) for x in rough]
         curves.append(BearingCurve(s.name, rpm, kxx, kyy, tuple(found)))
     return tuple(curves)
+
+
+def _refined(x: tuple[int, str, float, float], kd: np.ndarray, rpm: np.ndarray, branch_rpm
+             ) -> tuple[int, str, float, float]:
+    """A crossing (branch, direction, k, n) solved on the model: the n where the branch
+    at the bearing's k(n) (interpolated in its speed table) is n."""
+    import scipy.optimize
+
+    i, d, k, n = x
+    if branch_rpm is None:
+        return x
+    if len(rpm) == 2 and kd[0] == kd[1]:   # a constant bearing: the branch at its k
+        return i, d, k, branch_rpm(k, i)
+
+    def k_at(m: float) -> float:
+        return float(np.interp(m, rpm, kd))
+
+    def gap(m: float) -> float:
+        return branch_rpm(k_at(m), i) - m
+
+    j = int(np.clip(np.searchsorted(rpm, n) - 1, 0, len(rpm) - 2))
+    lo, hi = float(rpm[j]), float(rpm[j + 1])
+    try:
+        m = float(scipy.optimize.brentq(gap, lo, hi, xtol=1e-9 * hi))
+    except ValueError:   # no sign change on the model: keep the map's crossing
+        return x
+    return i, d, k_at(m), m
 
 
 def _crossings(branch: int, direction: str, ks: np.ndarray, branch_rpm: np.ndarray,
