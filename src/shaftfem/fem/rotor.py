@@ -121,14 +121,18 @@ class RotorModel:
                        residual=P.shape[1], static=static)
 
     def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
-        """(D, K) of M q'' + D q' + K q = 0 at the spin omega (rad/s)."""
+        """(D, K) of M q'' + D q' + K q = 0 at the spin omega (rad/s); in the rotating
+        frame their mean over a turn, the bearings' isotropic parts (what differs along
+        x and y turns at 2 omega there: periodic_parts)."""
         D = omega * self.G
         K = np.diag(self.omega2) + omega**2 * self.K2
         for b in self.bearings:
-            Kb = np.array(b.coefficients.stiffness(omega)) - np.diag(b.standstill)
+            Kb = np.array(b.coefficients.stiffness(omega))
             Cb = np.array(b.coefficients.damping(omega))
+            if self.frame == "rotating" and omega != 0.0:   # at rest the frames are one
+                Kb, Cb = isotropic_part(Kb), isotropic_part(Cb)
             D = D + b.beta.T @ Cb @ b.beta
-            K = K + b.beta.T @ Kb @ b.beta
+            K = K + b.beta.T @ (Kb - np.diag(b.standstill)) @ b.beta
             if self.frame == "rotating":
                 K = K + omega * (b.beta.T @ (Cb @ S2) @ b.beta)
                 if b.coefficients.has_mass:
@@ -138,6 +142,43 @@ class RotorModel:
                     K = K - omega**2 * (b.beta.T @ Mb @ b.beta)
         return D, K
 
+    def periodic(self, omega: float) -> bool:
+        """Whether the equations are periodic in time at the spin omega: the rotating
+        frame, and a bearing that differs along x and y there."""
+        if self.frame != "rotating" or omega == 0.0:
+            return False
+        for b in self.bearings:
+            for A in (b.coefficients.stiffness(omega), b.coefficients.damping(omega)):
+                A = np.array(A)
+                if np.abs(A - isotropic_part(A)).max() > ANISOTROPY * max(np.abs(A).max(), 1e-300):
+                    return True
+        return False
+
+    def periodic_parts(self, omega: float) -> tuple[np.ndarray, ...]:
+        """(D_c, D_s, K_c, K_s): in the rotating frame, where the bearings differ along
+        x and y, D(t) = D + D_c cos 2 omega t + D_s sin 2 omega t and so K, (D, K) from
+        `matrices`. A bearing's deviatoric part A_d (K_s and C_s in the stationary
+        frame, less their isotropic part) is seen from the turning shaft as
+        R^T A_d R = A_d cos 2 theta + A_d' sin 2 theta, theta = omega t; its damping
+        adds omega R^T C R S to the stiffness."""
+        N = self.size
+        Dc, Ds, Kc, Ks = (np.zeros((N, N)) for _ in range(4))
+        for b in self.bearings:
+            Kb = np.array(b.coefficients.stiffness(omega))
+            Cb = np.array(b.coefficients.damping(omega))
+            if b.coefficients.has_mass:
+                Mb = np.array(b.coefficients.mass(omega))
+                if np.abs(Mb - isotropic_part(Mb)).max() > ANISOTROPY * np.abs(Mb).max():
+                    raise SolverError(f"{b.name}: an added mass that differs along x and y "
+                                      "is not taken on a shaft that is not of revolution")
+            (kc, ks), (cc, cs) = deviatoric_parts(Kb), deviatoric_parts(Cb)
+            B = b.beta
+            Dc += B.T @ cc @ B
+            Ds += B.T @ cs @ B
+            Kc += B.T @ (kc + omega * cc @ S2) @ B
+            Ks += B.T @ (ks + omega * cs @ S2) @ B
+        return Dc, Ds, Kc, Ks
+
     def mass(self, omega: float) -> np.ndarray:
         """M of M q'' + D q' + K q = 0 at the spin omega (rad/s): the identity on the
         mass-normalised modes, with the seals' added mass on their seats."""
@@ -146,6 +187,25 @@ class RotorModel:
             if b.coefficients.has_mass:
                 M = M + b.beta.T @ np.array(b.coefficients.mass(omega)) @ b.beta
         return M
+
+
+# A bearing whose deviatoric part is below this share of its largest coefficient is
+# isotropic (round-off of a table written as kxx = kyy).
+ANISOTROPY = 1e-12
+
+
+def isotropic_part(A: np.ndarray) -> np.ndarray:
+    """The part of a bearing's 2x2 coefficient that every angle about the axis sees
+    alike: a I + b S, a = (A_xx + A_yy) / 2, b = (A_yx - A_xy) / 2."""
+    a, b = 0.5 * (A[0, 0] + A[1, 1]), 0.5 * (A[1, 0] - A[0, 1])
+    return a * np.eye(2) + b * S2
+
+
+def deviatoric_parts(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The rest, A_d = [[p, q], [q, -p]], and A_d' = [[q, -p], [-p, -q]]: seen from a
+    frame turned by theta, R^T A_d R = A_d cos 2 theta + A_d' sin 2 theta."""
+    p, q = 0.5 * (A[0, 0] - A[1, 1]), 0.5 * (A[0, 1] + A[1, 0])
+    return np.array([[p, q], [q, -p]]), np.array([[q, -p], [-p, -q]])
 
 
 @dataclass(frozen=True)
@@ -164,6 +224,10 @@ def roots(model: RotorModel, omega: float) -> Roots:
     frequency first. Real ones (overdamped, or a divergence) are left out, the fastest
     growth among them kept (a shaft stiffer across one diameter than across the other
     diverges in the frame that turns with it between its pair's frequencies)."""
+    if model.periodic(omega):
+        from shaftfem.fem.floquet import floquet_roots
+
+        return floquet_roots(model, omega)
     D, K = model.matrices(omega)
     n = model.size
     if any(b.coefficients.has_mass for b in model.bearings):

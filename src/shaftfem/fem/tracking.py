@@ -480,6 +480,9 @@ def direct_applies(model: RotorModel) -> str | None:
     """None where the direct route applies, else why not."""
     if any(len(b.coefficients.speeds) for b in model.bearings):
         return "the bearing coefficients change with speed"
+    if model.periodic(1.0):
+        return ("the equations are periodic in time (a shaft not of revolution in bearings "
+                "that differ along x and y)")
     if any(np.any(np.array(b.coefficients.damping(0.0))) for b in model.bearings):
         return ("the bearings damp: a damped root meets an order line at a speed no "
                 "undamped eigenproblem gives")

@@ -61,9 +61,10 @@ BASIS_MIN = 18
 
 
 def choose_frame(scene: Scene) -> tuple[str, str]:
-    """The frame the scene's rotor is solved in, and why; a shaft that is not a solid of
-    revolution in bearings that are not isotropic is refused (its equations have
-    coefficients periodic in time in either frame)."""
+    """The frame the scene's rotor is solved in, and why. A shaft that is not a solid
+    of revolution in bearings that are not isotropic has equations periodic in time in
+    either frame: it is solved in the frame turning with it, where only the bearings'
+    deviatoric parts turn (at twice the spin), by Floquet theory (fem.floquet)."""
     rotor = scene.rotor
     if rotor is None:
         raise SceneError(f"{scene.source}: no [rotor] table: give the operating speed "
@@ -79,24 +80,18 @@ def choose_frame(scene: Scene) -> tuple[str, str]:
         raise SceneError(f"{scene.source}: rotor.frame = \"stationary\": the shaft is {shape}; "
                          "the stationary frame takes shafts of revolution only: use \"rotating\" "
                          "or \"auto\"")
-    if rotor.frame == "rotating" and anisotropic:
-        raise SceneError(f"{scene.source}: rotor.frame = \"rotating\": bearing(s) "
-                         f"{', '.join(anisotropic)} differ along x and y; the rotating frame "
-                         "takes isotropic bearings only (kxx = kyy, kxy = -kyx, likewise c): "
-                         "use \"stationary\" or \"auto\"")
-    if not scene.axisymmetric and anisotropic:
-        raise SceneError(f"{scene.source}: the shaft is {shape} and bearing(s) "
-                         f"{', '.join(anisotropic)} differ along x and y: its equations are "
-                         "periodic in time in either frame, which shaftfem does not solve; "
-                         "make the bearings isotropic (kxx = kyy, kxy = -kyx, likewise c) or the "
-                         "shaft one of revolution")
+    periodic = (f"; bearing(s) {', '.join(anisotropic)} differ along x and y, so there the "
+                "equations are periodic (period pi / Omega) and solved by Floquet theory"
+                if anisotropic else "")
     if rotor.frame != "auto":
-        return rotor.frame, f"as [rotor] frame asks; the shaft is {shape}"
+        return rotor.frame, (f"as [rotor] frame asks; the shaft is {shape}"
+                             + (periodic if rotor.frame == "rotating" else ""))
     if scene.axisymmetric:
         return "stationary", (f"auto: the shaft is {shape}, so its modes are solved in the "
                               "stationary frame, gyroscopic moments included")
     return "rotating", (f"auto: the shaft is {shape}, so its modes are solved in the frame "
-                        "turning with it (Coriolis and spin softening), its bearings isotropic")
+                        "turning with it (Coriolis and spin softening)"
+                        + (periodic if anisotropic else ", its bearings isotropic"))
 
 
 def basis_size(scene: Scene) -> int:

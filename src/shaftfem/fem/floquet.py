@@ -1,0 +1,239 @@
+"""A shaft that is not of revolution in bearings that differ along x and y: seen from
+the turning shaft, its own matrices are constant and each bearing's deviatoric part
+turns at twice the spin, so on the reduced model (fem.rotor, rotating frame)
+
+    M q'' + D(t) q' + K(t) q = 0,   D(t) = D + D_c cos 2 Omega t + D_s sin 2 Omega t
+
+(and so K) has coefficients of period T = pi / Omega. Floquet theory: every solution
+is a sum of forms q(t) = exp(lam t) p(t), p of period T, lam a Floquet exponent,
+defined up to i 2 Omega k; a form grows where Re lam > 0.
+
+Two routes, independent of each other:
+
+- Hill's method: p = sum_k p_k exp(i 2 k Omega t), k = -H..H, turns the equations
+  into one eigenproblem (the first-order form's harmonic blocks; Bentvelsen and
+  Lazarus 2018). Each exponent appears once per harmonic shifted by i 2 Omega k; the
+  copy kept is the one whose form's harmonics are centred on k = 0. H is raised until
+  the exponents kept stop moving.
+- The monodromy matrix: the first-order system integrated over one period (fourth-
+  order Magnus steps, each exact for the mean system), its eigenvalues the Floquet
+  multipliers mu = exp(lam T): |mu| > 1 grows, Re lam = ln |mu| / T.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.errors import SolverError
+
+if TYPE_CHECKING:
+    from shaftfem.fem.rotor import Roots, RotorModel
+
+# Hill's harmonics: from this many, raised by HILL_STEP while the exponents kept move by
+# more than HILL_TOL (relative to the largest frequency among them), up to HILL_MAX.
+HILL_START = 2
+HILL_STEP = 2
+HILL_TOL = 1e-9
+HILL_MAX = 12
+# ... watching this share of the exponents, the lowest.
+WATCHED = 2 / 3
+# The monodromy's steps: at least this many a period, and so many that the fastest
+# mode turns by at most a quarter turn in a step.
+MONODROMY_STEPS = 256
+
+
+@dataclass(frozen=True)
+class FirstOrder:
+    """x' = (A + A_c cos 2 Omega t + A_s sin 2 Omega t) x, x = (q, q'), at one spin."""
+
+    omega: float
+    A: np.ndarray
+    Ac: np.ndarray
+    As: np.ndarray
+
+    def at(self, t: float) -> np.ndarray:
+        c, s = math.cos(2 * self.omega * t), math.sin(2 * self.omega * t)
+        return self.A + c * self.Ac + s * self.As
+
+
+def first_order(model: RotorModel, omega: float) -> FirstOrder:
+    """The rotor's first-order form at the spin omega (rad/s), the mass solved out."""
+    D, K = model.matrices(omega)
+    Dc, Ds, Kc, Ks = model.periodic_parts(omega)
+    n = model.size
+    M = model.mass(omega)
+    Minv = np.linalg.inv(M)
+    Z, eye = np.zeros((n, n)), np.eye(n)
+
+    def block(Kx: np.ndarray, Dx: np.ndarray, top: np.ndarray) -> np.ndarray:
+        return np.block([[Z, top], [-Minv @ Kx, -Minv @ Dx]])
+
+    return FirstOrder(omega, block(K, D, eye), block(Kc, Dc, Z), block(Ks, Ds, Z))
+
+
+@dataclass(frozen=True)
+class Hill:
+    """Hill's exponents at one spin: each Floquet exponent once (2 N, s^-1), its form's
+    harmonic coefficients of q at k = 0 (N, 2 N), the centroid of its harmonics, and
+    the harmonics used (H) with how far the exponents moved from H - HILL_STEP."""
+
+    lam: np.ndarray
+    y: np.ndarray
+    centroid: np.ndarray
+    harmonics: int
+    change: float
+
+
+def hill(model: RotorModel, omega: float, harmonics: int) -> Hill:
+    """The Floquet exponents at the spin omega (rad/s) by Hill's method with harmonics
+    -H..H: x = exp(lam t) sum_k x_k exp(i 2 k Omega t) gives
+    (lam + i 2 k Omega) x_k = A x_k + A_+ x_{k-1} + A_- x_{k+1}, A_+- = (A_c -+ i A_s) / 2."""
+    f = first_order(model, omega)
+    m = f.A.shape[0]
+    H = harmonics
+    size = 2 * H + 1
+    Ap, Am = 0.5 * (f.Ac - 1j * f.As), 0.5 * (f.Ac + 1j * f.As)
+    big = np.zeros((size * m, size * m), dtype=complex)
+    for i, k in enumerate(range(-H, H + 1)):
+        rows = slice(i * m, (i + 1) * m)
+        big[rows, rows] = f.A - 2j * k * omega * np.eye(m)
+        if i > 0:
+            big[rows, (i - 1) * m:i * m] = Ap
+        if i < size - 1:
+            big[rows, (i + 1) * m:(i + 2) * m] = Am
+    lam, V = np.linalg.eig(big)
+    V = V.reshape(size, m, -1)
+    weight = np.sum(np.abs(V) ** 2, axis=1)                  # (size, all)
+    weight = weight / weight.sum(axis=0)
+    ks = np.arange(-H, H + 1)
+    centroid = ks @ weight
+    keep = one_copy(lam, centroid, omega, m)
+    n = m // 2
+    return Hill(lam=lam[keep], y=V[H, :n, keep].T, centroid=centroid[keep], harmonics=H,
+                change=math.nan)
+
+
+def one_copy(lam: np.ndarray, centroid: np.ndarray, omega: float, m: int) -> np.ndarray:
+    """Which of Hill's eigenvalues to keep, m of them: of each exponent's copies
+    (lam + i 2 Omega k, their harmonics' centroids shifted by k) the most central one.
+    A copy is recognised by its exponent modulo i 2 Omega and its centroid a whole
+    number away from one kept."""
+    scale = max(float(np.abs(lam).max()), omega, 1.0)
+    kept: list[int] = []
+    for j in np.argsort(np.abs(centroid), kind="stable"):
+        copy = False
+        for i in kept:
+            d = lam[j] - lam[i]
+            turns = d.imag / (2 * omega)
+            shift = centroid[j] - centroid[i]
+            if (abs(d.real) <= 1e-6 * scale and abs(turns - round(turns)) <= 1e-6 * scale / omega
+                    and round(turns) != 0 and abs(shift - round(shift)) < 0.25
+                    and round(shift) != 0):
+                copy = True
+                break
+        if not copy:
+            kept.append(int(j))
+        if len(kept) == m:
+            break
+    return np.array(kept)
+
+
+def apart(a: np.ndarray, b: np.ndarray, omega: float) -> np.ndarray:
+    """|a_i - b_j| for exponents (s^-1), their imaginary parts modulo 2 omega (the same
+    Floquet form whichever copy each is): (len a, len b)."""
+    d = a[:, None] - b[None, :]
+    im = np.abs(np.mod(d.imag + omega, 2 * omega) - omega)
+    return np.hypot(d.real, im)
+
+
+def matched_change(a: np.ndarray, b: np.ndarray, omega: float) -> float:
+    """The largest distance between two sets of exponents paired one to one (apart)."""
+    from scipy.optimize import linear_sum_assignment
+
+    if a.size == 0 or b.size == 0:
+        return 0.0
+    cost = apart(a, b, omega)
+    i, j = linear_sum_assignment(cost)
+    return float(cost[i, j].max())
+
+
+def converged_hill(model: RotorModel, omega: float) -> Hill:
+    """Hill's exponents with H raised until the lower WATCHED of them (what the basis
+    check vouches for; the basis' top converges last) move by at most HILL_TOL of the
+    largest among them (compared modulo i 2 Omega); a SolverError if HILL_MAX harmonics
+    do not settle them."""
+    prev = hill(model, omega, HILL_START)
+    H = HILL_START
+    while True:
+        H += HILL_STEP
+        cur = hill(model, omega, H)
+        low = np.sort(np.abs(cur.lam))[int(WATCHED * (cur.lam.size - 1))]
+        watch = [h.lam[np.abs(h.lam) <= low * (1 + 1e-9)] for h in (prev, cur)]
+        scale = max(float(low), omega, 1.0)
+        change = matched_change(*watch, omega) / scale
+        if change <= HILL_TOL:
+            return Hill(cur.lam, cur.y, cur.centroid, H, change)
+        if H >= HILL_MAX:
+            raise SolverError(f"Hill's method at {omega * 30 / math.pi:,.0f} r/min: the Floquet "
+                              f"exponents still move by {change:.2g} with {H} harmonics")
+        prev = cur
+
+
+def monodromy(model: RotorModel, omega: float, steps: int | None = None) -> np.ndarray:
+    """The monodromy matrix (2 N, 2 N): the first-order state after one period
+    T = pi / omega from each unit state, by fourth-order Magnus steps (two Gauss
+    points; each step's exponential exact for a constant system)."""
+    import scipy.linalg
+
+    f = first_order(model, omega)
+    T = math.pi / omega
+    fastest = math.sqrt(max(float(np.max(model.omega2)), 1.0))
+    if steps is None:
+        steps = max(MONODROMY_STEPS, math.ceil(4 * fastest * T / (0.5 * math.pi)))
+    h = T / steps
+    c1, c2 = 0.5 - math.sqrt(3) / 6, 0.5 + math.sqrt(3) / 6
+    Phi = np.eye(f.A.shape[0])
+    for j in range(steps):
+        A1, A2 = f.at((j + c1) * h), f.at((j + c2) * h)
+        Om = 0.5 * h * (A1 + A2) + (math.sqrt(3) / 12) * h * h * (A2 @ A1 - A1 @ A2)
+        Phi = scipy.linalg.expm(Om) @ Phi
+    return Phi
+
+
+def multipliers(model: RotorModel, omega: float, steps: int | None = None) -> np.ndarray:
+    """The Floquet multipliers mu = exp(lam T) from the monodromy matrix."""
+    return np.linalg.eigvals(monodromy(model, omega, steps))
+
+
+def routes_apart(model: RotorModel, omega: float, hill_lam: np.ndarray | None = None
+                 ) -> float:
+    """How far Hill's exponents lie from the monodromy's (both at the spin omega): the
+    largest distance of a pair, each exponent's growth rate ln |mu| / T and its
+    frequency modulo 2 omega, over the largest |lam| (a fraction)."""
+    lam = converged_hill(model, omega).lam if hill_lam is None else hill_lam
+    T = math.pi / omega
+    mono = np.log(multipliers(model, omega).astype(complex)) / T
+    scale = max(float(np.abs(lam).max()), omega, 1.0)
+    return matched_change(lam, mono, omega) / scale
+
+
+def floquet_roots(model: RotorModel, omega: float) -> Roots:
+    """The Floquet exponents at the spin omega as fem.rotor.roots gives a constant
+    rotor's roots: the oscillating ones (Im lam > 0, the dominant harmonic's
+    frequency), lowest first, with their forms' k = 0 coefficients; the fastest growth
+    of a non-oscillating one kept (a multiplier real and above 1)."""
+    from shaftfem.fem.rotor import Roots
+
+    h = converged_hill(model, omega)
+    scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
+    keep = h.lam.imag > 1e-9 * scale
+    still = np.abs(h.lam.imag) <= 1e-9 * scale
+    divergence = float(max(0.0, h.lam.real[still].max())) if still.any() else 0.0
+    lam, y = h.lam[keep], h.y[:, keep]
+    order = np.argsort(lam.imag)
+    return Roots(lam=lam[order], y=y[:, order],
+                 divergence=divergence if divergence > 1e-9 * scale else 0.0)

@@ -1,0 +1,156 @@
+"""The periodic rotor (fem.floquet): a shaft stiffer across one diameter than across
+the other, in supports that differ along x and y, written in the frame turning with
+the shaft, where its coefficients have period pi / Omega.
+
+- The asymmetric Jeffcott rotor (disk m on a shaft of stiffness k1, k2 along its two
+  principal axes) on isotropic supports is unstable exactly between its two critical
+  speeds sqrt(k1 / m) and sqrt(k2 / m).
+- On supports kx != ky its instability zones move; each zone's edges against a direct
+  time integration of the rotor's equations in the stationary frame, written here.
+- Hill's method and the monodromy matrix agree; a round rotor in anisotropic supports
+  solved by Floquet in the turning frame has the stationary frame's roots.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from shaftfem.fem.floquet import apart, converged_hill, multipliers, routes_apart
+from shaftfem.fem.rotor import (
+    BearingModal,
+    RotorModel,
+    deviatoric_parts,
+    isotropic_part,
+    part_matrices,
+    roots,
+)
+from shaftfem.scene.model import BearingCoefficients
+
+M, K1, K2, C = 2.0, 2.0e5, 3.0e5, 4.0   # kg, N/m, N/m, N s/m
+
+
+def jeffcott(kx: float, ky: float, c: float = C, k1: float = K1, k2: float = K2
+             ) -> RotorModel:
+    """The disk's two translations, mass-normalised (q = sqrt(m) u), in the frame turning
+    with the shaft: the shaft's springs k1, k2 constant there, the supports kx, ky and
+    damping c on the disk in the stationary frame (a bearing of the model)."""
+    G, K = part_matrices(M, 0.0, 0.0, "rotating")
+    G, K = G[:2, :2] / M, K[:2, :2] / M
+    beta = np.eye(2) / math.sqrt(M)
+    support = BearingCoefficients(speeds=(), kxx=(kx,), kxy=(0.0,), kyx=(0.0,), kyy=(ky,),
+                                  cxx=(c,), cxy=(0.0,), cyx=(0.0,), cyy=(c,))
+    eye = np.eye(2)
+    return RotorModel("rotating", np.array([k1 / M, k2 / M]), G, K,
+                      (BearingModal("support", beta, support, (0.0, 0.0)),),
+                      eye, 1j * (np.outer(eye[0], eye[1]) - np.outer(eye[1], eye[0])),
+                      ("bending", "bending"))
+
+
+def growth(model: RotorModel, omega: float) -> float:
+    """The fastest growth rate (1/s) of the rotor at the spin omega: its roots'."""
+    r = roots(model, omega)
+    g = float(np.max(r.lam.real)) if r.lam.size else -math.inf
+    return max(g, r.divergence) if r.divergence > 0 else g
+
+
+def stationary_growth(kx: float, ky: float, c: float, omega: float) -> float:
+    """The same rotor written directly in the stationary frame, x'' = -(K_s(t) x + c x')
+    / m with the shaft's K_s(t) = R(Omega t) diag(k1, k2) R(Omega t)^T, integrated over
+    one period from each unit state (scipy's DOP853): the largest ln |mu| / T."""
+    from scipy.integrate import solve_ivp
+
+    T = math.pi / omega
+
+    def rhs(t: float, s: np.ndarray) -> np.ndarray:
+        X = s.reshape(4, 4)
+        a = omega * t
+        R = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        Ks = R @ np.diag([K1, K2]) @ R.T + np.diag([kx, ky])
+        A = np.block([[np.zeros((2, 2)), np.eye(2)], [-Ks / M, -c / M * np.eye(2)]])
+        return (A @ X).ravel()
+
+    sol = solve_ivp(rhs, (0.0, T), np.eye(4).ravel(), method="DOP853", rtol=1e-11,
+                    atol=1e-13)
+    mu = np.linalg.eigvals(sol.y[:, -1].reshape(4, 4))
+    return float(np.max(np.log(np.abs(mu)))) / T
+
+
+def edges(g, lo: float, hi: float, n: int = 240) -> list[float]:
+    """Where g changes sign on [lo, hi]: scanned, then bisected to 1e-7."""
+    from scipy.optimize import brentq
+
+    xs = np.linspace(lo, hi, n)
+    ys = [g(x) for x in xs]
+    out = []
+    for a, b, ya, yb in zip(xs[:-1], xs[1:], ys[:-1], ys[1:]):
+        if ya * yb < 0:
+            out.append(float(brentq(g, a, b, xtol=1e-7 * b)))
+    return out
+
+
+def test_the_deviatoric_part_turns_at_twice_the_angle():
+    rng = np.random.default_rng(3)
+    A = rng.normal(size=(2, 2))
+    d, d2 = deviatoric_parts(A)
+    np.testing.assert_allclose(isotropic_part(A) + d, A, atol=1e-14)
+    for theta in (0.3, 1.1, 2.9):
+        R = np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
+        np.testing.assert_allclose(R.T @ A @ R, isotropic_part(A) + d * math.cos(2 * theta)
+                                   + d2 * math.sin(2 * theta), atol=1e-13)
+
+
+def test_an_asymmetric_jeffcott_rotor_is_unstable_exactly_between_its_criticals():
+    """Isotropic supports (kx = ky = 0 here: the shaft alone, undamped): the turning
+    frame's equations are constant and a root diverges between sqrt(k1/m) and
+    sqrt(k2/m), within 1e-4."""
+    model = jeffcott(0.0, 0.0, c=0.0)
+    w1, w2 = math.sqrt(K1 / M), math.sqrt(K2 / M)
+    found = edges(lambda w: roots(model, w).divergence - 1e-6, 0.5 * w1, 1.5 * w2)
+    assert len(found) == 2
+    assert found[0] == pytest.approx(w1, rel=1e-4) and found[1] == pytest.approx(w2, rel=1e-4)
+
+
+def test_on_anisotropic_supports_every_zone_meets_a_direct_time_integration():
+    """kx = 0.5 k1, ky = 1.5 k1, lightly damped: the periodic rotor's zones of growth
+    from its Floquet exponents (Hill's method), their edges within 0.5 % in speed of
+    those of the equations integrated in time in the stationary frame."""
+    kx, ky = 0.5 * K1, 1.5 * K1
+    model = jeffcott(kx, ky)
+    lo, hi = 50.0, 1.6 * math.sqrt((K2 + ky) / M)
+    ours = edges(lambda w: growth(model, w), lo, hi)
+    theirs = edges(lambda w: stationary_growth(kx, ky, C, w), lo, hi)
+    assert ours, "the rotor should have zones of growth to compare"
+    assert len(ours) == len(theirs)
+    np.testing.assert_allclose(ours, theirs, rtol=5e-3)
+
+
+@pytest.mark.parametrize("rpm", [900.0, 2500.0, 4800.0])
+def test_hill_and_the_monodromy_agree(rpm):
+    """Both routes' exponents, each growth rate and its frequency modulo 2 Omega."""
+    model = jeffcott(0.5 * K1, 1.5 * K1)
+    omega = rpm * math.pi / 30
+    assert routes_apart(model, omega) < 1e-7
+    h = converged_hill(model, omega)
+    mu = multipliers(model, omega)
+    np.testing.assert_allclose(np.sort(np.abs(np.exp(h.lam * math.pi / omega))),
+                               np.sort(np.abs(mu)), rtol=1e-7)
+
+
+def test_a_round_rotor_in_anisotropic_supports_has_the_stationary_frame_s_roots():
+    """k1 = k2: the stationary frame's equations are constant. Each of their roots
+    lam_s is a Floquet exponent of the turning frame's periodic ones, lam_s - i Omega
+    (modulo i 2 Omega), within 1e-8."""
+    kx, ky = 0.4 * K1, 1.3 * K1
+    model = jeffcott(kx, ky, k1=K1, k2=K1)
+    for rpm in (700.0, 3100.0):
+        omega = rpm * math.pi / 30
+        A = np.block([[np.zeros((2, 2)), np.eye(2)],
+                      [-(np.diag([kx, ky]) + K1 * np.eye(2)) / M, -C / M * np.eye(2)]])
+        stationary = np.linalg.eigvals(A)
+        h = converged_hill(model, omega)
+        d = apart(stationary - 1j * omega, h.lam, omega)
+        scale = float(np.abs(stationary).max())
+        assert d.min(axis=1).max() < 1e-8 * scale
