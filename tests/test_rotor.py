@@ -181,17 +181,25 @@ def test_cross_coupled_bearings_go_unstable():
     assert first.speed_rpm * math.pi / 30 == pytest.approx(ref["onset_speed"], rel=0.02)
 
 
-def test_scene_refuses_what_no_frame_solves(tmp_path):
-    """A keyed shaft in anisotropic bearings is periodic in time in either frame; the
-    stationary frame refuses a shaft that is not a solid of revolution."""
+def test_a_keyed_shaft_in_anisotropic_bearings_is_solved_and_a_frame_that_cannot_refused(
+        tmp_path):
+    """A keyed shaft in anisotropic bearings is periodic in time in either frame: solved
+    in the turning frame by Floquet theory, its two routes agreeing at the running
+    speed; the stationary frame refuses a shaft that is not a solid of revolution."""
+    from shaftfem.fem.floquet import routes_apart
+    from shaftfem.workflows.campbell import turning
+
     keyed = {"name": "keyed", "material": STEEL, "mesh": {"element_size_mm": 8.0},
              "section": [{"length_mm": 300.0, "diameter_mm": 30.0}],
              "keyway": [{"position_mm": 150.0, "length_mm": 40.0}],
              "support": [bearing(30.0, "a", kxx_n_per_mm=1e5, kyy_n_per_mm=5e4),
                          bearing(270.0, "b", kxx_n_per_mm=1e5)],
+             "modes": {"count": 4},
              "rotor": {"speed_rpm": 3000.0}}
-    with pytest.raises(SceneError, match="periodic in time"):
-        run_campbell(load_scene(keyed))
+    _, model, why = turning(load_scene(keyed))
+    assert model.frame == "rotating" and "Floquet" in why
+    assert model.periodic(3000 * math.pi / 30)
+    assert routes_apart(model, 3000 * math.pi / 30) < 1e-8
     keyed["support"][0]["kyy_n_per_mm"] = 1e5
     keyed["rotor"]["frame"] = "stationary"
     with pytest.raises(SceneError, match="shafts of revolution only"):

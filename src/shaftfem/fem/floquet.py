@@ -46,6 +46,14 @@ WATCHED = 2 / 3
 MONODROMY_STEPS = 256
 
 
+# the harmonics the last converged solve of each model took (a model's neighbouring
+# speeds need about as many): where the next solve starts
+_LAST: dict[int, int] = {}
+# the roots of the last speeds solved (a Campbell run asks the same speed again: its
+# curves, its rows, its bands)
+_ROOTS: dict[tuple, Roots] = {}
+
+
 @dataclass(frozen=True)
 class FirstOrder:
     """x' = (A + A_c cos 2 Omega t + A_s sin 2 Omega t) x, x = (q, q'), at one spin."""
@@ -78,14 +86,15 @@ def first_order(model: RotorModel, omega: float) -> FirstOrder:
 @dataclass(frozen=True)
 class Hill:
     """Hill's exponents at one spin: each Floquet exponent once (2 N, s^-1), its form's
-    harmonic coefficients of q at k = 0 (N, 2 N), the centroid of its harmonics, and
-    the harmonics used (H) with how far the exponents moved from H - HILL_STEP."""
+    harmonic coefficients of q at k = 0 (N, 2 N), the centroid of its harmonics, the
+    harmonics used (H), and each exponent's truncation residual: what its form would
+    need of the harmonics beyond H, |A_+ x_H| + |A_- x_-H| over |x| (s^-1)."""
 
     lam: np.ndarray
     y: np.ndarray
     centroid: np.ndarray
     harmonics: int
-    change: float
+    residual: np.ndarray
 
 
 def hill(model: RotorModel, omega: float, harmonics: int) -> Hill:
@@ -108,13 +117,16 @@ def hill(model: RotorModel, omega: float, harmonics: int) -> Hill:
     lam, V = np.linalg.eig(big)
     V = V.reshape(size, m, -1)
     weight = np.sum(np.abs(V) ** 2, axis=1)                  # (size, all)
+    norm = np.sqrt(weight.sum(axis=0))
     weight = weight / weight.sum(axis=0)
     ks = np.arange(-H, H + 1)
     centroid = ks @ weight
     keep = one_copy(lam, centroid, omega, m)
+    residual = (np.linalg.norm(Ap @ V[-1][:, keep], axis=0)
+                + np.linalg.norm(Am @ V[0][:, keep], axis=0)) / norm[keep]
     n = m // 2
     return Hill(lam=lam[keep], y=V[H, :n, keep].T, centroid=centroid[keep], harmonics=H,
-                change=math.nan)
+                residual=residual)
 
 
 def one_copy(lam: np.ndarray, centroid: np.ndarray, omega: float, m: int) -> np.ndarray:
@@ -163,24 +175,24 @@ def matched_change(a: np.ndarray, b: np.ndarray, omega: float) -> float:
 
 def converged_hill(model: RotorModel, omega: float) -> Hill:
     """Hill's exponents with H raised until the lower WATCHED of them (what the basis
-    check vouches for; the basis' top converges last) move by at most HILL_TOL of the
-    largest among them (compared modulo i 2 Omega); a SolverError if HILL_MAX harmonics
-    do not settle them."""
-    prev = hill(model, omega, HILL_START)
-    H = HILL_START
+    check vouches for; the basis' top converges last) have truncation residuals of at
+    most HILL_TOL of the largest among them: their forms hold next to nothing in the
+    outermost harmonics. A SolverError if HILL_MAX harmonics do not settle them."""
+    key = id(model)
+    H = max(HILL_START, _LAST.get(key, HILL_START) - HILL_STEP)
     while True:
-        H += HILL_STEP
-        cur = hill(model, omega, H)
-        low = np.sort(np.abs(cur.lam))[int(WATCHED * (cur.lam.size - 1))]
-        watch = [h.lam[np.abs(h.lam) <= low * (1 + 1e-9)] for h in (prev, cur)]
-        scale = max(float(low), omega, 1.0)
-        change = matched_change(*watch, omega) / scale
-        if change <= HILL_TOL:
-            return Hill(cur.lam, cur.y, cur.centroid, H, change)
+        h = hill(model, omega, H)
+        low = np.sort(np.abs(h.lam))[int(WATCHED * (h.lam.size - 1))]
+        watched = np.abs(h.lam) <= low * (1 + 1e-9)
+        worst = float(h.residual[watched].max()) / max(float(low), omega, 1.0)
+        if worst <= HILL_TOL:
+            _LAST[key] = H
+            return h
         if H >= HILL_MAX:
             raise SolverError(f"Hill's method at {omega * 30 / math.pi:,.0f} r/min: the Floquet "
-                              f"exponents still move by {change:.2g} with {H} harmonics")
-        prev = cur
+                              f"forms still reach the outermost of {H} harmonics (residual "
+                              f"{worst:.2g})")
+        H += HILL_STEP
 
 
 def monodromy(model: RotorModel, omega: float, steps: int | None = None) -> np.ndarray:
@@ -221,6 +233,79 @@ def routes_apart(model: RotorModel, omega: float, hill_lam: np.ndarray | None = 
     return matched_change(lam, mono, omega) / scale
 
 
+def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
+    """The lowest speed (rad/s) from which Hill's method settles at every one of
+    `speeds` (ascending) above it, and below the lowest of them down to `lowest` by
+    halving: below it the Floquet forms spread over more harmonics than HILL_MAX (a
+    slow spin in strongly anisotropic bearings)."""
+    def settles(w: float) -> bool:
+        if not model.periodic(w):
+            return True
+        try:
+            converged_hill(model, w)
+        except SolverError:
+            return False
+        return True
+
+    positive = [float(w) for w in speeds if w > 0]
+    floor = positive[-1]
+    for w in positive[::-1]:
+        if not settles(w):
+            return floor
+        floor = w
+    while floor / 2 >= lowest and settles(floor / 2):
+        floor /= 2
+    return floor
+
+
+def periodic_unbalance(model: RotorModel, omega: float,
+                       forces: list[tuple[np.ndarray, complex]]) -> np.ndarray:
+    """The steady response to unbalances (each its plane's motion beta (2, N) and
+    U = m e exp(i phase), kg m) of a periodic rotor at the spin omega, by harmonic
+    balance in the turning frame, where the unbalance's force stands still:
+    q = sum_k q_k exp(i 2 k Omega t), and for each harmonic m
+    (K - (2 m Omega)^2 M + i 2 m Omega D) q_m + (K_+ + i 2 (m-1) Omega D_+) q_{m-1}
+    + (K_- + i 2 (m+1) Omega D_-) q_{m+1} = F delta_m0. The harmonics (N, 2 H + 1),
+    H raised until the 1x response (k = 0 and -1) moves by at most HILL_TOL."""
+    D, K = model.matrices(omega)
+    Dc, Ds, Kc, Ks = model.periodic_parts(omega)
+    Mm = model.mass(omega)
+    Kp, Km, Dp, Dm = (0.5 * (Kc - 1j * Ks), 0.5 * (Kc + 1j * Ks), 0.5 * (Dc - 1j * Ds),
+                      0.5 * (Dc + 1j * Ds))
+    n = model.size
+    F = np.zeros(n)
+    for beta, U in forces:
+        F += omega**2 * (U.real * beta[0] + U.imag * beta[1])
+
+    def solve(H: int) -> np.ndarray:
+        size = 2 * H + 1
+        big = np.zeros((size * n, size * n), dtype=complex)
+        for i, m in enumerate(range(-H, H + 1)):
+            r = slice(i * n, (i + 1) * n)
+            w = 2 * m * omega
+            big[r, r] = K - w * w * Mm + 1j * w * D
+            if i > 0:
+                big[r, (i - 1) * n:i * n] = Kp + 2j * (m - 1) * omega * Dp
+            if i < size - 1:
+                big[r, (i + 1) * n:(i + 2) * n] = Km + 2j * (m + 1) * omega * Dm
+        rhs = np.zeros(size * n, dtype=complex)
+        rhs[H * n:(H + 1) * n] = F
+        return np.linalg.solve(big, rhs).reshape(size, n).T
+
+    H = HILL_START
+    prev = solve(H)
+    while True:
+        cur = solve(H + HILL_STEP)
+        c0, p0 = cur[:, H + HILL_STEP - 1:H + HILL_STEP + 1], prev[:, H - 1:H + 1]
+        if np.abs(c0 - p0).max() <= HILL_TOL * max(float(np.abs(c0).max()), 1e-300):
+            return cur
+        H += HILL_STEP
+        if H > HILL_MAX:
+            raise SolverError(f"the unbalance response at {omega * 30 / math.pi:,.0f} r/min: "
+                              f"harmonic balance does not settle with {H} harmonics")
+        prev = cur
+
+
 def floquet_roots(model: RotorModel, omega: float) -> Roots:
     """The Floquet exponents at the spin omega as fem.rotor.roots gives a constant
     rotor's roots: the oscillating ones (Im lam > 0, the dominant harmonic's
@@ -228,6 +313,9 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     of a non-oscillating one kept (a multiplier real and above 1)."""
     from shaftfem.fem.rotor import Roots
 
+    key = (id(model), model.size, float(model.omega2.sum()), float(omega))
+    if key in _ROOTS:
+        return _ROOTS[key]
     h = converged_hill(model, omega)
     scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
     keep = h.lam.imag > 1e-9 * scale
@@ -235,5 +323,9 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     divergence = float(max(0.0, h.lam.real[still].max())) if still.any() else 0.0
     lam, y = h.lam[keep], h.y[:, keep]
     order = np.argsort(lam.imag)
-    return Roots(lam=lam[order], y=y[:, order],
-                 divergence=divergence if divergence > 1e-9 * scale else 0.0)
+    out = Roots(lam=lam[order], y=y[:, order],
+                divergence=divergence if divergence > 1e-9 * scale else 0.0)
+    if len(_ROOTS) >= 512:
+        _ROOTS.pop(next(iter(_ROOTS)))
+    _ROOTS[key] = out
+    return out

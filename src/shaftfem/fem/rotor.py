@@ -620,6 +620,10 @@ def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.nd
     Stationary frame: the force m e omega^2 (cos(omega t + phase), sin(...)) is
     U omega^2 (1, -i) exp(i omega t), solved from (K - omega^2 I + i omega D) y = F.
     Rotating frame: it stands still there, omega^2 (Re U, Im U), and K y = F."""
+    if model.periodic(omega):
+        from shaftfem.fem.floquet import periodic_unbalance
+
+        return periodic_unbalance(model, omega, forces)
     D, K = model.matrices(omega)
     F = np.zeros(model.size, dtype=complex)
     for beta, U in forces:
@@ -639,6 +643,16 @@ def orbit(model: RotorModel, beta: np.ndarray, y: np.ndarray
     amplitude along y (m) and its phase (rad). In the rotating frame the response
     stands still there: a forward circle in the stationary frame, of the radius of its
     displacement."""
+    if y.ndim == 2:
+        # a periodic rotor's harmonics q_k (N, 2 H + 1), turning frame: the section's
+        # x_r + i y_r = sum (X_k + i Y_k) exp(i 2 k Omega t) is seen from the housing as
+        # exp(i Omega t) times that: at 1x the forward a_f (k = 0) and backward a_b (k = -1)
+        H = y.shape[1] // 2
+        Xk, Yk = beta[0] @ y, beta[1] @ y
+        a_f, a_b = Xk[H] + 1j * Yk[H], Xk[H - 1] + 1j * Yk[H - 1]
+        X, Y = a_f + np.conj(a_b), -1j * a_f + 1j * np.conj(a_b)
+        return (float(abs(X)), float(abs(a_f) + abs(a_b)), float(np.angle(X)), float(abs(Y)),
+                float(np.angle(Y)))
     x, yv = beta[0] @ y, beta[1] @ y
     if model.frame == "rotating":
         r = float(math.hypot(abs(x), abs(yv)))

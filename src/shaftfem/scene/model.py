@@ -381,14 +381,19 @@ class Support:
     coupling: str = "distributing"   # or "rigid": the band moves as a rigid ring
     bearing: BearingCoefficients | None = None   # kind "bearing", "journal": its coefficients
     journal: JournalBearing | None = None   # kind "journal": the film's bearing
+    # the standstill modes hold the bearing's mean of kxx and kyy on both axes: the
+    # basis of a rotor solved in the frame turning with it, which every angle sees alike
+    mean_seat: bool = False
 
     @property
     def radial_xy(self) -> tuple[float, float]:
         """The radial stiffness along x and y at standstill, N/m (a bearing's kxx and kyy
-        at its reference speed, 0 but for a journal; the springs' radial stiffness on
-        both)."""
+        at its reference speed, 0 but for a journal, or with `mean_seat` their mean on
+        both; the springs' radial stiffness on both)."""
         if self.bearing is not None:
             (kxx, _), (_, kyy) = self.bearing.stiffness(self.bearing.reference)
+            if self.mean_seat:
+                return 0.5 * (kxx + kyy), 0.5 * (kxx + kyy)
             return kxx, kyy
         return self.radial, self.radial
 

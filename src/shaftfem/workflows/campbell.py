@@ -356,6 +356,13 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
 
     scene = with_journal_loads(scene, options)
     frame, why = choose_frame(scene)
+    if frame == "rotating":
+        # the basis is turned with the shaft past the bearings: made on their mean stiffness
+        # it looks alike from every angle (a periodic rotor's deviatoric part then acts on
+        # a basis that does not favour the angle the standstill run was made at)
+        scene = replace(scene, supports=tuple(
+            replace(s, mean_seat=True) if s.bearing is not None and not s.bearing.isotropic
+            else s for s in scene.supports))
     if scene.mesh.order > 2:
         raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the turning shaft "
                          "takes orders 1 and 2")
@@ -403,6 +410,24 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     count = scene.modes.count
     grid = (np.linspace(0.0, rotor.max_speed, rotor.points) if speeds_rpm is None
             else np.asarray(speeds_rpm, dtype=float) * RPM)
+    periodic_note = None
+    if any(model.periodic(float(w)) for w in grid if w > 0):
+        from shaftfem.fem.floquet import solved_from
+
+        floor = solved_from(model, np.union1d(grid, rotor.speeds), 0.01 * float(grid.max()))
+        low = [w for w in rotor.speeds if 0 < w < floor]
+        if low:
+            raise SceneError(f"{scene.source}: the shaft is not of revolution in bearings that "
+                             "differ along x and y, and at its operating speed(s) "
+                             f"{', '.join(f'{w / RPM:,.0f}' for w in low)} r/min the Floquet "
+                             "forms spread over more harmonics than Hill's method takes "
+                             f"(it settles from {floor / RPM:,.0f} r/min)")
+        # the curves start where Hill's method settles (their steps are halved between
+        # speeds: from standstill they would reach below it)
+        periodic_note = (f"periodic rotor: solved by Floquet theory from {floor / RPM:,.0f} "
+                         "r/min; below it the Floquet forms spread over more harmonics than "
+                         "Hill's method takes, and no crossing is searched there")
+        grid = np.union1d([floor], grid[grid >= floor])
     # the curves pass through every operating speed and range end
     ends = [w for span in rotor.spans for w in span]
     path = np.union1d(grid, [w for w in ends if grid.min() <= w <= grid.max()])
@@ -417,7 +442,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     operating = [w for om in rotor.speeds for w in whirl_at(model, om, count)]
     shapes = tuple(mode_shapes(model, om, count) for om in rotor.speeds)
     basis = truncation(model, tuple(sorted({*rotor.speeds, float(grid.max())})), count)
-    notes = []
+    notes = [periodic_note] if periodic_note else []
     if not scene.held:
         notes.append("the shaft hangs free (no [[support]]): its whirl is a free rotor's")
     if not any(s.bearing is not None and np.any(np.array(s.bearing.cxx + s.bearing.cyy
