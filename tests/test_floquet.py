@@ -206,3 +206,26 @@ def test_a_round_shaft_in_anisotropic_bearings_is_one_answer_in_either_frame():
     y = sorted(cs.speed_rpm for cs in turning.critical_speeds if cs.order == 1)
     assert x and len(x) == len(y)
     np.testing.assert_allclose(y, x, rtol=1e-4)
+
+
+@pytest.mark.parametrize("rpm", [1500.0, 2900.0, 3800.0, 6000.0])
+def test_the_unbalance_response_by_harmonic_balance_meets_the_stationary_closed_form(rpm):
+    """A round Jeffcott rotor on supports kx != ky, damped: its unbalance response solved
+    in the turning frame (periodic: harmonic balance) is the stationary frame's steady
+    ellipse, (K_s - Omega^2 m + i Omega c) X = m e Omega^2 (1, -i) exp(i phi): its x
+    amplitude and phase and its major semi-axis within 1e-8."""
+    from shaftfem.fem.rotor import orbit, unbalance_response
+
+    kx, ky = 0.4 * K1, 1.3 * K1
+    model = jeffcott(kx, ky, k1=K1, k2=K1)
+    omega = rpm * math.pi / 30
+    me, phi = 2e-5, 0.7
+    beta = np.eye(2) / math.sqrt(M)
+    y = unbalance_response(model, omega, [(beta, me * np.exp(1j * phi))])
+    A = np.diag([kx + K1, ky + K1]) - omega**2 * M * np.eye(2) + 1j * omega * C * np.eye(2)
+    X, Y = np.linalg.solve(A, me * omega**2 * np.exp(1j * phi) * np.array([1.0, -1j]))
+    amp_x, major, phase_x, amp_y, _ = orbit(model, beta, y)
+    assert amp_x == pytest.approx(abs(X), rel=1e-8)
+    assert amp_y == pytest.approx(abs(Y), rel=1e-8)
+    assert math.cos(phase_x - np.angle(X)) == pytest.approx(1.0, abs=1e-10)
+    assert major == pytest.approx(0.5 * (abs(X + 1j * Y) + abs(X - 1j * Y)), rel=1e-8)

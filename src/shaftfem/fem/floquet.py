@@ -37,10 +37,12 @@ if TYPE_CHECKING:
 # more than HILL_TOL (relative to the largest frequency among them), up to HILL_MAX.
 HILL_START = 2
 HILL_STEP = 2
-HILL_TOL = 1e-9
+HILL_TOL = 1e-7
 HILL_MAX = 12
-# ... watching this share of the exponents, the lowest.
+# ... watching this share of the exponents, the lowest, those damped at most this
+# ratio (-Re lam / |lam|).
 WATCHED = 2 / 3
+OVERDAMPED = 0.5
 # The monodromy's steps: at least this many a period, and so many that the fastest
 # mode turns by at most a quarter turn in a step.
 MONODROMY_STEPS = 256
@@ -175,15 +177,18 @@ def matched_change(a: np.ndarray, b: np.ndarray, omega: float) -> float:
 
 def converged_hill(model: RotorModel, omega: float) -> Hill:
     """Hill's exponents with H raised until the lower WATCHED of them (what the basis
-    check vouches for; the basis' top converges last) have truncation residuals of at
-    most HILL_TOL of the largest among them: their forms hold next to nothing in the
-    outermost harmonics. A SolverError if HILL_MAX harmonics do not settle them."""
+    check vouches for; the basis' top converges last), but for the forms damped beyond
+    OVERDAMPED, have truncation residuals of at most HILL_TOL of the largest among
+    them: their forms hold next to nothing in the outermost harmonics. A SolverError if
+    HILL_MAX harmonics do not settle them."""
     key = id(model)
     H = max(HILL_START, _LAST.get(key, HILL_START) - HILL_STEP)
     while True:
         h = hill(model, omega, H)
         low = np.sort(np.abs(h.lam))[int(WATCHED * (h.lam.size - 1))]
-        watched = np.abs(h.lam) <= low * (1 + 1e-9)
+        # forms damped beyond OVERDAMPED decay within a fraction of a turn: no stability
+        # question rests on them (an oil film's damping on the bearings' residual modes)
+        watched = (np.abs(h.lam) <= low * (1 + 1e-9)) & (-h.lam.real <= OVERDAMPED * np.abs(h.lam))
         worst = float(h.residual[watched].max()) / max(float(low), omega, 1.0)
         if worst <= HILL_TOL:
             _LAST[key] = H

@@ -136,6 +136,7 @@ def static_solution(scene: Scene, system: System, inst: Installed, skmesh) -> St
     if R.shape[1]:
         lam, V = np.linalg.eigh(R.T @ (inst.M @ R))
         R = R @ (V / np.sqrt(lam))
+        f_q = without_drive_torque(system, inst, R, f_q)
         # each free motion scaled to move the shaft's farthest point by 1 m: what the
         # loads do along it is then a force, N
         reach = np.abs(np.asarray(inst.T @ R)).max(axis=0)
@@ -165,6 +166,24 @@ def static_solution(scene: Scene, system: System, inst: Installed, skmesh) -> St
                           f"{np.abs(total).max():.3g} N left of {np.abs(resultant).max():.3g} N")
     z, x, y = line(system, u)
     return StaticSolution(z=z, x=x, y=y, u=u, reactions=tuple(reactions), load=resultant)
+
+
+def without_drive_torque(system: System, inst: Installed, R: np.ndarray, f_q: np.ndarray
+                         ) -> np.ndarray:
+    """The loads less their moment about the shaft's axis where the seats leave that turn
+    free: a shaft that is not of revolution (a keyway, a groove) has its weight off the
+    axis, and that small moment is the drive's to hold (the coupling, the motor), not the
+    bearings'. R: the free rigid motions, M-orthonormal, reduced."""
+    x, y = system.nodes[:, 0], system.nodes[:, 1]
+    turn = np.zeros(system.n_dofs)
+    turn[0::3], turn[1::3] = -y, x
+    shapes = np.asarray(inst.T @ R)
+    c, *_ = np.linalg.lstsq(shapes, turn, rcond=None)
+    if np.linalg.norm(shapes @ c - turn) > 1e-6 * np.linalg.norm(turn):
+        return f_q                                   # the seats hold the turn
+    r = R @ c
+    r = r / np.sqrt(r @ (inst.M @ r))
+    return f_q - (inst.M @ r) * (r @ f_q)
 
 
 def loads_on_nodes(scene: Scene, system: System, inst: Installed) -> np.ndarray:
