@@ -23,14 +23,21 @@ CYL = (GEOMETRY_DIR / "plain_cylinder.toml").read_text()
 
 
 def test_design_without_excitations_reports_not_checked(tmp_path, capsys):
+    import time
+
     scene = tmp_path / "quiet.toml"
     scene.write_text(re.sub(r"(?s)\[\[excitation\]\].*", "", CYL))
     out = tmp_path / "out"
+    started = time.perf_counter()
     assert main(["design", str(scene), "--out", str(out), "--mesh-size", "16", "--modes", "3",
                  "--no-estimate", "-q"]) == 0
+    took = time.perf_counter() - started
     assert "NOT CHECKED" in capsys.readouterr().out
     report = (out / "report.md").read_text()
     assert "NOT CHECKED" in report and "nothing to check against" in report
+    # the run time is the whole run's, until the report: within what the call took
+    said = float(re.search(r"## Run time\n\n([0-9.]+) s in all", report).group(1))
+    assert 0.3 * took < said <= took + 0.1
     assert len(list(csv.DictReader((out / "modes.csv").read_text().splitlines()))) == 3
     assert sorted(p.name for p in out.glob("*.gif")) == ["mode_01.gif", "mode_02.gif",
                                                           "mode_03.gif"]

@@ -148,8 +148,8 @@ class RotorModel:
         if self.frame != "rotating" or omega == 0.0:
             return False
         for b in self.bearings:
-            for A in (b.coefficients.stiffness(omega), b.coefficients.damping(omega)):
-                A = np.array(A)
+            for coeffs in (b.coefficients.stiffness(omega), b.coefficients.damping(omega)):
+                A = np.array(coeffs)
                 if np.abs(A - isotropic_part(A)).max() > ANISOTROPY * max(np.abs(A).max(), 1e-300):
                     return True
         return False

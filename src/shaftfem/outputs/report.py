@@ -68,9 +68,10 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                     free: ModalResult | None = None,
                     participation: Participation | None = None,
-                    rotor: RotorStudy | None = None) -> str:
+                    rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> str:
     """report.md's text; picture and file names are relative to the report's folder;
-    `rotor`: the rotordynamic study, for a shaft with [rotor]."""
+    `rotor`: the rotordynamic study, for a shaft with [rotor]; `wall_seconds`: the
+    whole run's time until the report (s)."""
     scene = result.scene
     lines = [f"# Modal design report: {scene.name}", ""]
     lines += [x for line in tables.verdict_lines(verdict) for x in (line, "")]
@@ -104,7 +105,7 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
         lines.append("")
     if files:
         lines += ["## Files", ""] + [f"- `{Path(f).name}`" for f in files] + [""]
-    lines += ["## Run time", "", tables.timings_line(result, estimate), ""]
+    lines += ["## Run time", "", tables.run_time_text(result, estimate, wall_seconds), ""]
     return "\n".join(lines)
 
 
@@ -134,6 +135,6 @@ def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdic
                  files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                  free: ModalResult | None = None,
                  participation: Participation | None = None,
-                 rotor: RotorStudy | None = None) -> Path:
+                 rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> Path:
     return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,
-                                            free, participation, rotor))
+                                            free, participation, rotor, wall_seconds))

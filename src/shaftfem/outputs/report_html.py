@@ -130,7 +130,7 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
                 sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                 estimate: ErrorEstimate | None = None, free: ModalResult | None = None,
                 participation: Participation | None = None, rotor: RotorStudy | None = None,
-                drawing: Drawing | None = None) -> str:
+                drawing: Drawing | None = None, wall_seconds: float | None = None) -> str:
     """report.html's text: the vtk.js viewer page with the report around its view
     (`rotor`: the rotordynamic study, for a shaft with [rotor]; `drawing`: the modes'
     drawing the pictures were made from, where there is one)."""
@@ -172,7 +172,8 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     pngs = [p for p in pictures if Path(p).suffix == ".png"]
     if pngs:
         parts += ["<h2>Pictures</h2>"] + [_picture(Path(p)) for p in pngs]
-    parts += ["<h2>Run time</h2>", _paragraphs([tables.timings_line(result, estimate)])]
+    parts += ["<h2>Run time</h2>",
+              _paragraphs([tables.run_time_text(result, estimate, wall_seconds)])]
     body = "\n".join(parts)
     script = (Path(__file__).with_name("report_view.js")).read_text(encoding="utf-8")
     # the viewer puts vtk.js's favicons from the web into the page's head: a page that
@@ -192,6 +193,7 @@ def write_report_html(path: str | Path, result: ModalResult,
                       pictures: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                       free: ModalResult | None = None,
                       participation: Participation | None = None,
-                      rotor: RotorStudy | None = None, drawing: Drawing | None = None) -> Path:
+                      rotor: RotorStudy | None = None, drawing: Drawing | None = None,
+                      wall_seconds: float | None = None) -> Path:
     return write_text(path, report_html(result, verdict, sizing, pictures, estimate, free,
-                                        participation, rotor, drawing))
+                                        participation, rotor, drawing, wall_seconds))

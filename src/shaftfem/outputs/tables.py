@@ -46,6 +46,17 @@ def timings_line(result: ModalResult, est: ErrorEstimate | None = None) -> str:
     return ", ".join(f"{k} {v:.1f} s" for k, v in timings(result, est).items())
 
 
+def run_time_text(result: ModalResult, est: ErrorEstimate | None = None,
+                  wall_seconds: float | None = None) -> str:
+    """The run's time in all (until the report), then where the standstill modal run's
+    went."""
+    parts = timings_line(result, est)
+    if wall_seconds is None:
+        return parts
+    return (f"{wall_seconds:.1f} s in all, until this report; of it the standstill modal "
+            f"run: {parts}")
+
+
 def estimate_notes(est: ErrorEstimate, scene: Scene | None = None) -> list[str]:
     """How the bounds were made, how to read them, where they rest on less, and (given
     the scene) what they cover and what they do not."""

@@ -62,6 +62,8 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     files, pictures, report.md and (unless `html` is False) report.html, published
     together into the folder `out`. `margin`: required separation (fraction), default
     the scene's; `choose`: as run_bounded's."""
+    import time
+
     from shaftfem.checks.resonance import check_result
     from shaftfem.checks.sizing import size_from_scene
     from shaftfem.outputs.export import write_mode_files
@@ -70,6 +72,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     from shaftfem.store import staged_directory
     from shaftfem.workflows.bounded import run_bounded
 
+    started = time.perf_counter()
     say = options.say
     out = Path(out)
     sizing = None
@@ -128,14 +131,16 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
             pictures += campbell_pictures(campbell, stage)
             pictures += study_pictures(study, stage)
             files += write_whirl_files(campbell, stage)
+        wall = time.perf_counter() - started
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
-                     free=free, participation=part, rotor=study)
+                     free=free, participation=part, rotor=study, wall_seconds=wall)
         if html:
             from shaftfem.outputs.report_html import write_report_html
 
             say("report.html: the report with a 3D view of every mode")
             write_report_html(stage / "report.html", result, verdict, sizing, pictures, est,
-                              free=free, participation=part, rotor=study, drawing=d)
+                              free=free, participation=part, rotor=study, drawing=d,
+                              wall_seconds=wall)
     files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
     report = out / "report.md"
     say(f"report written: {report}")
