@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from shaftfem.fem.whirl import CRITICALLY_DAMPED_AF
 from shaftfem.outputs.plots import _figure
 
 if TYPE_CHECKING:
@@ -31,6 +32,10 @@ def _runs(labels: list[str]) -> list[tuple[int, int, str]]:
             out.append((start, min(i, len(labels) - 1), labels[start]))
             start = i
     return out
+
+
+# API 684's critically damped roots: AF = pi / log dec below 2.5
+DAMPED_LOG_DEC = math.pi / CRITICALLY_DAMPED_AF
 
 
 def campbell_figure(c: Campbell):
@@ -65,6 +70,10 @@ def campbell_figure(c: Campbell):
             # each point drawn as its component's share says: heavy where it carries
             # most of the motion, thin where it is the smaller part, not where it is none
             weight = ["heavy" if x >= 0.5 else "thin" if x >= 0.02 else "" for x in share]
+            # a critically damped root (AF below 2.5, API 684) drawn faint: it is no mode
+            # to keep clear of (an oil film's rigid-body roots)
+            weight = [w + ("~" if w and d > DAMPED_LOG_DEC else "")
+                      for w, d in zip(weight, cv.log_dec)]
             if not whirls:
                 words = ["none"] * v.size
             else:
@@ -74,12 +83,13 @@ def campbell_figure(c: Campbell):
                 word, how = key.split("|")
                 if not how:
                     continue
-                heavy = how == "heavy"
+                heavy, faint = how.startswith("heavy"), how.endswith("~")
                 ax.plot(cv.speeds_rpm[a:b + 1], np.abs(v[a:b + 1]),
                         "-" if word != "none" else ":", color=COLOURS[word],
-                        lw=1.6 if heavy else 0.6,
-                        label=LABELS[word] if word not in labelled and heavy else None)
-                if heavy:
+                        lw=1.6 if heavy else 0.6, alpha=0.25 if faint else 1.0,
+                        label=(LABELS[word] if word not in labelled and heavy and not faint
+                               else None))
+                if heavy and not faint:
                     labelled.add(word)
         end = cv.speeds_rpm[-1]
         if end >= 0.6 * top_rpm and cv.seen_hz[-1] < fmax:
@@ -103,6 +113,9 @@ def campbell_figure(c: Campbell):
                     color=COLOURS[cs.whirl], textcoords="offset points",
                     xytext=(-30, 6) if up else (6, -12))
     ax.plot([], [], "o", mfc="none", color="black", label="critical speed, r/min")
+    if any(np.any(cv.log_dec > DAMPED_LOG_DEC) for cv in c.curves if cv.whirling):
+        ax.plot([], [], "-", color="black", alpha=0.25, lw=1.6,
+                label="critically damped (AF < 2.5): no critical speed")
     if any(s.journal is not None for s in c.rotor_scene.supports):
         # an oil film's whirl turns at a little under half the shaft's speed
         ax.plot(speeds, 0.5 * speeds / 60.0, ":", color="black", lw=0.9)
@@ -130,6 +143,18 @@ def campbell_figure(c: Campbell):
         dec.axhline(0.0, color="black", lw=0.8)
         if c.stability is not None and c.stability.required > 0:
             dec.axhline(c.stability.required, color="tab:red", lw=0.8, ls="--")
+        # the panel shows the margin that is judged: the least log decrements where the
+        # shaft runs stay legible, heavily damped roots run off its top (said there)
+        values = np.concatenate([cv.log_dec for cv in c.curves if cv.whirling] or [np.zeros(1)])
+        least = c.stability.log_dec if c.stability is not None else float(values.min())
+        need = c.stability.required if c.stability is not None else 0.0
+        top = max(4 * abs(least), 3 * need, 0.5)
+        if values.max() > top:
+            low = min(float(values.min()), 0.0)
+            dec.set_ylim(low - 0.05 * (top - low), top)
+            dec.annotate(f"clipped at {top:.2g}: heavily damped roots above (up to "
+                         f"{values.max():.3g})", (0.99, 0.93), xycoords="axes fraction",
+                         ha="right", va="top", fontsize=7, color="dimgrey")
         for lo, hi in c.ranges_rpm:
             dec.axvspan(lo, hi, color="gold", alpha=0.3, lw=0)
         dec.set_ylabel("log decrement")
