@@ -337,6 +337,17 @@ def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Trun
     for omega in speeds:
         full = whirl_at(model, omega, count)
         part = whirl_at(model.truncated(smaller), omega, count)
+        if model.periodic(omega):
+            # a Floquet exponent is one modulo i 2 Omega: its dominant component may be
+            # the other copy on the smaller basis (a form with near-equal shares)
+            from shaftfem.fem.floquet import matched_change
+
+            def exponents(ws: list[Whirl]) -> np.ndarray:
+                return np.array([2 * math.pi * w.rotating_frame_hz
+                                 * complex(-w.log_dec / (2 * math.pi), 1.0) for w in ws])
+            a_, b_ = exponents(full), exponents(part)
+            change = max(change, matched_change(a_, b_, omega) / float(np.abs(a_).max()))
+            continue
         for a, b in zip(full, part):
             # a heavily damped root (a rotor on oil films at a few hertz) moves little in
             # the complex plane though its frequency moves by a large share of itself
