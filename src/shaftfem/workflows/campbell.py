@@ -340,13 +340,16 @@ def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Trun
         if model.periodic(omega):
             # a Floquet exponent is one modulo i 2 Omega: its dominant component may be
             # the other copy on the smaller basis (a form with near-equal shares)
-            from shaftfem.fem.floquet import matched_change
+            # (the overdamped forms, which Hill's method does not settle, left out)
+            from shaftfem.fem.floquet import OVERDAMPED, matched_change
 
             def exponents(ws: list[Whirl]) -> np.ndarray:
-                return np.array([2 * math.pi * w.rotating_frame_hz
-                                 * complex(-w.log_dec / (2 * math.pi), 1.0) for w in ws])
+                lam = np.array([2 * math.pi * w.rotating_frame_hz
+                                * complex(-w.log_dec / (2 * math.pi), 1.0) for w in ws])
+                return lam[-lam.real <= OVERDAMPED * np.abs(lam)]
             a_, b_ = exponents(full), exponents(part)
-            change = max(change, matched_change(a_, b_, omega) / float(np.abs(a_).max()))
+            if a_.size:
+                change = max(change, matched_change(a_, b_, omega) / float(np.abs(a_).max()))
             continue
         for a, b in zip(full, part):
             # a heavily damped root (a rotor on oil films at a few hertz) moves little in
@@ -389,6 +392,9 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
         result = run_modes(with_modes(scene, count=size), options)
         options.say(f"whirl on {result.modes.count} standstill modes, {frame} frame")
         model = rotor_model(result, frame)
+        if model.periodic(rotor.max_speed):
+            options.say("periodic rotor: Floquet exponents by Hill's method at every speed "
+                        "(a slow run: minutes on a rotor in journals)")
         # the basis is enlarged while the whirl still moves on it (from two thirds of it)
         if (rotor.basis_modes or size >= MAX_MODE_COUNT
                 or truncation(model, speeds, scene.modes.count).change <= TRUNCATION):
