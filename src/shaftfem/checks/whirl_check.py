@@ -139,11 +139,7 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
 
 def lift_speed_rpm(c: Campbell) -> float:
     """The speed (r/min) from which the scene's journals are lifted by their films."""
-    if c.stability is not None:
-        return c.stability.lift_rpm
-    from shaftfem.workflows.campbell import lift_speed
-
-    return lift_speed(c.rotor_scene) / RPM
+    return c.stability.lift_rpm if c.stability is not None else c.lift_rpm
 
 
 def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:

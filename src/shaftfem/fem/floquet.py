@@ -29,9 +29,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from shaftfem.errors import SolverError
+from shaftfem.fem.rotor import Roots, roots, unbalance_response
 
 if TYPE_CHECKING:
-    from shaftfem.fem.rotor import Roots, RotorModel
+    from shaftfem.fem.rotor import RotorModel
 
 # Hill's harmonics: from this many, raised by HILL_STEP while the exponents kept move by
 # more than HILL_TOL (relative to the largest frequency among them), up to HILL_MAX.
@@ -316,8 +317,6 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     rotor's roots: the oscillating ones (Im lam > 0, the dominant harmonic's
     frequency), lowest first, with their forms' k = 0 coefficients; the fastest growth
     of a non-oscillating one kept (a multiplier real and above 1)."""
-    from shaftfem.fem.rotor import Roots
-
     key = (id(model), model.size, float(model.omega2.sum()), float(omega))
     if key in _ROOTS:
         return _ROOTS[key]
@@ -334,3 +333,18 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
         _ROOTS.pop(next(iter(_ROOTS)))
     _ROOTS[key] = out
     return out
+
+
+def any_roots(model: RotorModel, omega: float) -> Roots:
+    """The rotor's roots at the spin omega: its Floquet exponents where its equations are
+    periodic there (floquet_roots), else the constant system's (fem.rotor.roots)."""
+    return floquet_roots(model, omega) if model.periodic(omega) else roots(model, omega)
+
+
+def any_unbalance_response(model: RotorModel, omega: float,
+                           forces: list[tuple[np.ndarray, complex]]) -> np.ndarray:
+    """The steady unbalance response at the spin omega: by harmonic balance where the
+    rotor is periodic (periodic_unbalance), else fem.rotor.unbalance_response."""
+    if model.periodic(omega):
+        return periodic_unbalance(model, omega, forces)
+    return unbalance_response(model, omega, forces)

@@ -219,15 +219,12 @@ class Roots:
 
 
 def roots(model: RotorModel, omega: float) -> Roots:
-    """The eigenvalues of q'' + D q' + K q = 0 at the spin omega (rad/s), from its
+    """The eigenvalues of q'' + D q' + K q = 0 at the spin omega (rad/s) of a rotor whose
+    coefficients are constant there (fem.floquet.any_roots takes periodic ones too), from its
     first-order form [[0, I], [-M^-1 K, -M^-1 D]]: the oscillating ones (Im lam > 0), lowest
     frequency first. Real ones (overdamped, or a divergence) are left out, the fastest
     growth among them kept (a shaft stiffer across one diameter than across the other
     diverges in the frame that turns with it between its pair's frequencies)."""
-    if model.periodic(omega):
-        from shaftfem.fem.floquet import floquet_roots
-
-        return floquet_roots(model, omega)
     D, K = model.matrices(omega)
     n = model.size
     if any(b.coefficients.has_mass for b in model.bearings):
@@ -620,10 +617,6 @@ def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.nd
     Stationary frame: the force m e omega^2 (cos(omega t + phase), sin(...)) is
     U omega^2 (1, -i) exp(i omega t), solved from (K - omega^2 I + i omega D) y = F.
     Rotating frame: it stands still there, omega^2 (Re U, Im U), and K y = F."""
-    if model.periodic(omega):
-        from shaftfem.fem.floquet import periodic_unbalance
-
-        return periodic_unbalance(model, omega, forces)
     D, K = model.matrices(omega)
     F = np.zeros(model.size, dtype=complex)
     for beta, U in forces:

@@ -34,7 +34,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from shaftfem.fem.rotor import RotorModel, roots, whirl_index
+from shaftfem.fem.floquet import any_roots
+from shaftfem.fem.rotor import RotorModel, whirl_index
 from shaftfem.fem.whirl import FORWARD, RPM, WHIRLING, Curve, seen
 
 # A step along the diagram is halved while a followed curve's shape correlation with
@@ -78,7 +79,7 @@ def spectrum(model: RotorModel, omega: float) -> Spectrum:
     backward, so a pair double at standstill starts as two curves of known whirl."""
     from shaftfem.fem.rotor import dominant_kinds
 
-    r = roots(model, omega)
+    r = any_roots(model, omega)
     y = r.y / np.linalg.norm(r.y, axis=0)
     f, decay = r.lam.imag / (2 * math.pi), -r.lam.real
     kinds = dominant_kinds(model, y)

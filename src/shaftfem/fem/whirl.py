@@ -404,6 +404,8 @@ class Campbell:
     coverage: str | None = None
     # each journal bearing at each operating speed
     films: tuple[FilmRow, ...] = ()
+    # the speed (r/min) from which every journal's film lifts its journal (0: none)
+    lift_rpm: float = 0.0
     # the basis the whirl is solved on, as nodal shapes (3 n, N): the standstill modes
     # and the bearings' residual modes (None: the standstill modes alone)
     basis: np.ndarray | None = field(default=None, repr=False, compare=False)

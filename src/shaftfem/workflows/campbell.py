@@ -296,7 +296,7 @@ def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
 def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, float]]:
     """The speed bands (r/min) where a root grows without oscillating, their edges found
     by bisection between the diagram's speeds (to 1e-9 of the speed)."""
-    from shaftfem.fem.rotor import roots
+    from shaftfem.fem.floquet import any_roots as roots
 
     def grows(omega: float) -> bool:
         return roots(model, omega).divergence > 0
@@ -501,6 +501,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     curves=tuple(curves), stability=stability,
                     ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges),
                     scene=scene, coverage=coverage, films=film_rows(scene),
+                    lift_rpm=lift_speed(scene) / RPM,
                     basis=model.shapes)
 
 

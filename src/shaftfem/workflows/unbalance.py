@@ -40,8 +40,8 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     basis also holds those rigid motions. In a model with no damping a peak is
     unbounded: the peaks are the 1x critical speeds (`criticals`, r/min; by default
     found directly) whose mode the unbalances drive, each given by its speed."""
+    from shaftfem.fem.floquet import any_unbalance_response as solve
     from shaftfem.fem.rotor import orbit, section_motion
-    from shaftfem.fem.rotor import unbalance_response as solve
 
     if not scene.unbalances:
         raise SceneError(f"{scene.source}: no [[unbalance]] to respond to")
@@ -184,7 +184,7 @@ def _unwrapped(phase: np.ndarray) -> np.ndarray:
 def grows(model, omega: float) -> bool:
     """Whether a mode of the turning shaft grows at the spin omega (rad/s): there it has
     no steady unbalance response."""
-    from shaftfem.fem.rotor import roots
+    from shaftfem.fem.floquet import any_roots as roots
 
     r = roots(model, omega)
     scale = 1e-9 * max(float(np.max(np.abs(r.lam))) if r.lam.size else 1.0, 1.0)
