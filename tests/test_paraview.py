@@ -52,9 +52,21 @@ def test_the_exported_paraview_script_renders(exported, tmp_path):
     if xvfb is None:
         pytest.skip("xvfb-run is not installed (Debian package xvfb): no screen to render on")
     png = tmp_path / "mode3.png"
-    run = subprocess.run([xvfb, "-a", PVPYTHON, "open_in_paraview.py", "--png", str(png),
-                          "--mode", "3"], cwd=exported, capture_output=True, text=True,
-                         timeout=300)
+    # under a loaded machine xvfb's server can refuse ParaView its OpenGL window
+    # (vtkXOpenGLRenderWindow aborts before a frame is drawn); that is the screen's
+    # fault, not the script's: the render is tried once more on a fresh server, and
+    # the retry is said as a warning
+    for attempt in range(2):
+        run = subprocess.run([xvfb, "-a", PVPYTHON, "open_in_paraview.py", "--png", str(png),
+                              "--mode", "3"], cwd=exported, capture_output=True, text=True,
+                             timeout=300)
+        window = "vtkXOpenGLRenderWindow" in run.stderr or "GLX" in run.stderr
+        if png.exists() or not window or attempt:
+            break
+        import warnings
+
+        warnings.warn("ParaView could not open its window under xvfb; rendering once more",
+                      stacklevel=1)
     assert png.exists(), run.stderr[-2000:]
     from PIL import Image
 
