@@ -95,7 +95,7 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
     elif st is not None and not st.judged:
         warns.append("stability not judged: no damping in the model (every log decrement is "
                      "zero); give the bearings' damping, or [rotor] min_log_dec")
-    lift = lift_speed_rpm(c)
+    lift = c.lift_rpm
     below = [lo for lo, _ in spans if lo < lift]
     if below:
         warns.append(
@@ -115,9 +115,9 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
     for o in c.onsets:
         text = (f"curve {o.curve_text} starts to grow at {o.speed_rpm:,.0f} r/min "
                 f"({o.frequency_hz:.2f} Hz)")
-        span = inside(o.speed_rpm)
         if o.speed_rpm < lift:
             continue
+        span = inside(o.speed_rpm)
         if span is not None:
             fails.append(text + f", inside the running range {_span_text(*span)}")
         elif o.speed_rpm <= top:
@@ -135,11 +135,6 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
             gap = min(min(abs(lo - b), abs(hi - a)) / (b if lo > b else a) for a, b in spans)
             warns.append(text + f": {100 * gap:.1f} % from the nearest running speed")
     return fails, warns
-
-
-def lift_speed_rpm(c: Campbell) -> float:
-    """The speed (r/min) from which the scene's journals are lifted by their films."""
-    return c.stability.lift_rpm if c.stability is not None else c.lift_rpm
 
 
 def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:

@@ -176,6 +176,14 @@ def matched_change(a: np.ndarray, b: np.ndarray, omega: float) -> float:
     return float(cost[i, j].max())
 
 
+def not_overdamped(lam: np.ndarray) -> np.ndarray:
+    """Which exponents are damped at most OVERDAMPED (-Re lam / |lam|): the forms damped
+    beyond decay within a fraction of a turn, and no stability question rests on them
+    (an oil film's damping on the bearings' residual modes); Hill's method does not
+    settle them."""
+    return -lam.real <= OVERDAMPED * np.abs(lam)
+
+
 def converged_hill(model: RotorModel, omega: float) -> Hill:
     """Hill's exponents with H raised until the lower WATCHED of them (what the basis
     check vouches for; the basis' top converges last), but for the forms damped beyond
@@ -187,9 +195,7 @@ def converged_hill(model: RotorModel, omega: float) -> Hill:
     while True:
         h = hill(model, omega, H)
         low = np.sort(np.abs(h.lam))[int(WATCHED * (h.lam.size - 1))]
-        # forms damped beyond OVERDAMPED decay within a fraction of a turn: no stability
-        # question rests on them (an oil film's damping on the bearings' residual modes)
-        watched = (np.abs(h.lam) <= low * (1 + 1e-9)) & (-h.lam.real <= OVERDAMPED * np.abs(h.lam))
+        watched = (np.abs(h.lam) <= low * (1 + 1e-9)) & not_overdamped(h.lam)
         worst = float(h.residual[watched].max()) / max(float(low), omega, 1.0)
         if worst <= HILL_TOL:
             _LAST[key] = H
@@ -227,12 +233,11 @@ def multipliers(model: RotorModel, omega: float, steps: int | None = None) -> np
     return np.linalg.eigvals(monodromy(model, omega, steps))
 
 
-def routes_apart(model: RotorModel, omega: float, hill_lam: np.ndarray | None = None
-                 ) -> float:
+def routes_apart(model: RotorModel, omega: float) -> float:
     """How far Hill's exponents lie from the monodromy's (both at the spin omega): the
     largest distance of a pair, each exponent's growth rate ln |mu| / T and its
     frequency modulo 2 omega, over the largest |lam| (a fraction)."""
-    lam = converged_hill(model, omega).lam if hill_lam is None else hill_lam
+    lam = converged_hill(model, omega).lam
     T = math.pi / omega
     mono = np.log(multipliers(model, omega).astype(complex)) / T
     scale = max(float(np.abs(lam).max()), omega, 1.0)
@@ -248,7 +253,7 @@ def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
         if not model.periodic(w):
             return True
         try:
-            converged_hill(model, w)
+            floquet_roots(model, w)   # kept: the diagram asks these speeds again
         except SolverError:
             return False
         return True

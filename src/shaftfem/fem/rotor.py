@@ -147,12 +147,8 @@ class RotorModel:
         frame, and a bearing that differs along x and y there."""
         if self.frame != "rotating" or omega == 0.0:
             return False
-        for b in self.bearings:
-            for coeffs in (b.coefficients.stiffness(omega), b.coefficients.damping(omega)):
-                A = np.array(coeffs)
-                if np.abs(A - isotropic_part(A)).max() > ANISOTROPY * max(np.abs(A).max(), 1e-300):
-                    return True
-        return False
+        return any(anisotropic(np.array(A)) for b in self.bearings
+                   for A in (b.coefficients.stiffness(omega), b.coefficients.damping(omega)))
 
     def periodic_parts(self, omega: float) -> tuple[np.ndarray, ...]:
         """(D_c, D_s, K_c, K_s): in the rotating frame, where the bearings differ along
@@ -167,8 +163,7 @@ class RotorModel:
             Kb = np.array(b.coefficients.stiffness(omega))
             Cb = np.array(b.coefficients.damping(omega))
             if b.coefficients.has_mass:
-                Mb = np.array(b.coefficients.mass(omega))
-                if np.abs(Mb - isotropic_part(Mb)).max() > ANISOTROPY * np.abs(Mb).max():
+                if anisotropic(np.array(b.coefficients.mass(omega))):
                     raise SolverError(f"{b.name}: an added mass that differs along x and y "
                                       "is not taken on a shaft that is not of revolution")
             (kc, ks), (cc, cs) = deviatoric_parts(Kb), deviatoric_parts(Cb)
@@ -199,6 +194,12 @@ def isotropic_part(A: np.ndarray) -> np.ndarray:
     alike: a I + b S, a = (A_xx + A_yy) / 2, b = (A_yx - A_xy) / 2."""
     a, b = 0.5 * (A[0, 0] + A[1, 1]), 0.5 * (A[1, 0] - A[0, 1])
     return a * np.eye(2) + b * S2
+
+
+def anisotropic(A: np.ndarray) -> bool:
+    """Whether a bearing's 2x2 coefficient differs along x and y (its deviatoric part
+    beyond ANISOTROPY of its largest entry)."""
+    return bool(np.abs(A - isotropic_part(A)).max() > ANISOTROPY * max(np.abs(A).max(), 1e-300))
 
 
 def deviatoric_parts(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -531,8 +531,7 @@ def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> 
     bearings only: see direct_applies)."""
 
     def solve(m: int) -> tuple[np.ndarray, np.ndarray]:
-        speeds, index, _ = order_roots(model, m, top)
-        return speeds, index
+        return order_roots(model, m, top)[:2]
 
     out = []
     for k in orders:

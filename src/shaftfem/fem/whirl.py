@@ -273,9 +273,7 @@ class Stability:
     growing: bool
     # every other whirling curve that fails too: (curve, speed r/min, Hz, whirl, log dec)
     others: tuple[tuple[int, float, float, str, float], ...] = ()
-    # the speed (r/min) from which every journal's film lifts its journal (0: none);
-    # the operating speeds below it, where no stability verdict is given
-    lift_rpm: float = 0.0
+    # the operating speeds below the journals' lift-off, where no verdict is given
     unjudged_rpm: tuple[float, ...] = ()
     # the bands below the running range where a whirling curve grows (a run-up passes
     # them): (curve, whirl, from r/min, to r/min) sampled on the diagram's speeds
@@ -295,7 +293,6 @@ class Stability:
                 "others_failing": [{"curve": n, "speed_rpm": sp, "frequency_hz": f,
                                     "whirl": w, "log_dec": d}
                                    for n, sp, f, w, d in self.others],
-                "journals_lift_off_rpm": self.lift_rpm,
                 "not_judged_below_lift_off_rpm": list(self.unjudged_rpm),
                 "growth_below_running_range": [
                     {"curve": n, "whirl": w, "from_rpm": a, "to_rpm": b}
@@ -440,6 +437,7 @@ class Campbell:
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
                 "journal_bearings": [f.as_dict() for f in self.films],
+                "journals_lift_off_rpm": self.lift_rpm,
                 "notes": list(self.notes)}
 
     def csv_rows(self) -> list[dict]:

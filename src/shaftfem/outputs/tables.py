@@ -550,7 +550,7 @@ def campbell_text(c) -> str:
     st = c.stability
     if st is not None:
         lines.append(f"stability where the shaft runs ({_spans_text(spans)}"
-                     + (f", journals lifted from {st.lift_rpm:,.0f} r/min" if st.lift_rpm else "")
+                     + (f", journals lifted from {c.lift_rpm:,.0f} r/min" if c.lift_rpm else "")
                      + "): least log "
                      f"decrement {st.log_dec:.3g} (curve {st.curve}, {st.whirl} whirl, "
                      f"{st.frequency_hz:.2f} Hz, at {st.speed_rpm:,.0f} r/min)"

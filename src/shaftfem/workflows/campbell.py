@@ -237,17 +237,17 @@ def lift_speed(scene: Scene) -> float:
                default=0.0)
 
 
-def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
+def least_damped(scene: Scene, curves: list[Curve], lift: float) -> Stability | None:
     """The least damped whirling mode where the shaft runs (its operating speeds and
     ranges, as API 684 judges stability), against the required least log decrement
     ([rotor] min_log_dec; 0, or API 684's 0.1 with criterion "api684"); and every band
     below the running range where a mode grows (a run-up passes through it: a warning).
-    Speeds below the journals' lift-off are not judged. An undamped model (every
+    Speeds below the journals' lift-off `lift` (r/min, lift_speed) are not judged. An
+    undamped model (every
     decrement zero to round-off) is judged only when min_log_dec is set; a mode that
     grows always fails."""
     rotor = scene.rotor
     assert rotor is not None
-    lift = lift_speed(scene) / RPM
     spans = [(lo / RPM * (1 - 1e-9), hi / RPM * (1 + 1e-9)) for lo, hi in rotor.spans]
     start = min(lo for lo, _ in spans)
 
@@ -290,7 +290,7 @@ def least_damped(scene: Scene, curves: list[Curve]) -> Stability | None:
     below = [n for n in sorted({lo / RPM for lo, _ in rotor.spans}) if n < lift]
     return Stability(curve=number, speed_rpm=speed, frequency_hz=f, whirl=whirl, log_dec=d,
                      required=required, judged=judged, growing=d < 0, others=failing,
-                     lift_rpm=lift, unjudged_rpm=tuple(below), passed=tuple(passed))
+                     unjudged_rpm=tuple(below), passed=tuple(passed))
 
 
 def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, float]]:
@@ -341,12 +341,12 @@ def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Trun
             # a Floquet exponent is one modulo i 2 Omega: its dominant component may be
             # the other copy on the smaller basis (a form with near-equal shares)
             # (the overdamped forms, which Hill's method does not settle, left out)
-            from shaftfem.fem.floquet import OVERDAMPED, matched_change
+            from shaftfem.fem.floquet import matched_change, not_overdamped
 
             def exponents(ws: list[Whirl]) -> np.ndarray:
                 lam = np.array([2 * math.pi * w.rotating_frame_hz
                                 * complex(-w.log_dec / (2 * math.pi), 1.0) for w in ws])
-                return lam[-lam.real <= OVERDAMPED * np.abs(lam)]
+                return lam[not_overdamped(lam)]
             a_, b_ = exponents(full), exponents(part)
             if a_.size:
                 change = max(change, matched_change(a_, b_, omega) / float(np.abs(a_).max()))
@@ -479,7 +479,8 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     if check.direct_only:
         notes.append(f"{check.direct_only} crossing(s) found only by the direct route were "
                      "added: the diagram's curves missed them")
-    stability = least_damped(scene, curves)
+    lift = lift_speed(scene) / RPM
+    stability = least_damped(scene, curves, lift)
     unstable = onsets(model, curves)
     bands = divergent_bands(model, path)
     response = None
@@ -501,7 +502,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     curves=tuple(curves), stability=stability,
                     ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges),
                     scene=scene, coverage=coverage, films=film_rows(scene),
-                    lift_rpm=lift_speed(scene) / RPM,
+                    lift_rpm=lift,
                     basis=model.shapes)
 
 
