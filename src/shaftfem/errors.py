@@ -39,6 +39,15 @@ class SolverError(ShaftfemError):
     """The eigen solve did not give what a free elastic body must give."""
 
 
+class UnsettledError(SolverError):
+    """Hill's method did not settle at the spin `omega` (rad/s): the Floquet forms spread
+    over more harmonics than it takes (a slow spin in bearings that differ along x and y)."""
+
+    def __init__(self, message: str, omega: float):
+        super().__init__(message)
+        self.omega = omega
+
+
 class ClusterError(ShaftfemError):
     """A Dask cluster that cannot run the work: no workers, or workers without this shaftfem."""
 

@@ -41,6 +41,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from shaftfem.errors import SolverError
+from shaftfem.fem.whirl import WHIRLING
 from shaftfem.scene.model import Attachment, BearingCoefficients
 
 if TYPE_CHECKING:
@@ -234,13 +235,30 @@ def roots(model: RotorModel, omega: float) -> Roots:
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -D]])
     lam, V = np.linalg.eig(A)
     scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
-    keep = lam.imag > 1e-9 * scale
-    still = np.abs(lam.imag) <= 1e-9 * scale
+    still = (np.abs(lam.imag) <= 1e-9 * scale) | still_seen(model, omega, lam, V[:n])
+    keep = (lam.imag > 1e-9 * scale) & ~still
     divergence = float(max(0.0, lam.real[still].max())) if still.any() else 0.0
     lam, V = lam[keep], V[:n, keep]
     order = np.argsort(lam.imag)
     return Roots(lam=lam[order], y=V[:, order],
                  divergence=divergence if divergence > 1e-9 * scale else 0.0)
+
+
+def still_seen(model: RotorModel, omega: float, lam: np.ndarray, y: np.ndarray
+               ) -> np.ndarray:
+    """Which roots (lam, s^-1; shapes y (N, m)) do not oscillate as the stationary frame
+    sees them: in the rotating frame, a sideways root at Im lam = +-Omega whose circular
+    component turns against it (an overdamped root of an oil film, seen from the turning
+    shaft) is still in the stationary frame. Still within round-off of the largest
+    frequency, or within 1e-3 of its own decay rate (a damping ratio within 5e-7 of 1:
+    a form Hill's method need not settle)."""
+    if model.frame != "rotating" or omega == 0.0 or lam.size == 0:
+        return np.zeros(lam.size, dtype=bool)
+    index = whirl_index(model, y)
+    seen = np.where(index >= 0, lam.imag + omega, lam.imag - omega)
+    scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
+    sideways = np.array([k in WHIRLING for k in dominant_kinds(model, y)])
+    return sideways & (np.abs(seen) <= np.maximum(1e-9 * scale, 1e-3 * np.abs(lam.real)))
 
 
 def whirl_index(model: RotorModel, y: np.ndarray) -> np.ndarray:

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaftfem.errors import SceneError
+from shaftfem.errors import SceneError, UnsettledError
 from shaftfem.fem.whirl import (
     FORWARD,
     RPM,
@@ -427,35 +427,49 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     count = scene.modes.count
     grid = (np.linspace(0.0, rotor.max_speed, rotor.points) if speeds_rpm is None
             else np.asarray(speeds_rpm, dtype=float) * RPM)
-    periodic_note = None
-    if any(model.periodic(float(w)) for w in grid if w > 0):
-        from shaftfem.fem.floquet import solved_from
-
-        floor = solved_from(model, np.union1d(grid, rotor.speeds), 0.01 * float(grid.max()))
-        low = [w for w in rotor.speeds if 0 < w < floor]
-        if low:
-            raise SceneError(f"{scene.source}: the shaft is not of revolution in bearings that "
-                             "differ along x and y, and at its operating speed(s) "
-                             f"{', '.join(f'{w / RPM:,.0f}' for w in low)} r/min the Floquet "
-                             "forms spread over more harmonics than Hill's method takes "
-                             f"(it settles from {floor / RPM:,.0f} r/min)")
-        # the curves start where Hill's method settles (their steps are halved between
-        # speeds: from standstill they would reach below it)
-        periodic_note = (f"periodic rotor: solved by Floquet theory from {floor / RPM:,.0f} "
-                         "r/min; below it the Floquet forms spread over more harmonics than "
-                         "Hill's method takes, and no crossing is searched there")
-        grid = np.union1d([floor], grid[grid >= floor])
-    # the curves pass through every operating speed and range end
-    ends = [w for span in rotor.spans for w in span]
-    path = np.union1d(grid, [w for w in ends if grid.min() <= w <= grid.max()])
     orders = rotor_orders(scene)
     # the curves the basis check vouches for, and those below the highest order line
     # within the part of the basis it checks them on
     within = max(count + 1, math.ceil(CHECK_SHARE * model.size))
-    every = track(model, path, count + 2)
-    curves = reported(every, count, max(orders), within)
-    rows = [whirl_at(model, om, count) for om in grid]
-    critical, check = critical_speeds(model, curves, orders, float(grid.max()))
+    ends = [w for span in rotor.spans for w in span]
+    floor = 0.0
+    if any(model.periodic(float(w)) for w in grid if w > 0):
+        from shaftfem.fem.floquet import solved_from
+
+        floor = solved_from(model, np.union1d(grid, rotor.speeds), 0.01 * float(grid.max()))
+    while True:
+        periodic_note = None
+        if floor > 0:
+            low = [w for w in rotor.speeds if 0 < w < floor]
+            if low:
+                raise SceneError(f"{scene.source}: the shaft is not of revolution in bearings "
+                                 "that differ along x and y, and at its operating speed(s) "
+                                 f"{', '.join(f'{w / RPM:,.0f}' for w in low)} r/min the "
+                                 "Floquet forms spread over more harmonics than Hill's method "
+                                 f"takes (it settles from {floor / RPM:,.0f} r/min)")
+            # the curves start where Hill's method settles (their steps are halved between
+            # speeds: from standstill they would reach below it)
+            periodic_note = (f"periodic rotor: solved by Floquet theory from "
+                             f"{floor / RPM:,.0f} r/min; below it the Floquet forms spread over "
+                             "more harmonics than Hill's method takes, and no crossing is "
+                             "searched there")
+            grid = np.union1d([floor], grid[grid >= floor])
+        # the curves pass through every operating speed and range end
+        path = np.union1d(grid, [w for w in ends if grid.min() <= w <= grid.max()])
+        try:
+            every = track(model, path, count + 2)
+            curves = reported(every, count, max(orders), within)
+            rows = [whirl_at(model, om, count) for om in grid]
+            critical, check = critical_speeds(model, curves, orders, float(grid.max()))
+            break
+        except UnsettledError as e:
+            # a speed between the diagram's that Hill's method does not settle (slow
+            # spins do not settle alike): the diagram starts above it
+            above = path[path > e.omega * (1 + 1e-9)]
+            if floor <= 0 or e.omega >= min((w for w in rotor.speeds if w > 0),
+                                            default=math.inf) or above.size < 2:
+                raise
+            floor = float(above[0])
     operating = [w for om in rotor.speeds for w in whirl_at(model, om, count)]
     shapes = tuple(mode_shapes(model, om, count) for om in rotor.speeds)
     basis = truncation(model, tuple(sorted({*rotor.speeds, float(grid.max())})), count)
