@@ -136,9 +136,9 @@ def hill(model: RotorModel, omega: float, harmonics: int) -> Hill:
 
     big = np.zeros((size * m, size * m))
     for p in range(size):
-        for i in np.flatnonzero(tinv[p]):
+        for i in (int(x) for x in np.flatnonzero(tinv[p])):
             for j in range(max(i - 1, 0), min(i + 2, size)):
-                b = block(int(i), j)
+                b = block(i, j)
                 assert b is not None
                 for q in np.flatnonzero(t[j]):
                     big[p * m:(p + 1) * m, q * m:(q + 1) * m] += (tinv[p, i] * b * t[j, q]).real
