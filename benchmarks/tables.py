@@ -28,6 +28,7 @@ TABLES = {
     "growth": ("performance: Growth with the number of DOFs", ["growth.py"]),
     "installed": ("performance: Installed shafts", ["installed.py", "3"]),
     "campbell": ("performance: Turning shafts", ["campbell.py", "3"]),
+    "periodic-cost": ("performance: Periodic rotors", ["periodic_cost.py", "3"]),
     "crossing-grids": ("verification: Critical speeds whatever the grid", ["crossing_grids.py"]),
     "rotor-verification": ("verification: Turning shafts against ross",
                            ["rotor_verification.py"]),

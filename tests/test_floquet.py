@@ -226,3 +226,53 @@ def test_the_unbalance_response_by_harmonic_balance_meets_the_stationary_closed_
     assert amp_y == pytest.approx(abs(Y), rel=1e-8)
     assert math.cos(phase_x - np.angle(X)) == pytest.approx(1.0, abs=1e-10)
     assert major == pytest.approx(0.5 * (abs(X + 1j * Y) + abs(X - 1j * Y)), rel=1e-8)
+
+
+def keyed(kyy_share: float, depth_mm: float | None = 2.0, kxx: float = 2e4) -> dict:
+    """stepped()'s shaft with a 10 mm wide keyway under the wheel's side (depth_mm deep;
+    None: no keyway), in bearings kxx and kyy = kyy_share kxx (N/mm), damped alike."""
+    d = stepped("auto")
+    for s in d["support"]:
+        s.update(kxx_n_per_mm=kxx, kyy_n_per_mm=kyy_share * kxx,
+                 cyy_n_s_per_mm=s["cxx_n_s_per_mm"])
+    if depth_mm is not None:
+        d["keyway"] = [{"position_mm": 200.0, "length_mm": 60.0, "width_mm": 10.0,
+                        "depth_mm": depth_mm}]
+    return d
+
+
+def first_criticals(d: dict) -> tuple[list[float], str]:
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.campbell import run_campbell
+
+    c = run_campbell(load_scene(d))
+    return sorted(cs.speed_rpm for cs in c.critical_speeds if cs.order == 1), c.why
+
+
+@pytest.mark.slow
+def test_one_percent_of_anisotropy_moves_a_keyed_shaft_s_criticals_by_little():
+    """A keyed shaft in bearings kyy = 0.99 kxx (periodic: Floquet) against the same
+    shaft in kyy = kxx (constant in the turning frame): each 1x critical speed within
+    0.5 % (the 1 % softer diameter moves them by about 0.1-0.2 %)."""
+    iso, why_iso = first_criticals(keyed(1.0))
+    near, why = first_criticals(keyed(0.99))
+    assert "Floquet" in why and "Floquet" not in why_iso
+    assert iso and len(near) == len(iso)
+    np.testing.assert_allclose(near, iso, rtol=5e-3)
+    assert all(a <= b for a, b in zip(near, iso))   # softer bearings, lower criticals
+
+
+@pytest.mark.slow
+def test_a_keyway_shrinking_towards_nothing_tends_to_the_round_shaft():
+    """In bearings kyy = kxx / 2, a keyway 2, 0.5 and 0.1 mm deep (periodic: Floquet in
+    the turning frame) against the round shaft (constant: stationary frame): the first
+    1x critical speed's distance falls with the depth, and within 0.01 % at 0.1 mm."""
+    round_, why = first_criticals(keyed(0.5, None, kxx=1.2e5))
+    assert "Floquet" not in why and round_
+    gaps = []
+    for depth in (2.0, 0.5, 0.1):
+        crit, why = first_criticals(keyed(0.5, depth, kxx=1.2e5))
+        assert "Floquet" in why
+        gaps.append(abs(crit[0] - round_[0]) / round_[0])
+    assert gaps[0] > gaps[1] > gaps[2]
+    assert gaps[2] < 1e-4

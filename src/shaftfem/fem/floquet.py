@@ -50,6 +50,11 @@ OVERDAMPED = 0.5
 # The monodromy's steps: at least this many a period, and so many that the fastest
 # mode turns by at most a quarter turn in a step.
 MONODROMY_STEPS = 256
+# the forms whose multipliers the two routes compare: those above this (a decay of less
+# than e^-13.8 a period), and how far apart they may lie (a fraction of |lam|; measured
+# 6e-7 at most on a keyed pump on journals from 1,000 to 9,000 r/min)
+RESOLVED = 1e-6
+ROUTES_TOL = 1e-5
 # harmonic balance: harmonics raised while the 1x response moves by more than this
 BALANCE_TOL = 1e-7
 # how far the window [-1/2, 1/2) of a kept form's harmonic centroid is moved
@@ -286,6 +291,21 @@ def routes_apart(model: RotorModel, omega: float) -> float:
     return matched_change(lam, mono, omega) / scale
 
 
+def growth_apart(model: RotorModel, omega: float) -> float:
+    """How far the monodromy's exponents lie from Hill's at the spin omega, over the forms
+    that decay by less than RESOLVED a period (a multiplier below it is lost in the
+    monodromy's round-off against the largest, and decides no stability question): the
+    largest |lam_Hill - lam_monodromy| (frequency modulo 2 omega) over |lam| (a
+    fraction)."""
+    lam = converged_hill(model, omega).lam
+    T = math.pi / omega
+    lam = lam[lam.real * T >= math.log(RESOLVED)]
+    if lam.size == 0:
+        return 0.0
+    mono = np.log(multipliers(model, omega).astype(complex)) / T
+    return float((apart(lam, mono, omega).min(axis=1) / np.maximum(np.abs(lam), omega)).max())
+
+
 def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
     """The lowest speed (rad/s) from which Hill's method settles at every one of
     `speeds` (ascending) above it, and below the lowest of them down to `lowest` by
@@ -308,7 +328,11 @@ def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
         if not settles(w):
             return floor
         floor = w
-    while floor / 2 >= lowest and settles(floor / 2):
+    took = _TOOK.get(id(model), {})
+    # halved while the last speed left harmonics to spare (a slower one needs more; an
+    # attempt that climbs to HILL_MAX in vain costs more than the rest of the diagram)
+    while (floor / 2 >= lowest and took.get(floor, HILL_START) <= HILL_MAX - 2 * HILL_STEP
+           and settles(floor / 2)):
         floor /= 2
     return floor
 

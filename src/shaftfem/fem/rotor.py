@@ -41,7 +41,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from shaftfem.errors import SolverError
-from shaftfem.fem.whirl import WHIRLING
 from shaftfem.scene.model import Attachment, BearingCoefficients
 
 if TYPE_CHECKING:
@@ -257,7 +256,7 @@ def still_seen(model: RotorModel, omega: float, lam: np.ndarray, y: np.ndarray
     index = whirl_index(model, y)
     seen = np.where(index >= 0, lam.imag + omega, lam.imag - omega)
     scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
-    sideways = np.array([k in WHIRLING for k in dominant_kinds(model, y)])
+    sideways = np.array([k not in ("axial", "torsion") for k in dominant_kinds(model, y)])
     return sideways & (np.abs(seen) <= np.maximum(1e-9 * scale, 1e-3 * np.abs(lam.real)))
 
 

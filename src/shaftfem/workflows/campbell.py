@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaftfem.errors import SceneError, UnsettledError
+from shaftfem.errors import SceneError, SolverError, UnsettledError
 from shaftfem.fem.whirl import (
     FORWARD,
     RPM,
@@ -324,6 +324,27 @@ def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, 
     return bands
 
 
+def routes_agree(model: RotorModel, speeds: tuple[float, ...]) -> str:
+    """Hill's method against the monodromy matrix at the operating `speeds` (rad/s) of a
+    periodic rotor: what they agree within, or a SolverError where they disagree."""
+    from shaftfem.fem.floquet import RESOLVED, ROUTES_TOL, growth_apart
+
+    worst = 0.0
+    for omega in speeds:
+        if not model.periodic(omega):
+            continue
+        d = growth_apart(model, omega)
+        if d > ROUTES_TOL:
+            raise SolverError(f"at {omega / RPM:,.0f} r/min Hill's method and the monodromy "
+                              f"matrix disagree on a Floquet exponent by {d:.2g} of it "
+                              f"(they must agree within {ROUTES_TOL:g}): no stability verdict "
+                              "rests on either")
+        worst = max(worst, d)
+    return (f"Floquet exponents at the operating speed(s): Hill's method and the monodromy "
+            f"matrix agree within {worst:.1g} of each (the forms decaying by less than "
+            f"{RESOLVED:g} a period)")
+
+
 def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Truncation:
     """The roots of the `count` reported modes on the whole basis against its first
     CHECK_SHARE, at `speeds` (rad/s): the largest relative change of the eigenvalue
@@ -474,6 +495,8 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     shapes = tuple(mode_shapes(model, om, count) for om in rotor.speeds)
     basis = truncation(model, tuple(sorted({*rotor.speeds, float(grid.max())})), count)
     notes = [periodic_note] if periodic_note else []
+    if periodic_note:
+        notes.append(routes_agree(model, rotor.speeds))
     if not scene.held:
         notes.append("the shaft hangs free (no [[support]]): its whirl is a free rotor's")
     if not any(s.bearing is not None and np.any(np.array(s.bearing.cxx + s.bearing.cyy
