@@ -34,14 +34,16 @@ from shaftfem.fem.rotor import Roots, roots, unbalance_response
 if TYPE_CHECKING:
     from shaftfem.fem.rotor import RotorModel
 
-# Hill's harmonics: from this many, raised by HILL_STEP while the forms kept have a
-# truncation residual above HILL_TOL (relative to the largest exponent among them), up
-# to HILL_MAX. An exponent's error goes as the square of its form's residual (the
-# truncation misses the left and the right form alike): measured on a keyed shaft in
-# anisotropic bearings, residuals 1.4e-4 and 1.7e-7 left errors 2e-9 and 1.5e-13.
+# Hill's harmonics: from this many, raised by HILL_STEP while a form kept has an
+# estimated error above HILL_TOL (a fraction of its exponent), up to HILL_MAX. The
+# estimate is r^2 / (2 Omega |lam|), r the form's truncation residual: an exponent's
+# error goes as the square of the residual (the truncation misses the left and the
+# right form alike) over the harmonics' spacing; measured on a keyed shaft and a keyed
+# pump in anisotropic bearings from 750 to 8,000 r/min, the true error was at most 0.2
+# of the estimate (and HILL_TOL of 1e-7 left errors of 5e-10 at most).
 HILL_START = 2
 HILL_STEP = 2
-HILL_TOL = 1e-5
+HILL_TOL = 1e-7
 HILL_MAX = 12
 # ... watching this share of the exponents, the lowest, those damped at most this
 # ratio (-Re lam / |lam|).
@@ -223,11 +225,10 @@ def not_overdamped(lam: np.ndarray) -> np.ndarray:
 def converged_hill(model: RotorModel, omega: float) -> Hill:
     """Hill's exponents with H raised until the lower WATCHED of them (what the basis
     check vouches for; the basis' top converges last), but for the forms damped beyond
-    OVERDAMPED, have truncation residuals of at most HILL_TOL of the largest among
-    them: their forms hold next to nothing in the outermost harmonics. It starts from
-    the harmonics the model's last speed took (the next speed needs about as many) and
-    stops early where the residual's fall from one H to the next could not reach
-    HILL_TOL by HILL_MAX. A SolverError if HILL_MAX harmonics do not settle them."""
+    OVERDAMPED, have an estimated error of at most HILL_TOL of themselves (their forms
+    hold next to nothing in the outermost harmonics). It starts from the harmonics the
+    slowest faster speed took and stops early where the estimate's fall from one H to
+    the next could not reach HILL_TOL by HILL_MAX. A SolverError if HILL_MAX harmonics do not settle them."""
     took = _TOOK.setdefault(id(model), {})
     above = [w for w in took if w >= omega]
     below = [w for w in took if w < omega]
@@ -237,19 +238,20 @@ def converged_hill(model: RotorModel, omega: float) -> Hill:
         h = hill(model, omega, H)
         low = np.sort(np.abs(h.lam))[int(WATCHED * (h.lam.size - 1))]
         watched = (np.abs(h.lam) <= low * (1 + 1e-9)) & not_overdamped(h.lam)
-        worst = float(h.residual[watched].max()) / max(float(low), omega, 1.0)
+        estimate = h.residual**2 / (2 * omega * np.maximum(np.abs(h.lam), omega))
+        worst = float(estimate[watched].max())
         if worst <= HILL_TOL:
             if len(took) >= 4096:
                 took.clear()
             took[omega] = H
             return h
-        # the residual falls about geometrically with H where the forms settle
+        # the estimate falls about geometrically with H where the forms settle
         fall = worst / before
         reach = worst * fall ** ((HILL_MAX - H) / HILL_STEP) if fall < 1 else math.inf
         if H >= HILL_MAX or (before < math.inf and reach > 1e3 * HILL_TOL):
             raise UnsettledError(f"Hill's method at {omega * 30 / math.pi:,.0f} r/min: the "
                                  f"Floquet forms still reach the outermost of {H} harmonics "
-                                 f"(residual {worst:.2g})", omega)
+                                 f"(estimated error {worst:.2g} of an exponent)", omega)
         before = worst
         H += HILL_STEP
 
@@ -320,7 +322,7 @@ def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
             return False
         # with harmonics to spare: the speeds between (the diagram's halved steps) may
         # need a few more
-        return _TOOK.get(id(model), {}).get(w, HILL_START) <= HILL_MAX - HILL_STEP
+        return _TOOK.get(id(model), {}).get(w, HILL_START) <= HILL_MAX - 2 * HILL_STEP
 
     positive = [float(w) for w in speeds if w > 0]
     floor = positive[-1]
@@ -331,7 +333,7 @@ def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
     took = _TOOK.get(id(model), {})
     # halved while the last speed left harmonics to spare (a slower one needs more; an
     # attempt that climbs to HILL_MAX in vain costs more than the rest of the diagram)
-    while (floor / 2 >= lowest and took.get(floor, HILL_START) <= HILL_MAX - 2 * HILL_STEP
+    while (floor / 2 >= lowest and took.get(floor, HILL_START) <= HILL_MAX - 3 * HILL_STEP
            and settles(floor / 2)):
         floor /= 2
     return floor
@@ -345,7 +347,7 @@ def periodic_unbalance(model: RotorModel, omega: float,
     q = sum_k q_k exp(i 2 k Omega t), and for each harmonic m
     (K - (2 m Omega)^2 M + i 2 m Omega D) q_m + (K_+ + i 2 (m-1) Omega D_+) q_{m-1}
     + (K_- + i 2 (m+1) Omega D_-) q_{m+1} = F delta_m0. The harmonics (N, 2 H + 1),
-    H raised until the 1x response (k = 0 and -1) moves by at most BALANCE_TOL."""
+    H raised one at a time until the 1x response (k = 0 and -1) moves by at most BALANCE_TOL."""
     D, K = model.matrices(omega)
     Dc, Ds, Kc, Ks = model.periodic_parts(omega)
     Mm = model.mass(omega)
@@ -374,11 +376,11 @@ def periodic_unbalance(model: RotorModel, omega: float,
     H = HILL_START
     prev = solve(H)
     while True:
-        cur = solve(H + HILL_STEP)
-        c0, p0 = cur[:, H + HILL_STEP - 1:H + HILL_STEP + 1], prev[:, H - 1:H + 1]
+        cur = solve(H + 1)
+        c0, p0 = cur[:, H:H + 2], prev[:, H - 1:H + 1]
         if np.abs(c0 - p0).max() <= BALANCE_TOL * max(float(np.abs(c0).max()), 1e-300):
             return cur
-        H += HILL_STEP
+        H += 1
         if H > HILL_MAX:
             raise SolverError(f"the unbalance response at {omega * 30 / math.pi:,.0f} r/min: "
                               f"harmonic balance does not settle with {H} harmonics")

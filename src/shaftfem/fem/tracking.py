@@ -54,6 +54,9 @@ PAIR = 1e-3
 REACH = 2.0
 # A root followed into a stretch where it stops oscillating: at most this many halvings.
 FOLLOW_STEPS = 40
+# ... to this share of the speed (the edge of a stretch is where two roots meet: a
+# square-root point, which no model places closer than this)
+FOLLOW_TOL = 1e-8
 # Crossings of one curve with one order closer than this (relative) are one.
 SAME = 1e-6
 
@@ -429,7 +432,7 @@ def _follow(model: RotorModel, om: float, y: np.ndarray, f: float, end: float
     good, bad = om, end
     fs, decay, index = f, 0.0, 0.0
     for _ in range(FOLLOW_STEPS):
-        if abs(bad - good) <= 1e-9 * abs(end):
+        if abs(bad - good) <= FOLLOW_TOL * abs(end):
             break
         mid = 0.5 * (good + bad)
         f_mid, d, w, sc = _at(model, mid, y, fs, reach)
