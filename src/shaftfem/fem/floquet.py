@@ -387,6 +387,77 @@ def periodic_unbalance(model: RotorModel, omega: float,
         prev = cur
 
 
+def gravity_response(model: RotorModel, omega: float, load: np.ndarray) -> np.ndarray:
+    """The steady response of a rotor in the turning frame (rotating) to a load standing
+    still in the stationary frame (its weight), at the spin omega (rad/s): seen from the
+    shaft the load turns backwards, f(t) = Re[load exp(-i Omega t)], load = A (p_x - i p_y)
+    (N,) for a load A = a_x + i a_y (N, or m/s^2 for a weight) and the modal forces
+    p_x, p_y of a unit load along x and y at angle 0. By harmonic balance,
+    q(t) = Re sum_k q_k exp(i (2 k - 1) Omega t), k = -H..H, for each k
+    (K - w_k^2 M + i w_k D) q_k + (K_+ + i w_{k-1} D_+) q_{k-1} + (K_- + i w_{k+1} D_-)
+    q_{k+1} = load delta_k0, w_k = (2 k - 1) Omega; H raised one at a time until the
+    harmonics k = -1..2 (the stationary frame's static and 2x parts) move by at most
+    BALANCE_TOL. Returns the harmonics (N, 2 H + 1)."""
+    if model.frame != "rotating":
+        raise SolverError("a load standing still turns only in the rotating frame")
+    D, K = model.matrices(omega)
+    Mm = model.mass(omega)
+    Dc, Ds, Kc, Ks = (model.periodic_parts(omega) if model.periodic(omega)
+                      else (np.zeros_like(K),) * 4)
+    Kp, Km, Dp, Dm = (0.5 * (Kc - 1j * Ks), 0.5 * (Kc + 1j * Ks), 0.5 * (Dc - 1j * Ds),
+                      0.5 * (Dc + 1j * Ds))
+    n = model.size
+
+    def solve(H: int) -> np.ndarray:
+        size = 2 * H + 1
+        big = np.zeros((size * n, size * n), dtype=complex)
+        for i, k in enumerate(range(-H, H + 1)):
+            r = slice(i * n, (i + 1) * n)
+            w = (2 * k - 1) * omega
+            big[r, r] = K - w * w * Mm + 1j * w * D
+            if i > 0:
+                big[r, (i - 1) * n:i * n] = Kp + 1j * (w - 2 * omega) * Dp
+            if i < size - 1:
+                big[r, (i + 1) * n:(i + 2) * n] = Km + 1j * (w + 2 * omega) * Dm
+        rhs = np.zeros(size * n, dtype=complex)
+        rhs[H * n:(H + 1) * n] = load
+        return np.linalg.solve(big, rhs).reshape(size, n).T
+
+    H = HILL_START
+    prev = solve(H)
+    while True:
+        cur = solve(H + 1)
+        c0, p0 = cur[:, H:H + 4], prev[:, H - 1:H + 3]
+        if np.abs(c0 - p0).max() <= BALANCE_TOL * max(float(np.abs(c0).max()), 1e-300):
+            return cur
+        H += 1
+        if H > HILL_MAX:
+            raise SolverError(f"the response to the weight at {omega * 30 / math.pi:,.0f} "
+                              f"r/min: harmonic balance does not settle with {H} harmonics")
+        prev = cur
+
+
+def stationary_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
+    """What a probe on the housing sees of gravity_response's harmonics q (N, 2 H + 1) at
+    a plane whose motion in the turning frame is beta q (beta (2, N)): the coefficients
+    c_j of its motion x + i y = sum_j c_j exp(i 2 j Omega t), j = -H..H+1 (orders 2 j:
+    j = 0 the sag, j = 1 and -1 the 2x motion turning with and against the shaft; the
+    2x orbit's major semi-axis |c_1| + |c_-1|). Turned back by Omega t,
+    c_j = (a_j + i b_j) / 2 + conj(a_{1-j}) / 2 + i conj(b_{1-j}) / 2, a and b the
+    plane's x and y harmonics."""
+    H = (q.shape[1] - 1) // 2
+    a, b = beta[0] @ q, beta[1] @ q
+
+    def at(k: int) -> tuple[complex, complex]:
+        return (complex(a[k + H]), complex(b[k + H])) if -H <= k <= H else (0j, 0j)
+
+    out = {}
+    for j in range(-H, H + 2):
+        (aj, bj), (ar, br) = at(j), at(1 - j)
+        out[j] = 0.5 * (aj + 1j * bj) + 0.5 * (ar.conjugate() + 1j * br.conjugate())
+    return out
+
+
 def floquet_roots(model: RotorModel, omega: float) -> Roots:
     """The Floquet exponents at the spin omega as fem.rotor.roots gives a constant
     rotor's roots: each form by its dominant harmonic (lam + i 2 Omega k and that

@@ -75,8 +75,12 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
         singular = (criticals if criticals is not None
                     else _one_x(model, rotor.max_speed, forward_only(scene, model.frame)))
 
+    responses: dict[float, np.ndarray] = {}   # one solve a speed, read at every probe
+
     def at(rpm: float, beta: np.ndarray) -> tuple[float, ...]:
-        return orbit(model, beta, solve(model, rpm * RPM, forces))
+        if rpm not in responses:
+            responses[rpm] = solve(model, rpm * RPM, forces)
+        return orbit(model, beta, responses[rpm])
 
     bode, peaks = [], []
     operating = [om / RPM for om in rotor.speeds]
