@@ -84,6 +84,9 @@ class RotorModel:
     # the bearings' static shapes in the basis' coordinates (N, m): what a truncated
     # basis keeps exactly
     static: np.ndarray | None = None
+    # the modal forces of a unit acceleration along x and along y of the whole shaft and
+    # its parts (its weight per m/s^2), (2, N), kg / sqrt(kg)
+    weight: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -118,7 +121,8 @@ class RotorModel:
                        lateral=V.T @ self.lateral @ V, turning=0.5 * (turning + turning.conj().T),
                        kinds=self.kinds[:kept] + ("bending",) * P.shape[1],
                        shapes=None if self.shapes is None else self.shapes @ V,
-                       residual=P.shape[1], static=static)
+                       residual=P.shape[1], static=static,
+                       weight=None if self.weight is None else self.weight @ V)
 
     def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
         """(D, K) of M q'' + D q' + K q = 0 at the spin omega (rad/s); in the rotating
@@ -352,10 +356,12 @@ def rotor_model(result: ModalResult, frame: str, rigid: bool = False, residual: 
     else:
         G = 2.0 * (Y.T @ MX - X.T @ MY)
         K2 = K2 - lateral
+    weight = np.vstack([MX.sum(axis=0), MY.sum(axis=0)])
     for psi, part in part_motions(result, Phi):
         Gp, Kp = part_matrices(part.mass, part.polar_inertia, part.diametral_inertia, frame)
         G = G + psi.T @ Gp @ psi
         K2 = K2 + psi.T @ Kp @ psi
+        weight = weight + part.mass * psi[:2]
     omega2 = np.concatenate([np.zeros(free.shape[1]), (2 * math.pi * modes.frequencies) ** 2,
                              w2])
     kinds = tuple(classify(e) for e in energy_split(extra, system.nodes, Ms))
@@ -365,7 +371,7 @@ def rotor_model(result: ModalResult, frame: str, rigid: bool = False, residual: 
                       kinds=("rigid",) * free.shape[1] + tuple(modes.kinds) + kinds, shapes=Phi,
                       residual=extra.shape[1],
                       static=np.vstack([np.zeros((free.shape[1], res.on_modes.shape[1])),
-                                        res.on_modes, res.on_residual]))
+                                        res.on_modes, res.on_residual]), weight=weight)
 
 
 def seat_loads(result: ModalResult) -> np.ndarray:

@@ -70,6 +70,25 @@ class Peak:
 
 
 @dataclass(frozen=True)
+class WeightWhirl:
+    """The 2x whirl a shaft stiffer across one diameter than across the other makes of
+    its own weight, at a probe: the speed of its peak (r/min; the "secondary critical",
+    near half a critical speed), the 2x orbit's major semi-axis there (0-peak, m) and at
+    the highest operating speed (m), and the sag it whirls about there (m)."""
+
+    probe: str
+    speed_rpm: float
+    amplitude: float
+    at_operating: float
+    sag: float
+
+    def as_dict(self) -> dict:
+        return {"probe": self.probe, "peak_speed_rpm": self.speed_rpm,
+                "peak_2x_m": self.amplitude, "at_operating_2x_m": self.at_operating,
+                "sag_m": self.sag}
+
+
+@dataclass(frozen=True)
 class UnbalanceResponse:
     """The response at every probe and its peaks."""
 
@@ -403,6 +422,8 @@ class Campbell:
     films: tuple[FilmRow, ...] = ()
     # the speed (r/min) from which every journal's film lifts its journal (0: none)
     lift_rpm: float = 0.0
+    # the 2x whirl the shaft's weight drives (a rotor not of revolution, turning frame)
+    weight_2x: tuple[WeightWhirl, ...] = ()
     # the basis the whirl is solved on, as nodal shapes (3 n, N): the standstill modes
     # and the bearings' residual modes (None: the standstill modes alone)
     basis: np.ndarray | None = field(default=None, repr=False, compare=False)
@@ -436,6 +457,7 @@ class Campbell:
                 "basis": {"modes": t.size, "checked_against": t.smaller,
                           "largest_change": t.change, "speeds_rpm": list(t.speeds_rpm)},
                 "unbalance": None if self.unbalance is None else self.unbalance.as_dict(),
+                "weight_2x": [w.as_dict() for w in self.weight_2x],
                 "journal_bearings": [f.as_dict() for f in self.films],
                 "journals_lift_off_rpm": self.lift_rpm,
                 "notes": list(self.notes)}

@@ -595,6 +595,15 @@ def campbell_text(c) -> str:
                     and p.amplitude > limit else "")
             lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min, {p.amplitude * 1e6:.3g} um, "
                          f"{af}, margin {p.margin * 100:.1f} %, {need}{over}")
+    if c.weight_2x:
+        top = max(c.operating_rpm) if c.operating_rpm else None
+        lines += ["", "the weight's 2x whirl (the shaft is stiffer across one diameter than "
+                  "across the other; the 2x orbit's major semi-axis, 0-peak):"]
+        for w in c.weight_2x:
+            at = (f"; {w.at_operating * 1e6:.3g} um at {top:,.0f} r/min about a "
+                  f"{w.sag * 1e6:.3g} um sag" if top is not None else "")
+            lines.append(f"  {w.probe}: peak at {w.speed_rpm:,.0f} r/min "
+                         f"({2 * w.speed_rpm / 60:.2f} Hz whirl), {w.amplitude * 1e6:.3g} um{at}")
     lines += [f"note: {n}" for n in c.notes]
     return "\n".join(lines)
 

@@ -528,6 +528,9 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                   and not cs.critically_damped
                   and not (forward_only(scene, frame) and cs.whirl == "backward")]
         response = unbalance_response(scene, result, model, criticals=driven)
+    from shaftfem.workflows.unbalance import weight_whirl
+
+    weight = weight_whirl(scene, result, model)
     return Campbell(frame=frame, why=why, speeds_rpm=tuple(grid / RPM),
                     whirl=tuple(w for r in rows for w in r), operating=tuple(operating),
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
@@ -539,7 +542,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     curves=tuple(curves), stability=stability,
                     ranges_rpm=tuple((lo / RPM, hi / RPM) for lo, hi in rotor.ranges),
                     scene=scene, coverage=coverage, films=film_rows(scene),
-                    lift_rpm=lift,
+                    lift_rpm=lift, weight_2x=weight,
                     basis=model.shapes)
 
 

@@ -17,7 +17,7 @@ import numpy as np
 from shaftfem.checks.resonance import AF_CRITICALLY_DAMPED, api684_margin
 from shaftfem.checks.whirl_check import forward_only
 from shaftfem.errors import SceneError
-from shaftfem.fem.whirl import RPM, Bode, Peak, UnbalanceResponse
+from shaftfem.fem.whirl import RPM, Bode, Peak, UnbalanceResponse, WeightWhirl
 from shaftfem.scene.model import Scene
 
 # The Bode plot's speeds, from 0 to the Campbell diagram's end.
@@ -106,6 +106,56 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
         bode.append(b)
         peaks += found
     return UnbalanceResponse(tuple(bode), tuple(peaks), damped=damped)
+
+
+def weight_whirl(scene: Scene, result, model) -> tuple[WeightWhirl, ...]:
+    """The 2x whirl the shaft's weight drives where it is not a solid of revolution
+    (`model` in the rotating frame: the weight turns backwards at the spin seen from the
+    shaft, and the stiff and soft diameters make a 2x whirl of it), at the bearings'
+    seats, the unbalances' planes and [rotor] probes_mm: the peak of the 2x orbit's
+    major semi-axis from 0 to the Campbell diagram's end (BODE_POINTS speeds, then
+    refined), and its size at the highest operating speed. None in the stationary frame
+    (a shaft of revolution's weight only sags it) or without a weight across the axis."""
+    from scipy.optimize import minimize_scalar
+
+    from shaftfem.fem.floquet import gravity_response, stationary_orders
+    from shaftfem.fem.rotor import section_motion
+
+    rotor = scene.rotor
+    gx, gy = scene.gravity[0], scene.gravity[1]
+    if rotor is None or model.frame != "rotating" or math.hypot(gx, gy) == 0.0:
+        return ()
+    model = forced(result, model)
+    assert model.weight is not None
+    load = complex(gx, gy) * (model.weight[0] - 1j * model.weight[1])
+    shapes = model.shapes
+    probes = [(b.name, b.beta) for b in model.bearings]
+    probes += [(u.name, section_motion(result, u.position, shapes)) for u in scene.unbalances]
+    probes += [(f"probe at {p * 1e3:g} mm", section_motion(result, p, shapes))
+               for p in rotor.probes]
+    responses: dict[float, np.ndarray] = {}
+
+    def orders(rpm: float, beta: np.ndarray) -> dict[int, complex]:
+        if rpm not in responses:
+            responses[rpm] = gravity_response(model, rpm * RPM, load)
+        return stationary_orders(beta, responses[rpm])
+
+    def twice(rpm: float, beta: np.ndarray) -> float:
+        c = orders(rpm, beta)
+        return abs(c[1]) + abs(c[-1])
+
+    grid = np.linspace(0.0, rotor.max_speed / RPM, BODE_POINTS + 1)[1:]
+    top = max(rotor.speeds) / RPM if rotor.speeds else grid[-1]
+    out = []
+    for name, beta in probes:
+        values = [twice(n, beta) for n in grid]
+        i = int(np.argmax(values))
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+        best = minimize_scalar(lambda n, beta=beta: -twice(n, beta), bounds=(lo, hi),
+                               method="bounded", options={"xatol": 1e-6 * hi})
+        out.append(WeightWhirl(name, float(best.x), float(-best.fun), twice(top, beta),
+                               abs(orders(top, beta)[0])))
+    return tuple(out)
 
 
 def _one_x(model, top: float, forward: bool) -> list[float]:
