@@ -8,6 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from references import timoshenko_free_free_hz, torsion_hz
@@ -314,3 +315,36 @@ def test_the_keyed_pump_is_the_round_pump_a_little_softer(tmp_path):
     assert keyed["stability"]["log_dec"] == pytest.approx(round_["stability"]["log_dec"],
                                                           rel=0.01)
     assert any("monodromy" in n for n in keyed["notes"])
+
+
+@pytest.mark.slow
+def test_the_slotted_rotor_whirls_at_2x_under_its_weight_and_warns_of_its_band(tmp_path):
+    """examples/slotted_rotor.toml, as a user runs it: `campbell --json --out` lists the
+    weight's 2x whirl at both bearings and draws it (weight_2x.png); the peak is a
+    resonance: twice its speed is, within 2 %, the frequency of a whirl mode of the
+    Campbell diagram at that speed (half a critical speed: the secondary critical), and
+    it stands at least 10 times above the 2x whirl at 1/10 of its speed. `check` passes
+    (exit 0) and warns of the divergence band between the soft and the stiff diameter's
+    critical speeds above the running speed, with its margin."""
+    import json
+
+    scene = str(EXAMPLES / "slotted_rotor.toml")
+    run = _shaftfem("campbell", scene, "-q", "--json", str(tmp_path / "c.json"), "--out",
+                    str(tmp_path / "out"), cwd=tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert (tmp_path / "out" / "weight_2x.png").stat().st_size > 10_000
+    c = json.loads((tmp_path / "c.json").read_text())
+    c = c.get("campbell", c)
+    assert len(c["weight_2x"]) == 2 and c["divergent_rpm"]
+    rows = c["whirl"]
+    for w in c["weight_2x"]:
+        n = w["peak_speed_rpm"]
+        near = min({r["speed_rpm"] for r in rows}, key=lambda s: abs(s - n))
+        twice = 2 * n / 60
+        assert min(abs(r["frequency_hz"] - twice) for r in rows
+                   if r["speed_rpm"] == near) < 0.02 * twice
+        speeds, major = np.array(w["speeds_rpm"]), np.array(w["major_2x_m"])
+        assert w["peak_2x_m"] > 10 * np.interp(n / 10, speeds, major)
+    check = _shaftfem("check", scene, "-q", cwd=tmp_path)
+    assert check.returncode == 0, check.stdout[-2000:] + check.stderr[-2000:]
+    assert "warning: divergence" in check.stdout and "from the nearest running speed" in check.stdout

@@ -81,11 +81,15 @@ class WeightWhirl:
     amplitude: float
     at_operating: float
     sag: float
+    # the 2x orbit's major semi-axis (m) at the speeds (r/min) it was drawn through
+    speeds_rpm: tuple[float, ...] = ()
+    curve: tuple[float, ...] = ()
 
     def as_dict(self) -> dict:
         return {"probe": self.probe, "peak_speed_rpm": self.speed_rpm,
                 "peak_2x_m": self.amplitude, "at_operating_2x_m": self.at_operating,
-                "sag_m": self.sag}
+                "sag_m": self.sag, "speeds_rpm": list(self.speeds_rpm),
+                "major_2x_m": list(self.curve)}
 
 
 @dataclass(frozen=True)

@@ -129,6 +129,15 @@ def campbell_figure(c: Campbell):
                     color="tab:red", textcoords="offset points", xytext=(6, 6))
         if damped:
             dec.axvline(o.speed_rpm, color="tab:red", lw=0.8, ls=":")
+    # the bands where a root locks to the shaft and grows (between a stiff and a soft
+    # diameter's critical speeds), and beyond every onset: unstable, hatched
+    for i, (lo, hi) in enumerate([*c.divergent, *((o.speed_rpm, top_rpm) for o in c.onsets)]):
+        for axis in ([ax, dec] if damped else [ax]):
+            axis.axvspan(lo, hi, facecolor="none", edgecolor="tab:red", hatch="//", lw=0,
+                         alpha=0.35, label="unstable" if i == 0 and axis is ax else None)
+        if i < len(c.divergent):
+            ax.annotate(f"diverges {lo:,.0f}-{hi:,.0f}", (hi, 0.97 * fmax), fontsize=7,
+                        color="tab:red", ha="right", va="top")
     ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed" + (
         " range" if c.ranges_rpm else ""))
     ax.set_xlim(0, top_rpm)
@@ -166,6 +175,42 @@ def campbell_figure(c: Campbell):
     ax.set_title(f"Campbell diagram: {c.result.scene.name} ({c.frame} frame)", fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
+    return fig
+
+
+def weight_figure(c: Campbell):
+    """The 2x whirl the shaft's weight drives (a shaft stiffer across one diameter than
+    across the other) against speed at every probe: the 2x orbit's major semi-axis,
+    0-peak, its peak marked with its speed, the running speeds shaded, half of each 1x
+    critical speed dotted (where the peak is expected)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8, 4.5))
+    ax = fig.subplots()
+    for lo, hi in c.ranges_rpm:
+        ax.axvspan(lo, hi, color="gold", alpha=0.3, lw=0)
+    for n in c.operating_rpm:
+        if not any(lo <= n <= hi for lo, hi in c.ranges_rpm):
+            ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0,
+                       label="running speed" if n == c.operating_rpm[0] else None)
+    halves = sorted({round(cs.speed_rpm / 2, 6) for cs in c.critical_speeds
+                     if cs.order == 1 and not cs.critically_damped})
+    for i, h in enumerate(halves):
+        ax.axvline(h, ls=":", lw=0.9, color="grey",
+                   label="half a 1x critical speed" if i == 0 else None)
+    for i, w in enumerate(c.weight_2x):
+        line, = ax.semilogy(w.speeds_rpm, [a * 1e6 for a in w.curve], lw=max(2.6 - 0.6 * i, 1.0),
+                            label=f"{w.probe}")
+        ax.plot([w.speed_rpm], [w.amplitude * 1e6], "o", color=line.get_color(), ms=5)
+        ax.annotate(f"{w.speed_rpm:,.0f} r/min, {w.amplitude * 1e6:.3g} um",
+                    (w.speed_rpm, w.amplitude * 1e6), textcoords="offset points",
+                    xytext=(6, 4 - 12 * i), fontsize=7, color=line.get_color())
+    ax.set_xlabel("shaft speed, r/min")
+    ax.set_ylabel("2x orbit, major semi-axis, um (0-peak)")
+    ax.set_title(f"The weight's 2x whirl: {c.result.scene.name} (a shaft stiffer across one "
+                 "diameter)", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="upper right")
     return fig
 
 

@@ -39,7 +39,8 @@ STUDY_NOTE = ("The verdict at the top (and the exit status) takes the scene's fl
 # the study's pictures, in the order the section shows them, with their headings
 STUDY_PICTURES = (("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),
                   ("critical_shapes.png", "Deflected shapes at the critical speeds"),
-                  ("bode.png", "Unbalance response"), ("level1.png", "Level I screening"),
+                  ("bode.png", "Unbalance response"),
+                  ("weight_2x.png", "The weight's 2x whirl"), ("level1.png", "Level I screening"),
                   ("runup.png", "Run-up"))
 
 

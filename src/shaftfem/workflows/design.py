@@ -216,12 +216,14 @@ def study_pictures(study, folder: Path) -> list[Path]:
 
 def campbell_pictures(c, folder: Path) -> list[Path]:
     """campbell.png, campbell.csv, critical_shapes.png (the deflected shape at each 1x
-    critical speed), bode.png when the scene has unbalances, and orbits.png (the whirl
-    at the first operating speed), in `folder`."""
+    critical speed), bode.png when the scene has unbalances, weight_2x.png when the
+    shaft's weight drives a 2x whirl (a shaft not of revolution), and orbits.png (the
+    whirl at the first operating speed), in `folder`."""
     from shaftfem.outputs.campbell_plot import (
         bode_figure,
         campbell_figure,
         critical_shapes_figure,
+        weight_figure,
     )
     from shaftfem.outputs.plots import save_png
     from shaftfem.outputs.whirl_files import orbits_figure
@@ -231,6 +233,8 @@ def campbell_pictures(c, folder: Path) -> list[Path]:
            save_png(critical_shapes_figure(c), folder / "critical_shapes.png", dpi=130)]
     if c.unbalance is not None:
         out.append(save_png(bode_figure(c), folder / "bode.png", dpi=130))
+    if c.weight_2x:
+        out.append(save_png(weight_figure(c), folder / "weight_2x.png", dpi=130))
     out.append(save_png(orbits_figure(c), folder / "orbits.png", dpi=130))
     return out
 

@@ -153,8 +153,10 @@ def weight_whirl(scene: Scene, result, model) -> tuple[WeightWhirl, ...]:
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
         best = minimize_scalar(lambda n, beta=beta: -twice(n, beta), bounds=(lo, hi),
                                method="bounded", options={"xatol": 1e-6 * hi})
+        speeds = np.sort(np.append(grid, best.x))
         out.append(WeightWhirl(name, float(best.x), float(-best.fun), twice(top, beta),
-                               abs(orders(top, beta)[0])))
+                               abs(orders(top, beta)[0]), tuple(float(n) for n in speeds),
+                               tuple(twice(float(n), beta) for n in speeds)))
     return tuple(out)
 
 
