@@ -339,67 +339,15 @@ def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
     return floor
 
 
-def periodic_unbalance(model: RotorModel, omega: float,
-                       forces: list[tuple[np.ndarray, complex]]) -> np.ndarray:
-    """The steady response to unbalances (each its plane's motion beta (2, N) and
-    U = m e exp(i phase), kg m) of a periodic rotor at the spin omega, by harmonic
-    balance in the turning frame, where the unbalance's force stands still:
-    q = sum_k q_k exp(i 2 k Omega t), and for each harmonic m
-    (K - (2 m Omega)^2 M + i 2 m Omega D) q_m + (K_+ + i 2 (m-1) Omega D_+) q_{m-1}
-    + (K_- + i 2 (m+1) Omega D_-) q_{m+1} = F delta_m0. The harmonics (N, 2 H + 1),
-    H raised one at a time until the 1x response (k = 0 and -1) moves by at most BALANCE_TOL."""
-    D, K = model.matrices(omega)
-    Dc, Ds, Kc, Ks = model.periodic_parts(omega)
-    Mm = model.mass(omega)
-    Kp, Km, Dp, Dm = (0.5 * (Kc - 1j * Ks), 0.5 * (Kc + 1j * Ks), 0.5 * (Dc - 1j * Ds),
-                      0.5 * (Dc + 1j * Ds))
-    n = model.size
-    F = np.zeros(n)
-    for beta, U in forces:
-        F += omega**2 * (U.real * beta[0] + U.imag * beta[1])
-
-    def solve(H: int) -> np.ndarray:
-        size = 2 * H + 1
-        big = np.zeros((size * n, size * n), dtype=complex)
-        for i, m in enumerate(range(-H, H + 1)):
-            r = slice(i * n, (i + 1) * n)
-            w = 2 * m * omega
-            big[r, r] = K - w * w * Mm + 1j * w * D
-            if i > 0:
-                big[r, (i - 1) * n:i * n] = Kp + 2j * (m - 1) * omega * Dp
-            if i < size - 1:
-                big[r, (i + 1) * n:(i + 2) * n] = Km + 2j * (m + 1) * omega * Dm
-        rhs = np.zeros(size * n, dtype=complex)
-        rhs[H * n:(H + 1) * n] = F
-        return np.linalg.solve(big, rhs).reshape(size, n).T
-
-    H = HILL_START
-    prev = solve(H)
-    while True:
-        cur = solve(H + 1)
-        c0, p0 = cur[:, H:H + 2], prev[:, H - 1:H + 1]
-        if np.abs(c0 - p0).max() <= BALANCE_TOL * max(float(np.abs(c0).max()), 1e-300):
-            return cur
-        H += 1
-        if H > HILL_MAX:
-            raise SolverError(f"the unbalance response at {omega * 30 / math.pi:,.0f} r/min: "
-                              f"harmonic balance does not settle with {H} harmonics")
-        prev = cur
-
-
-def gravity_response(model: RotorModel, omega: float, load: np.ndarray) -> np.ndarray:
-    """The steady response of a rotor in the turning frame (rotating) to a load standing
-    still in the stationary frame (its weight), at the spin omega (rad/s): seen from the
-    shaft the load turns backwards, f(t) = Re[load exp(-i Omega t)], load = A (p_x - i p_y)
-    (N,) for a load A = a_x + i a_y (N, or m/s^2 for a weight) and the modal forces
-    p_x, p_y of a unit load along x and y at angle 0. By harmonic balance,
-    q(t) = Re sum_k q_k exp(i (2 k - 1) Omega t), k = -H..H, for each k
-    (K - w_k^2 M + i w_k D) q_k + (K_+ + i w_{k-1} D_+) q_{k-1} + (K_- + i w_{k+1} D_-)
-    q_{k+1} = load delta_k0, w_k = (2 k - 1) Omega; H raised one at a time until the
-    harmonics k = -1..2 (the stationary frame's static and 2x parts) move by at most
-    BALANCE_TOL. Returns the harmonics (N, 2 H + 1)."""
-    if model.frame != "rotating":
-        raise SolverError("a load standing still turns only in the rotating frame")
+def harmonic_balance(model: RotorModel, omega: float, load: np.ndarray, base: float,
+                     watched: range, what: str) -> np.ndarray:
+    """The steady response of the rotor at the spin omega (rad/s) to load exp(i base t)
+    (N,), its coefficients periodic in 2 Omega: q = sum_k q_k exp(i w_k t),
+    w_k = base + 2 k Omega, and for each harmonic k
+    (K - w_k^2 M + i w_k D) q_k + (K_+ + i w_{k-1} D_+) q_{k-1}
+    + (K_- + i w_{k+1} D_-) q_{k+1} = load delta_k0. The harmonics (N, 2 H + 1), H raised
+    one at a time from HILL_START until the harmonics k in `watched` move by at most
+    BALANCE_TOL."""
     D, K = model.matrices(omega)
     Mm = model.mass(omega)
     Dc, Ds, Kc, Ks = (model.periodic_parts(omega) if model.periodic(omega)
@@ -413,7 +361,7 @@ def gravity_response(model: RotorModel, omega: float, load: np.ndarray) -> np.nd
         big = np.zeros((size * n, size * n), dtype=complex)
         for i, k in enumerate(range(-H, H + 1)):
             r = slice(i * n, (i + 1) * n)
-            w = (2 * k - 1) * omega
+            w = base + 2 * k * omega
             big[r, r] = K - w * w * Mm + 1j * w * D
             if i > 0:
                 big[r, (i - 1) * n:i * n] = Kp + 1j * (w - 2 * omega) * Dp
@@ -427,14 +375,44 @@ def gravity_response(model: RotorModel, omega: float, load: np.ndarray) -> np.nd
     prev = solve(H)
     while True:
         cur = solve(H + 1)
-        c0, p0 = cur[:, H:H + 4], prev[:, H - 1:H + 3]
+        c0 = cur[:, [H + 1 + k for k in watched]]
+        p0 = prev[:, [H + k for k in watched]]
         if np.abs(c0 - p0).max() <= BALANCE_TOL * max(float(np.abs(c0).max()), 1e-300):
             return cur
         H += 1
         if H > HILL_MAX:
-            raise SolverError(f"the response to the weight at {omega * 30 / math.pi:,.0f} "
-                              f"r/min: harmonic balance does not settle with {H} harmonics")
+            raise SolverError(f"{what} at {omega * 30 / math.pi:,.0f} r/min: harmonic "
+                              f"balance does not settle with {H} harmonics")
         prev = cur
+
+
+def periodic_unbalance(model: RotorModel, omega: float,
+                       forces: list[tuple[np.ndarray, complex]]) -> np.ndarray:
+    """The steady response to unbalances (each its plane's motion beta (2, N) and
+    U = m e exp(i phase), kg m) of a periodic rotor at the spin omega, by harmonic
+    balance in the turning frame, where the unbalance's force stands still:
+    q = sum_k q_k exp(i 2 k Omega t) (harmonic_balance with base 0), raised until the 1x
+    response (k = 0 and -1) settles. The harmonics (N, 2 H + 1)."""
+    F = np.zeros(model.size)
+    for beta, U in forces:
+        F += omega**2 * (U.real * beta[0] + U.imag * beta[1])
+    return harmonic_balance(model, omega, F.astype(complex), 0.0, range(-1, 1),
+                            "the unbalance response")
+
+
+def gravity_response(model: RotorModel, omega: float, load: np.ndarray) -> np.ndarray:
+    """The steady response of a rotor in the turning frame (rotating) to a load standing
+    still in the stationary frame (its weight), at the spin omega (rad/s): seen from the
+    shaft the load turns backwards, f(t) = Re[load exp(-i Omega t)], load = A (p_x - i p_y)
+    (N,) for a load A = a_x + i a_y (N, or m/s^2 for a weight) and the modal forces
+    p_x, p_y of a unit load along x and y at angle 0. By harmonic balance with base
+    -Omega, q(t) = Re sum_k q_k exp(i (2 k - 1) Omega t), raised until the harmonics
+    k = -1..2 (the stationary frame's sag and 2x parts) settle. The harmonics
+    (N, 2 H + 1)."""
+    if model.frame != "rotating":
+        raise SolverError("a load standing still turns only in the rotating frame")
+    return harmonic_balance(model, omega, load, -omega, range(-1, 3),
+                            "the response to the weight")
 
 
 def stationary_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
