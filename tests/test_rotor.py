@@ -387,3 +387,22 @@ def test_every_crossing_of_1x_2x_and_7x_against_ross():
                    if cs.order == x["order"] and k not in used)
         used.add(near[1])
         assert near[0] < 0.01, x
+
+
+def test_a_torsional_curve_is_seen_at_its_own_frequency_in_the_turning_frame():
+    """Torsion does not whirl: the housing sees a torsional mode solved in the turning
+    frame at the frequency it has there (no forward and backward companions at f +- n,
+    which only a sideways orbit has), on the diagram's lines and in its rows."""
+    from shaftfem.fem.tracking import component_lines
+    from shaftfem.fem.whirl import Curve
+
+    speeds = np.array([0.0, 3000.0, 6000.0])
+    f = np.array([24.86, 24.86, 24.85])
+    c = Curve(1, "rotating", speeds, f, np.zeros(3), np.zeros(3), ("torsion",) * 3,
+              np.ones((2, 3)))
+    lines = component_lines(c)
+    assert len(lines) == 1 and np.allclose(lines[0][1], f)
+    assert np.allclose(c.seen_hz, f)
+    bending = Curve(2, "rotating", speeds, f, np.zeros(3), np.ones(3), ("bending",) * 3,
+                    np.ones((2, 3)))
+    assert np.allclose(bending.seen_hz, f + speeds / 60.0)   # a forward orbit: f + n

@@ -321,8 +321,9 @@ def _shape_at(model: RotorModel, omega: float, y: np.ndarray, f: float, reach: f
 
 def component_lines(c: Curve) -> list[tuple[str, np.ndarray, np.ndarray]]:
     """A curve's lines as the housing sees them: (component, signed value v in Hz whose
-    magnitude is seen, share of the motion)."""
-    if c.frame == "stationary":
+    magnitude is seen, share of the motion). A curve that never orbits (torsion, axial)
+    is seen at its own frequency in either frame."""
+    if c.frame == "stationary" or not c.whirling:
         return [("", c.signed_hz, np.ones_like(c.signed_hz))]
     n = c.speeds_rpm / 60.0
     return [("forward", c.signed_hz + n, 0.5 * (1 + c.index)),

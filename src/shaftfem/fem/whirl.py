@@ -178,7 +178,10 @@ class Curve:
 
     @property
     def seen_hz(self) -> np.ndarray:
-        """The frequency the housing sees at each speed (Hz): its larger component."""
+        """The frequency the housing sees at each speed (Hz): its larger component (a
+        curve that never orbits, torsion or axial, its own frequency in either frame)."""
+        if not self.whirling:
+            return np.abs(self.signed_hz)
         return seen(self.signed_hz, self.index, self.speeds_rpm / 60.0, self.frame)
 
     @property

@@ -101,17 +101,21 @@ def campbell_figure(c: Campbell):
         end = min(top_rpm, fmax * 60.0 / order)
         ax.annotate(f"{order}x", (end, order * end / 60.0), fontsize=8,
                     textcoords="offset points", xytext=(-14, 4))
+    placed: list[tuple[str, float]] = []
     for cs in c.critical_speeds:
         if cs.critically_damped:   # API 684: no critical speed (AF < 2.5)
             continue
         ax.plot(cs.speed_rpm, cs.frequency_hz, "o", mfc="none", color=COLOURS[cs.whirl], ms=8,
                 mew=1.8)
         # forward labels above and left, backward below and right: a pair's two crossings
-        # lie close together
+        # lie close together; labels of one whirl within 6 % of the axis stacked
         up = cs.whirl == "forward"
+        near = sum(1 for w, n in placed if w == cs.whirl
+                   and abs(n - cs.speed_rpm) < 0.06 * top_rpm)
+        placed.append((cs.whirl, cs.speed_rpm))
         ax.annotate(f"{cs.speed_rpm:,.0f}", (cs.speed_rpm, cs.frequency_hz), fontsize=7,
                     color=COLOURS[cs.whirl], textcoords="offset points",
-                    xytext=(-30, 6) if up else (6, -12))
+                    xytext=(-30, 6 + 9 * near) if up else (6, -12 - 9 * near))
     ax.plot([], [], "o", mfc="none", color="black", label="critical speed, r/min")
     if any(np.any(cv.log_dec > DAMPED_LOG_DEC) for cv in c.curves if cv.whirling):
         ax.plot([], [], "-", color="black", alpha=0.25, lw=1.6,
