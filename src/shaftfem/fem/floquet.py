@@ -228,7 +228,8 @@ def converged_hill(model: RotorModel, omega: float) -> Hill:
     OVERDAMPED, have an estimated error of at most HILL_TOL of themselves (their forms
     hold next to nothing in the outermost harmonics). It starts from the harmonics the
     slowest faster speed took and stops early where the estimate's fall from one H to
-    the next could not reach HILL_TOL by HILL_MAX. A SolverError if HILL_MAX harmonics do not settle them."""
+    the next could not reach HILL_TOL by HILL_MAX. An UnsettledError (a SolverError)
+    if HILL_MAX harmonics do not settle them."""
     took = _TOOK.setdefault(id(model), {})
     above = [w for w in took if w >= omega]
     below = [w for w in took if w < omega]
@@ -347,7 +348,8 @@ def harmonic_balance(model: RotorModel, omega: float, load: np.ndarray, base: fl
     (K - w_k^2 M + i w_k D) q_k + (K_+ + i w_{k-1} D_+) q_{k-1}
     + (K_- + i w_{k+1} D_-) q_{k+1} = load delta_k0. The harmonics (N, 2 H + 1), H raised
     one at a time from HILL_START until the harmonics k in `watched` move by at most
-    BALANCE_TOL."""
+    BALANCE_TOL; a rotor whose coefficients are constant there (K_+- = D_+- = 0) in its
+    one harmonic, k = 0."""
     D, K = model.matrices(omega)
     Mm = model.mass(omega)
     Dc, Ds, Kc, Ks = (model.periodic_parts(omega) if model.periodic(omega)
@@ -371,6 +373,8 @@ def harmonic_balance(model: RotorModel, omega: float, load: np.ndarray, base: fl
         rhs[H * n:(H + 1) * n] = load
         return np.linalg.solve(big, rhs).reshape(size, n).T
 
+    if not model.periodic(omega):
+        return solve(0)   # the harmonics do not couple: the load's own is all of it
     H = HILL_START
     prev = solve(H)
     while True:
@@ -418,7 +422,7 @@ def gravity_response(model: RotorModel, omega: float, load: np.ndarray) -> np.nd
 def stationary_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
     """What a probe on the housing sees of gravity_response's harmonics q (N, 2 H + 1) at
     a plane whose motion in the turning frame is beta q (beta (2, N)): the coefficients
-    c_j of its motion x + i y = sum_j c_j exp(i 2 j Omega t), j = -H..H+1 (orders 2 j:
+    c_j of its motion x + i y = sum_j c_j exp(i 2 j Omega t), j = -H-1..H+1 (orders 2 j:
     j = 0 the sag, j = 1 and -1 the 2x motion turning with and against the shaft; the
     2x orbit's major semi-axis |c_1| + |c_-1|). Turned back by Omega t,
     c_j = (a_j + i b_j) / 2 + conj(a_{1-j}) / 2 + i conj(b_{1-j}) / 2, a and b the
@@ -430,7 +434,7 @@ def stationary_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
         return (complex(a[k + H]), complex(b[k + H])) if -H <= k <= H else (0j, 0j)
 
     out = {}
-    for j in range(-H, H + 2):
+    for j in range(-H - 1, H + 2):
         (aj, bj), (ar, br) = at(j), at(1 - j)
         out[j] = 0.5 * (aj + 1j * bj) + 0.5 * (ar.conjugate() + 1j * br.conjugate())
     return out

@@ -243,9 +243,8 @@ def least_damped(scene: Scene, curves: list[Curve], lift: float) -> Stability | 
     ([rotor] min_log_dec; 0, or API 684's 0.1 with criterion "api684"); and every band
     below the running range where a mode grows (a run-up passes through it: a warning).
     Speeds below the journals' lift-off `lift` (r/min, lift_speed) are not judged. An
-    undamped model (every
-    decrement zero to round-off) is judged only when min_log_dec is set; a mode that
-    grows always fails."""
+    undamped model (every decrement zero to round-off) is judged only when min_log_dec
+    is set; a mode that grows always fails."""
     rotor = scene.rotor
     assert rotor is not None
     spans = [(lo / RPM * (1 - 1e-9), hi / RPM * (1 + 1e-9)) for lo, hi in rotor.spans]

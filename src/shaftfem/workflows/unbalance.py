@@ -41,27 +41,17 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     unbounded: the peaks are the 1x critical speeds (`criticals`, r/min; by default
     found directly) whose mode the unbalances drive, each given by its speed."""
     from shaftfem.fem.floquet import any_unbalance_response as solve
-    from shaftfem.fem.rotor import orbit, section_motion
+    from shaftfem.fem.rotor import orbit
 
     if not scene.unbalances:
         raise SceneError(f"{scene.source}: no [[unbalance]] to respond to")
     rotor = scene.rotor
     assert rotor is not None
-    z = result.system.nodes[:, 2]
-    for u in scene.unbalances:
-        _on_shaft(scene, f"[[unbalance]] {u.name!r}: position_mm", u.position, z)
-    for p in rotor.probes:
-        _on_shaft(scene, "[rotor] probes_mm", p, z)
     model = forced(result, model)
-    shapes = model.shapes
-    forces = [(section_motion(result, u.position, shapes),
-               u.amount * complex(math.cos(u.phase), math.sin(u.phase)))
-              for u in scene.unbalances]
-    probes = [(u.name, u.position, beta) for u, (beta, _) in zip(scene.unbalances, forces)]
-    probes += [(b.name, s.position, b.beta) for b, s in
-               zip(model.bearings, [s for s in scene.held if s.bearing is not None])]
-    probes += [(f"probe at {p * 1e3:g} mm", p, section_motion(result, p, shapes))
-               for p in rotor.probes]
+    probes = probes_of(scene, result, model)
+    # the unbalances' planes are the first probes
+    forces = [(beta, u.amount * complex(math.cos(u.phase), math.sin(u.phase)))
+              for u, (_, _, beta) in zip(scene.unbalances, probes)]
     grid = (np.linspace(0.0, rotor.max_speed / RPM, BODE_POINTS + 1)[1:]
             if speeds_rpm is None else np.asarray(speeds_rpm, dtype=float))
     damped = any(np.any(np.array(b.coefficients.cxx + b.coefficients.cyy + b.coefficients.cxy
@@ -108,6 +98,29 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
     return UnbalanceResponse(tuple(bode), tuple(peaks), damped=damped)
 
 
+def probes_of(scene: Scene, result, model) -> list[tuple[str, float, np.ndarray]]:
+    """Where a forced response is read: the unbalances' planes, the bearings' seats and
+    [rotor] probes_mm, each (name, z (m), its section's motion beta (2, N) on `model`'s
+    basis); a plane off the shaft is refused, naming its key."""
+    from shaftfem.fem.rotor import section_motion
+
+    rotor = scene.rotor
+    assert rotor is not None
+    z = result.system.nodes[:, 2]
+    for u in scene.unbalances:
+        _on_shaft(scene, f"[[unbalance]] {u.name!r}: position_mm", u.position, z)
+    for p in rotor.probes:
+        _on_shaft(scene, "[rotor] probes_mm", p, z)
+    shapes = model.shapes
+    probes = [(u.name, u.position, section_motion(result, u.position, shapes))
+              for u in scene.unbalances]
+    probes += [(b.name, s.position, b.beta) for b, s in
+               zip(model.bearings, [s for s in scene.held if s.bearing is not None])]
+    probes += [(f"probe at {p * 1e3:g} mm", p, section_motion(result, p, shapes))
+               for p in rotor.probes]
+    return probes
+
+
 def weight_whirl(scene: Scene, result, model) -> tuple[WeightWhirl, ...]:
     """The 2x whirl the shaft's weight drives where it is not a solid of revolution
     (`model` in the rotating frame: the weight turns backwards at the spin seen from the
@@ -119,7 +132,6 @@ def weight_whirl(scene: Scene, result, model) -> tuple[WeightWhirl, ...]:
     from scipy.optimize import minimize_scalar
 
     from shaftfem.fem.floquet import gravity_response, stationary_orders
-    from shaftfem.fem.rotor import section_motion
 
     rotor = scene.rotor
     gx, gy = scene.gravity[0], scene.gravity[1]
@@ -128,11 +140,6 @@ def weight_whirl(scene: Scene, result, model) -> tuple[WeightWhirl, ...]:
     model = forced(result, model)
     assert model.weight is not None
     load = complex(gx, gy) * (model.weight[0] - 1j * model.weight[1])
-    shapes = model.shapes
-    probes = [(b.name, b.beta) for b in model.bearings]
-    probes += [(u.name, section_motion(result, u.position, shapes)) for u in scene.unbalances]
-    probes += [(f"probe at {p * 1e3:g} mm", section_motion(result, p, shapes))
-               for p in rotor.probes]
     responses: dict[float, np.ndarray] = {}
 
     def orders(rpm: float, beta: np.ndarray) -> dict[int, complex]:
@@ -147,16 +154,18 @@ def weight_whirl(scene: Scene, result, model) -> tuple[WeightWhirl, ...]:
     grid = np.linspace(0.0, rotor.max_speed / RPM, BODE_POINTS + 1)[1:]
     top = max(rotor.speeds) / RPM if rotor.speeds else grid[-1]
     out = []
-    for name, beta in probes:
-        values = [twice(n, beta) for n in grid]
+    for name, _, beta in probes_of(scene, result, model):
+        values = np.array([twice(n, beta) for n in grid])
         i = int(np.argmax(values))
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
         best = minimize_scalar(lambda n, beta=beta: -twice(n, beta), bounds=(lo, hi),
                                method="bounded", options={"xatol": 1e-6 * hi})
-        speeds = np.sort(np.append(grid, best.x))
+        # the curve drawn through the grid and its peak
+        order = np.argsort(np.append(grid, best.x), kind="stable")
+        speeds, curve = np.append(grid, best.x)[order], np.append(values, -best.fun)[order]
         out.append(WeightWhirl(name, float(best.x), float(-best.fun), twice(top, beta),
-                               abs(orders(top, beta)[0]), tuple(float(n) for n in speeds),
-                               tuple(twice(float(n), beta) for n in speeds)))
+                               abs(orders(top, beta)[0]), tuple(speeds.tolist()),
+                               tuple(curve.tolist())))
     return tuple(out)
 
 
