@@ -336,6 +336,12 @@ def test_the_slotted_rotor_whirls_at_2x_under_its_weight_and_warns_of_its_band(t
     c = json.loads((tmp_path / "c.json").read_text())
     c = c.get("campbell", c)
     assert len(c["weight_2x"]) == 2 and c["divergent_rpm"]
+    # the band's edges by both routes, and how fast it grows: a mode locked to the shaft
+    # grows at most as fast as its undamped frequency at standstill allows (sqrt of the
+    # negative stiffness it meets: below 2 pi times the first critical's frequency)
+    assert any("edges of the zones of growth" in n for n in c["notes"])
+    first = min(x["speed_rpm"] for x in c["critical_speeds"]) / 60
+    assert all(0 < g < 2 * math.pi * first for g in c["divergent_growth_per_s"])
     rows = c["whirl"]
     for w in c["weight_2x"]:
         n = w["peak_speed_rpm"]
@@ -348,3 +354,63 @@ def test_the_slotted_rotor_whirls_at_2x_under_its_weight_and_warns_of_its_band(t
     check = _shaftfem("check", scene, "-q", cwd=tmp_path)
     assert check.returncode == 0, check.stdout[-2000:] + check.stderr[-2000:]
     assert "warning: divergence" in check.stdout and "from the nearest running speed" in check.stdout
+
+
+@pytest.mark.slow
+def test_the_paper_shaft_in_anisotropic_bearings_at_its_own_speed(tmp_path):
+    """examples/paper_shaft_in_anisotropic_bearings.toml: the grooved cam shaft at its
+    80 r/min in bearings twice as stiff along x as along y (periodic: Floquet theory at a
+    speed where the bearings split each mode by more than 2 Omega). `campbell` runs
+    (exit 0) and says Hill's method and the monodromy matrix agree at 80 r/min. The spin
+    is slow against the modes, so each Floquet form follows the frozen shaft's mode as
+    the shaft turns: the middle of its two lines 2 Omega apart (the form's frequency is
+    one modulo 2 Omega) lies within the range the frozen shaft's mode spans over the
+    angle (the model at standstill in the bearings turned by -theta, stationary frame,
+    written here), widened by the spin."""
+    import json
+    from dataclasses import replace
+
+    from shaftfem.fem.rotor import roots, rotor_model
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.campbell import basis_size
+    from shaftfem.workflows.pipeline import run_modes, with_modes
+
+    path = EXAMPLES / "paper_shaft_in_anisotropic_bearings.toml"
+    run = _shaftfem("campbell", str(path), "-q", "--json", str(tmp_path / "c.json"),
+                    cwd=tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    c = json.loads((tmp_path / "c.json").read_text())
+    c = c.get("campbell", c)
+    assert any("monodromy" in n and "agree" in n for n in c["notes"])
+    rows = sorted((r for r in c["operating"] if r["speed_rpm"] == 80.0),
+                  key=lambda r: r["frequency_hz"])[:6]
+    assert len(rows) == 6 and all(r["companion_hz"] for r in rows)
+
+    scene = load_scene(str(path))
+    frozen = rotor_model(run_modes(with_modes(scene, count=basis_size(scene))), "stationary")
+    omega = 80 * math.pi / 30
+
+    def turned(theta: float):
+        R = np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
+
+        def rot(a, b, c_, d):
+            ks = [R.T @ np.array([[w, x], [y, z]]) @ R for w, x, y, z in zip(a, b, c_, d)]
+            return [tuple(float(k[i, j]) for k in ks) for i, j in ((0, 0), (0, 1), (1, 0), (1, 1))]
+
+        out = []
+        for b in frozen.bearings:
+            co = b.coefficients
+            k = rot(co.kxx, co.kxy, co.kyx, co.kyy)
+            d = rot(co.cxx, co.cxy, co.cyx, co.cyy)
+            out.append(replace(b, coefficients=replace(
+                co, kxx=k[0], kxy=k[1], kyx=k[2], kyy=k[3], cxx=d[0], cxy=d[1], cyx=d[2],
+                cyy=d[3])))
+        return replace(frozen, bearings=tuple(out))
+
+    spans = np.array([np.sort(roots(turned(t), omega).lam.imag)[:6] / (2 * math.pi)
+                      for t in np.linspace(0.0, math.pi, 16, endpoint=False)])
+    spin = omega / (2 * math.pi)
+    for r, lo, hi in zip(rows, spans.min(axis=0), spans.max(axis=0)):
+        middle = 0.5 * (r["frequency_hz"] + r["companion_hz"])
+        assert abs(r["frequency_hz"] - r["companion_hz"]) == pytest.approx(2 * spin, rel=1e-6)
+        assert lo - spin <= middle <= hi + spin, (middle, lo, hi)

@@ -350,3 +350,112 @@ def test_a_keyed_shaft_s_weight_sags_it_by_statics_and_whirls_at_half_its_critic
     for w in c.weight_2x:
         assert w.speed_rpm == pytest.approx(forward / 2, rel=3e-2)
         assert w.amplitude > 3 * w.at_operating or w.speed_rpm > 0.9 * max(c.operating_rpm)
+
+
+def test_a_run_up_in_the_turning_frame_meets_the_stationary_frame_s_integration():
+    """The asymmetric Jeffcott rotor on anisotropic supports run up through its critical
+    speeds and the zone between them with an unbalance, integrated in the frame turning
+    with the shaft (workflows.runup: the bearings turned, the unbalance standing still,
+    the Euler force of the acceleration) against its equations in the stationary frame
+    written here (the shaft's stiffness turned, the unbalance's centripetal and
+    tangential force; scipy's DOP853): the disk's motion as the housing sees it agrees
+    within 1 % of its largest excursion at every step."""
+    from scipy.integrate import solve_ivp
+
+    from shaftfem.workflows.runup import newmark_run_up
+
+    kx, ky = 0.5 * K1, 1.0 * K1
+    model = jeffcott(kx, ky)
+    U = 2e-5 * complex(math.cos(0.3), math.sin(0.3))      # kg m, at 0.3 rad
+    beta = np.eye(2) / math.sqrt(M)
+    start, stop, accel = 2500 * math.pi / 30, 5500 * math.pi / 30, 6000 * math.pi / 30
+    times, speeds, (ours,) = newmark_run_up(model, start, stop, accel, [(beta, U)], [beta],
+                                            steps_per_turn=400)
+
+    def rhs(t: float, s: np.ndarray) -> np.ndarray:
+        w, phi = start + accel * t, start * t + 0.5 * accel * t * t
+        R = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+        Ks = R @ np.diag([K1, K2]) @ R.T + np.diag([kx, ky])
+        c = U * complex(math.cos(phi), math.sin(phi))
+        f = np.array([w * w * c.real + accel * c.imag, w * w * c.imag - accel * c.real])
+        return np.concatenate([s[2:], (f - Ks @ s[:2] - C * s[2:]) / M])
+
+    ref = solve_ivp(rhs, (0.0, float(times[-1])), np.zeros(4), method="DOP853",
+                    t_eval=times, rtol=1e-10, atol=1e-14).y[:2]
+    scale = float(np.abs(ref).max())
+    assert scale > 0
+    assert float(np.abs(ours - ref).max()) < 0.01 * scale
+
+
+@pytest.mark.parametrize("side", [-1, 1])
+def test_a_free_motion_integrated_in_time_grows_inside_every_zone_and_decays_outside(side):
+    """A third route to the zones, beside Hill's method and the monodromy matrix: the
+    free motion of the asymmetric Jeffcott rotor on anisotropic supports, integrated in
+    the turning frame at a constant spin (workflows.runup.integrate) from a push, over
+    200 periods: 1 % inside each edge of each zone Hill's method finds, the motion grows;
+    1 % outside, it decays; where it grows, at the rate Hill's method gives within 3 %
+    (measured over periods 150 to 200, when the other forms are spent)."""
+    from shaftfem.workflows.runup import integrate
+
+    model = jeffcott(0.5 * K1, 1.5 * K1)
+    found = edges(lambda w: growth(model, w), 150.0, 700.0)
+    assert len(found) >= 2
+    beta = np.eye(2) / math.sqrt(M)
+    for i, edge in enumerate(found):
+        inside_above = growth(model, edge * 1.01) > 0
+        omega = edge * (1 + side * 0.01)
+        grows = (side > 0) == inside_above
+        T = math.pi / omega
+        times = np.linspace(0.0, 200 * T, 200 * 100 + 1)
+        (xy,) = integrate(model, omega, 0.0, times, [], [beta], q0=np.array([1e-3, 1e-3]))
+        r = np.hypot(xy[0], xy[1])
+        # the largest excursion over periods 150-160 and 190-200 (the other forms spent)
+        first, last = r[150 * 100:160 * 100].max(), r[-10 * 100:].max()
+        rate = math.log(last / first) / (40 * T)
+        assert (rate > 0) == grows, (i, edge, side, rate)
+        if grows:
+            assert rate == pytest.approx(growth(model, omega), rel=0.03)
+
+
+def test_the_unbalance_s_1x_and_3x_by_harmonic_balance_meet_a_time_integration():
+    """The asymmetric Jeffcott rotor on anisotropic supports under an unbalance at a speed
+    outside its zones: its steady orbit by harmonic balance in the turning frame
+    (periodic_unbalance, read at the housing by unbalance_orders) against its equations
+    in the stationary frame integrated from rest until the start has died away (scipy's
+    DOP853), Fourier coefficients over whole turns: the 1x within 1e-4 of it, the 3x
+    (which the stiff and soft diameters in bearings that differ along x and y add)
+    within 1 % of itself, and not small (above 1 % of the 1x)."""
+    from scipy.integrate import solve_ivp
+
+    from shaftfem.fem.floquet import periodic_unbalance, unbalance_orders
+
+    kx, ky, c = 0.5 * K1, 1.5 * K1, 40.0
+    model = jeffcott(kx, ky, c)
+    omega = 260.0                                            # rad/s, below the zones
+    assert growth(model, omega) < 0
+    U = 2e-5 * complex(math.cos(0.3), math.sin(0.3))
+    beta = np.eye(2) / math.sqrt(M)
+    ours = unbalance_orders(beta, periodic_unbalance(model, omega, [(beta, U)]))
+
+    def rhs(t: float, s: np.ndarray) -> np.ndarray:
+        phi = omega * t
+        R = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+        Ks = R @ np.diag([K1, K2]) @ R.T + np.diag([kx, ky])
+        f = omega**2 * U * complex(math.cos(phi), math.sin(phi))
+        return np.concatenate([s[2:], (np.array([f.real, f.imag]) - Ks @ s[:2] - c * s[2:]) / M])
+
+    turn = 2 * math.pi / omega
+    t0, turns = 30 * M / c * 2, 20          # the start decays by e^-30 first
+    t = t0 + np.linspace(0.0, turns * turn, turns * 256, endpoint=False)
+    sol = solve_ivp(rhs, (0.0, float(t[-1])), np.zeros(4), method="DOP853", t_eval=t,
+                    rtol=1e-11, atol=1e-16)
+    z = sol.y[0] + 1j * sol.y[1]
+
+    def coefficient(m: int) -> complex:
+        return complex(np.mean(z * np.exp(-1j * m * omega * t)))
+
+    one = coefficient(1)
+    assert abs(ours[1] - one) < 1e-4 * abs(one)
+    for m in (3, -3, -1):
+        assert abs(ours[m] - coefficient(m)) < 0.01 * abs(coefficient(m)) + 1e-6 * abs(one)
+    assert abs(ours[3]) + abs(ours[-3]) > 0.01 * abs(one)

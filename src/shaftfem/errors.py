@@ -43,9 +43,10 @@ class UnsettledError(SolverError):
     """Hill's method did not settle at the spin `omega` (rad/s): the Floquet forms spread
     over more harmonics than it takes (a slow spin in bearings that differ along x and y)."""
 
-    def __init__(self, message: str, omega: float):
+    def __init__(self, message: str, omega: float, harmonics: int = 0):
         super().__init__(message)
         self.omega = omega
+        self.harmonics = harmonics   # the most it took
 
 
 class ClusterError(ShaftfemError):

@@ -23,7 +23,7 @@ Two routes, independent of each other:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -45,13 +45,24 @@ HILL_START = 2
 HILL_STEP = 2
 HILL_TOL = 1e-7
 HILL_MAX = 12
+# ... and up to this many at the speeds a rotor runs at (widen): a slow shaft's forms
+# spread over about (the bearings' split of a mode's frequency) / (2 Omega) harmonics,
+# and its operating speed must be solved whatever it takes (the paper's cam shaft at
+# 80 r/min in bearings twice as stiff along x as along y: 24); past HILL_MAX the step
+# grows with H (the cost goes as H^3)
+HILL_WIDE = 40
 # ... watching this share of the exponents, the lowest, those damped at most this
 # ratio (-Re lam / |lam|).
 WATCHED = 2 / 3
 OVERDAMPED = 0.5
-# The monodromy's steps: at least this many a period, and so many that the fastest
-# mode turns by at most a quarter turn in a step.
+# The monodromy's steps: from this many a period, doubled until the multipliers that
+# decide stability (RESOLVED) move by less than MONODROMY_TOL of their exponents (each
+# step's exponential is exact for the mean system, so the step follows the bearings'
+# turning, not the fastest mode: 8,000 steps a period held 1e-8 at 80 r/min where the
+# fastest mode turns 8 rad a step), at most MONODROMY_MAX.
 MONODROMY_STEPS = 256
+MONODROMY_TOL = 1e-7
+MONODROMY_MAX = 2**17
 # the forms whose multipliers the two routes compare: those above this (a decay of less
 # than e^-13.8 a period), and how far apart they may lie (a fraction of |lam|; measured
 # 6e-7 at most on a keyed pump on journals from 1,000 to 9,000 r/min)
@@ -114,6 +125,7 @@ class Hill:
     harmonics: int
     residual: np.ndarray
     forms: np.ndarray | None = None   # each form's harmonics of q, k = -H..H (2H+1, N, 2N)
+    top: float = math.inf   # the largest |lam| settled (s^-1): those above are not
 
 
 def hill(model: RotorModel, omega: float, harmonics: int) -> Hill:
@@ -222,52 +234,93 @@ def not_overdamped(lam: np.ndarray) -> np.ndarray:
     return -lam.real <= OVERDAMPED * np.abs(lam)
 
 
+def widen(model: RotorModel, speeds: tuple[float, ...], forms: int) -> RotorModel:
+    """The model with Hill's method let take up to HILL_WIDE harmonics at these speeds
+    (rad/s), settling there its lowest `forms` Floquet forms: the speeds it runs at,
+    solved whatever they take, and only the forms reported there (the diagram's other
+    speeds stop at HILL_MAX and settle the lower WATCHED of the forms, and the diagram
+    starts where they settle)."""
+    return replace(model, wide=tuple(float(w) for w in speeds), wide_forms=forms)
+
+
+def _wide(model: RotorModel, omega: float) -> bool:
+    return float(omega) in model.wide
+
+
+def _next(H: int) -> int:
+    return H + HILL_STEP if H < HILL_MAX else H + max(HILL_STEP, H // 4)
+
+
+def watched_top(model: RotorModel, omega: float, lam: np.ndarray, wide: bool) -> float:
+    """The largest |lam| (s^-1) of the forms Hill's method settles at the spin omega: the
+    lower WATCHED of them, or (wide) the lowest model.wide_forms that oscillate and are
+    not overdamped."""
+    if wide:
+        live = np.sort(np.abs(lam[not_overdamped(lam) & (np.abs(lam.imag) > 1e-9 * omega)]))
+        if live.size:
+            return float(live[min(model.wide_forms, live.size) - 1])
+    return float(np.sort(np.abs(lam))[int(WATCHED * (lam.size - 1))])
+
+
 def converged_hill(model: RotorModel, omega: float) -> Hill:
     """Hill's exponents with H raised until the lower WATCHED of them (what the basis
     check vouches for; the basis' top converges last), but for the forms damped beyond
     OVERDAMPED, have an estimated error of at most HILL_TOL of themselves (their forms
     hold next to nothing in the outermost harmonics). It starts from the harmonics the
     slowest faster speed took and stops early where the estimate's fall from one H to
-    the next could not reach HILL_TOL by HILL_MAX. An UnsettledError (a SolverError)
-    if HILL_MAX harmonics do not settle them."""
+    the next could not reach HILL_TOL by HILL_MAX. At a widened speed that this does
+    not settle, H goes on up to HILL_WIDE for the forms reported there (a slow spin's
+    higher forms, those of the bearings' stiffness split by far more than 2 Omega,
+    would take hundreds). An UnsettledError (a SolverError) if they do not settle."""
     took = _TOOK.setdefault(id(model), {})
     above = [w for w in took if w >= omega]
     below = [w for w in took if w < omega]
     H = (took[min(above)] if above else took[max(below)] if below else HILL_START)
-    before = math.inf
+    try:
+        h = _settled(model, omega, min(H, HILL_MAX), False)
+    except UnsettledError as e:
+        if not model.wide_forms:
+            raise
+        h = _settled(model, omega, min(H, HILL_MAX, e.harmonics), True)
+    if len(took) >= 4096:
+        took.clear()
+    if h.harmonics <= HILL_MAX:   # (a widened speed's are no start for the diagram's)
+        took[omega] = h.harmonics
+    return h
+
+
+def _settled(model: RotorModel, omega: float, H: int, wide: bool) -> Hill:
+    cap = HILL_WIDE if wide and _wide(model, omega) else HILL_MAX
+    before, last = math.inf, H
     while True:
         h = hill(model, omega, H)
-        low = np.sort(np.abs(h.lam))[int(WATCHED * (h.lam.size - 1))]
+        low = watched_top(model, omega, h.lam, wide)
         watched = (np.abs(h.lam) <= low * (1 + 1e-9)) & not_overdamped(h.lam)
         estimate = h.residual**2 / (2 * omega * np.maximum(np.abs(h.lam), omega))
         worst = float(estimate[watched].max())
         if worst <= HILL_TOL:
-            if len(took) >= 4096:
-                took.clear()
-            took[omega] = H
-            return h
-        # the estimate falls about geometrically with H where the forms settle
-        fall = worst / before
-        reach = worst * fall ** ((HILL_MAX - H) / HILL_STEP) if fall < 1 else math.inf
-        if H >= HILL_MAX or (before < math.inf and reach > 1e3 * HILL_TOL):
+            return replace(h, top=low) if wide else h
+        # the estimate falls about geometrically with H where the forms settle (not
+        # widened: a slow spin's forms spread over some harmonics, then fall faster than
+        # geometrically, as Bessel functions of the split over 2 Omega)
+        fall = (worst / before) ** (HILL_STEP / (H - last)) if before < math.inf else 1.0
+        reach = worst * fall ** ((cap - H) / HILL_STEP) if fall < 1 else math.inf
+        if cap <= H or (not wide and before < math.inf and reach > 1e3 * HILL_TOL):
             raise UnsettledError(f"Hill's method at {omega * 30 / math.pi:,.0f} r/min: the "
                                  f"Floquet forms still reach the outermost of {H} harmonics "
-                                 f"(estimated error {worst:.2g} of an exponent)", omega)
-        before = worst
-        H += HILL_STEP
+                                 f"(estimated error {worst:.2g} of an exponent)", omega, H)
+        before, last = worst, H
+        H = min(_next(H), cap)
 
 
-def monodromy(model: RotorModel, omega: float, steps: int | None = None) -> np.ndarray:
+def monodromy(model: RotorModel, omega: float, steps: int) -> np.ndarray:
     """The monodromy matrix (2 N, 2 N): the first-order state after one period
-    T = pi / omega from each unit state, by fourth-order Magnus steps (two Gauss
+    T = pi / omega from each unit state, by `steps` fourth-order Magnus steps (two Gauss
     points; each step's exponential exact for a constant system)."""
     import scipy.linalg
 
     f = first_order(model, omega)
     T = math.pi / omega
-    fastest = math.sqrt(max(float(np.max(model.omega2)), 1.0))
-    if steps is None:
-        steps = max(MONODROMY_STEPS, math.ceil(4 * fastest * T / (0.5 * math.pi)))
     h = T / steps
     c1, c2 = 0.5 - math.sqrt(3) / 6, 0.5 + math.sqrt(3) / 6
     Phi = np.eye(f.A.shape[0])
@@ -278,9 +331,34 @@ def monodromy(model: RotorModel, omega: float, steps: int | None = None) -> np.n
     return Phi
 
 
+def resolved_exponents(mu: np.ndarray, omega: float) -> np.ndarray:
+    """The exponents ln(mu) / T of the multipliers that decide stability (|mu| at least
+    RESOLVED of the largest or of 1)."""
+    T = math.pi / omega
+    top = max(float(np.abs(mu).max()), 1.0)
+    return np.log(mu[np.abs(mu) >= RESOLVED * top].astype(complex)) / T
+
+
 def multipliers(model: RotorModel, omega: float, steps: int | None = None) -> np.ndarray:
-    """The Floquet multipliers mu = exp(lam T) from the monodromy matrix."""
-    return np.linalg.eigvals(monodromy(model, omega, steps))
+    """The Floquet multipliers mu = exp(lam T) from the monodromy matrix: with `steps`
+    steps, or from MONODROMY_STEPS doubled until the exponents of those that decide
+    stability move by at most MONODROMY_TOL of themselves (a SolverError if
+    MONODROMY_MAX steps do not settle them)."""
+    if steps is not None:
+        return np.linalg.eigvals(monodromy(model, omega, steps))
+    T = math.pi / omega
+    steps = MONODROMY_STEPS
+    before = np.log(np.linalg.eigvals(monodromy(model, omega, steps)).astype(complex)) / T
+    while steps < MONODROMY_MAX:
+        steps *= 2
+        mu = np.linalg.eigvals(monodromy(model, omega, steps))
+        now = resolved_exponents(mu, omega)
+        moved = apart(now, before, omega).min(axis=1) if now.size else np.zeros(0)
+        if np.all(moved <= MONODROMY_TOL * np.maximum(np.abs(now), omega)):
+            return mu
+        before = np.log(mu.astype(complex)) / T
+    raise SolverError(f"the monodromy matrix at {omega * 30 / math.pi:,.0f} r/min does not "
+                      f"settle with {MONODROMY_MAX:,} steps a period")
 
 
 def routes_apart(model: RotorModel, omega: float) -> float:
@@ -299,14 +377,24 @@ def growth_apart(model: RotorModel, omega: float) -> float:
     that decay by less than RESOLVED a period (a multiplier below it is lost in the
     monodromy's round-off against the largest, and decides no stability question): the
     largest |lam_Hill - lam_monodromy| (frequency modulo 2 omega) over |lam| (a
-    fraction)."""
-    lam = converged_hill(model, omega).lam
+    fraction). Where Hill's method settled only the lowest forms (a widened speed), a
+    growing exponent of the monodromy that none of them has counts as 1."""
+    h = converged_hill(model, omega)
     T = math.pi / omega
-    lam = lam[lam.real * T >= math.log(RESOLVED)]
-    if lam.size == 0:
-        return 0.0
+    settled = h.lam[np.abs(h.lam) <= h.top * (1 + 1e-9)]
+    lam = settled[settled.real * T >= math.log(RESOLVED)]
     mono = np.log(multipliers(model, omega).astype(complex)) / T
-    return float((apart(lam, mono, omega).min(axis=1) / np.maximum(np.abs(lam), omega)).max())
+    worst = 0.0
+    if lam.size:
+        worst = float((apart(lam, mono, omega).min(axis=1)
+                       / np.maximum(np.abs(lam), omega)).max())
+    grows = mono[mono.real > 1e-9 * max(float(np.abs(mono).max()), omega)]
+    if grows.size and h.top < math.inf:
+        near = (apart(grows, settled, omega).min(axis=1) if settled.size
+                else np.full(grows.size, math.inf))
+        if np.any(near > ROUTES_TOL * np.maximum(np.abs(grows), omega)):
+            worst = 1.0
+    return worst
 
 
 def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
@@ -384,7 +472,7 @@ def harmonic_balance(model: RotorModel, omega: float, load: np.ndarray, base: fl
         if np.abs(c0 - p0).max() <= BALANCE_TOL * max(float(np.abs(c0).max()), 1e-300):
             return cur
         H += 1
-        if H > HILL_MAX:
+        if (HILL_WIDE if _wide(model, omega) else HILL_MAX) < H:
             raise SolverError(f"{what} at {omega * 30 / math.pi:,.0f} r/min: harmonic "
                               f"balance does not settle with {H} harmonics")
         prev = cur
@@ -440,6 +528,19 @@ def stationary_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
     return out
 
 
+def unbalance_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
+    """What a probe on the housing sees of periodic_unbalance's harmonics q (N, 2 H + 1)
+    at a plane whose motion in the turning frame is beta q: the coefficients c_m of
+    x + i y = sum_m c_m exp(i m Omega t), m odd (the turning frame's x_r + i y_r =
+    sum_k (X_k + i Y_k) exp(i 2 k Omega t), turned by Omega t: c_{2k+1} = X_k + i Y_k).
+    Order m's orbit has the major semi-axis |c_m| + |c_-m|: 1x the unbalance's own, 3x
+    (and 5x, ...) what a shaft stiffer across one diameter in bearings that differ along
+    x and y adds."""
+    H = (q.shape[1] - 1) // 2
+    X, Y = beta[0] @ q, beta[1] @ q
+    return {2 * k + 1: complex(X[k + H] + 1j * Y[k + H]) for k in range(-H, H + 1)}
+
+
 def floquet_roots(model: RotorModel, omega: float) -> Roots:
     """The Floquet exponents at the spin omega as fem.rotor.roots gives a constant
     rotor's roots: each form by its dominant harmonic (lam + i 2 Omega k and that
@@ -452,12 +553,18 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     if key in _ROOTS:
         return _ROOTS[key]
     h = converged_hill(model, omega)
-    assert h.forms is not None
-    energy = np.sum(np.abs(h.forms) ** 2, axis=1)             # (2H+1, 2N)
+    forms = h.forms
+    assert forms is not None
+    if h.top < math.inf:   # a widened speed: the forms reported there, settled
+        low = np.abs(h.lam) <= h.top * (1 + 1e-9)
+        forms = forms[:, :, low]
+        h = replace(h, lam=h.lam[low], y=h.y[:, low], centroid=h.centroid[low],
+                    residual=h.residual[low], forms=forms)
+    energy = np.sum(np.abs(forms) ** 2, axis=1)             # (2H+1, 2N)
     k = np.argmax(energy, axis=0)
     cols = np.arange(h.lam.size)
     lam = h.lam + 2j * omega * (k - h.harmonics)
-    y = h.forms[k, :, cols].T
+    y = forms[k, :, cols].T
     scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
     still = (np.abs(lam.imag) <= 1e-9 * scale) | still_seen(model, omega, lam, y)
     keep = (lam.imag > 1e-9 * scale) & ~still

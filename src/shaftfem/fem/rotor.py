@@ -87,6 +87,11 @@ class RotorModel:
     # the modal forces of a unit acceleration along x and along y of the whole shaft and
     # its parts (its weight per m/s^2), (2, N), kg / sqrt(kg)
     weight: np.ndarray | None = None
+    # the speeds (rad/s) a periodic rotor runs at, where Hill's method may take more
+    # harmonics (fem.floquet.HILL_WIDE), and how many of its lowest Floquet forms must
+    # settle there (those reported)
+    wide: tuple[float, ...] = ()
+    wide_forms: int = 0
 
     @property
     def size(self) -> int:

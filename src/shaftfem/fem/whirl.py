@@ -37,6 +37,8 @@ class Bode:
     major: np.ndarray
     amplitude_y: np.ndarray | None = None
     phase_y_deg: np.ndarray | None = None
+    # a periodic rotor's 3x orbit's major semi-axis (m), at the same speeds
+    major_3x: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -111,7 +113,9 @@ class UnbalanceResponse:
                                               else b.amplitude_y.tolist()),
                             "phase_y_deg": (None if b.phase_y_deg is None
                                             else b.phase_y_deg.tolist()),
-                            "major_m": b.major.tolist()} for b in self.bode]}
+                            "major_m": b.major.tolist(),
+                            **({"major_3x_m": b.major_3x.tolist()} if b.major_3x is not None
+                               else {})} for b in self.bode]}
 
 
 @dataclass(frozen=True)
@@ -410,6 +414,7 @@ class Campbell:
     unbalance: UnbalanceResponse | None = None
     onsets: tuple[Onset, ...] = ()
     divergent: tuple[tuple[float, float], ...] = ()   # speed bands (r/min) where it diverges
+    divergent_growth: tuple[float, ...] = ()   # each band's fastest growth rate, 1/s
     # at each operating speed, the reported modes' complex shapes on the standstill modes
     # (N, count): u = Phi y, in the model's frame
     operating_shapes: tuple[np.ndarray, ...] = ()
@@ -457,6 +462,7 @@ class Campbell:
                 "critical_speeds": [c.as_dict() for c in self.critical_speeds],
                 "instability_onsets": [o.as_dict() for o in self.onsets],
                 "divergent_rpm": [list(band) for band in self.divergent],
+                "divergent_growth_per_s": list(self.divergent_growth),
                 "synchronous_check": self.synchronous_check,
                 "crossing_check": (None if self.crossing_check is None
                                    else self.crossing_check.as_dict()),

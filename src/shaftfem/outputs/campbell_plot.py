@@ -140,8 +140,10 @@ def campbell_figure(c: Campbell):
             axis.axvspan(lo, hi, facecolor="none", edgecolor="tab:red", hatch="//", lw=0,
                          alpha=0.35, label="unstable" if i == 0 and axis is ax else None)
         if i < len(c.divergent):
-            ax.annotate(f"diverges {lo:,.0f}-{hi:,.0f}", (hi, 0.97 * fmax), fontsize=7,
-                        color="tab:red", ha="right", va="top")
+            g = c.divergent_growth[i] if i < len(c.divergent_growth) else 0.0
+            ax.annotate(f"diverges {lo:,.0f}-{hi:,.0f}"
+                        + (f"\nup to {g:.3g} 1/s" if g > 0 else ""), (hi, 0.97 * fmax),
+                        fontsize=7, color="tab:red", ha="right", va="top")
     ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed" + (
         " range" if c.ranges_rpm else ""))
     ax.set_xlim(0, top_rpm)
@@ -220,7 +222,8 @@ def weight_figure(c: Campbell):
 
 def bode_figure(c: Campbell):
     """The unbalance response against speed at every probe, 0-peak: the orbit's major
-    semi-axis (solid), its x (dashed) and y (dotted) amplitudes where they differ, the
+    semi-axis (solid), its x (dashed) and y (dotted) amplitudes where they differ, a
+    periodic rotor's 3x orbit (dash-dotted), the
     peaks marked, the running speeds or range shaded, the scene's amplitude limit drawn;
     below, the phase of x as one continuous lag."""
     import numpy as np
@@ -239,7 +242,7 @@ def bode_figure(c: Campbell):
             for ax in (amp, phase):
                 ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
     labelled = set()
-    ellipses = False
+    ellipses = thirds = False
     low, high = [], []
     for i, b in enumerate(c.unbalance.bode):
         um = b.major * 1e6
@@ -253,6 +256,9 @@ def bode_figure(c: Campbell):
             ellipses = True
             amp.semilogy(b.speeds_rpm, b.amplitude * 1e6, "--", lw=0.9, color=colour)
             amp.semilogy(b.speeds_rpm, b.amplitude_y * 1e6, ":", lw=1.1, color=colour)
+        if b.major_3x is not None and np.any(b.major_3x > 0):
+            thirds = True
+            amp.semilogy(b.speeds_rpm, b.major_3x * 1e6, "-.", lw=0.9, color=colour)
         # thinner for each probe drawn later: a phase equal to another's shows as its core
         phase.plot(b.speeds_rpm, b.phase_deg, lw=max(3.2 - 0.7 * i, 0.8), color=colour)
         finite = um[np.isfinite(um) & (um > 0)]
@@ -287,6 +293,8 @@ def bode_figure(c: Campbell):
     if ellipses:
         amp.plot([], [], "k--", lw=0.9, label="along x")
         amp.plot([], [], "k:", lw=1.1, label="along y")
+    if thirds:
+        amp.plot([], [], "k-.", lw=0.9, label="3x orbit's major semi-axis")
     amp.set_ylabel("amplitude, um (0-peak)")
     amp.set_title(f"Unbalance response: {scene.name}"
                   + ("" if c.unbalance.damped else " (no damping: unbounded at the criticals)"),

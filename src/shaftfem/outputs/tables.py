@@ -555,10 +555,11 @@ def campbell_text(c) -> str:
                      f"decrement {st.log_dec:.3g} (curve {st.curve}, {st.whirl} whirl, "
                      f"{st.frequency_hz:.2f} Hz, at {st.speed_rpm:,.0f} r/min)"
                      + ("" if not st.judged else f", required above {st.required:g}"))
-    for lo, hi in c.divergent:
+    for (lo, hi), g in zip(c.divergent, c.divergent_growth or [0.0] * len(c.divergent)):
         lines.append(f"UNSTABLE between {lo:,.0f} and {hi:,.0f} r/min: a mode locks to the "
                      "shaft and grows (divergence; the shaft is stiffer across one diameter "
-                     "than across the other)")
+                     "than across the other)" + (f", fastest growth {g:.3g} 1/s (doubling in "
+                                                 f"{math.log(2) / g:.3g} s)" if g > 0 else ""))
     for o in c.onsets:
         lines.append(f"UNSTABLE from {o.speed_rpm:,.0f} r/min: {o.whirl} whirl curve {o.mode} "
                      f"({o.frequency_hz:.2f} Hz), its log decrement falls below zero")
@@ -595,6 +596,25 @@ def campbell_text(c) -> str:
                     and p.amplitude > limit else "")
             lines.append(f"  {p.probe}: {p.speed_rpm:,.0f} r/min, {p.amplitude * 1e6:.3g} um, "
                          f"{af}, margin {p.margin * 100:.1f} %, {need}{over}")
+        thirds = [b for b in c.unbalance.bode if b.major_3x is not None]
+        if thirds:
+            top = max(c.operating_rpm) if c.operating_rpm else None
+            lines += ["", "the unbalance's 3x whirl (the shaft stiffer across one diameter in "
+                      "bearings that differ along x and y; the 3x orbit's major semi-axis, "
+                      "0-peak, beside the 1x):"]
+            for b in thirds:
+                assert b.major_3x is not None
+                import numpy as np
+
+                i = int(np.argmax(b.major_3x))
+                at = ""
+                if top is not None:
+                    j = int(np.argmin(np.abs(b.speeds_rpm - top)))
+                    at = (f"; {b.major_3x[j] * 1e6:.3g} um at {b.speeds_rpm[j]:,.0f} r/min "
+                          f"beside {b.major[j] * 1e6:.3g} um at 1x")
+                lines.append(f"  {b.name}: largest {b.major_3x[i] * 1e6:.3g} um at "
+                             f"{b.speeds_rpm[i]:,.0f} r/min ({3 * b.speeds_rpm[i] / 60:.2f} Hz)"
+                             + at)
     if c.weight_2x:
         top = max(c.operating_rpm) if c.operating_rpm else None
         lines += ["", "the weight's 2x whirl (the shaft is stiffer across one diameter than "

@@ -53,6 +53,9 @@ API684_LOG_DEC = 0.1
 # thirds of it; else the basis is doubled (up to the largest mode count). Far below the
 # discretisation's own bounds (0.1 % and more).
 TRUNCATION = 1e-4
+# A periodic rotor's zones of growth are checked by the monodromy matrix this far (a
+# share of the speed) either side of each edge: the two routes' edges agree within it.
+ZONE_SIDE = 1e-3
 # Basis size when [rotor] does not give one: this many times the modes asked for ...
 BASIS_FACTOR = 3
 # ... and at least this many (the bearings' residual modes beside them keep their
@@ -292,35 +295,75 @@ def least_damped(scene: Scene, curves: list[Curve], lift: float) -> Stability | 
                      unjudged_rpm=tuple(below), passed=tuple(passed))
 
 
-def divergent_bands(model: RotorModel, speeds: np.ndarray) -> list[tuple[float, float]]:
-    """The speed bands (r/min) where a root grows without oscillating, their edges found
-    by bisection between the diagram's speeds (to 1e-9 of the speed)."""
+def divergent_bands(model: RotorModel, speeds: np.ndarray
+                    ) -> list[tuple[float, float, float]]:
+    """The speed bands where a root grows without oscillating: their edges (r/min),
+    found by bisection between the diagram's speeds (to 1e-9 of the speed), and the
+    fastest growth met in the band (1/s, over the diagram's speeds in it and its
+    middle)."""
     from shaftfem.fem.floquet import any_roots as roots
 
-    def grows(omega: float) -> bool:
-        return roots(model, omega).divergence > 0
+    def rate(omega: float) -> float:
+        return roots(model, omega).divergence
 
-    flags = [grows(om) for om in speeds]
+    flags = [rate(om) > 0 for om in speeds]
 
     def edge(lo: float, hi: float, inside_high: bool) -> float:
         while hi - lo > 1e-9 * hi:
             mid = 0.5 * (lo + hi)
-            if grows(mid) == inside_high:
+            if (rate(mid) > 0) == inside_high:
                 hi = mid
             else:
                 lo = mid
         return 0.5 * (lo + hi)
+
+    def band(lo: float, hi: float) -> tuple[float, float, float]:
+        inside = [float(w) for w in speeds if lo <= w <= hi] + [0.5 * (lo + hi)]
+        return lo / RPM, hi / RPM, max(rate(w) for w in inside)
 
     bands, start = [], None
     for i, flag in enumerate(flags):
         if flag and start is None:
             start = speeds[0] if i == 0 else edge(speeds[i - 1], speeds[i], True)
         if not flag and start is not None:
-            bands.append((start / RPM, edge(speeds[i - 1], speeds[i], False) / RPM))
+            bands.append(band(start, edge(speeds[i - 1], speeds[i], False)))
             start = None
     if start is not None:
-        bands.append((start / RPM, speeds[-1] / RPM))
+        bands.append(band(start, speeds[-1]))
     return bands
+
+
+def zones_agree(model: RotorModel, edges: list[float], lowest: float, highest: float
+                ) -> str | None:
+    """Hill's method against the monodromy matrix at the edges (rad/s) of a periodic
+    rotor's zones of growth (divergence bands, onsets): at ZONE_SIDE of the speed either
+    side of each edge, both routes must agree on whether the rotor grows (the fastest
+    growth ln |mu| / T of every form against Hill's largest Re lam), or a SolverError.
+    The edges at the diagram's ends are not edges; None without edges to check."""
+    from shaftfem.fem.floquet import converged_hill, multipliers
+
+    checked = []
+    for w in edges:
+        if not lowest < w < highest or not model.periodic(w):
+            continue
+        for side in (w * (1 - ZONE_SIDE), w * (1 + ZONE_SIDE)):
+            hill = float(converged_hill(model, side).lam.real.max())
+            mu = multipliers(model, side)
+            mono = float(np.log(np.abs(mu)).max()) * side / math.pi
+            tol = 1e-9 * side
+            if (hill > tol) != (mono > tol) and max(abs(hill), abs(mono)) > 10 * tol:
+                raise SolverError(
+                    f"at {side / RPM:,.1f} r/min, {100 * ZONE_SIDE:g} % from the edge of a zone "
+                    f"of growth at {w / RPM:,.1f} r/min, Hill's method says the rotor "
+                    f"{'grows' if hill > tol else 'decays'} ({hill:.3g} 1/s) and the monodromy "
+                    f"matrix that it {'grows' if mono > tol else 'decays'} ({mono:.3g} 1/s): "
+                    "no stability verdict rests on either")
+        checked.append(w / RPM)
+    if not checked:
+        return None
+    return (f"the edges of the zones of growth ({', '.join(f'{n:,.0f}' for n in checked)} "
+            f"r/min): Hill's method and the monodromy matrix agree whether the rotor grows "
+            f"{100 * ZONE_SIDE:g} % either side of each")
 
 
 def routes_agree(model: RotorModel, speeds: tuple[float, ...]) -> str:
@@ -413,6 +456,9 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
         options.say(f"whirl on {result.modes.count} standstill modes, {frame} frame")
         model = rotor_model(result, frame)
         if model.periodic(rotor.max_speed):
+            from shaftfem.fem.floquet import widen
+
+            model = widen(model, rotor.speeds, scene.modes.count + 2)
             options.say("periodic rotor: Floquet exponents by Hill's method at every speed "
                         "(a slow run: minutes on a rotor in journals)")
         # the basis is enlarged while the whirl still moves on it (from two thirds of it)
@@ -454,25 +500,21 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     ends = [w for span in rotor.spans for w in span]
     floor = 0.0
     if any(model.periodic(float(w)) for w in grid if w > 0):
-        from shaftfem.fem.floquet import solved_from
+        from shaftfem.fem.floquet import HILL_MAX, HILL_WIDE, solved_from
 
-        floor = solved_from(model, np.union1d(grid, rotor.speeds), 0.01 * float(grid.max()))
+        floor = solved_from(model, grid, 0.01 * float(grid.max()))
     while True:
         periodic_note = None
         if floor > 0:
-            low = [w for w in rotor.speeds if 0 < w < floor]
-            if low:
-                raise SceneError(f"{scene.source}: the shaft is not of revolution in bearings "
-                                 "that differ along x and y, and at its operating speed(s) "
-                                 f"{', '.join(f'{w / RPM:,.0f}' for w in low)} r/min the "
-                                 "Floquet forms spread over more harmonics than Hill's method "
-                                 f"takes (it settles from {floor / RPM:,.0f} r/min)")
             # the curves start where Hill's method settles (their steps are halved between
             # speeds: from standstill they would reach below it)
             periodic_note = (f"periodic rotor: solved by Floquet theory from "
                              f"{floor / RPM:,.0f} r/min; below it the Floquet forms spread over "
-                             "more harmonics than Hill's method takes, and no crossing is "
-                             "searched there")
+                             "more harmonics than the diagram's solves take (up to "
+                             f"{HILL_MAX}), and no crossing is searched there"
+                             + ("; the operating speeds below it are solved with up to "
+                                f"{HILL_WIDE} harmonics" if any(0 < w < floor for w in rotor.speeds)
+                                else ""))
             grid = np.union1d([floor], grid[grid >= floor])
         # the curves pass through every operating speed and range end
         path = np.union1d(grid, [w for w in ends if grid.min() <= w <= grid.max()])
@@ -519,6 +561,12 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     stability = least_damped(scene, curves, lift)
     unstable = onsets(model, curves)
     bands = divergent_bands(model, path)
+    if periodic_note:
+        zones = zones_agree(model, [w * RPM for b in bands for w in b[:2]]
+                            + [o.speed_rpm * RPM for o in unstable],
+                            float(path.min()), float(path.max()))
+        if zones:
+            notes.append(zones)
     response = None
     if scene.unbalances:
         from shaftfem.workflows.unbalance import forward_only, unbalance_response
@@ -535,7 +583,8 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     operating_rpm=tuple(om / RPM for om in rotor.speeds),
                     critical_speeds=tuple(critical), orders=orders, truncation=basis,
                     result=result, notes=tuple(notes), unbalance=response,
-                    onsets=tuple(unstable), divergent=tuple(bands),
+                    onsets=tuple(unstable), divergent=tuple(b[:2] for b in bands),
+                    divergent_growth=tuple(b[2] for b in bands),
                     operating_shapes=shapes,
                     synchronous_check=check.largest_difference, crossing_check=check,
                     curves=tuple(curves), stability=stability,

@@ -13,7 +13,7 @@ skips the sizing.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -94,14 +94,7 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
         verdict = check_whirl(campbell, margin)
         ucs, level1 = _map_and_level1(scene, options)
         runup = None
-        if (scene.rotor.runup is not None and scene.unbalances
-                and campbell.frame != "stationary"):
-            # said on the diagram's record, which the report and the check print
-            campbell = replace(campbell, notes=campbell.notes + (
-                "no run-up: it is integrated in the stationary frame, and this shaft is not "
-                "a solid of revolution (the unbalance response is the steady one, by "
-                "harmonic balance where the rotor is periodic)",))
-        elif scene.rotor.runup is not None and scene.unbalances:
+        if scene.rotor.runup is not None and scene.unbalances:
             from shaftfem.workflows.runup import run_run_up
 
             say("the rotordynamic study: the run-up")

@@ -14,8 +14,10 @@ damping) at STEPS steps per turn of the fastest speed, D and K taken at each ste
 speed. A peak passed quickly is lower and later than the steady one (Lewis 1932): the
 resonance has no time to build up.
 
-The stationary frame only (a shaft of revolution): in the frame turning with the shaft
-an accelerating spin is not a constant-coefficient system.
+A shaft that is not of revolution is integrated in the frame turning with it, where its
+own matrices are constant: there an unbalance's force stands still, the bearings' parts
+that differ along x and y turn at twice the shaft's angle, the acceleration adds the
+Euler force, and each probe's motion is turned back to the housing's frame.
 """
 
 from __future__ import annotations
@@ -43,10 +45,10 @@ MAX_STEPS = 5_000_000
 def newmark_run_up(model: RotorModel, start: float, stop: float, accel: float,
                    forces: list[tuple[np.ndarray, complex]], probes: list[np.ndarray],
                    steps_per_turn: int = STEPS) -> tuple[np.ndarray, np.ndarray, list[np.ndarray]]:
-    """The time (s), the spin (rad/s) and each probe's (x, y) motion (2, n_t) (m) of the
-    model run from `start` to `stop` (rad/s) at `accel` (rad/s^2, negative for a
-    coast-down), from rest at the start. forces: (beta, m e e^{i theta}) per unbalance;
-    probes: each section's beta (2, N)."""
+    """The time (s), the spin (rad/s) and each probe's (x, y) motion (2, n_t) (m), as the
+    housing sees it, of the model run from `start` to `stop` (rad/s) at `accel`
+    (rad/s^2, negative for a coast-down), from rest at the start. forces: (beta,
+    m e e^{i theta}) per unbalance; probes: each section's beta (2, N)."""
     if accel == 0 or (stop - start) / accel <= 0:
         raise SceneError("a run-up needs an acceleration taking the speed from the start to "
                          "the stop")
@@ -56,55 +58,93 @@ def newmark_run_up(model: RotorModel, start: float, stop: float, accel: float,
     if n > MAX_STEPS:
         raise SceneError(f"a run-up of {duration:.4g} s takes {n:,} steps of {dt:.3g} s "
                          f"(more than {MAX_STEPS:,}): accelerate faster or span fewer speeds")
-    dt = duration / n
-    speeds = np.linspace(min(start, stop), max(start, stop), TABLE)
-    DK = [model.matrices(float(w)) for w in speeds]
-    D_tab = np.array([d for d, _ in DK])
-    K_tab = np.array([k for _, k in DK])
+    times = np.linspace(0.0, duration, n + 1)
+    return times, start + accel * times, integrate(model, start, accel, times, forces, probes)
+
+
+def integrate(model: RotorModel, start: float, accel: float, times: np.ndarray,
+              forces: list[tuple[np.ndarray, complex]], probes: list[np.ndarray],
+              q0: np.ndarray | None = None) -> list[np.ndarray]:
+    """Each probe's (x, y) motion (2, n_t) (m), as the housing sees it, of the model
+    spun at Omega(t) = start + accel t (rad/s) over `times` (s, from 0), from rest (or
+    from the displacement q0), by Newmark's average acceleration. In the frame turning
+    with the shaft, its angle phi = start t + accel t^2 / 2 turns the bearings' parts
+    that differ along x and y (D(t) = D + D_c cos 2 phi + D_s sin 2 phi, and K), the
+    spin's change adds the Euler force (accel / 2) G q (G = 2 int rho Phi^T S Phi, the
+    Coriolis matrix per rad/s), an unbalance's force stands still, and each probe's
+    motion is turned back by phi."""
+    rotating = model.frame == "rotating"
+    ends = (start, start + accel * float(times[-1]))
+    speeds = np.linspace(min(ends), max(ends), TABLE)
+    table = [model.matrices(float(w)) for w in speeds]
+    parts = ([model.periodic_parts(float(w)) if model.periodic(float(w))
+              else (np.zeros((model.size, model.size)),) * 4 for w in speeds]
+             if rotating else None)
+    D_tab = np.array([d for d, _ in table])
+    K_tab = np.array([k for _, k in table])
+    P_tab = np.array(parts) if parts is not None else None      # (TABLE, 4, N, N)
     M_tab = np.array([model.mass(float(w)) for w in speeds]) if any(
         b.coefficients.has_mass for b in model.bearings) else None
     eye = np.eye(model.size)
+    euler = 0.5 * accel * model.G if rotating else 0.0 * eye
 
-    def at(w: float):
-        s = (w - speeds[0]) / (speeds[-1] - speeds[0]) * (TABLE - 1)
+    def at(t: float):
+        w = start + accel * t
+        span = speeds[-1] - speeds[0]
+        s = (w - speeds[0]) / span * (TABLE - 1) if span > 0 else 0.0
         i = int(min(max(math.floor(s), 0), TABLE - 2))
         f = s - i
 
         def mix(A: np.ndarray) -> np.ndarray:
             return (1 - f) * A[i] + f * A[i + 1]
-        return (eye if M_tab is None else mix(M_tab)), mix(D_tab), mix(K_tab)
+        M, D, K = (eye if M_tab is None else mix(M_tab)), mix(D_tab), mix(K_tab) + euler
+        if P_tab is not None:
+            phi = start * t + 0.5 * accel * t * t
+            c, sn = math.cos(2 * phi), math.sin(2 * phi)
+            Dc, Ds, Kc, Ks = mix(P_tab)
+            D, K = D + c * Dc + sn * Ds, K + c * Kc + sn * Ks
+        return M, D, K
 
-    B = np.array([beta for beta, _ in forces])             # (u, 2, N)
-    U = np.array([u for _, u in forces])                    # m e e^{i theta}
+    B = np.array([beta for beta, _ in forces]) if forces else np.zeros((0, 2, model.size))
+    U = np.array([u for _, u in forces], dtype=complex)          # m e e^{i theta}
     P = np.array(probes)                                    # (p, 2, N)
 
     def load(t: float) -> np.ndarray:
         w = start + accel * t
-        phi = start * t + 0.5 * accel * t * t
+        phi = 0.0 if rotating else start * t + 0.5 * accel * t * t
         c = U * np.exp(1j * phi)
         fx = w * w * c.real + accel * c.imag
         fy = w * w * c.imag - accel * c.real
         return np.einsum("u,un->n", fx, B[:, 0]) + np.einsum("u,un->n", fy, B[:, 1])
 
-    q = np.zeros(model.size)
+    def seen(k: int, q: np.ndarray) -> np.ndarray:   # the probes' (x, y), housing's frame
+        xy = P @ q                                           # (p, 2)
+        if not rotating:
+            return xy
+        t = float(times[k])
+        phi = start * t + 0.5 * accel * t * t
+        c, sn = math.cos(phi), math.sin(phi)
+        return np.stack([c * xy[:, 0] - sn * xy[:, 1], sn * xy[:, 0] + c * xy[:, 1]], axis=1)
+
+    q = np.zeros(model.size) if q0 is None else np.array(q0, dtype=float)
     v = np.zeros(model.size)
-    M, D, K = at(start)
+    M, D, K = at(0.0)
     a = np.linalg.solve(M, load(0.0) - D @ v - K @ q)
-    times = np.linspace(0.0, duration, n + 1)
-    out = np.empty((P.shape[0], 2, n + 1))
-    out[:, :, 0] = P @ q
+    out = np.empty((P.shape[0], 2, times.size))
+    out[:, :, 0] = seen(0, q)
     beta_n, gamma = 0.25, 0.5
-    for k in range(1, n + 1):
-        t = times[k]
-        M, D, K = at(start + accel * t)
+    for k in range(1, times.size):
+        t = float(times[k])
+        dt = t - float(times[k - 1])
+        M, D, K = at(t)
         pred_q = q + dt * v + (0.5 - beta_n) * dt * dt * a
         pred_v = v + (1 - gamma) * dt * a
         a = np.linalg.solve(M + gamma * dt * D + beta_n * dt * dt * K,
                             load(t) - D @ pred_v - K @ pred_q)
         q = pred_q + beta_n * dt * dt * a
         v = pred_v + gamma * dt * a
-        out[:, :, k] = P @ q
-    return times, start + accel * times, [out[i] for i in range(P.shape[0])]
+        out[:, :, k] = seen(k, q)
+    return [out[i] for i in range(P.shape[0])]
 
 
 def envelope(times: np.ndarray, speeds: np.ndarray, xy: np.ndarray, start: float,
@@ -127,8 +167,8 @@ def run_run_up(scene: Scene, start_rpm: float, stop_rpm: float, accel_rpm_per_s:
     """The scene's rotor run from start_rpm to stop_rpm at accel_rpm_per_s (negative:
     a coast-down) with its unbalances: each probe's envelope against speed, its peak,
     the orbit there, and the steady response at the same speeds."""
+    from shaftfem.fem.floquet import any_unbalance_response as steady
     from shaftfem.fem.rotor import orbit, section_motion
-    from shaftfem.fem.rotor import unbalance_response as steady
     from shaftfem.workflows.campbell import RPM, turning
     from shaftfem.workflows.unbalance import forced
 
@@ -136,9 +176,6 @@ def run_run_up(scene: Scene, start_rpm: float, stop_rpm: float, accel_rpm_per_s:
         raise SceneError(f"{scene.source}: a run-up needs [rotor] and an [[unbalance]] to "
                          "drive it")
     result, model, _ = turning(scene, options)
-    if model.frame != "stationary":
-        raise SceneError(f"{scene.source}: a run-up is integrated in the stationary frame: the "
-                         "shaft must be a solid of revolution")
     model = forced(result, model)
     forces = [(section_motion(result, u.position, model.shapes),
                u.amount * complex(math.cos(u.phase), math.sin(u.phase)))

@@ -93,6 +93,16 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
             order = np.argsort(np.concatenate([grid, extra]), kind="stable")
             rows = np.vstack([rows, [at(n, beta) for n in extra]])[order]
             b = _bode(name, pz, np.concatenate([grid, extra])[order], rows)
+        if any(r.ndim == 2 for r in responses.values()):
+            from shaftfem.fem.floquet import unbalance_orders
+
+            def third(n: float, beta: np.ndarray = beta) -> float:
+                q = responses[n] if n in responses else solve(model, n * RPM, forces)
+                if q.ndim == 1:
+                    return 0.0
+                c = unbalance_orders(beta, q)
+                return abs(c.get(3, 0j)) + abs(c.get(-3, 0j))
+            b = replace(b, major_3x=np.array([third(float(n)) for n in b.speeds_rpm]))
         bode.append(b)
         peaks += found
     return UnbalanceResponse(tuple(bode), tuple(peaks), damped=damped)
