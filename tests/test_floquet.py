@@ -459,3 +459,58 @@ def test_the_unbalance_s_1x_and_3x_by_harmonic_balance_meet_a_time_integration()
     for m in (3, -3, -1):
         assert abs(ours[m] - coefficient(m)) < 0.01 * abs(coefficient(m)) + 1e-6 * abs(one)
     assert abs(ours[3]) + abs(ours[-3]) > 0.01 * abs(one)
+
+
+@pytest.mark.parametrize("rpm", [1500.0, 4000.0])
+def test_the_receptance_of_a_round_rotor_seen_from_the_shaft_is_the_stationary_closed_form(rpm):
+    """A round Jeffcott rotor (k1 = k2) on supports kx != ky, solved in the frame turning
+    with it (the force turns backwards there, the supports turn at 2 Omega: harmonic
+    balance), read at the housing: its receptance equals the stationary frame's closed
+    form (K - w^2 m + i w c)^-1, K = diag(k1 + kx, k1 + ky), within 1e-9, across the
+    resonances."""
+    from shaftfem.fem.floquet import stationary_receptance
+
+    kx, ky = 0.5 * K1, 1.5 * K1
+    model = jeffcott(kx, ky, C, K1, K1)
+    beta = np.eye(2) / math.sqrt(M)
+    omega = rpm * math.pi / 30
+    for f in (20.0, 79.0, 100.7, 140.0):
+        w = 2 * math.pi * f
+        closed = np.linalg.inv(np.diag([K1 + kx, K1 + ky]) - w * w * M * np.eye(2)
+                               + 1j * w * C * np.eye(2))
+        ours = stationary_receptance(model, omega, w, beta, beta)
+        assert np.abs(ours - closed).max() < 1e-9 * np.abs(closed).max()
+
+
+def test_the_receptance_of_an_asymmetric_rotor_meets_a_time_integration():
+    """The asymmetric Jeffcott rotor on anisotropic supports at a speed outside its
+    zones, forced along x at the housing at w: its motion at exp(i w t) by harmonic
+    balance (stationary_receptance) against its stationary-frame equations integrated
+    until the start has died away, read by a Fourier coefficient over a common period:
+    within 1e-4."""
+    from scipy.integrate import solve_ivp
+
+    from shaftfem.fem.floquet import stationary_receptance
+
+    kx, ky, c = 0.5 * K1, 1.5 * K1, 40.0
+    model = jeffcott(kx, ky, c)
+    omega = 260.0
+    w = 1.5 * omega                  # the force's frequency: a common period 4 pi / omega
+    ours = stationary_receptance(model, omega, w, np.eye(2) / math.sqrt(M),
+                                 np.eye(2) / math.sqrt(M))
+
+    def rhs(t: float, s: np.ndarray) -> np.ndarray:
+        phi = omega * t
+        R = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+        Ks = R @ np.diag([K1, K2]) @ R.T + np.diag([kx, ky])
+        f = np.array([math.cos(w * t), 0.0])
+        return np.concatenate([s[2:], (f - Ks @ s[:2] - c * s[2:]) / M])
+
+    period = 4 * math.pi / omega
+    t = 30 * M / c * 2 + np.linspace(0.0, 10 * period, 10 * 512, endpoint=False)
+    sol = solve_ivp(rhs, (0.0, float(t[-1])), np.zeros(4), method="DOP853", t_eval=t,
+                    rtol=1e-11, atol=1e-18)
+    X = 2 * np.mean(sol.y[0] * np.exp(-1j * w * t))
+    Y = 2 * np.mean(sol.y[1] * np.exp(-1j * w * t))
+    assert abs(ours[0, 0] - X) < 1e-4 * abs(X)
+    assert abs(ours[1, 0] - Y) < 1e-4 * abs(X)

@@ -62,3 +62,21 @@ def test_frf_as_a_user_runs_it(tmp_path):
     assert [s["speed_rpm"] for s in data["speeds"]] == [0.0, 3000.0]
     assert len(data["speeds"][1]["hxx_um_per_n"]) == 60
     assert (tmp_path / "o" / "frf.png").stat().st_size > 10_000
+
+
+def test_a_shaft_of_revolution_in_anisotropic_bearings_has_one_receptance_in_either_frame():
+    """The same rotor with its bearings half as stiff along y (and damped), solved in the
+    stationary frame (constant: one solve a frequency) and in the frame turning with
+    the shaft (periodic there: harmonic balance of the force turning backwards, read at
+    the housing): across its resonances at 3,000 r/min, every receptance within 1e-6 of
+    the largest (measured 1e-8)."""
+    out = {}
+    for frame in ("stationary", "rotating"):
+        data = rotor()
+        for s in data["support"]:
+            s["kyy_n_per_mm"] = 0.5 * s["kxx_n_per_mm"]
+        data["rotor"]["frame"] = frame
+        out[frame] = run_frequency_response(load_scene(data), 0.35, 0.28,
+                                            np.linspace(5.0, 60.0, 23), np.array([3000.0])).H
+    a, b = out["stationary"], out["rotating"]
+    assert np.abs(a - b).max() < 1e-6 * np.abs(a).max()

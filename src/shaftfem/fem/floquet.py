@@ -528,6 +528,42 @@ def stationary_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
     return out
 
 
+def stationary_receptance(model: RotorModel, omega: float, w: float, force: np.ndarray,
+                          probe: np.ndarray) -> np.ndarray:
+    """The receptance (2, 2), m/N, of a rotor in the turning frame (rotating) at the
+    spin omega: the x and y motion of the plane `probe` (its motion beta, (2, N)) at the
+    frequency w (rad/s) under a unit force along x and along y, standing in the
+    stationary frame, at w, on the plane `force`. Seen from the shaft such a force
+    F cos(w t) is 1/2 Re[b exp(i (w + Omega) t)] + 1/2 Re[conj(b) exp(i (w - Omega) t)],
+    b = p_x + i p_y along x and p_y - i p_x along y (p the plane's modal forces); each is
+    solved by harmonic balance (its harmonics at the base + 2 k Omega), and the probe's
+    motion turned back by Omega t is read at exp(i w t)."""
+    px, py = force[0], force[1]
+    H = np.zeros((2, 2), dtype=complex)
+    tol = 1e-12 * max(abs(w), omega)
+    for j, b in enumerate((px + 1j * py, py - 1j * px)):
+        for base, load in ((w + omega, 0.5 * b), (w - omega, 0.5 * np.conj(b))):
+            q = harmonic_balance(model, omega, load, base, range(-1, 2),
+                                 "the frequency response")
+            Hh = (q.shape[1] - 1) // 2
+            a, c = probe[0] @ q, probe[1] @ q
+            for k in range(-Hh, Hh + 1):
+                nu = base + 2 * k * omega
+                ak, ck = complex(a[k + Hh]), complex(c[k + Hh])
+                # x_s = cos x_r - sin y_r, y_s = sin x_r + cos y_r: the terms at exp(i w t)
+                if abs(nu + omega - w) <= tol:
+                    H[:, j] += 0.5 * np.array([ak + 1j * ck, ck - 1j * ak])
+                if abs(nu - omega - w) <= tol:
+                    H[:, j] += 0.5 * np.array([ak - 1j * ck, ck + 1j * ak])
+                if abs(-(nu - omega) - w) <= tol:
+                    H[:, j] += 0.5 * np.array([np.conj(ak) + 1j * np.conj(ck),
+                                               np.conj(ck) - 1j * np.conj(ak)])
+                if abs(-(nu + omega) - w) <= tol:
+                    H[:, j] += 0.5 * np.array([np.conj(ak) - 1j * np.conj(ck),
+                                               np.conj(ck) + 1j * np.conj(ak)])
+    return H
+
+
 def unbalance_orders(beta: np.ndarray, q: np.ndarray) -> dict[int, complex]:
     """What a probe on the housing sees of periodic_unbalance's harmonics q (N, 2 H + 1)
     at a plane whose motion in the turning frame is beta q: the coefficients c_m of

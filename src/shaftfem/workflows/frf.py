@@ -4,8 +4,11 @@ frequency, at each of a few speeds,
 
     H(omega; Omega) = beta_p (K(Omega) - omega^2 M + i omega D(Omega))^-1 beta_f^T,
 
-on the turning shaft's reduced model (stationary frame), 2 x 2 (x, y response to x, y
-force), m/N. At standstill and low frequency it is the shaft's static compliance.
+on the turning shaft's reduced model, 2 x 2 (x, y response to x, y force), m/N. At
+standstill and low frequency it is the shaft's static compliance. A shaft that is not
+of revolution is solved in the frame turning with it, where the force turns backwards
+and, in bearings that differ along x and y, the response spreads over the frequencies
+w + 2 k Omega (fem.floquet.stationary_receptance reads it at w).
 """
 
 from __future__ import annotations
@@ -37,15 +40,18 @@ def run_frequency_response(scene: Scene, force_at: float, probe_at: float,
         if not 0.0 <= z <= scene.shaft.length:
             raise SceneError(f"{what} {z * 1e3:g}: must lie on the shaft, 0 to "
                              f"{scene.shaft.length * 1e3:g} mm")
+    from shaftfem.fem.floquet import stationary_receptance
+
     result, model, _ = turning(scene, options)
-    if model.frame != "stationary":
-        raise SceneError(f"{scene.source}: the frequency response is solved in the stationary "
-                         "frame: the shaft must be a solid of revolution")
     model = forced(result, model)
     bf = section_motion(result, force_at, model.shapes)
     bp = section_motion(result, probe_at, model.shapes)
     H = np.zeros((len(speeds_rpm), len(frequencies_hz), 2, 2), dtype=complex)
     for i, n in enumerate(speeds_rpm):
+        if model.frame == "rotating" and n > 0:
+            for j, f in enumerate(frequencies_hz):
+                H[i, j] = stationary_receptance(model, n * RPM, 2 * math.pi * f, bf, bp)
+            continue
         D, K = model.matrices(n * RPM)
         M = model.mass(n * RPM)
         for j, f in enumerate(frequencies_hz):
