@@ -514,3 +514,26 @@ def test_the_receptance_of_an_asymmetric_rotor_meets_a_time_integration():
     Y = 2 * np.mean(sol.y[1] * np.exp(-1j * w * t))
     assert abs(ours[0, 0] - X) < 1e-4 * abs(X)
     assert abs(ours[1, 0] - Y) < 1e-4 * abs(X)
+
+
+@pytest.mark.parametrize("points", [11, 21, 40])
+def test_the_campbell_run_finds_every_zone_whatever_its_grid(points):
+    """The zones of the rotor above (kx = 0.5 k1, ky = 1.5 k1), as a Campbell run finds
+    them on a grid of 11, 21 or 40 speeds from 150 to 700 rad/s (workflows.campbell:
+    divergence bands and parametric zones, the latter sought where two curves'
+    frequencies meet 2 k n between the grid's speeds), against a scan of 240 speeds
+    bisected: the same zones, their edges within 1e-6."""
+    from shaftfem.fem.tracking import track
+    from shaftfem.workflows.campbell import RPM, divergent_bands, parametric_zones
+
+    model = jeffcott(0.5 * K1, 1.5 * K1)
+    lo, hi = 150.0, 700.0
+    scanned = edges(lambda w: growth(model, w), lo, hi)
+    grid = np.linspace(lo, hi, points)
+    curves = track(model, grid, 4)
+    bands = divergent_bands(model, grid)
+    found = sorted([*bands, *(z[:3] for z in parametric_zones(model, grid, curves, bands))])
+    ours = [w * RPM for z in found for w in z[:2]]
+    assert len(ours) == len(scanned), (ours, scanned)
+    np.testing.assert_allclose(ours, scanned, rtol=1e-6)
+    assert all(g > 0 for _, _, g in found)

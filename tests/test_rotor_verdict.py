@@ -580,3 +580,22 @@ def test_modes_at_a_speed_writes_its_whirl_in_the_json(tmp_path):
     whirl = [w for w in turning["whirl"] if w["kind"] == "bending"]
     assert [w["whirl"] for w in whirl[:2]] == ["backward", "forward"]
     assert whirl[0]["frequency_hz"] < whirl[1]["frequency_hz"]
+
+
+def test_a_zone_of_growth_inside_the_running_range_fails_and_beyond_it_warns(pulley):
+    """A periodic rotor's zone of growth (Campbell.zones) judged as a divergence band is:
+    one that reaches into the running range fails the check (exit 1) naming its speeds
+    and growth; one beyond it is a warning with its margin from the nearest running
+    speed (here 25 %)."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    c = campbell_of(at_speed(scene, 3000.0), result, model, why)
+    inside = check_whirl(replace(c, zones=((2900.0, 3100.0, 4.2),)), 0.15)
+    assert not inside.ok and inside.exit_status == 1
+    assert any("zone of growth" in u and "2,900" in u and "4.2 1/s" in u
+               for u in inside.unstable)
+    beyond = check_whirl(replace(c, zones=((3750.0, 3900.0, 4.2),)), 0.15)
+    assert not any("zone of growth" in u for u in beyond.unstable)
+    assert any("zone of growth" in w and "25.0 %" in w for w in beyond.warnings)

@@ -126,9 +126,14 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
         else:
             warns.append(text + f": {100 * (o.speed_rpm - top) / top:.1f} % above the highest "
                          f"operating speed ({top:,.0f} r/min)")
-    for lo, hi in c.divergent:
+    bands = [(lo, hi, f"divergence (a mode locks to the shaft and grows) from {lo:,.0f} to "
+              f"{hi:,.0f} r/min") for lo, hi in c.divergent]
+    bands += [(lo, hi, f"a zone of growth (the periodic rotor's forms meet and grow, up to "
+               f"{g:.3g} 1/s: a parametric or combination resonance) from {lo:,.0f} to "
+               f"{hi:,.0f} r/min")
+              for lo, hi, g in c.zones]
+    for lo, hi, text in bands:
         hit = [s for s in spans if lo <= s[1] and hi >= s[0]]
-        text = f"divergence (a mode locks to the shaft and grows) from {lo:,.0f} to {hi:,.0f} r/min"
         if hit:
             fails.append(text + f", inside the running range {_span_text(*hit[0])}")
         else:

@@ -415,6 +415,9 @@ class Campbell:
     onsets: tuple[Onset, ...] = ()
     divergent: tuple[tuple[float, float], ...] = ()   # speed bands (r/min) where it diverges
     divergent_growth: tuple[float, ...] = ()   # each band's fastest growth rate, 1/s
+    # a periodic rotor's zones where it grows while it oscillates (parametric and
+    # combination resonances, bands above an onset): (from, to r/min, fastest growth 1/s)
+    zones: tuple[tuple[float, float, float], ...] = ()
     # at each operating speed, the reported modes' complex shapes on the standstill modes
     # (N, count): u = Phi y, in the model's frame
     operating_shapes: tuple[np.ndarray, ...] = ()
@@ -463,6 +466,8 @@ class Campbell:
                 "instability_onsets": [o.as_dict() for o in self.onsets],
                 "divergent_rpm": [list(band) for band in self.divergent],
                 "divergent_growth_per_s": list(self.divergent_growth),
+                "zones": [{"from_rpm": lo, "to_rpm": hi, "growth_per_s": g}
+                          for lo, hi, g in self.zones],
                 "synchronous_check": self.synchronous_check,
                 "crossing_check": (None if self.crossing_check is None
                                    else self.crossing_check.as_dict()),

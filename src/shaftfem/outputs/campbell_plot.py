@@ -135,10 +135,20 @@ def campbell_figure(c: Campbell):
             dec.axvline(o.speed_rpm, color="tab:red", lw=0.8, ls=":")
     # the bands where a root locks to the shaft and grows (between a stiff and a soft
     # diameter's critical speeds), and beyond every onset: unstable, hatched
-    for i, (lo, hi) in enumerate([*c.divergent, *((o.speed_rpm, top_rpm) for o in c.onsets)]):
+    # (a periodic rotor's zones end where its forms unlock: an onset inside one is drawn
+    # to the zone's end, not the diagram's)
+    ends = [min([hi for lo, hi, _ in c.zones if lo - 1e-6 * lo <= o.speed_rpm <= hi],
+                default=top_rpm) for o in c.onsets]
+    spans = [*c.divergent, *((lo, hi) for lo, hi, _ in c.zones),
+             *((o.speed_rpm, e) for o, e in zip(c.onsets, ends))]
+    for i, (lo, hi) in enumerate(spans):
         for axis in ([ax, dec] if damped else [ax]):
             axis.axvspan(lo, hi, facecolor="none", edgecolor="tab:red", hatch="//", lw=0,
                          alpha=0.35, label="unstable" if i == 0 and axis is ax else None)
+        if len(c.divergent) <= i < len(c.divergent) + len(c.zones):
+            g = c.zones[i - len(c.divergent)][2]
+            ax.annotate(f"grows {lo:,.0f}-{hi:,.0f}\nup to {g:.3g} 1/s", (hi, 0.90 * fmax),
+                        fontsize=7, color="tab:red", ha="right", va="top")
         if i < len(c.divergent):
             g = c.divergent_growth[i] if i < len(c.divergent_growth) else 0.0
             ax.annotate(f"diverges {lo:,.0f}-{hi:,.0f}"

@@ -560,6 +560,11 @@ def campbell_text(c) -> str:
                      "shaft and grows (divergence; the shaft is stiffer across one diameter "
                      "than across the other)" + (f", fastest growth {g:.3g} 1/s (doubling in "
                                                  f"{math.log(2) / g:.3g} s)" if g > 0 else ""))
+    for lo, hi, g in c.zones:
+        lines.append(f"UNSTABLE between {lo:,.0f} and {hi:,.0f} r/min: a form of the periodic "
+                     "rotor grows while it oscillates (where no curve's log decrement says "
+                     "so alone: a parametric or combination resonance, two forms meeting "
+                     f"2 k n), fastest growth {g:.3g} 1/s (doubling in {math.log(2) / g:.3g} s)")
     for o in c.onsets:
         lines.append(f"UNSTABLE from {o.speed_rpm:,.0f} r/min: {o.whirl} whirl curve {o.mode} "
                      f"({o.frequency_hz:.2f} Hz), its log decrement falls below zero")

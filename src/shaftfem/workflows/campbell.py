@@ -56,6 +56,19 @@ TRUNCATION = 1e-4
 # A periodic rotor's zones of growth are checked by the monodromy matrix this far (a
 # share of the speed) either side of each edge: the two routes' edges agree within it.
 ZONE_SIDE = 1e-3
+# ... and parametric zones are sought where two curves' frequencies meet 2 k n, |k| up to
+# this (a zone of higher order is narrower by the forms' share in the far harmonics,
+# geometrically small, and damping closes it)
+PARAMETRIC_ORDER = 1
+# a form grows in a zone where its log decrement falls below minus this: steel's own
+# loss factor (1e-4 to 1e-3, a log decrement of 3e-4 and up) holds a slower growth
+ZONE_LOG_DEC = 1e-4
+PARAMETRIC_STEPS = 4   # regula falsi steps towards where two forms meet
+# ... and not where the forms' mean decay rate is above this many times their coupling
+PARAMETRIC_MARGIN = 3.0
+# a curve whose turning-frame frequency moves by more than this many times the speed's
+# step (Hz per Hz) jumps there (its dominant component changed): no meeting is sought
+PARAMETRIC_SLOPE = 3.0
 # Basis size when [rotor] does not give one: this many times the modes asked for ...
 BASIS_FACTOR = 3
 # ... and at least this many (the bearings' residual modes beside them keep their
@@ -333,6 +346,155 @@ def divergent_bands(model: RotorModel, speeds: np.ndarray
     return bands
 
 
+def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
+                     divergent: list[tuple[float, float, float]]
+                     ) -> list[tuple[float, float, float, bool]]:
+    """The zones (r/min) where a periodic rotor grows, their fastest growth (1/s) and
+    whether it grows there without oscillating (a divergence the diagram's speeds
+    missed) or while it oscillates (parametric and combination resonances, bands above
+    an onset).
+    Sought on the diagram's speeds and, whatever the grid, where two curves' turning-
+    frame frequencies f_a + f_b or f_a - f_b (a = b too) meet 2 k n (n the speed, Hz,
+    |k| up to PARAMETRIC_ORDER): Floquet exponents are one modulo i 2 Omega, and two
+    forms that meet so can lock and grow. Edges by bisection on the growth (to 1e-9 of
+    the speed); a band the divergence already holds is left to it."""
+    from shaftfem.fem.floquet import any_roots
+    from shaftfem.fem.tracking import REACH, _at
+
+    def rate(omega: float) -> float:
+        r = any_roots(model, omega)
+        g = r.lam.real - growth_floor(r.lam, omega)
+        return max(float(g.max(initial=-math.inf)), r.divergence or -math.inf)
+
+    def still(omega: float) -> bool:   # grows without oscillating (a divergence)
+        r = any_roots(model, omega)
+        return r.divergence > 0 and r.divergence >= float(r.lam.real.max(initial=-math.inf))
+
+    def meeting(a: Curve, i: int, b: Curve, j: int, sign: int, k: int, F0: float,
+                F1: float) -> list[float]:
+        """Where (f_a + sign f_b) / (2 n) - k falls through zero between the curves'
+        speeds i and i + 1 (j and j + 1 of b), by regula falsi on the curves followed by
+        shape (rad/s): the speeds tried."""
+        w0, w1 = a.speeds_rpm[i] * RPM, a.speeds_rpm[i + 1] * RPM
+        reach = REACH * (w1 - w0) / (2 * math.pi)
+
+        def F(w: float) -> float:
+            t = (w - w0) / (w1 - w0)
+            fa = _at(model, w, a.shapes[:, i], (1 - t) * a.signed_hz[i]
+                     + t * a.signed_hz[i + 1], reach + 1e-3 * abs(a.signed_hz[i]))[0]
+            fb = _at(model, w, b.shapes[:, j], (1 - t) * b.signed_hz[j]
+                     + t * b.signed_hz[j + 1], reach + 1e-3 * abs(b.signed_hz[j]))[0]
+            return math.pi * (fa + sign * fb) / w - k
+
+        tried = []
+        for _ in range(PARAMETRIC_STEPS):
+            w = w0 - F0 * (w1 - w0) / (F1 - F0)
+            if not w0 < w < w1:
+                break
+            tried.append(float(w))
+            Fw = F(w)
+            if Fw == 0.0 or rate(w) > 0:
+                break
+            if (Fw > 0) == (F0 > 0):
+                w0, F0, F1 = w, Fw, 0.5 * F1   # (Illinois: the stale end halved)
+            else:
+                w1, F1, F0 = w, Fw, 0.5 * F0
+        return tried
+
+    def held_apart(a: Curve, i: int, b: Curve, j: int) -> bool:
+        """Whether the two forms' mean decay rate beats PARAMETRIC_MARGIN times what the
+        turning parts couple them by, |y_a^H K_+- y_b| / (2 sqrt(w_a w_b)) (first-order
+        theory: no zone opens where the damping exceeds the coupling)."""
+        w = a.speeds_rpm[i] * RPM
+        _, _, Kc, Ks = model.periodic_parts(w)
+        ya, yb = a.shapes[:, i], b.shapes[:, j]
+        ya, yb = ya / np.linalg.norm(ya), yb / np.linalg.norm(yb)
+        couple = max(abs(ya.conj() @ (Kc - 1j * Ks) @ yb),
+                     abs(ya.conj() @ (Kc + 1j * Ks) @ yb),
+                     abs(ya.conj() @ (Kc - 1j * Ks) @ yb.conj()),
+                     abs(ya.conj() @ (Kc + 1j * Ks) @ yb.conj())) / 2
+        wa = max(2 * math.pi * abs(a.signed_hz[i]), w)
+        wb = max(2 * math.pi * abs(b.signed_hz[j]), w)
+        return 0.5 * (a.decay[i] + b.decay[j]) > PARAMETRIC_MARGIN * couple / (
+            2 * math.sqrt(wa * wb))
+
+    speeds = {float(w) for w in path if w > 0 and model.periodic(float(w))}
+    grid = np.array(sorted(speeds))
+    if grid.size < 2:
+        return []
+    lo_rpm = grid[0] / RPM
+    # the candidates between the diagram's speeds: each curve's frequency linear there
+    for a in curves:
+        for b in curves:
+            if b.number < a.number:
+                continue
+            for sign in ((1,) if a is b else (1, -1)):
+                for i in range(len(a.speeds_rpm) - 1):
+                    n0, n1 = a.speeds_rpm[i], a.speeds_rpm[i + 1]
+                    if n0 < lo_rpm or n1 <= n0:
+                        continue
+                    j = np.flatnonzero(np.isclose(b.speeds_rpm, n0))
+                    if not j.size or j[0] + 1 >= len(b.speeds_rpm):
+                        continue
+                    g0 = a.signed_hz[i] + sign * b.signed_hz[j[0]]
+                    g1 = a.signed_hz[i + 1] + sign * b.signed_hz[j[0] + 1]
+                    r0, r1 = 30 * g0 / n0, 30 * g1 / n1   # (f_a +- f_b) / (2 n)
+                    ks = [k for k in range(-PARAMETRIC_ORDER, PARAMETRIC_ORDER + 1)
+                          if (r0 - k) * (r1 - k) < 0]
+                    step = PARAMETRIC_SLOPE * (n1 - n0) / 60
+                    # (a sign that flips is the form's sense kept, not a jump)
+                    jumps = (abs(abs(a.signed_hz[i + 1]) - abs(a.signed_hz[i])) > step
+                             or abs(abs(b.signed_hz[j[0] + 1]) - abs(b.signed_hz[j[0]])) > step)
+                    if not ks or jumps or held_apart(a, i, b, int(j[0])):
+                        continue
+                    for k in ks:
+                        speeds.update(meeting(a, i, b, int(j[0]), sign, k, r0 - k, r1 - k))
+    points = np.array(sorted(speeds))
+    values = [rate(w) for w in points]
+    # two growing speeds in a row may hold two zones: their middle is tried
+    gaps = [0.5 * (points[i] + points[i + 1]) for i in range(len(points) - 1)
+            if values[i] > 0 and values[i + 1] > 0]
+    between = [(w, v) for w, v in ((w, rate(w)) for w in gaps) if v <= 0]
+    if between:
+        merged = sorted([*zip(points, values), *between])
+        points, values = np.array([w for w, _ in merged]), [v for _, v in merged]
+
+    def edge(lo: float, hi: float, inside_high: bool) -> float:
+        while hi - lo > 1e-9 * hi:
+            mid = 0.5 * (lo + hi)
+            if (rate(mid) > 0) == inside_high:
+                hi = mid
+            else:
+                lo = mid
+        return 0.5 * (lo + hi)
+
+    zones, start, peak, at = [], None, -math.inf, 0.0
+    for i, v in enumerate(values):
+        if v > 0 and start is None:
+            start = points[0] if i == 0 else edge(points[i - 1], points[i], True)
+            peak, at = v, points[i]
+        elif v > 0 and v > peak:
+            peak, at = v, points[i]
+        if v <= 0 and start is not None:
+            zones.append((start / RPM, edge(points[i - 1], points[i], False) / RPM, peak,
+                          still(at)))
+            start = None
+    if start is not None:
+        zones.append((start / RPM, points[-1] / RPM, peak, still(at)))
+    held = [(lo, hi) for lo, hi, _ in divergent]
+    return [z for z in zones
+            if not any(lo <= 0.5 * (z[0] + z[1]) <= hi for lo, hi in held)]
+
+
+def growth_floor(lam: np.ndarray, omega: float) -> np.ndarray:
+    """The growth rate (1/s) each exponent must pass to count as growing in a zone: a log
+    decrement below -ZONE_LOG_DEC (an undamped mode that the periodic coefficients
+    leave a few millionths from neutral, the torsion of a keyed pump on journals, is
+    held by any structure's own damping), and round-off."""
+    return (ZONE_LOG_DEC / (2 * math.pi) * np.abs(lam.imag)
+            + ROUND_OFF * np.maximum(np.abs(lam), omega))
+
+
 def zones_agree(model: RotorModel, edges: list[float], lowest: float, highest: float
                 ) -> str | None:
     """Hill's method against the monodromy matrix at the edges (rad/s) of a periodic
@@ -340,23 +502,28 @@ def zones_agree(model: RotorModel, edges: list[float], lowest: float, highest: f
     side of each edge, both routes must agree on whether the rotor grows (the fastest
     growth ln |mu| / T of every form against Hill's largest Re lam), or a SolverError.
     The edges at the diagram's ends are not edges; None without edges to check."""
-    from shaftfem.fem.floquet import converged_hill, multipliers
+    from shaftfem.fem.floquet import apart, converged_hill, multipliers
 
     checked = []
     for w in edges:
         if not lowest < w < highest or not model.periodic(w):
             continue
         for side in (w * (1 - ZONE_SIDE), w * (1 + ZONE_SIDE)):
-            hill = float(converged_hill(model, side).lam.real.max())
-            mu = multipliers(model, side)
-            mono = float(np.log(np.abs(mu)).max()) * side / math.pi
-            tol = 1e-9 * side
-            if (hill > tol) != (mono > tol) and max(abs(hill), abs(mono)) > 10 * tol:
+            lam = converged_hill(model, side).lam
+            mono = np.log(multipliers(model, side).astype(complex)) * side / math.pi
+            # each of Hill's exponents against the monodromy's nearest (frequency modulo
+            # 2 Omega): its growth by the other route
+            partner = mono[np.argmin(apart(lam, mono, side), axis=1)]
+            floor = growth_floor(lam, side)
+            hill, other = bool(np.any(lam.real > floor)), bool(np.any(partner.real > floor))
+            if hill != other:
+                g = float(lam.real.max())
+                m = float(partner.real.max())
                 raise SolverError(
                     f"at {side / RPM:,.1f} r/min, {100 * ZONE_SIDE:g} % from the edge of a zone "
                     f"of growth at {w / RPM:,.1f} r/min, Hill's method says the rotor "
-                    f"{'grows' if hill > tol else 'decays'} ({hill:.3g} 1/s) and the monodromy "
-                    f"matrix that it {'grows' if mono > tol else 'decays'} ({mono:.3g} 1/s): "
+                    f"{'grows' if hill else 'decays'} ({g:.3g} 1/s) and the monodromy "
+                    f"matrix that it {'grows' if other else 'decays'} ({m:.3g} 1/s): "
                     "no stability verdict rests on either")
         checked.append(w / RPM)
     if not checked:
@@ -561,12 +728,20 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     stability = least_damped(scene, curves, lift)
     unstable = onsets(model, curves)
     bands = divergent_bands(model, path)
+    zones: list[tuple[float, float, float]] = []
     if periodic_note:
-        zones = zones_agree(model, [w * RPM for b in bands for w in b[:2]]
+        found = parametric_zones(model, path, curves, bands)
+        bands = sorted([*bands, *(z[:3] for z in found if z[3])])
+        # a zone that an onset opens and the diagram's end closes is the onset's own
+        top = float(path.max()) / RPM
+        zones = [z[:3] for z in found if not z[3] and not (
+            z[1] >= top * (1 - 1e-9)
+            and any(abs(o.speed_rpm - z[0]) <= 1e-4 * z[0] for o in unstable))]
+        agree = zones_agree(model, [w * RPM for b in [*bands, *zones] for w in b[:2]]
                             + [o.speed_rpm * RPM for o in unstable],
                             float(path.min()), float(path.max()))
-        if zones:
-            notes.append(zones)
+        if agree:
+            notes.append(agree)
     response = None
     if scene.unbalances:
         from shaftfem.workflows.unbalance import forward_only, unbalance_response
@@ -585,6 +760,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     result=result, notes=tuple(notes), unbalance=response,
                     onsets=tuple(unstable), divergent=tuple(b[:2] for b in bands),
                     divergent_growth=tuple(b[2] for b in bands),
+                    zones=tuple(zones),
                     operating_shapes=shapes,
                     synchronous_check=check.largest_difference, crossing_check=check,
                     curves=tuple(curves), stability=stability,
