@@ -537,3 +537,58 @@ def test_the_campbell_run_finds_every_zone_whatever_its_grid(points):
     assert len(ours) == len(scanned), (ours, scanned)
     np.testing.assert_allclose(ours, scanned, rtol=1e-6)
     assert all(g > 0 for _, _, g in found)
+
+
+@pytest.mark.parametrize("rpm", [700.0, 2600.0])
+def test_every_harmonic_of_a_round_rotor_s_floquet_form_lies_on_a_stationary_frequency(rpm):
+    """A round Jeffcott rotor on supports kx != ky, seen from the turning shaft, is a
+    periodic rotor whose forms spread over harmonics 2 n apart (fem.floquet: Roots.sides,
+    drawn thin on the Campbell diagram); seen from the housing it has just its two
+    stationary frequencies. Every line a form shows there, its dominant harmonic's and
+    its side harmonics' (turning frame f + 2 d n, seen at +-n), with a share of at least
+    5 % of its motion, lies on one of them within 1e-6; the shares sum to 1."""
+    from shaftfem.fem.floquet import floquet_roots
+
+    kx, ky = 0.5 * K1, 1.5 * K1
+    model = jeffcott(kx, ky, C, K1, K1)
+    omega = rpm * math.pi / 30
+    n = omega / (2 * math.pi)
+    A = np.block([[np.zeros((2, 2)), np.eye(2)],
+                  [-np.diag([K1 + kx, K1 + ky]) / M, -C / M * np.eye(2)]])
+    still = np.sort(np.abs(np.linalg.eigvals(A).imag))[::2] / (2 * math.pi)
+    r = floquet_roots(model, omega)
+    assert r.sides is not None and r.side_index is not None
+    S = (r.sides.shape[0] - 1) // 2
+    lines = 0
+    for j in range(r.lam.size):
+        f = r.lam[j].imag / (2 * math.pi)
+        assert r.sides[:, j].sum() <= 1 + 1e-9
+        for row, d in enumerate(range(-S, S + 1)):
+            for v, part in ((f + 2 * d * n + n, 0.5 * (1 + r.side_index[row, j])),
+                            (f + 2 * d * n - n, 0.5 * (1 - r.side_index[row, j]))):
+                if r.sides[row, j] * part >= 0.05:
+                    lines += 1
+                    assert np.min(np.abs(still - abs(v))) < 1e-6 * abs(v), (v, still)
+    assert lines >= 2
+
+
+def test_a_round_rotor_seen_from_the_shaft_crosses_the_order_lines_at_its_stationary_criticals():
+    """The round Jeffcott rotor on supports kx != ky solved in the turning frame (its
+    forms hold two equal harmonics: the one kept must not flip from speed to speed),
+    every component and side harmonic searched (workflows.campbell.critical_speeds):
+    exactly its stationary frame's crossings, 1x at its damped frequencies along x and y
+    and 2x at half of them, within 1e-6; no other."""
+    from shaftfem.fem.tracking import track
+    from shaftfem.workflows.campbell import RPM, critical_speeds, with_sides
+
+    kx, ky = 0.5 * K1, 1.5 * K1
+    model = jeffcott(kx, ky, C, K1, K1)
+    grid = np.linspace(30.0, 700.0, 37)
+    curves = [with_sides(model, c) for c in track(model, grid, 4)]
+    found, _ = critical_speeds(model, curves, (1, 2), 700.0)
+    # (the damped frequencies: sqrt(k / m - (c / 2 m)^2))
+    wx, wy = (math.sqrt((K1 + k) / M - (C / (2 * M)) ** 2) for k in (kx, ky))
+    expected = sorted([(1, wx), (1, wy), (2, wx / 2), (2, wy / 2)], key=lambda x: x[1])
+    ours = sorted(((c.order, c.speed_rpm * RPM) for c in found), key=lambda x: x[1])
+    assert [o for o, _ in ours] == [o for o, _ in expected]
+    np.testing.assert_allclose([w for _, w in ours], [w for _, w in expected], rtol=1e-6)

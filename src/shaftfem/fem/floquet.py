@@ -72,6 +72,9 @@ ROUTES_TOL = 1e-5
 BALANCE_TOL = 1e-7
 # how far the window [-1/2, 1/2) of a kept form's harmonic centroid is moved
 CENTRE_SLACK = 1e-3
+# the harmonics either side of a form's dominant one whose shares it reports (drawn
+# thin on the Campbell diagram)
+SIDES = 3
 
 
 # the harmonics each model's converged solves took, by speed: a slower spin needs at
@@ -583,7 +586,7 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     harmonic's coefficients, the component drawn heavy), the oscillating ones
     (Im lam > 0), lowest first; the fastest growth of a form that does not oscillate
     as the stationary frame sees it kept (fem.rotor.still_seen)."""
-    from shaftfem.fem.rotor import still_seen
+    from shaftfem.fem.rotor import still_seen, whirl_index
 
     key = (id(model), model.size, float(model.omega2.sum()), float(omega))
     if key in _ROOTS:
@@ -597,7 +600,11 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
         h = replace(h, lam=h.lam[low], y=h.y[:, low], centroid=h.centroid[low],
                     residual=h.residual[low], forms=forms)
     energy = np.sum(np.abs(forms) ** 2, axis=1)             # (2H+1, 2N)
-    k = np.argmax(energy, axis=0)
+    # (two harmonics holding equal shares, a round rotor's in anisotropic supports: the
+    # kept copy's own, k = 0, so that the choice does not flip from speed to speed)
+    centre = np.zeros(energy.shape[0])
+    centre[h.harmonics] = 1e-6
+    k = np.argmax(energy * (1 + centre[:, None]), axis=0)
     cols = np.arange(h.lam.size)
     lam = h.lam + 2j * omega * (k - h.harmonics)
     y = forms[k, :, cols].T
@@ -606,9 +613,22 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     keep = (lam.imag > 1e-9 * scale) & ~still
     divergence = float(max(0.0, lam.real[still].max())) if still.any() else 0.0
     lam, y = lam[keep], y[:, keep]
+    # each form's harmonics beside its dominant one: their shares and whirl indices
+    total = energy.sum(axis=0)
+    d = np.arange(-SIDES, SIDES + 1)
+    at = k[None, :] + d[:, None]                               # (2 S + 1, forms)
+    inside = (at >= 0) & (at < energy.shape[0])
+    share = np.where(inside, energy[np.clip(at, 0, energy.shape[0] - 1), cols[None, :]], 0.0)
+    share = share / np.maximum(total, 1e-300)
+    index = np.zeros_like(share)
+    for r in range(d.size):
+        ys = forms[np.clip(at[r], 0, energy.shape[0] - 1), :, cols].T   # (N, forms)
+        index[r] = whirl_index(model, ys)
+    share, index = share[:, keep], index[:, keep]
     order = np.argsort(lam.imag)
     out = Roots(lam=lam[order], y=y[:, order],
-                divergence=divergence if divergence > 1e-9 * scale else 0.0)
+                divergence=divergence if divergence > 1e-9 * scale else 0.0,
+                sides=share[:, order], side_index=index[:, order])
     if len(_ROOTS) >= 512:
         _ROOTS.pop(next(iter(_ROOTS)))
     _ROOTS[key] = out

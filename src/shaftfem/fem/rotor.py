@@ -226,6 +226,11 @@ class Roots:
     lam: np.ndarray
     y: np.ndarray
     divergence: float = 0.0   # the largest growth rate of a non-oscillating root, 1/s
+    # a periodic rotor's Floquet forms: each one's share of its motion in the harmonics
+    # d = -SIDES..SIDES from its dominant one (at lam + i 2 d Omega), and their whirl
+    # indices, (2 SIDES + 1, m); None for a constant rotor
+    sides: np.ndarray | None = None
+    side_index: np.ndarray | None = None
 
 
 def roots(model: RotorModel, omega: float) -> Roots:

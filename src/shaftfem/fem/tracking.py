@@ -330,6 +330,34 @@ def component_lines(c: Curve) -> list[tuple[str, np.ndarray, np.ndarray]]:
             ("backward", c.signed_hz - n, 0.5 * (1 - c.index))]
 
 
+# a periodic rotor's side harmonic crosses an order line where it holds this share
+SIDE_SHARE_MIN = 0.05
+
+
+def side_lines(c: Curve) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """A periodic rotor's curve's other lines, its Floquet form's harmonics beside the
+    dominant one (d != 0, at signed_hz + 2 d n in the turning frame), as the housing sees
+    them: (component, signed value v in Hz, share of the whole motion), as
+    component_lines gives the dominant harmonic's."""
+    return [(comp, v, share) for comp, v, share, _ in _sides(c)]
+
+
+def _sides(c: Curve) -> list[tuple[str, np.ndarray, np.ndarray, int]]:
+    if c.sides is None or c.side_index is None or not c.whirling:
+        return []
+    n = c.speeds_rpm / 60.0
+    S = (c.sides.shape[0] - 1) // 2
+    out = []
+    for r, d in enumerate(range(-S, S + 1)):
+        if d == 0:
+            continue
+        f = c.signed_hz + 2 * d * n
+        share, index = c.sides[r], c.side_index[r]
+        out += [("forward", f + n, share * 0.5 * (1 + index), d),
+                ("backward", f - n, share * 0.5 * (1 - index), d)]
+    return out
+
+
 def component_whirl(component: str, v: float, index: float) -> str:
     """The whirl of a component seen at |v|: in the stationary frame the root's own by
     its index; in the rotating frame circular, its sense flipped where v < 0."""
@@ -349,12 +377,18 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
     for c in curves:
         if not any(k in WHIRLING for k in c.kinds):
             continue
-        for comp, v, share in component_lines(c):
+        # a periodic rotor's form also crosses with its other harmonics (d != 0), seen
+        # at its dominant one's frequency + 2 d n: found as the dominant one is
+        lines = [(comp, v, share, 0) for comp, v, share in component_lines(c)] + [
+            x for x in _sides(c) if float(np.max(x[2])) >= SIDE_SHARE_MIN]
+        for comp, v, share, d in lines:
             for k in orders:
                 g = np.abs(v) - k * c.speeds_rpm / 60.0
                 changes = set(np.flatnonzero((g[:-1] > 0) & (g[1:] <= 0)
                                              | (g[:-1] < 0) & (g[1:] >= 0)).tolist())
-                if comp and k == 1:
+                if d:
+                    changes = {i for i in changes if min(share[i], share[i + 1]) >= SIDE_SHARE_MIN}
+                if comp and k == 1 and not d:
                     # a stretch where the root stands at zero frequency in the turning
                     # frame: both its ends meet 1x, whether or not its sign came back
                     for i in c.gaps:
@@ -375,11 +409,13 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                              ) -> tuple[float, float, float, float]:
                         return _at(model, om, y0, f0 + (f1 - f0) * (om - lo) / (hi - lo), reach)
 
-                    def gap(om: float, k: int = k, comp: str = comp, near=near) -> float:
+                    def gap(om: float, k: int = k, comp: str = comp, near=near,
+                            d: int = d) -> float:
                         fs, _, _, sc = near(om)
                         if sc < MAC_MIN:   # the root does not oscillate here: at zero
                             fs = 0.0
                         n = om / (2 * math.pi)
+                        fs += 2 * d * n
                         val = fs if comp == "" else fs + n if comp == "forward" else fs - n
                         return abs(val) - k * n
 
@@ -389,6 +425,21 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                     except ValueError:
                         om = lo - g[i] * (hi - lo) / (g[i + 1] - g[i])
                     fs, decay, index, sc = near(om)
+                    if d:
+                        # a side harmonic: its share there, its sense by its own index
+                        t = (om - lo) / (hi - lo)
+                        n = om / (2 * math.pi)
+                        val = fs + 2 * d * n + (n if comp == "forward" else -n)
+                        part = float((1 - t) * share[i] + t * share[i + 1])
+                        row = (c.sides.shape[0] - 1) // 2 + d if c.sides is not None else 0
+                        idx = (float((1 - t) * c.side_index[row, i] + t * c.side_index[row, i + 1])
+                               if c.side_index is not None else 0.0)
+                        wd = 2 * math.pi * abs(val)
+                        out.append(Crossing(k, c.number, comp, float(om),
+                                            component_whirl(comp, val, idx), idx,
+                                            float(2 * math.pi * decay / wd) if wd > 0 else 0.0,
+                                            part))
+                        continue
                     if sc < MAC_MIN:
                         # the root meets zero frequency here (a conjugate pair passing
                         # through it): its state just beside, where it oscillates

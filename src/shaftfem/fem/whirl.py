@@ -179,6 +179,11 @@ class Curve:
     kinds: tuple[str, ...]
     shapes: np.ndarray = field(repr=False)
     gaps: tuple[int, ...] = ()   # steps i -> i + 1 over which it did not oscillate
+    # a periodic rotor's Floquet form: its shares of the motion in the harmonics
+    # d = -S..S from the dominant one (seen at signed_hz + 2 d n in the turning frame)
+    # and their whirl indices, (2 S + 1, points); zero where not periodic
+    sides: np.ndarray | None = field(default=None, repr=False)
+    side_index: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def seen_hz(self) -> np.ndarray:

@@ -21,6 +21,8 @@ LABELS = {"forward": "forward whirl", "backward": "backward whirl", "mixed": "mi
           "none": "torsion, axial (no whirl)"}
 # An operating speed's band on the diagram: this share of it on either side.
 BAND = 0.05
+# a periodic rotor's side harmonic is drawn where it holds at least this share
+SIDE_SHARE = 0.05
 
 
 def _runs(labels: list[str]) -> list[tuple[int, int, str]]:
@@ -46,7 +48,7 @@ def campbell_figure(c: Campbell):
     import numpy as np
     from matplotlib.figure import Figure
 
-    from shaftfem.fem.tracking import component_lines, component_whirl
+    from shaftfem.fem.tracking import component_lines, component_whirl, side_lines
 
     damped = any(np.any(np.abs(cv.log_dec) > 1e-6) for cv in c.curves)
     if damped:
@@ -64,6 +66,7 @@ def campbell_figure(c: Campbell):
             ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
         ax.axvline(n, color="goldenrod", lw=1)
     labelled = set()
+    sides_drawn = False
     for cv in c.curves:
         whirls = cv.whirling
         for comp, v, share in component_lines(cv):
@@ -91,6 +94,16 @@ def campbell_figure(c: Campbell):
                                else None))
                 if heavy and not faint:
                     labelled.add(word)
+        # a periodic rotor's form: its harmonics beside the dominant one, thin by their
+        # share of the motion (a line of its own in the housing's spectrum)
+        for comp, v, share in side_lines(cv):
+            for a, b, key in _runs(["y" if x >= SIDE_SHARE else "" for x in share]):
+                if not key:
+                    continue
+                word = component_whirl(comp, float(v[a]), 0.0)
+                ax.plot(cv.speeds_rpm[a:b + 1], np.abs(v[a:b + 1]), "-", color=COLOURS[word],
+                        lw=0.3 + 1.2 * float(np.max(share[a:b + 1])), alpha=0.6)
+                sides_drawn = True
         end = cv.speeds_rpm[-1]
         if end >= 0.6 * top_rpm and cv.seen_hz[-1] < fmax:
             ax.annotate(str(cv.number), (end, float(cv.seen_hz[-1])), fontsize=6,
@@ -154,6 +167,9 @@ def campbell_figure(c: Campbell):
             ax.annotate(f"diverges {lo:,.0f}-{hi:,.0f}"
                         + (f"\nup to {g:.3g} 1/s" if g > 0 else ""), (hi, 0.97 * fmax),
                         fontsize=7, color="tab:red", ha="right", va="top")
+    if sides_drawn:
+        ax.plot([], [], "-", color="grey", lw=0.6, alpha=0.6,
+                label="Floquet form's other harmonics (width: share)")
     ax.axvspan(0, 0, color="gold", alpha=0.3, label="operating speed" + (
         " range" if c.ranges_rpm else ""))
     ax.set_xlim(0, top_rpm)

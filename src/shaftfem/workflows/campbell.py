@@ -495,6 +495,30 @@ def growth_floor(lam: np.ndarray, omega: float) -> np.ndarray:
             + ROUND_OFF * np.maximum(np.abs(lam), omega))
 
 
+def with_sides(model: RotorModel, cv: Curve) -> Curve:
+    """The curve with its Floquet form's shares in the harmonics beside its dominant one
+    at each of its speeds where the rotor is periodic (fem.floquet.SIDES either side),
+    read from the roots there: the root of its frequency and decay (a curve that keeps
+    the form's conjugate sees its harmonics mirrored)."""
+    from shaftfem.fem.floquet import SIDES, any_roots
+
+    size = 2 * SIDES + 1
+    share, index = np.zeros((size, cv.speeds_rpm.size)), np.zeros((size, cv.speeds_rpm.size))
+    for i, n in enumerate(cv.speeds_rpm):
+        w = float(n) * RPM
+        if w <= 0 or not model.periodic(w):
+            continue
+        r = any_roots(model, w)
+        if r.sides is None or r.side_index is None or not r.lam.size:
+            continue
+        f = 2 * math.pi * cv.signed_hz[i]
+        j = int(np.argmin(np.abs(np.abs(r.lam.imag) - abs(f)) + np.abs(r.lam.real + cv.decay[i])))
+        flip = (f < 0) != (r.lam.imag[j] < 0)
+        share[:, i] = r.sides[::-1, j] if flip else r.sides[:, j]
+        index[:, i] = -r.side_index[::-1, j] if flip else r.side_index[:, j]
+    return replace(cv, sides=share, side_index=index)
+
+
 def zones_agree(model: RotorModel, edges: list[float], lowest: float, highest: float
                 ) -> str | None:
     """Hill's method against the monodromy matrix at the edges (rad/s) of a periodic
@@ -688,6 +712,8 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
         try:
             every = track(model, path, count + 2)
             curves = reported(every, count, max(orders), within)
+            if periodic_note:
+                curves = [with_sides(model, cv) for cv in curves]
             rows = [whirl_at(model, om, count) for om in grid]
             critical, check = critical_speeds(model, curves, orders, float(grid.max()))
             break
