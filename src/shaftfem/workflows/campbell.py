@@ -63,9 +63,9 @@ PARAMETRIC_ORDER = 1
 # a form grows in a zone where its log decrement falls below minus this: steel's own
 # loss factor (1e-4 to 1e-3, a log decrement of 3e-4 and up) holds a slower growth
 ZONE_LOG_DEC = 1e-4
-PARAMETRIC_STEPS = 4   # regula falsi steps towards where two forms meet
+PARAMETRIC_STEPS = 2   # regula falsi steps towards where two forms meet
 # ... and not where the forms' mean decay rate is above this many times their coupling
-PARAMETRIC_MARGIN = 3.0
+PARAMETRIC_MARGIN = 2.0
 # a curve whose turning-frame frequency moves by more than this many times the speed's
 # step (Hz per Hz) jumps there (its dominant component changed): no meeting is sought
 PARAMETRIC_SLOPE = 3.0
