@@ -603,14 +603,14 @@ def campbell_text(c) -> str:
                          f"{af}, margin {p.margin * 100:.1f} %, {need}{over}")
         thirds = [b for b in c.unbalance.bode if b.major_3x is not None]
         if thirds:
+            import numpy as np
+
             top = max(c.operating_rpm) if c.operating_rpm else None
             lines += ["", "the unbalance's 3x whirl (the shaft stiffer across one diameter in "
                       "bearings that differ along x and y; the 3x orbit's major semi-axis, "
                       "0-peak, beside the 1x):"]
             for b in thirds:
                 assert b.major_3x is not None
-                import numpy as np
-
                 i = int(np.argmax(b.major_3x))
                 at = ""
                 if top is not None:

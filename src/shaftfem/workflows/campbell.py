@@ -37,6 +37,8 @@ from shaftfem.scene.model import Scene
 from shaftfem.scene.schema import MAX_MODE_COUNT
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from shaftfem.fem.result import ModalResult
     from shaftfem.fem.rotor import RotorModel
     from shaftfem.fem.tracking import Spectrum
@@ -319,8 +321,20 @@ def divergent_bands(model: RotorModel, speeds: np.ndarray
     def rate(omega: float) -> float:
         return roots(model, omega).divergence
 
-    flags = [rate(om) > 0 for om in speeds]
+    def band(lo: float, hi: float) -> tuple[float, float, float]:
+        inside = [float(w) for w in speeds if lo <= w <= hi] + [0.5 * (lo + hi)]
+        return lo / RPM, hi / RPM, max(rate(w) for w in inside)
 
+    return [band(lo, hi) for lo, hi, _, _ in
+            growth_spans(rate, speeds, [rate(om) for om in speeds])]
+
+
+def growth_spans(rate: Callable[[float], float], points: np.ndarray, values: list[float]
+                 ) -> list[tuple[float, float, int, int]]:
+    """The runs of `points` (rad/s, ascending) where `values` (rate at each) is positive:
+    each run's edges (rad/s), bisected on rate between its first point and the one
+    before, its last and the one after (to 1e-9 of the speed; the ends of `points` where
+    a run reaches them), and the indices of its first and last point."""
     def edge(lo: float, hi: float, inside_high: bool) -> float:
         while hi - lo > 1e-9 * hi:
             mid = 0.5 * (lo + hi)
@@ -330,20 +344,17 @@ def divergent_bands(model: RotorModel, speeds: np.ndarray
                 lo = mid
         return 0.5 * (lo + hi)
 
-    def band(lo: float, hi: float) -> tuple[float, float, float]:
-        inside = [float(w) for w in speeds if lo <= w <= hi] + [0.5 * (lo + hi)]
-        return lo / RPM, hi / RPM, max(rate(w) for w in inside)
-
-    bands, start = [], None
-    for i, flag in enumerate(flags):
-        if flag and start is None:
-            start = speeds[0] if i == 0 else edge(speeds[i - 1], speeds[i], True)
-        if not flag and start is not None:
-            bands.append(band(start, edge(speeds[i - 1], speeds[i], False)))
-            start = None
-    if start is not None:
-        bands.append(band(start, speeds[-1]))
-    return bands
+    spans, start, first = [], 0.0, -1
+    for i, v in enumerate(values):
+        if v > 0 and first < 0:
+            start = points[0] if i == 0 else edge(points[i - 1], points[i], True)
+            first = i
+        if v <= 0 and first >= 0:
+            spans.append((float(start), edge(points[i - 1], points[i], False), first, i - 1))
+            first = -1
+    if first >= 0:
+        spans.append((float(start), float(points[-1]), first, len(values) - 1))
+    return spans
 
 
 def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
@@ -406,7 +417,9 @@ def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
         turning parts couple them by, |y_a^H K_+- y_b| / (2 sqrt(w_a w_b)) (first-order
         theory: no zone opens where the damping exceeds the coupling)."""
         w = a.speeds_rpm[i] * RPM
-        _, _, Kc, Ks = model.periodic_parts(w)
+        if w not in parts:   # (every pair asks the same speeds)
+            parts[w] = model.periodic_parts(w)[2:]
+        Kc, Ks = parts[w]
         ya, yb = a.shapes[:, i], b.shapes[:, j]
         ya, yb = ya / np.linalg.norm(ya), yb / np.linalg.norm(yb)
         couple = max(abs(ya.conj() @ (Kc - 1j * Ks) @ yb),
@@ -418,6 +431,7 @@ def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
         return 0.5 * (a.decay[i] + b.decay[j]) > PARAMETRIC_MARGIN * couple / (
             2 * math.sqrt(wa * wb))
 
+    parts: dict[float, tuple[np.ndarray, ...]] = {}
     speeds = {float(w) for w in path if w > 0 and model.periodic(float(w))}
     grid = np.array(sorted(speeds))
     if grid.size < 2:
@@ -459,28 +473,10 @@ def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
         merged = sorted([*zip(points, values), *between])
         points, values = np.array([w for w, _ in merged]), [v for _, v in merged]
 
-    def edge(lo: float, hi: float, inside_high: bool) -> float:
-        while hi - lo > 1e-9 * hi:
-            mid = 0.5 * (lo + hi)
-            if (rate(mid) > 0) == inside_high:
-                hi = mid
-            else:
-                lo = mid
-        return 0.5 * (lo + hi)
-
-    zones, start, peak, at = [], None, -math.inf, 0.0
-    for i, v in enumerate(values):
-        if v > 0 and start is None:
-            start = points[0] if i == 0 else edge(points[i - 1], points[i], True)
-            peak, at = v, points[i]
-        elif v > 0 and v > peak:
-            peak, at = v, points[i]
-        if v <= 0 and start is not None:
-            zones.append((start / RPM, edge(points[i - 1], points[i], False) / RPM, peak,
-                          still(at)))
-            start = None
-    if start is not None:
-        zones.append((start / RPM, points[-1] / RPM, peak, still(at)))
+    zones = []
+    for lo, hi, first, last in growth_spans(rate, points, values):
+        at = first + int(np.argmax(values[first:last + 1]))
+        zones.append((lo / RPM, hi / RPM, values[at], still(points[at])))
     held = [(lo, hi) for lo, hi, _ in divergent]
     return [z for z in zones
             if not any(lo <= 0.5 * (z[0] + z[1]) <= hi for lo, hi in held)]

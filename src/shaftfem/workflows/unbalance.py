@@ -97,7 +97,7 @@ def unbalance_response(scene: Scene, result, model, speeds_rpm: np.ndarray | Non
             from shaftfem.fem.floquet import unbalance_orders
 
             def third(n: float, beta: np.ndarray = beta) -> float:
-                q = responses[n] if n in responses else solve(model, n * RPM, forces)
+                q = responses[n]   # (every speed drawn was solved for the 1x)
                 if q.ndim == 1:
                     return 0.0
                 c = unbalance_orders(beta, q)
