@@ -39,7 +39,7 @@ for b in ucs.bearings:
               f"{branch + 1} at {n:,.0f} r/min")
 
 # Level I: 2 N/mm anticipated at the impeller (no stage power given)
-level1 = shaftfem.run_level1(scene, at=0.6, q_anticipated=2e3)
+level1 = shaftfem.run_level1(scene, at_mm=600.0, qa_n_per_mm=2.0)
 print(f"Level I: log dec {level1.log_dec_0:.3f} without Q, Q_0 {level1.q0 / 1e3:,.1f} N/mm, "
       f"Q_0 / Q_A {level1.ratio:.2f}, log dec at Q_A {level1.log_dec_a:.3f}: "
       + ("pass" if level1.passed else "Level II required"))

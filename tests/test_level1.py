@@ -29,7 +29,8 @@ def rotor(**rotor_keys) -> dict:
 def test_q0_and_the_log_decrement_against_q_against_ross():
     """Q_0 within 2 % (0.7 % measured), and the log decrement at ross's five Q (0 to
     0.6 Q_0, where it is well off zero) each within 2 %."""
-    r = run_level1(load_scene(rotor()), np.array(ROSS["q_n_per_m"]), at=ROSS["at_m"])
+    r = run_level1(load_scene(rotor()), np.array(ROSS["q_n_per_m"]) / 1e3,
+                   at_mm=ROSS["at_m"] * 1e3)
     assert r.q0 == pytest.approx(ROSS["q0_n_per_m"], rel=0.02)
     np.testing.assert_allclose(r.log_dec, ROSS["log_dec"], rtol=0.02)
     assert r.qa is None and r.passed is None        # no stage, no Q_A: no verdict

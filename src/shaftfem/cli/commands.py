@@ -227,10 +227,8 @@ def cmd_level1(args) -> int:
     qs = None
     if args.q_n_per_mm:
         a, b, n = args.q_n_per_mm
-        qs = np.linspace(a * 1e3, b * 1e3, n)
-    at = None if args.at_mm is None else args.at_mm * 1e-3
-    qa = None if args.qa_n_per_mm is None else args.qa_n_per_mm * 1e3
-    r = run_level1(scene, qs, at, qa, _options(args))
+        qs = np.linspace(a, b, n)
+    r = run_level1(scene, qs, args.at_mm, args.qa_n_per_mm, _options(args))
     print(level1_text(r))
     if args.out:
         _publish_figure(args.out, "level1", r)
@@ -309,22 +307,22 @@ def cmd_check(args) -> int:
 
     scene = _scene(args)
     if scene.rotor is not None:
-        from shaftfem.checks.whirl_check import check_whirl
-        from shaftfem.outputs.tables import campbell_text
-        from shaftfem.workflows.campbell import run_campbell
+        from shaftfem.outputs.tables import campbell_text, cases_text
+        from shaftfem.workflows.cases import combined, run_cases
 
-        c = run_campbell(scene, _options(args))
-        turning = check_whirl(c, _margin(args))
-        if scene.rotor.level1:
-            from shaftfem.checks.whirl_check import with_level1
-            from shaftfem.workflows.level1 import run_level1
-
-            turning = with_level1(turning, run_level1(scene, options=_options(args)))
-        print(campbell_text(c) + "\n")
+        results = run_cases(scene, _margin(args), _options(args))
+        nominal, turning = results[0], combined(results)
+        print(campbell_text(nominal.campbell) + "\n")
+        if len(results) > 1:
+            print(cases_text(results) + "\n")
         print(verdict_text(turning))
         if args.json:
             _write_json(args.json, {"scene": scene.name, **turning.as_dict(),
-                                    "campbell": c.as_dict()})
+                                    "campbell": nominal.campbell.as_dict(),
+                                    "cases": [{"case": r.case.name, "ok": r.verdict.ok,
+                                               **({} if r is nominal else
+                                                  {"campbell": r.campbell.as_dict()})}
+                                              for r in results]})
         return turning.exit_status
     result, _, adapted = _bounded(args)
     verdict = check_result(result, _margin(args))

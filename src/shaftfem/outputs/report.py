@@ -31,11 +31,17 @@ class RotorStudy:
     level1: Level1 | None
     text: str
     runup: RunUp | None = None
+    cases: list | None = None   # the study's cases side by side (workflows.cases), if several
 
 
 STUDY_NOTE = ("The verdict at the top (and the exit status) takes the scene's flat "
               "separation margin unless [resonance] criterion = \"api684\"; this summary "
               "judges every item as API 684 (and API 617's Level I) do.")
+CASES_NOTE = ("Each case is solved and judged as the nominal one; the verdict takes the "
+              "worst. The summary above, the pictures and the tables below are the nominal "
+              "case's. Minimum clearance goes with cold oil (the stiffest films), maximum "
+              "clearance with hot oil (the softest); a part whose joint the scene does not "
+              "give is run on both joints.")
 # the study's pictures, in the order the section shows them, with their headings
 STUDY_PICTURES = (("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),
                   ("critical_shapes.png", "Deflected shapes at the critical speeds"),
@@ -51,6 +57,9 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
     lines = ["## Rotordynamics (API 684)", "", "### Summary against API 684", ""]
     head, rows = tables.api684_rows(study)
     lines += tables.markdown(head, rows) + ["", STUDY_NOTE, ""]
+    if study.cases:
+        lines += ["### The study's cases", "", CASES_NOTE, ""]
+        lines += tables.markdown(*tables.cases_rows(study.cases)) + [""]
     for name, title in STUDY_PICTURES:
         if name in names:
             lines += [f"### {title}", "", f"![{title}]({name})", ""]

@@ -73,7 +73,7 @@ def _picture(path: Path) -> str:
 def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
     """The rotordynamic section: the API 684 summary, each picture under its heading,
     the whirl and critical speeds."""
-    from shaftfem.outputs.report import STUDY_NOTE, STUDY_PICTURES
+    from shaftfem.outputs.report import CASES_NOTE, STUDY_NOTE, STUDY_PICTURES
 
     by_name = {Path(p).name: Path(p) for p in pictures}
     head, rows = tables.api684_rows(study)
@@ -81,6 +81,9 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
              "<h3>Summary against API 684</h3>", _table((head, rows), ("item", "the rotor",
                                                                         "required", "result")),
              _paragraphs([STUDY_NOTE])]
+    if study.cases:
+        parts += ["<h3>The study's cases</h3>", _paragraphs([CASES_NOTE]),
+                  _table(tables.cases_rows(study.cases), ("",))]
     for name, title in STUDY_PICTURES:
         if name in by_name:
             parts += [f"<h3>{html.escape(title)}</h3>", _picture(by_name[name])]

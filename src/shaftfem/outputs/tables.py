@@ -830,3 +830,93 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
                          "Q_0 / Q_A >= 2, log dec at Q_A >= 0.1",
                          "pass" if lv.passed else "Level II required"])
     return head, rows
+
+
+def cases_rows(results) -> tuple[list[str], list[list[str]]]:
+    """The study's cases side by side (workflows.cases): each case's journals and seals
+    (clearance, oil viscosity), its judged critical speeds (matched across the cases by
+    order and rank) with their whirl, AF, margin and required margin, its least log decrement
+    where the shaft runs, its Level I screening and its verdict."""
+    head = ["", *(r.case.name for r in results)]
+    rows: list[list[str]] = []
+
+    def row(label: str, cell) -> None:
+        rows.append([label, *(cell(r) for r in results)])
+
+    for s in results[0].campbell.rotor_scene.supports:
+        if s.journal is None and s.seal is None:
+            continue
+
+        def seat(r, name=s.name):
+            return next(x for x in r.campbell.rotor_scene.supports if x.name == name)
+
+        row(f"{s.name}: radial clearance, um",
+            lambda r, seat=seat: f"{(seat(r).journal or seat(r).seal).clearance * 1e6:.1f}")
+        if s.journal is not None:
+            row(f"{s.name}: oil viscosity, mPa s",
+                lambda r, seat=seat: f"{seat(r).journal.viscosity * 1e3:.2f}")
+    loose = [a.name for a in results[0].campbell.rotor_scene.attachments if not a.joint_given]
+    if loose:
+        row(f"joint of {', '.join(loose)}", lambda r: next(
+            a.joint for a in r.campbell.rotor_scene.attachments if not a.joint_given))
+
+    def judged(r) -> dict[tuple[int, int], object]:
+        # matched by order and rank: a mode's whirl on journals may turn with the film
+        ranked = sorted((cs for cs in r.campbell.critical_speeds if not cs.critically_damped),
+                        key=lambda cs: (cs.order, cs.speed_rpm))
+        out: dict[tuple[int, int], object] = {}
+        for cs in ranked:
+            out[(cs.order, 1 + sum(1 for k in out if k[0] == cs.order))] = cs
+        return out
+
+    crits = [judged(r) for r in results]
+
+    def critical(r, key):
+        return crits[results.index(r)].get(key)
+
+    def pair(r, cs):
+        return min((a for a in r.verdict.approaches if a.order == cs.order and a.kind.endswith(
+            f"critical at {cs.speed_rpm:,.0f} r/min")),
+            key=lambda a: a.margin - a.required, default=None)
+
+    for key in sorted({k for c in crits for k in c}):
+        name = f"{key[0]}x critical speed {key[1]}"
+
+        def speed(r, key=key):
+            cs = critical(r, key)
+            return "none" if cs is None else f"{cs.speed_rpm:,.0f} ({cs.whirl})"
+
+        def af(r, key=key):
+            cs = critical(r, key)
+            return ("-" if cs is None or not math.isfinite(cs.amplification)
+                    else f"{cs.amplification:.1f}")
+
+        def margin(r, key=key):
+            cs = critical(r, key)
+            a = None if cs is None else pair(r, cs)
+            return "-" if a is None else f"{a.margin * 100:.1f} ({a.required * 100:.1f})"
+
+        row(f"{name}, r/min", speed)
+        row(f"{name}: AF", af)
+        row(f"{name}: margin (required), %", margin)
+
+    def least(r):
+        st = r.campbell.stability
+        return "-" if st is None else f"{st.log_dec:.3g} ({st.frequency_hz:.1f} Hz)"
+    row("least log decrement where the shaft runs", least)
+    if any(r.level1 is not None for r in results):
+        row("Level I: Q_0, N/mm", lambda r: "-" if r.level1 is None or r.level1.q0 is None
+            else f"{r.level1.q0 / 1e3:,.1f}")
+        row("Level I: Q_0 / Q_A (2 required)", lambda r: "-" if r.level1 is None
+            or r.level1.ratio is None else f"{r.level1.ratio:.2f}")
+        row("Level I: log decrement at Q_A (0.1 required)", lambda r: "-" if r.level1 is None
+            or r.level1.log_dec_a is None else f"{r.level1.log_dec_a:.3f}")
+    row("verdict", lambda r: "PASS" if r.verdict.ok else "FAIL")
+    return head, rows
+
+
+def cases_text(results) -> str:
+    """The cases side by side, as `check` prints them."""
+    head, rows = cases_rows(results)
+    return "\n".join(["the study's cases (the verdict takes the worst):",
+                      *aligned([head, *rows], left=set(range(len(head))))])

@@ -31,6 +31,7 @@ from shaftfem.scene.model import (
     Scene,
     Shaft,
     Support,
+    Tolerance,
     Unbalance,
 )
 from shaftfem.scene.profile import shaft_from_tables
@@ -183,11 +184,12 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
         g = validate_table(source, "grooves", data["grooves"], SCHEMA["grooves"])
         grooves = check_grooves(source, g, shaft)
     mesh = _mesh_settings(source, mesh_t, shaft, grooves)
-    supports = tuple(_support(source, i, e) for i, e in enumerate(_array(source, data, "support")))
+    ranged = [_ranges(source, i, e) for i, e in enumerate(_array(source, data, "support"))]
+    supports = tuple(_support(source, i, e) for i, (e, _) in enumerate(ranged))
     rotor = _rotor(source, data, shaft)
     physics = {"journal": _journal, "seal": _seal}
-    supports = tuple(physics[s.kind](source, i, e, s, shaft, rotor) if s.kind in physics else s
-                     for i, (e, s) in enumerate(zip(_array(source, data, "support"), supports)))
+    supports = tuple(physics[s.kind](source, i, e, s, shaft, rotor, r) if s.kind in physics
+                     else s for i, ((e, r), s) in enumerate(zip(ranged, supports)))
     attachments = tuple(_attachment(source, i, e)
                         for i, e in enumerate(_array(source, data, "attachment")))
     attachments = tuple(_stage(source, i, e, a, rotor) for i, (e, a) in
@@ -401,10 +403,47 @@ def _rolling(source: str, table: str, t: dict) -> BearingCoefficients:
                                cxx=(d * kxx,), cxy=(d * kxy,), cyx=(d * kxy,), cyy=(d * kyy,))
 
 
+# the keys a journal (all three) or a seal (its clearance) takes as a tolerance range
+RANGED = {"journal": ("radial_clearance_um", "oil_temperature_c", "viscosity_mpa_s"),
+          "seal": ("radial_clearance_um",)}
+
+
+def _ranges(source: str, i: int, raw: dict) -> tuple[dict, dict[str, tuple[float, float, float]]]:
+    """A [[support]] table with each key it takes as a tolerance range ([min, max] or
+    [min, nominal, max], ascending; RANGED) set to its nominal value (the middle of
+    [min, max]), and those ranges (min, nominal, max), each end checked as the key is."""
+    if not isinstance(raw, dict):
+        return raw, {}
+    table = entry("support", i, raw)
+    out = dict(raw)
+    ranges: dict[str, tuple[float, float, float]] = {}
+    for key in RANGED.get(raw.get("kind"), ()):   # type: ignore[arg-type]
+        v = raw.get(key)
+        if not isinstance(v, list):
+            continue
+        numbers = all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)
+        if len(v) not in (2, 3) or not numbers or list(v) != sorted(v) or v[0] == v[-1]:
+            raise SceneError(f"{where(source, table, key)} = {v!r}: give one number, or a "
+                             "tolerance range [min, max] or [min, nominal, max], ascending "
+                             f"({SCHEMA['support'][key].doc})")
+        for x in v:
+            validate_table(source, table, {key: float(x)}, {key: SCHEMA["support"][key]})
+        lo, hi = float(v[0]), float(v[-1])
+        ranges[key] = (lo, float(v[1]) if len(v) == 3 else 0.5 * (lo + hi), hi)
+        out[key] = ranges[key][1]
+    return out, ranges
+
+
+def _scaled(span: tuple[float, ...], unit: float) -> tuple[float, float, float]:
+    lo, nominal, hi = span
+    return lo * unit, nominal * unit, hi * unit
+
+
 def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
-             rotor: Rotor | None) -> Support:
+             rotor: Rotor | None, ranges: dict[str, tuple[float, float, float]]) -> Support:
     """A journal bearing's support: its film's coefficients against speed, up to the
-    Campbell diagram's end (shaftfem.parts.journal)."""
+    Campbell diagram's end (shaftfem.parts.journal), at the nominal clearance and oil,
+    and their tolerance ranges."""
     from shaftfem.parts import journal, oil
     from shaftfem.scene.schema import DEFAULT_MIN_FILM_UM
 
@@ -431,9 +470,10 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         viscosity = t["viscosity_mpa_s"] * 1e-3
     diameter = _seat_diameter(source, table, t, shaft, s, "journal")
     clearance = t["radial_clearance_um"] * 1e-6
-    if clearance > 0.05 * diameter:
+    widest = ranges.get("radial_clearance_um", (0.0, 0.0, t["radial_clearance_um"]))[2]
+    if widest * 1e-6 > 0.05 * diameter:
         raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "
-                         f"{t['radial_clearance_um']:g}: {clearance / diameter:.3g} of the "
+                         f"{widest:g}: {widest * 1e-6 / diameter:.3g} of the "
                          "diameter; a journal bearing's radial clearance is about 0.0005 to "
                          "0.003 of it (the film theory holds below 0.05)")
     ratio = s.width / diameter
@@ -448,6 +488,17 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         cavitation=t["cavitation"],
         min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
         * 1e-6)
+    temperature = ranges.get("oil_temperature_c")
+    # cold oil is the most viscous: the viscosities run (min, nominal, max) as the
+    # temperatures run (max, nominal, min)
+    spread = (_scaled(tuple(oil.dynamic(t["oil_iso_vg"], c) for c in temperature[::-1]), 1.0)
+              if temperature is not None else
+              _scaled(ranges["viscosity_mpa_s"], 1e-3) if "viscosity_mpa_s" in ranges else None)
+    tolerance = (Tolerance(clearance=_scaled(ranges["radial_clearance_um"], 1e-6)
+                           if "radial_clearance_um" in ranges else None,
+                           viscosity=spread, temperature=temperature)
+                 if ranges else None)
+    s = replace(s, tolerance=tolerance)
     if t["load_n"] is None:   # its reaction to the static loads, once they are solved
         return replace(s, journal=bearing)
     try:
@@ -509,7 +560,7 @@ def _seat_diameter(source: str, table: str, t: dict, shaft: Shaft, s: Support,
 
 
 def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
-          rotor: Rotor | None) -> Support:
+          rotor: Rotor | None, ranges: dict[str, tuple[float, float, float]]) -> Support:
     """A plain annular seal's support: its coefficients against speed, up to the
     Campbell diagram's end (shaftfem.parts.seal), none at standstill."""
     table = entry("support", i, raw)
@@ -527,18 +578,22 @@ def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
                          "from its speed; add [rotor] with the operating speed")
     diameter = _seat_diameter(source, table, t, shaft, s, "seal")
     clearance = t["radial_clearance_um"] * 1e-6
-    if clearance > 0.02 * diameter:
+    widest = ranges.get("radial_clearance_um", (0.0, 0.0, t["radial_clearance_um"]))[2]
+    if widest * 1e-6 > 0.02 * diameter:
         raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "
-                         f"{t['radial_clearance_um']:g}: {clearance / diameter:.3g} of the "
+                         f"{widest:g}: {widest * 1e-6 / diameter:.3g} of the "
                          "diameter; a plain seal's radial clearance is about 0.001 to 0.005 "
                          "of it (the bulk-flow model holds below 0.02)")
-    return replace(s, bearing=seal_coefficients(
-        seal.AnnularSeal(length=s.width, diameter=diameter, clearance=clearance,
-                         pressure_drop=t["pressure_drop_mpa"] * MPA, rated=rotor.top_speed,
-                         density=t["fluid_density_kg_m3"],
-                         viscosity=t["viscosity_mpa_s"] * 1e-3,
-                         inlet_loss=seal.INLET_LOSS if t["inlet_loss"] is None
-                         else t["inlet_loss"]), rotor))
+    annular = seal.AnnularSeal(length=s.width, diameter=diameter, clearance=clearance,
+                               pressure_drop=t["pressure_drop_mpa"] * MPA, rated=rotor.top_speed,
+                               density=t["fluid_density_kg_m3"],
+                               viscosity=t["viscosity_mpa_s"] * 1e-3,
+                               inlet_loss=seal.INLET_LOSS if t["inlet_loss"] is None
+                               else t["inlet_loss"])
+    tolerance = (Tolerance(clearance=_scaled(ranges["radial_clearance_um"], 1e-6))
+                 if ranges else None)
+    return replace(s, bearing=seal_coefficients(annular, rotor), seal=annular,
+                   tolerance=tolerance)
 
 
 def seal_coefficients(s: seal.AnnularSeal, rotor: Rotor) -> BearingCoefficients:
@@ -742,6 +797,7 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:
     table = entry("attachment", i, t)
+    joint_given = isinstance(t, dict) and t.get("joint") is not None
     t = validate_table(source, table, t, SCHEMA["attachment"])
     polar, diametral = t["polar_inertia_kg_m2"], t["diametral_inertia_kg_m2"]
     if t["mass_kg"] == 0 and polar + diametral > 0:
@@ -769,6 +825,7 @@ def _attachment(source: str, i: int, t: dict) -> Attachment:
                       width=t["width_mm"] * MM, mass=t["mass_kg"],
                       polar_inertia=t["polar_inertia_kg_m2"],
                       diametral_inertia=t["diametral_inertia_kg_m2"], joint=t["joint"],
+                      joint_given=joint_given,
                       coupling_stiffness=t["coupling_stiffness_nm_per_rad"] or 0.0,
                       coupled_inertia=t["coupled_inertia_kg_m2"] or 0.0)
 

@@ -18,6 +18,7 @@ from shaftfem.scene.schema import (
 
 if TYPE_CHECKING:
     from shaftfem.parts.journal import JournalBearing
+    from shaftfem.parts.seal import AnnularSeal
 
 MM = 1e-3  # m per mm: scene files are in mm
 
@@ -364,6 +365,18 @@ class PointForce:
 
 
 @dataclass(frozen=True)
+class Tolerance:
+    """A journal's or a seal's tolerance ranges, each (min, nominal, max), None where the
+    scene gives one value: its radial clearance (m), its oil's viscosity (Pa s) and the
+    oil temperatures (C) the viscosities come from (cold oil is the most viscous). The
+    study's tolerance cases (workflows.cases) take their ends."""
+
+    clearance: tuple[float, float, float] | None = None
+    viscosity: tuple[float, float, float] | None = None
+    temperature: tuple[float, float, float] | None = None
+
+
+@dataclass(frozen=True)
 class Support:
     """A bearing seat: the band of shaft surface from z = position -+ width / 2 (m).
 
@@ -381,6 +394,8 @@ class Support:
     coupling: str = "distributing"   # or "rigid": the band moves as a rigid ring
     bearing: BearingCoefficients | None = None   # kind "bearing", "journal": its coefficients
     journal: JournalBearing | None = None   # kind "journal": the film's bearing
+    seal: AnnularSeal | None = None   # kind "seal": the seal its coefficients come from
+    tolerance: Tolerance | None = None   # a journal's or seal's tolerance ranges
     # the standstill modes hold the bearing's mean of kxx and kyy on both axes: the
     # basis of a rotor solved in the frame turning with it, which every angle sees alike
     mean_seat: bool = False
@@ -416,6 +431,8 @@ class Attachment:
     diametral_inertia: float
     joint: str = "rigid"   # or "distributing": on the mean motion of the section at its
                            # centre, no stiffness
+    joint_given: bool = True   # False: the scene left it to the default (the study
+                               # brackets it, workflows.cases)
     # a stage's aerodynamic cross-coupling on the part's motion (Wachel), N/m against speed
     cross_coupling: BearingCoefficients | None = None
     # a flexible coupling from the part's turn to another machine's rotor: its torsional

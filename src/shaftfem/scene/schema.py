@@ -265,21 +265,27 @@ SCHEMA: dict[str, dict[str, Key]] = {
             required=False),
         "radial_clearance_um": Key(
             float, "radial clearance of a journal bearing or a seal (bore radius minus "
-            "shaft radius), um (kind = \"journal\", \"seal\"; the length is width_mm)",
+            "shaft radius), um (kind = \"journal\", \"seal\"; the length is width_mm); "
+            "or its tolerance, [min, max] or [min, nominal, max]: the study runs the ends as "
+            "cases (workflows.cases)",
             *upto(10_000, "up to 10 mm"), required=False),
         "diameter_mm": Key(float, "journal or seal diameter, mm (kind = \"journal\", "
                            "\"seal\"; default: the "
                            "shaft's diameter at the seat; needed on a STEP shaft)",
                            *upto(2_000, "up to 2 m"), required=False),
         "viscosity_mpa_s": Key(float, "the oil's dynamic viscosity in the film, mPa s (= cP; "
-                               "kind = \"journal\"; or oil_iso_vg and oil_temperature_c), "
+                               "kind = \"journal\"; or oil_iso_vg and oil_temperature_c; "
+                               "a journal's may be a range [min, max]), "
                                "or the sealed fluid's (kind = \"seal\"; water at 20 C: 1.0)",
                                *upto(10_000, "up to 10^4 mPa s"), required=False),
         "oil_iso_vg": Key(int, "the oil's ISO 3448 viscosity grade (a VI-100 mineral oil; "
                           "kind = \"journal\", with oil_temperature_c)",
                           lambda v: v in ISO_VG, ", ".join(str(g) for g in ISO_VG),
                           required=False),
-        "oil_temperature_c": Key(float, "the film's mean temperature, C (with oil_iso_vg)",
+        "oil_temperature_c": Key(float, "the film's mean temperature, C (with oil_iso_vg); "
+                                 "or its range, [cold, hot] or [cold, nominal, hot]: the "
+                                 "study runs cold oil with the least clearance, hot with the "
+                                 "largest",
                                  lambda v: -20 <= v <= 200, "in [-20, 200] C", required=False),
         "load_n": Key(float, "the static radial load the bearing carries, N (kind = "
                       "\"journal\", \"ball\", \"roller\"; a journal's default: its reaction "

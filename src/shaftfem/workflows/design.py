@@ -84,15 +84,14 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     verdict = check_result(result, margin)
     campbell, study = None, None
     if scene.rotor is not None:
-        from shaftfem.checks.whirl_check import check_whirl
         from shaftfem.outputs.report import RotorStudy
         from shaftfem.outputs.tables import campbell_text
-        from shaftfem.workflows.campbell import run_campbell
+        from shaftfem.workflows.cases import combined, run_cases
 
         say("the shaft turning: whirl, Campbell diagram, critical speeds")
-        campbell = run_campbell(scene, options)
-        verdict = check_whirl(campbell, margin)
-        ucs, level1 = _map_and_level1(scene, options)
+        cases = run_cases(scene, margin, options)   # the nominal one first
+        campbell, verdict = cases[0].campbell, combined(cases)
+        ucs, level1 = _map_and_level1(scene, options, cases[0].level1)
         runup = None
         if scene.rotor.runup is not None and scene.unbalances:
             from shaftfem.workflows.runup import run_run_up
@@ -100,11 +99,8 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
             say("the rotordynamic study: the run-up")
             top = scene.rotor.max_speed * 30 / math.pi
             runup = run_run_up(scene, 0.0, top, scene.rotor.runup * 30 / math.pi, options)
-        if scene.rotor.level1 and level1 is not None:
-            from shaftfem.checks.whirl_check import with_level1
-
-            verdict = with_level1(verdict, level1)
-        study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell), runup)
+        study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell), runup,
+                           cases if len(cases) > 1 else None)
     free, part, response, basis = None, None, None, None
     if scene.held:
         from shaftfem.fem.response import modal_basis, participation, response_sweep
@@ -174,14 +170,16 @@ def write_campbell_csv(c, path: Path) -> Path:
     return write_text(path, buf.getvalue())
 
 
-def _map_and_level1(scene: Scene, options: RunOptions):
-    """The turning shaft's critical speed map and Level I screening for the report; each
-    None where the scene does not allow it (no bearings to vary, no forward mode)."""
+def _map_and_level1(scene: Scene, options: RunOptions, level1=None):
+    """The turning shaft's critical speed map and Level I screening for the report (the
+    screening `level1` where the verdict made it already); each None where the scene
+    does not allow it (no bearings to vary, no forward mode)."""
     from shaftfem.workflows.level1 import run_level1
     from shaftfem.workflows.ucs import run_ucs
 
     out: list = []
-    for what, run in (("the critical speed map", run_ucs), ("Level I", run_level1)):
+    for what, run in (("the critical speed map", run_ucs),
+                      ("Level I", run_level1 if level1 is None else lambda *_, **__: level1)):
         options.say(f"the rotordynamic study: {what}")
         try:
             out.append(run(scene, options=options))

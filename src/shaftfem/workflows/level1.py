@@ -105,12 +105,18 @@ def anticipated(scene: Scene, given: float | None) -> tuple[float | None, str]:
             f"Wachel's estimate of {len(stages)} stage(s) at the highest operating speed")
 
 
-def run_level1(scene: Scene, q_values: np.ndarray | None = None, at: float | None = None,
-               q_anticipated: float | None = None,
+def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
+               at_mm: float | None = None, qa_n_per_mm: float | None = None,
                options: RunOptions = RunOptions()) -> Level1:
     """The Level I screening of the scene's rotor at its highest operating speed: the log
-    decrement at each of `q_values` (N/m; default 20 from 0 to 1.5 Q_0, or to 2 Q_A if
-    more), Q_0 and, with an anticipated Q_A, the criteria."""
+    decrement at each applied cross-coupling of `q_n_per_mm` (N/mm; default 20 from 0 to
+    1.5 Q_0, or to 2 Q_A if more), Q applied at `at_mm` (mm from the shaft's left end;
+    default: screening_plane), Q_0 and, with an anticipated Q_A (`qa_n_per_mm`, N/mm;
+    default the scene's [rotor] level1_qa_n_per_mm or its stages' Wachel estimate), the
+    criteria. The units are the scene file's; the result holds SI (N/m, m)."""
+    q_values = None if q_n_per_mm is None else np.asarray(q_n_per_mm, dtype=float) * 1e3
+    at = None if at_mm is None else at_mm * 1e-3
+    q_anticipated = None if qa_n_per_mm is None else qa_n_per_mm * 1e3
     import scipy.optimize
 
     from shaftfem.fem.rotor import BearingModal, section_motion

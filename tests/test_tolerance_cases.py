@@ -1,0 +1,186 @@
+"""The cases an API 684 study runs: journals and seals given a clearance range, oil a
+temperature or viscosity range, parts without a joint of their own; each case's films
+against the film solved directly for its clearance and viscosity, and the verdict the
+worst of the cases'.
+
+The rotor is our own: a 45 mm, 800 mm shaft with a 20 kg wheel between two plain
+journals (L/D 0.49, 40 to 50 um clearance, ISO VG 46 between 35 and 55 C).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from shaftfem.checks.resonance import Approach, ResonanceVerdict
+from shaftfem.cli import main
+from shaftfem.fem.whirl import RPM
+from shaftfem.parts import journal, oil
+from shaftfem.scene.load import load_scene
+from shaftfem.workflows.cases import Case, CaseResult, case_scene, cases_of, combined
+
+STEEL = {"name": "steel", "youngs_modulus_mpa": 206000.0, "poisson_ratio": 0.29,
+         "density_kg_m3": 7850.0}
+RUNNING = 3600.0
+
+
+def wheel(clearance=(40.0, 50.0), temperature=(35.0, 55.0), joint="distributing") -> dict:
+    def bearing(name: str, z: float) -> dict:
+        return {"name": name, "position_mm": z, "width_mm": 22.0, "kind": "journal",
+                "radial_clearance_um": list(clearance), "oil_iso_vg": 46,
+                "oil_temperature_c": list(temperature)}
+    part = {"name": "wheel", "position_mm": 430.0, "width_mm": 50.0, "mass_kg": 20.0,
+            "polar_inertia_kg_m2": 0.16, "diametral_inertia_kg_m2": 0.09}
+    if joint is not None:
+        part["joint"] = joint
+    return {"name": "wheel_cases", "shaft": {"length_mm": 800.0, "diameter_mm": 45.0},
+            "material": STEEL, "mesh": {"element_size_mm": 22.0}, "modes": {"count": 6},
+            "resonance": {"criterion": "api684"},
+            "support": [bearing("inboard", 40.0), bearing("outboard", 760.0)],
+            "attachment": [part],
+            "rotor": {"speed_rpm": RUNNING, "max_speed_rpm": 9000.0, "campbell_points": 19}}
+
+
+def test_a_range_gives_its_nominal_and_its_ends():
+    """[min, max] runs at its middle, [min, nominal, max] at its nominal; the oil's ends
+    are its viscosity at the temperatures' ends (cold oil the most viscous)."""
+    s = load_scene(wheel()).supports[0]
+    assert s.journal.clearance == pytest.approx(45e-6)
+    assert s.journal.viscosity == pytest.approx(oil.dynamic(46, 45.0))
+    assert s.tolerance.clearance == pytest.approx((40e-6, 45e-6, 50e-6))
+    assert s.tolerance.viscosity == pytest.approx(
+        tuple(oil.dynamic(46, t) for t in (55.0, 45.0, 35.0)))
+    s = load_scene(wheel(clearance=(40.0, 42.0, 50.0))).supports[0]
+    assert s.journal.clearance == pytest.approx(42e-6)
+
+
+@pytest.mark.parametrize("key,value,said", [
+    ("radial_clearance_um", [50.0, 40.0], "ascending"),
+    ("radial_clearance_um", [40.0], "tolerance range"),
+    ("radial_clearance_um", [40.0, 45.0, 50.0, 55.0], "tolerance range"),
+    ("radial_clearance_um", [0.0, 50.0], "radial_clearance_um = 0"),
+    ("radial_clearance_um", ["40", 50.0], "tolerance range"),
+    ("oil_temperature_c", [-40.0, 50.0], "oil_temperature_c = -40"),
+])
+def test_a_bad_range_is_refused_naming_its_key(tmp_path, capsys, key, value, said):
+    import tomli_w
+
+    scene = wheel()
+    scene["support"][0][key] = value
+    path = tmp_path / "wheel.toml"
+    path.write_bytes(tomli_w.dumps(scene).encode())
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "[[support]] #1" in err or "support" in err
+    assert key in err and said in err and "Traceback" not in err
+
+
+def test_the_cases_bracket_the_tolerances_and_a_joint_left_to_the_default():
+    scene = load_scene(wheel())
+    assert [c.name for c in cases_of(scene)] == [
+        "nominal", "min clearance, cold oil", "max clearance, hot oil"]
+    scene = load_scene(wheel(clearance=(45.0, 45.0 + 1e-9), joint=None))
+    names = [c.name for c in cases_of(scene)]
+    assert names[0] == "nominal" and names[-1] == "distributing joints"
+    assert case_scene(scene, cases_of(scene)[-1]).attachments[0].joint == "distributing"
+    assert scene.attachments[0].joint == "rigid"
+    fixed = load_scene(wheel(clearance=(45.0, 45.0 + 1e-9), temperature=(45.0, 45.0 + 1e-9)))
+    assert len(cases_of(fixed)) == 3   # ranges, however narrow, are cases
+    one = dict(wheel())
+    for s in one["support"]:
+        s["radial_clearance_um"], s["oil_temperature_c"] = 45.0, 45.0
+    assert [c.name for c in cases_of(load_scene(one))] == ["nominal"]
+
+
+def film_directly(b: journal.JournalBearing, omega: float) -> tuple[np.ndarray, np.ndarray]:
+    """A loaded journal's K and C (N/m, N s/m) from the film solved at the eccentricity
+    its Sommerfeld number asks (found by root-finding on the film itself)."""
+    S = b.sommerfeld(omega)
+
+    def gap(e: float) -> float:
+        F = float(np.hypot(*journal.state(b.ratio, e).force))
+        return math.log(2 * b.ratio / (math.pi * F)) - math.log(S)
+
+    e = brentq(gap, 0.02, 0.95, xtol=1e-6)
+    s = journal.state(b.ratio, e)
+    F = float(np.hypot(*s.force))
+    Q = journal.rotation(-math.pi / 2 - (math.atan2(s.force[1], s.force[0]) + math.pi))
+    K, C = Q @ s.stiffness @ Q.T / F, Q @ s.damping @ Q.T / F   # the load along -y
+    R = journal.rotation(math.atan2(b.direction[1], b.direction[0]) + math.pi / 2)
+    unit = b.load / b.clearance
+    return unit * R @ K @ R.T, unit / omega * R @ C @ R.T
+
+
+@pytest.mark.parametrize("case,clearance,temperature", [
+    (Case("min clearance, cold oil", "min", "cold"), 40e-6, 35.0),
+    (Case("max clearance, hot oil", "max", "hot"), 50e-6, 55.0),
+])
+def test_each_case_s_film_is_the_film_of_its_clearance_and_oil(case, clearance, temperature):
+    """At the running speed, each journal's eight coefficients in the case's scene
+    against the film solved directly for that clearance and the oil's viscosity at that
+    temperature, under the same static load: within 1 %."""
+    from shaftfem.workflows.static import with_journal_loads
+
+    scene = with_journal_loads(case_scene(load_scene(wheel()), case))
+    omega = RUNNING * RPM
+    for s in scene.held:
+        b = s.journal
+        assert b.clearance == pytest.approx(clearance)
+        assert b.viscosity == pytest.approx(oil.dynamic(46, temperature))
+        K, C = film_directly(b, omega)
+        np.testing.assert_allclose(s.bearing.stiffness(omega), K, atol=0.01 * np.abs(K).max())
+        np.testing.assert_allclose(s.bearing.damping(omega), C, atol=0.01 * np.abs(C).max())
+
+
+def _verdict(margin: float, unstable: tuple[str, ...] = ()) -> ResonanceVerdict:
+    a = Approach(mode=1, frequency=60.0, kind="forward whirl (curve 1), critical at 3,600 "
+                 "r/min", source="shaft at 3,000 r/min", order=1, excitation=50.0,
+                 margin=margin, required=0.15)
+    return ResonanceVerdict(approaches=[a], required=0.15, turning="the shaft turning",
+                            unstable=list(unstable))
+
+
+def test_the_study_takes_the_worst_case():
+    """A study passes only where every case passes; its tightest pair and its reasons
+    to fail are named by their case."""
+    def result(name: str, v: ResonanceVerdict) -> CaseResult:
+        return CaseResult(Case(name), None, v, None)   # type: ignore[arg-type]
+
+    good = [result("nominal", _verdict(0.20)), result("min clearance, cold oil", _verdict(0.18))]
+    assert combined(good).ok
+    bad = good + [result("max clearance, hot oil", _verdict(0.12, ("curve 2 grows",)))]
+    v = combined(bad)
+    assert not v.ok and v.exit_status == 1
+    assert v.violations[0].source.endswith("(max clearance, hot oil)")
+    assert v.unstable == ["max clearance, hot oil: curve 2 grows"]
+    assert len(v.approaches) == 3 and "3 cases" in (v.turning or "")
+    assert combined(good[:1]) is good[0].verdict
+
+
+@pytest.mark.slow
+def test_check_prints_the_cases_side_by_side_and_fails_on_the_worst(tmp_path, capsys):
+    """`check` of the wheel with its tolerances: the three cases side by side, each
+    case's clearance and viscosity in its column, and the exit status the worst case's
+    verdict gives."""
+    import json
+
+    import tomli_w
+
+    path = tmp_path / "wheel.toml"
+    path.write_bytes(tomli_w.dumps(wheel()).encode())
+    status = main(["check", str(path), "--json", str(tmp_path / "v.json")])
+    out = capsys.readouterr().out
+    data = json.loads((tmp_path / "v.json").read_text())
+    cases = data["cases"]
+    assert [c["case"] for c in cases] == ["nominal", "min clearance, cold oil",
+                                          "max clearance, hot oil"]
+    assert status == (0 if all(c["ok"] for c in cases) else 1)
+    table = out[out.index("the study's cases"):]
+    line = next(x for x in table.splitlines() if x.startswith("inboard: radial clearance"))
+    assert line.split()[-3:] == ["45.0", "40.0", "50.0"]
+    line = next(x for x in table.splitlines() if x.startswith("inboard: oil viscosity"))
+    assert [float(v) for v in line.split()[-3:]] == pytest.approx(
+        [oil.dynamic(46, t) * 1e3 for t in (45.0, 35.0, 55.0)], abs=0.006)
