@@ -135,12 +135,13 @@ def test_each_case_s_film_is_the_film_of_its_clearance_and_oil(case, clearance, 
         np.testing.assert_allclose(s.bearing.damping(omega), C, atol=0.01 * np.abs(C).max())
 
 
-def _verdict(margin: float, unstable: tuple[str, ...] = ()) -> ResonanceVerdict:
+def _verdict(margin: float, unstable: tuple[str, ...] = (),
+             warnings: tuple[str, ...] = ("onset at 7,200 r/min",)) -> ResonanceVerdict:
     a = Approach(mode=1, frequency=60.0, kind="forward whirl (curve 1), critical at 3,600 "
                  "r/min", source="shaft at 3,000 r/min", order=1, excitation=50.0,
                  margin=margin, required=0.15)
     return ResonanceVerdict(approaches=[a], required=0.15, turning="the shaft turning",
-                            unstable=list(unstable))
+                            unstable=list(unstable), warnings=list(warnings))
 
 
 def test_the_study_takes_the_worst_case():
@@ -151,11 +152,14 @@ def test_the_study_takes_the_worst_case():
 
     good = [result("nominal", _verdict(0.20)), result("min clearance, cold oil", _verdict(0.18))]
     assert combined(good).ok
-    bad = good + [result("max clearance, hot oil", _verdict(0.12, ("curve 2 grows",)))]
+    assert combined(good).warnings == ["onset at 7,200 r/min"]   # said once, the nominal's
+    bad = good + [result("max clearance, hot oil", _verdict(0.12, ("curve 2 grows",),
+                                                            ("onset at 6,900 r/min",)))]
     v = combined(bad)
     assert not v.ok and v.exit_status == 1
     assert v.violations[0].source.endswith("(max clearance, hot oil)")
     assert v.unstable == ["max clearance, hot oil: curve 2 grows"]
+    assert v.warnings == ["onset at 7,200 r/min", "max clearance, hot oil: onset at 6,900 r/min"]
     assert len(v.approaches) == 3 and "3 cases" in (v.turning or "")
     assert combined(good[:1]) is good[0].verdict
 

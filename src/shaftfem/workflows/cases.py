@@ -162,11 +162,9 @@ def combined(results: list[CaseResult]) -> ResonanceVerdict:
                   for r in results for a in r.verdict.approaches]
     approaches.sort(key=lambda a: (a.exempt, a.margin - a.required))
     unstable = [named(u, r) for r in results for u in r.verdict.unstable]
-    warnings: list[str] = []
-    for r in results:
-        for w in r.verdict.warnings:
-            if w not in first.warnings or r is first:
-                warnings.append(w if r is first else named(w, r))
+    warnings = list(first.warnings)   # the nominal case's, then what the others add
+    for r in results[1:]:
+        warnings += [named(w, r) for w in r.verdict.warnings if w not in first.warnings]
     turning = ((first.turning or "") + f"; {len(results)} cases ("
                + ", ".join(r.case.name for r in results) + "), the verdict takes the worst")
     return ResonanceVerdict(approaches=approaches, required=first.required,
