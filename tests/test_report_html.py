@@ -162,12 +162,13 @@ def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
     _chromium(tmp_path / "s", alone.as_uri(), "--window-size=1100,3000",
               f"--screenshot={SHOTS / 'rotordynamics.png'}")
     assert (SHOTS / "rotordynamics.png").stat().st_size > 50_000
-    assert 'data-rotor-pictures="6"' in dom and 'data-rotor-decoded="6"' in dom
+    assert 'data-rotor-pictures="7"' in dom and 'data-rotor-decoded="7"' in dom
     section = dom[dom.index('<section id="rotordynamics">'):]
     section = section[:section.index("</section>")]
     for heading in ("Summary against API 684", "Campbell diagram", "Critical speed map",
                     "Deflected shapes at the critical speeds", "Unbalance response",
-                    "Level I screening", "Run-up"):
+                    "Level I screening", "Run-up", "The study's cases",
+                    "Bearing and seal coefficients against speed"):
         assert f"<h3>{heading}</h3>" in section, heading
     for item in ("separation margin of the critical speeds", "least log decrement",
                  "onset of instability", "unbalance peak at impeller",
@@ -177,3 +178,31 @@ def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
         '<td class="text">FAIL</td>') >= 4
     markdown = (pump_report.parent / "report.md").read_text()
     assert "## Rotordynamics (API 684)" in markdown and "![Critical speed map](ucs.png)" in markdown
+
+
+def test_the_report_has_its_title_block_its_cases_and_each_case_s_films(pump_report):
+    """The pump's report: the title block from the scene's keys; the three tolerance
+    cases side by side, the clearances of each case in its column; the films' cross-
+    coupled stiffness at the running speed falling from the tight, cold case through the
+    nominal to the loose, hot one (kxy ~ mu omega L (R / c)^3 for a lightly loaded film);
+    the seal listed as a seal, with no coefficients at standstill; the journals not
+    given at standstill (their film's placeholders)."""
+    markdown = (pump_report.parent / "report.md").read_text()
+    for row in ("| machine | P-101 process water pump |", "| job | J-2026-014 |",
+                "| revision | B |", "| date | 2026-11-27 |"):
+        assert row in markdown, row
+    cases = markdown[markdown.index("### The study's cases"):]
+    head = next(line for line in cases.splitlines() if line.startswith("|  |"))
+    assert head == "|  | nominal | min clearance, cold oil | max clearance, hot oil |"
+    assert "| drive-end journal: radial clearance, um | 60.0 | 55.0 | 65.0 |" in cases
+    assert "| wear ring: radial clearance, um | 300.0 | 275.0 | 325.0 |" in cases
+    films = markdown[markdown.index("### Bearing and seal coefficients against speed"):]
+    kxy = {}
+    for line in films.splitlines():
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if len(cells) == 11 and cells[1] == "drive-end journal (journal)" and cells[2] == "3,000":
+            kxy[cells[0]] = float(cells[4])
+    assert kxy["min clearance, cold oil"] > kxy["nominal"] > kxy["max clearance, hot oil"] > 0
+    install = markdown[markdown.index("## Installation"):markdown.index("## Natural")]
+    assert "support wear ring: seat 515-545 mm, annular seal" in install
+    assert "no force at standstill" in install and "kxx" not in install

@@ -295,3 +295,48 @@ def frf_figure(r):
     ph.set_ylabel("phase, deg")
     ph.grid(True, alpha=0.3)
     return fig
+
+
+def bearings_figure(cases):
+    """Each speed-dependent bearing's and seal's stiffness and damping coefficients
+    against speed, one row each, every case on it (`cases`: (name, Campbell run)
+    pairs; solid the first, then dashed and dotted). None without such a bearing."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    first = cases[0][1]
+    names = [s.name for s in first.rotor_scene.held if s.bearing is not None and s.bearing.speeds]
+    if not names:
+        return None
+    fig = Figure(figsize=(10, 2.8 * len(names) + 0.6))
+    axes = np.atleast_2d(fig.subplots(len(names), 2, squeeze=False))
+    styles = ["-", "--", ":", "-."]
+    colors = {"xx": "tab:blue", "xy": "tab:orange", "yx": "tab:green", "yy": "tab:red"}
+    for row, name in enumerate(names):
+        for j, (which, unit) in enumerate((("k", "N/mm"), ("c", "N s/mm"))):
+            ax = axes[row, j]
+            for i, (case, c) in enumerate(cases):
+                s = next(x for x in c.rotor_scene.held if x.name == name)
+                b = s.bearing
+                # from a quarter of the lowest operating speed: near the film's lift-off
+                # its damping runs off by tens, and hides what the running range sees
+                low = min(lo for lo, _ in c.rotor_scene.rotor.spans) * 30 / np.pi
+                lo = max(c.lift_rpm, 0.25 * low, 1e-3 * max(c.speeds_rpm))
+                n = np.linspace(lo, max(c.speeds_rpm), 200)
+                get = b.stiffness if which == "k" else b.damping
+                values = np.array([get(v * np.pi / 30) for v in n]) / 1e3
+                for (a, bb), key in (((0, 0), "xx"), ((0, 1), "xy"), ((1, 0), "yx"),
+                                     ((1, 1), "yy")):
+                    ax.plot(n, values[:, a, bb], styles[i % 4], color=colors[key], lw=1.2,
+                            label=f"{which}{key}" if i == 0 else None)
+                ax.plot([], [], styles[i % 4], color="grey", label=case)
+            ax.axhline(0.0, color="black", lw=0.6)
+            ax.set_title(f"{name}: {'stiffness' if which == 'k' else 'damping'}", fontsize=9)
+            ax.set_ylabel(unit)
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=7, ncol=2)
+        axes[row, 0].set_xlabel("speed, r/min")
+        axes[row, 1].set_xlabel("speed, r/min")
+    fig.suptitle("Bearing and seal coefficients against speed"
+                 + (" (each case)" if len(cases) > 1 else ""), fontsize=10)
+    return fig

@@ -37,13 +37,40 @@ class RotorStudy:
 STUDY_NOTE = ("The verdict at the top (and the exit status) takes the scene's flat "
               "separation margin unless [resonance] criterion = \"api684\"; this summary "
               "judges every item as API 684 (and API 617's Level I) do.")
+def title_rows(scene, wall_seconds: float | None = None) -> tuple[list[str], list[list[str]]]:
+    """The report's title block: the scene's machine, job, revision, date and engineer
+    (where it gives them), what it describes, its file, and when and by what it was
+    made."""
+    import datetime
+
+    from shaftfem import __version__
+
+    rows = [[k, v] for k, v in scene.title_block]
+    if scene.description:
+        rows.append(["description", scene.description])
+    rows.append(["scene file", str(scene.source)])
+    made = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    rows.append(["made", f"{made} by shaftfem {__version__}"
+                 + (f" in {wall_seconds:.1f} s" if wall_seconds is not None else "")])
+    return ["title block", ""], rows
+
+
+def study_cases(study: RotorStudy) -> list[tuple[str, Campbell]]:
+    """The study's cases as (name, Campbell run) pairs: the nominal one alone where the
+    study has no others."""
+    if study.cases:
+        return [(r.case.name, r.campbell) for r in study.cases]
+    return [("nominal", study.campbell)]
+
+
 CASES_NOTE = ("Each case is solved and judged as the nominal one; the verdict takes the "
               "worst. The summary above, the pictures and the tables below are the nominal "
               "case's. Minimum clearance goes with cold oil (the stiffest films), maximum "
               "clearance with hot oil (the softest); a part whose joint the scene does not "
               "give is run on both joints.")
 # the study's pictures, in the order the section shows them, with their headings
-STUDY_PICTURES = (("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),
+STUDY_PICTURES = (("bearings.png", "Bearing and seal coefficients against speed"),
+                  ("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),
                   ("critical_shapes.png", "Deflected shapes at the critical speeds"),
                   ("bode.png", "Unbalance response"),
                   ("weight_2x.png", "The weight's 2x whirl"), ("level1.png", "Level I screening"),
@@ -63,6 +90,8 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
     for name, title in STUDY_PICTURES:
         if name in names:
             lines += [f"### {title}", "", f"![{title}]({name})", ""]
+            if name == "bearings.png":
+                lines += tables.markdown(*tables.bearing_rows(study_cases(study))) + [""]
             if name == "level1.png" and study.level1 is not None:
                 lines += ["```text", tables.level1_text(study.level1), "```", ""]
             if name == "ucs.png" and study.ucs is not None:
@@ -84,6 +113,8 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
     whole run's time until the report (s)."""
     scene = result.scene
     lines = [f"# Modal design report: {scene.name}", ""]
+    head, rows = title_rows(scene, wall_seconds)
+    lines += tables.markdown(head, rows) + [""]
     lines += [x for line in tables.verdict_lines(verdict) for x in (line, "")]
     lines += ["## Shaft", ""] + [f"- {line}" for line in shaft_facts(result)] + [""]
     if sizing is not None:

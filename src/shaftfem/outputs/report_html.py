@@ -73,7 +73,7 @@ def _picture(path: Path) -> str:
 def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
     """The rotordynamic section: the API 684 summary, each picture under its heading,
     the whirl and critical speeds."""
-    from shaftfem.outputs.report import CASES_NOTE, STUDY_NOTE, STUDY_PICTURES
+    from shaftfem.outputs.report import CASES_NOTE, STUDY_NOTE, STUDY_PICTURES, study_cases
 
     by_name = {Path(p).name: Path(p) for p in pictures}
     head, rows = tables.api684_rows(study)
@@ -87,6 +87,9 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
     for name, title in STUDY_PICTURES:
         if name in by_name:
             parts += [f"<h3>{html.escape(title)}</h3>", _picture(by_name[name])]
+            if name == "bearings.png":
+                parts.append(_table(tables.bearing_rows(study_cases(study)),
+                                    ("case", "bearing")))
             if name == "level1.png" and study.level1 is not None:
                 parts.append(f"<pre>{html.escape(tables.level1_text(study.level1))}</pre>")
             if name == "ucs.png" and study.ucs is not None:
@@ -137,11 +140,12 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     """report.html's text: the vtk.js viewer page with the report around its view
     (`rotor`: the rotordynamic study, for a shaft with [rotor]; `drawing`: the modes'
     drawing the pictures were made from, where there is one)."""
-    from shaftfem.outputs.report import STUDY_PICTURES, shaft_facts
+    from shaftfem.outputs.report import STUDY_PICTURES, shaft_facts, title_rows
     from shaftfem.outputs.web_scene import viewer_html
 
     scene = result.scene
-    parts = [f"<h1>Modal design report: {html.escape(scene.name)}</h1>", _verdict(verdict),
+    parts = [f"<h1>Modal design report: {html.escape(scene.name)}</h1>",
+             _table(title_rows(scene, wall_seconds), ("title block", "")), _verdict(verdict),
              "<h2>Mode shapes</h2>", _view(result, drawing),
              "<h2>Shaft</h2><ul>" + "".join(f"<li>{html.escape(x)}</li>"
                                             for x in shaft_facts(result)) + "</ul>"]

@@ -119,7 +119,25 @@ def installation_lines(result: ModalResult) -> list[str]:
     for s in scene.held:
         what = {"rigid": "rigid, radially and axially", "rigid-radial": "rigid, radially",
                 "clamped": "clamped"}.get(s.kind)
-        if what is None and s.bearing is not None:
+        if what is None and s.journal is not None:
+            j, t = s.journal, s.tolerance
+            what = (f"journal bearing {j.diameter * 1e3:g} x {j.length * 1e3:g} mm, radial "
+                    f"clearance {j.clearance * 1e6:g} um"
+                    + (f" ({t.clearance[0] * 1e6:g} to {t.clearance[2] * 1e6:g})"
+                       if t is not None and t.clearance is not None else "")
+                    + f", oil {j.viscosity * 1e3:.3g} mPa s"
+                    + (f" ({t.viscosity[0] * 1e3:.3g} to {t.viscosity[2] * 1e3:.3g})"
+                       if t is not None and t.viscosity is not None else "")
+                    + ": its film's coefficients against speed in the rotordynamics section")
+        elif what is None and s.seal is not None:
+            ring, t = s.seal, s.tolerance
+            what = (f"annular seal {ring.diameter * 1e3:g} x {ring.length * 1e3:g} mm, radial "
+                    f"clearance {ring.clearance * 1e6:g} um"
+                    + (f" ({t.clearance[0] * 1e6:g} to {t.clearance[2] * 1e6:g})"
+                       if t is not None and t.clearance is not None else "")
+                    + f", {ring.pressure_drop / 1e6:g} MPa across it: no force at standstill, "
+                    "its coefficients against speed in the rotordynamics section")
+        elif what is None and s.bearing is not None:
             b = s.bearing
             k, c = b.stiffness(0.0), b.damping(0.0)
             what = (f"bearing kxx {k[0][0] / 1e3:.4g}, kyy {k[1][1] / 1e3:.4g}, "
@@ -920,3 +938,37 @@ def cases_text(results) -> str:
     head, rows = cases_rows(results)
     return "\n".join(["the study's cases (the verdict takes the worst):",
                       *aligned([head, *rows], left=set(range(len(head))))])
+
+
+def bearing_speeds(c) -> list[float]:
+    """The speeds (r/min) the bearings' coefficients are tabulated at: the operating
+    speeds and range ends, and a quarter, half, three quarters and all of the diagram's
+    top, those below the journals' lift-off left out (the film's values are placeholders
+    there)."""
+    rotor = c.rotor_scene.rotor
+    top = max(c.speeds_rpm)
+    ends = {x * 30 / math.pi for span in rotor.spans for x in span}
+    wanted = sorted(ends | {f * top for f in (0.25, 0.5, 0.75, 1.0)})
+    return [n for n in wanted if n >= c.lift_rpm and n > 0]
+
+
+def bearing_rows(cases) -> tuple[list[str], list[list[str]]]:
+    """Each speed-dependent bearing's and seal's eight coefficients against speed, for
+    each case: `cases` a list of (case name, Campbell run)."""
+    head = ["case", "bearing", "speed, r/min", "kxx, N/mm", "kxy", "kyx", "kyy",
+            "cxx, N s/mm", "cxy", "cyx", "cyy"]
+    rows = []
+    for name, c in cases:
+        for s in c.rotor_scene.held:
+            b = s.bearing
+            if b is None or not b.speeds:
+                continue
+            kind = "seal" if s.seal is not None else "journal" if s.journal is not None else ""
+            for n in bearing_speeds(c):
+                w = n * math.pi / 30
+                (kxx, kxy), (kyx, kyy) = b.stiffness(w)
+                (cxx, cxy), (cyx, cyy) = b.damping(w)
+                rows.append([name, f"{s.name}" + (f" ({kind})" if kind else ""), f"{n:,.0f}",
+                             *(f"{v / 1e3:.4g}" for v in (kxx, kxy, kyx, kyy)),
+                             *(f"{v / 1e3:.4g}" for v in (cxx, cxy, cyx, cyy))])
+    return head, rows

@@ -35,7 +35,7 @@ from shaftfem.scene.model import (
     Unbalance,
 )
 from shaftfem.scene.profile import shaft_from_tables
-from shaftfem.scene.schema import DEFAULT_SPEED_HEADROOM, SCHEMA
+from shaftfem.scene.schema import DEFAULT_SPEED_HEADROOM, SCHEMA, TITLE_KEYS
 
 if TYPE_CHECKING:
     from shaftfem.parts.journal import JournalBearing
@@ -222,7 +222,9 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                   criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
                   rotor=rotor,
                   unbalances=_unbalances(source, data, shaft, attachments),
-                  gravity=_static(source, data), forces=_forces(source, data, shaft, attachments))
+                  gravity=_static(source, data), forces=_forces(source, data, shaft, attachments),
+                  title_block=tuple((k, top[k]) for k in TITLE_KEYS if top[k]),
+                  description=top["description"] or "")
     return scene.with_tables(_tables(data, shaft))
 
 

@@ -481,6 +481,10 @@ class Scene:
     # the static loads: gravity's acceleration vector (m/s^2) and the [[force]] tables
     gravity: tuple[float, float, float] = (0.0, -STANDARD_GRAVITY, 0.0)
     forces: tuple[PointForce, ...] = ()
+    # the report's title block: (label, text) pairs from the scene's machine, job,
+    # revision, date and engineer keys; no bearing on any number
+    title_block: tuple[tuple[str, str], ...] = field(default=(), compare=False)
+    description: str = field(default="", compare=False)
     # the tables the scene was made from, in the file's units (what to_toml writes), and
     # the scene they made: a copy changed in code since (with_mesh, free) is told apart
     tables: dict | None = field(default=None, compare=False, repr=False)

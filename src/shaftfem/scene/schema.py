@@ -93,6 +93,11 @@ def coefficient(what: str, direct: bool) -> Key:
                required=False)
 
 
+# the title block's keys at the top of a scene file, with what each names
+TITLE_KEYS = {"machine": "the machine the shaft belongs to (its tag or model)",
+              "job": "the job or project number", "revision": "the study's revision",
+              "date": "the study's date", "engineer": "who made the study"}
+
 SCHEMA: dict[str, dict[str, Key]] = {
     "": {
         "name": Key(str, "short name of the scene; it names the default output folder "
@@ -100,6 +105,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
                     "letters, digits, '.', '_' and '-', starting with a letter or digit (a "
                     "folder name, not a path)", required=False),
         "description": Key(str, "free text", required=False),
+        **{key: Key(str, f"the report's title block: {what}", required=False)
+           for key, what in TITLE_KEYS.items()},
     },
     "shaft": {
         "length_mm": Key(float, "overall shaft length, mm (a plain bar; leave out with "

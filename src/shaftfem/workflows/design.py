@@ -189,11 +189,19 @@ def _map_and_level1(scene: Scene, options: RunOptions, level1=None):
 
 
 def study_pictures(study, folder: Path) -> list[Path]:
-    """ucs.png and level1.png of the rotordynamic study, where it has them."""
+    """bearings.png (the coefficients against speed of each case), ucs.png, level1.png
+    and runup.png of the rotordynamic study, where it has them."""
     from shaftfem.outputs.plots import level1_figure, save_png
     from shaftfem.outputs.ucs_plot import ucs_figure
 
     out = []
+    if study is not None:
+        from shaftfem.outputs.plots import bearings_figure
+        from shaftfem.outputs.report import study_cases
+
+        fig = bearings_figure(study_cases(study))
+        if fig is not None:
+            out.append(save_png(fig, folder / "bearings.png", dpi=110))
     if study is not None and study.ucs is not None:
         out.append(save_png(ucs_figure(study.ucs), folder / "ucs.png", dpi=130))
     if study is not None and study.level1 is not None:
