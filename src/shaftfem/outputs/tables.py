@@ -963,12 +963,11 @@ def bearing_rows(cases) -> tuple[list[str], list[list[str]]]:
             b = s.bearing
             if b is None or not b.speeds:
                 continue
-            kind = "seal" if s.seal is not None else "journal" if s.journal is not None else ""
             for n in bearing_speeds(c):
                 w = n * math.pi / 30
                 (kxx, kxy), (kyx, kyy) = b.stiffness(w)
                 (cxx, cxy), (cyx, cyy) = b.damping(w)
-                rows.append([name, f"{s.name}" + (f" ({kind})" if kind else ""), f"{n:,.0f}",
+                rows.append([name, s.name, f"{n:,.0f}",
                              *(f"{v / 1e3:.4g}" for v in (kxx, kxy, kyx, kyy)),
                              *(f"{v / 1e3:.4g}" for v in (cxx, cxy, cyx, cyy))])
     return head, rows
