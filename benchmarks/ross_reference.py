@@ -9,6 +9,8 @@ of packages): run this in an environment of its own,
     .venv-ross/bin/python benchmarks/ross_reference.py tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --journals \
         tests/data/journal_591.json tests/data/ross_rotors.json
+    .venv-ross/bin/python benchmarks/ross_reference.py --journals \
+        tests/data/journal_591_tight.json tests/data/ross_rotors.json "5.9.1 journals, tight"
     .venv-ross/bin/python benchmarks/ross_reference.py --cylindrical tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --seal tests/data/ross_rotors.json
     .venv-ross/bin/python benchmarks/ross_reference.py --ucs tests/data/ross_rotors.json
@@ -446,9 +448,9 @@ def runup(path: str) -> None:
     print(json.dumps(entry, indent=1))
 
 
-def journals(table_path: str, path: str) -> None:
-    """Add "5.9.1 journals" to the reference file at `path`, from the bearings of
-    `table_path`."""
+def journals(table_path: str, path: str, key: str = "5.9.1 journals") -> None:
+    """Add `key` ("5.9.1 journals", or a tolerance case's) to the reference file at
+    `path`, from the bearings of `table_path`."""
     import ross as rs
     from ross.materials import steel
 
@@ -456,15 +458,15 @@ def journals(table_path: str, path: str) -> None:
         table = json.load(f)
     with open(path) as f:
         out = json.load(f)
-    out["5.9.1 journals"] = journal_reference(rs, steel, table)
+    out[key] = journal_reference(rs, steel, table)
     with open(path, "w") as f:
         json.dump(out, f, indent=1)
-    print(json.dumps(out["5.9.1 journals"], indent=1))
+    print(json.dumps(out[key], indent=1))
 
 
 if __name__ == "__main__":
     if len(sys.argv) > 1 and sys.argv[1] == "--journals":
-        journals(sys.argv[2], sys.argv[3])
+        journals(*sys.argv[2:5])
     elif len(sys.argv) > 1 and sys.argv[1] == "--cylindrical":
         cylindrical(sys.argv[2])
     elif len(sys.argv) > 1 and sys.argv[1] == "--seal":

@@ -113,6 +113,26 @@ def test_a_critically_damped_crossing_is_no_critical_speed(wheel):
         assert f"{cs.speed_rpm:,.0f} r/min" not in shown
 
 
+def test_the_critical_shapes_carry_their_phase(wheel):
+    """The wheel's first 1x critical is its first bending shape on the films: no node
+    between the journals (the phase never turns by 90 deg or more from its largest
+    point; a conical or second shape would turn by 180), the middle third within 30 deg
+    (towards the journals the damped films make it lag), its major semi-axis largest
+    near the wheel; the phase panel is drawn."""
+    from shaftfem.outputs.campbell_plot import critical_shapes_figure, deflected_lines
+
+    c = wheel[4]
+    label, z, major, phase = deflected_lines(c)[0]
+    inside = (z > 40.0) & (z < 760.0)
+    assert np.all(np.abs(phase[inside]) < 90.0), phase[inside]
+    middle = (z > 280.0) & (z < 520.0)
+    assert np.all(np.abs(phase[middle]) < 30.0), phase[middle]
+    assert 300.0 < z[int(np.argmax(major))] < 560.0
+    axes = critical_shapes_figure(c).axes
+    assert len(axes) == 2 and axes[1].get_ylabel() == "phase of the whirl, deg"
+    assert len(axes[1].lines) >= 2   # a phase line beside the bearings' planes
+
+
 def test_a_fail_names_its_tightest_pair_and_the_table_shows_every_failing_one(wheel):
     """Running just below the first critical speed: the FAIL line names the pair with
     the least margin beyond its own required one, with that margin, and every failing

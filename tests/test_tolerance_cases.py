@@ -188,3 +188,53 @@ def test_check_prints_the_cases_side_by_side_and_fails_on_the_worst(tmp_path, ca
     line = next(x for x in table.splitlines() if x.startswith("inboard: oil viscosity"))
     assert [float(v) for v in line.split()[-3:]] == pytest.approx(
         [oil.dynamic(46, t) * 1e3 for t in (45.0, 35.0, 55.0)], abs=0.006)
+
+
+def friswell_tolerances() -> dict:
+    """Friswell's 5.9.1 rotor on its two journals (tests/test_journal_bearing.
+    friswell_journals) with a clearance of 45 to 55 um and oil of 16 to 24 mPa s."""
+    from test_journal_bearing import friswell_journals
+
+    scene = friswell_journals()
+    for s in scene["support"]:
+        s["radial_clearance_um"], s["viscosity_mpa_s"] = [45.0, 55.0], [16.0, 24.0]
+    return scene
+
+
+@pytest.mark.slow
+def test_a_tolerance_case_on_journals_against_ross():
+    """The case "min clearance, cold oil" of Friswell's 5.9.1 rotor on journals (45 um,
+    24 mPa s) against ross-rotordynamics 2.3's beam model fed the same bearings (tests/
+    data/journal_591_tight.json, benchmarks/journal_tables.py --case; ross's values:
+    ross_reference.py --journals ... "5.9.1 journals, tight"): the whirl and log
+    decrements at 1,000, 3,000 and 6,000 r/min, the first two 1x critical speeds and the
+    onset of oil whip, each within 1 %."""
+    import json
+    from pathlib import Path
+
+    from shaftfem.workflows.campbell import run_campbell
+    from shaftfem.workflows.static import with_journal_loads
+
+    data = Path(__file__).parent / "data"
+    table = json.loads((data / "journal_591_tight.json").read_text())
+    ross = json.loads((data / "ross_rotors.json").read_text())["5.9.1 journals, tight"]
+    ranged = load_scene(friswell_tolerances())
+    case = next(c for c in cases_of(ranged) if c.name == "min clearance, cold oil")
+    scene = with_journal_loads(case_scene(ranged, case))
+    for s, theirs in zip(scene.supports, table["bearings"]):   # the same bearings
+        assert s.journal.clearance == pytest.approx(45e-6)
+        assert s.journal.viscosity == pytest.approx(24e-3)
+        for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"):
+            np.testing.assert_allclose(getattr(s.bearing, k), theirs[k], rtol=1e-6)
+    c = run_campbell(scene)
+    for rpm in ("1000", "3000", "6000"):
+        ours = sorted((w for w in c.whirl if abs(w.speed_rpm - float(rpm)) < 1e-6
+                       and w.kind not in ("torsion", "axial")), key=lambda w: w.frequency_hz)
+        for w, wd, dec in zip(ours, ross[rpm]["wd"], ross[rpm]["log_dec"]):
+            assert w.frequency_hz * 2 * math.pi == pytest.approx(wd, rel=0.01)
+            assert w.log_dec == pytest.approx(dec, rel=0.01, abs=0.002)
+    assert c.onsets[0].speed_rpm * math.pi / 30 == pytest.approx(ross["onset_speed"], rel=0.01)
+    light = sorted(x.speed_rpm for x in c.critical_speeds if x.order == 1 and x.log_dec < 1)
+    for ours, theirs in zip(light[:2], (ross["critical_1x"]["first"],
+                                         ross["critical_1x"]["second"])):
+        assert ours * math.pi / 30 == pytest.approx(theirs, rel=0.01)

@@ -337,10 +337,11 @@ def bode_figure(c: Campbell):
 SLICES = 60
 
 
-def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray]]:
+def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray]]:
     """At each judged 1x critical speed, the shape of its curve along the shaft: (label,
-    z of each slice mm, the orbit's major semi-axis there, scaled to a largest of 1),
-    each slice the mass-weighted mean motion of its nodes."""
+    z of each slice mm, the orbit's major semi-axis there, scaled to a largest of 1, and
+    the phase of its dominant circular whirl there, deg, 0 where it is largest), each
+    slice the mass-weighted mean motion of its nodes."""
     import numpy as np
 
     r = c.result
@@ -363,33 +364,45 @@ def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray]]:
             slot, mass * u[1::3].imag, SLICES)
         x, y = x / weight, y / weight
         major = 0.5 * (np.abs(x + 1j * y) + np.abs(x - 1j * y))
+        # the circular whirl that carries most of the orbit: its phase along the shaft
+        # tells a cylindrical shape (ends in phase) from a conical one (180 deg apart)
+        a, b = 0.5 * (x + 1j * y), 0.5 * (x - 1j * y)
+        circle = a if np.linalg.norm(a) >= np.linalg.norm(b) else b
+        phase = np.degrees(np.angle(circle / circle[int(np.argmax(np.abs(circle)))]))
         out.append((f"{cs.whirl} {cs.speed_rpm:,.0f} r/min (curve {cs.mode})", z,
-                    major / major.max()))
+                    major / major.max(), phase))
     return out
 
 
 def critical_shapes_figure(c: Campbell):
     """The deflected shape along the shaft at each 1x critical speed (API 684's mode
-    shape plot): the orbit's major semi-axis against the axial position, the bearings'
-    and parts' planes marked."""
+    shape plot): the orbit's major semi-axis against the axial position, and below it
+    the phase of the whirl, the bearings' and parts' planes marked."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(8, 4.5))
-    ax = fig.subplots()
+    fig = Figure(figsize=(8, 6.5))
+    ax, lower = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     scene = c.rotor_scene
     for s in scene.held:
-        ax.axvline(s.position * 1e3, color="black", lw=0.8, ls="--")
+        for axis in (ax, lower):
+            axis.axvline(s.position * 1e3, color="black", lw=0.8, ls="--")
         ax.annotate(s.name, (s.position * 1e3, 1.02), fontsize=7, ha="center",
                     xycoords=("data", "axes fraction"))
     for a in scene.attachments:
-        ax.axvline(a.position * 1e3, color="grey", lw=0.8, ls=":")
+        for axis in (ax, lower):
+            axis.axvline(a.position * 1e3, color="grey", lw=0.8, ls=":")
     lines = deflected_lines(c)
-    for label, z, major in lines:
+    for label, z, major, phase in lines:
         ax.plot(z, major, lw=1.5, label=label)
+        lower.plot(z, phase, lw=1.2)
     if not lines:
         ax.text(0.5, 0.5, "no 1x critical speed in the range", transform=ax.transAxes,
                 ha="center")
-    ax.set_xlabel("position along the shaft, mm")
+    lower.set_xlabel("position along the shaft, mm")
+    lower.set_ylabel("phase of the whirl, deg")
+    lower.set_ylim(-185, 185)
+    lower.set_yticks([-180, -90, 0, 90, 180])
+    lower.grid(True, alpha=0.3)
     ax.set_ylabel("orbit's major semi-axis (largest 1)")
     ax.set_ylim(0, 1.1)
     ax.set_title(f"Deflected shape at the critical speeds: {scene.name}", fontsize=10,
