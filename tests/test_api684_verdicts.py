@@ -286,3 +286,42 @@ def test_the_version_is_printed(capsys):
 
     assert main(["--version"]) == 0
     assert capsys.readouterr().out.strip() == f"shaftfem {__version__}"
+
+
+def test_a_curve_that_starts_or_ends_mid_range_says_why(monkeypatch):
+    """Two real roots that meet and whirl as a pair start a curve mid-range, and part
+    again to end it: the tracker says so (Curve.began "pair", Curve.ended "split"), the
+    Campbell notes explain it, and a curve followed throughout says nothing. Spectra
+    written here: one root throughout, another oscillating only from 50 to 80 rad/s."""
+    from types import SimpleNamespace
+
+    from shaftfem.fem import tracking
+    from shaftfem.outputs.tables import curve_notes
+
+    e1, e2 = np.eye(4)[:, 0].astype(complex), np.eye(4)[:, 1].astype(complex)
+
+    def spectrum(model, omega):
+        f, y = [10.0 + omega / 100], [e1]
+        if 50.0 <= omega <= 80.0:
+            f.append(20.0)
+            y.append(e2)
+        n = len(f)
+        return tracking.Spectrum(omega, np.array(f), np.full(n, 1.0), np.ones(n),
+                                 ("bending",) * n, np.column_stack(y), 0.0)
+
+    monkeypatch.setattr(tracking, "spectrum", spectrum)
+    model = SimpleNamespace(frame="stationary", size=4)
+    curves = tracking.track(model, np.linspace(0.0, 100.0, 11), 2)   # type: ignore[arg-type]
+    assert len(curves) == 2
+    steady = next(c for c in curves if c.speeds_rpm[0] == 0.0)
+    pair = next(c for c in curves if c is not steady)
+    assert steady.began == steady.ended == ""
+    assert pair.began == "pair" and pair.ended == "split"
+    rpm = 30 / np.pi
+    assert pair.speeds_rpm[0] == pytest.approx(50.0 * rpm)
+    assert pair.speeds_rpm[-1] == pytest.approx(80.0 * rpm)
+    notes = curve_notes(SimpleNamespace(curves=curves))
+    assert len(notes) == 2
+    assert notes[0].startswith(f"curve {pair.number} starts at 477 r/min: below it its two "
+                               "roots are real")
+    assert notes[1].startswith(f"curve {pair.number} ends at 764 r/min: above it the pair parts")

@@ -122,6 +122,9 @@ class _Track:
     kinds: list[str]
     ys: list[np.ndarray]
     gaps: list[int] = field(default_factory=list)   # steps i -> i + 1 that span one
+    # why it starts after the first speed or ends before the last (Curve.began, .ended)
+    began: str = ""
+    ended: str = ""
 
     def add(self, s: Spectrum, j: int, flip: bool) -> None:
         sign = -1.0 if flip else 1.0
@@ -173,6 +176,13 @@ def predicted(live: list[_Track], omega: float) -> tuple[np.ndarray, np.ndarray]
     return f, reach
 
 
+# why a curve starts or ends mid-range: two real roots meet and whirl as a pair from
+# there (or, ending, split into two real roots: the pair decays without whirling), or
+# the root's shape changed beyond the match between two speeds, the step halved as far
+# as it goes (MAX_HALVINGS): a new curve carries it on
+PAIR_MET, PAIR_SPLIT, SHAPE_LOST = "pair", "split", "shape"
+
+
 def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
     """Every root followed over the speeds `grid` (rad/s, ascending from any speed),
     the step halved where one of the `watch` lowest curves (by the frequency seen)
@@ -211,6 +221,8 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
             taken.add(int(c))
         ended = [t for t in live if all(t is not k for k in kept)]
         done.extend(ended)
+        for t in ended:
+            t.ended = PAIR_SPLIT if s.f.size < len(live) else SHAPE_LOST
         if s.f.size < len(live):
             # fewer roots oscillate: those lost met at zero frequency and may come back
             missing.extend(ended)
@@ -237,7 +249,11 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
             if j not in taken:
                 t = _Track([], [], [], [], [], [])
                 t.add(s, j, False)
+                t.began = PAIR_MET if s.f.size > len(live) else SHAPE_LOST
                 kept.append(t)
+        for t in kept:
+            if t.ended:   # back from a stretch where it did not oscillate
+                t.ended = ""
         live = kept
 
     for a, b in zip(grid[:-1], grid[1:]):
@@ -252,7 +268,8 @@ def track(model: RotorModel, grid: np.ndarray, watch: int) -> list[Curve]:
             tracks[i], tracks[i + 1] = b, a
     return [Curve(number=i + 1, frame=frame, speeds_rpm=np.array(t.omega) / RPM,
                   signed_hz=np.array(t.f), decay=np.array(t.decay), index=np.array(t.index),
-                  kinds=tuple(t.kinds), shapes=np.column_stack(t.ys), gaps=tuple(t.gaps))
+                  kinds=tuple(t.kinds), shapes=np.column_stack(t.ys), gaps=tuple(t.gaps),
+                  began=t.began, ended=t.ended)
             for i, t in enumerate(tracks)]
 
 

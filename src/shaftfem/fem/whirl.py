@@ -179,6 +179,11 @@ class Curve:
     kinds: tuple[str, ...]
     shapes: np.ndarray = field(repr=False)
     gaps: tuple[int, ...] = ()   # steps i -> i + 1 over which it did not oscillate
+    # why it starts after the diagram's first speed, or ends before its last
+    # (fem.tracking: "pair", two real roots meet and whirl; "split", the pair parts into
+    # two real roots; "shape", its shape turned past the match); "" where it does not
+    began: str = ""
+    ended: str = ""
     # a periodic rotor's Floquet form: its shares of the motion in the harmonics
     # d = -S..S from the dominant one (seen at signed_hz + 2 d n in the turning frame)
     # and their whirl indices, (2 S + 1, points); zero where not periodic

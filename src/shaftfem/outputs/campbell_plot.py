@@ -66,7 +66,7 @@ def campbell_figure(c: Campbell):
             ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
         ax.axvline(n, color="goldenrod", lw=1)
     labelled = set()
-    sides_drawn = False
+    sides_drawn = mid_range = False
     for cv in c.curves:
         whirls = cv.whirling
         for comp, v, share in component_lines(cv):
@@ -104,6 +104,11 @@ def campbell_figure(c: Campbell):
                 ax.plot(cv.speeds_rpm[a:b + 1], np.abs(v[a:b + 1]), "-", color=COLOURS[word],
                         lw=0.3 + 1.2 * float(np.max(share[a:b + 1])), alpha=0.6)
                 sides_drawn = True
+        # where it starts or ends mid-range, said why in the notes (curve_notes)
+        for i, why in ((0, cv.began), (-1, cv.ended)):
+            if why and float(cv.seen_hz[i]) < fmax:
+                ax.plot(cv.speeds_rpm[i], float(cv.seen_hz[i]), "|", color="dimgrey", ms=7)
+                mid_range = True
         end = cv.speeds_rpm[-1]
         if end >= 0.6 * top_rpm and cv.seen_hz[-1] < fmax:
             ax.annotate(str(cv.number), (end, float(cv.seen_hz[-1])), fontsize=6,
@@ -130,6 +135,9 @@ def campbell_figure(c: Campbell):
                     color=COLOURS[cs.whirl], textcoords="offset points",
                     xytext=(-30, 6 + 9 * near) if up else (6, -12 - 9 * near))
     ax.plot([], [], "o", mfc="none", color="black", label="critical speed, r/min")
+    if mid_range:
+        ax.plot([], [], "|", color="dimgrey", ms=7,
+                label="a curve starts or ends: two real roots meet or part (notes)")
     if any(np.any(cv.log_dec > DAMPED_LOG_DEC) for cv in c.curves if cv.whirling):
         ax.plot([], [], "-", color="black", alpha=0.25, lw=1.6,
                 label="critically damped (AF < 2.5): no critical speed")

@@ -647,8 +647,31 @@ def campbell_text(c) -> str:
                   f"{w.sag * 1e6:.3g} um sag" if top is not None else "")
             lines.append(f"  {w.probe}: peak at {w.speed_rpm:,.0f} r/min "
                          f"({2 * w.speed_rpm / 60:.2f} Hz whirl), {w.amplitude * 1e6:.3g} um{at}")
-    lines += [f"note: {n}" for n in c.notes]
+    lines += [f"note: {n}" for n in (*c.notes, *curve_notes(c))]
     return "\n".join(lines)
+
+
+def curve_notes(c) -> list[str]:
+    """Why each curve that starts after the diagram's first speed, or ends before its
+    last, does (fem.tracking: Curve.began, Curve.ended)."""
+    out = []
+    for cv in c.curves:
+        at, to = cv.speeds_rpm[0], cv.speeds_rpm[-1]
+        if cv.began == "pair":
+            out.append(f"curve {cv.number} starts at {at:,.0f} r/min: below it its two roots "
+                       "are real (overdamped: they decay without whirling); there they meet "
+                       "and whirl as a pair")
+        elif cv.began == "shape":
+            out.append(f"curve {cv.number} starts at {at:,.0f} r/min: a root whose shape "
+                       "turned between two speeds faster than the halved steps follow; this "
+                       "curve carries it on")
+        if cv.ended == "split":
+            out.append(f"curve {cv.number} ends at {to:,.0f} r/min: above it the pair parts "
+                       "into two real roots (overdamped: no whirl)")
+        elif cv.ended == "shape":
+            out.append(f"curve {cv.number} ends at {to:,.0f} r/min: its shape turned faster "
+                       "than the halved steps follow; another curve carries it on")
+    return out
 
 
 def static_text(result) -> str:
