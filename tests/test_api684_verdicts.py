@@ -325,3 +325,37 @@ def test_a_curve_that_starts_or_ends_mid_range_says_why(monkeypatch):
     assert notes[0].startswith(f"curve {pair.number} starts at 477 r/min: below it its two "
                                "roots are real")
     assert notes[1].startswith(f"curve {pair.number} ends at 764 r/min: above it the pair parts")
+
+
+def test_the_run_up_text_says_what_its_numbers_say():
+    """A run-up whose passage of the critical speed comes lower than the steady peak, and
+    whose response then grows beyond an onset: the passage's peak said below the steady
+    one, the run's largest response said to be no passage, and the finite-rate remark
+    made; where a passage comes higher, no remark that it comes lower. Numbers written
+    here, the steady peak at 3,600 r/min."""
+    from types import SimpleNamespace
+
+    from shaftfem.fem.whirl import RunUp
+    from shaftfem.outputs.tables import runup_text
+
+    n = np.linspace(200.0, 9000.0, 881)
+    steady = 40e-6 / np.sqrt((1 - (n / 3600.0) ** 2) ** 2 + (0.2 * n / 3600.0) ** 2)
+    passage = 0.8 * np.interp(n, n + 100.0, steady)        # lower and later
+    grows = np.where(n > 7200.0, 40e-6 * np.exp((n - 7200.0) / 400.0), 0.0)
+    envelope = np.maximum(passage, grows)
+    k = int(np.argmax(envelope))
+
+    def run(env, peak):
+        return RunUp(scene=SimpleNamespace(name="rotor"), accel_rpm_per_s=1500.0,
+                     names=("impeller",), speeds_rpm=n, envelopes=(env,), steady=(steady,),
+                     peaks=(peak,), orbits=(np.zeros((2, 1)),), steps=1000)
+
+    text = runup_text(run(envelope, (float(n[k]), float(envelope[k]))))
+    assert "the passage's peak 20 % below the steady one, 100 r/min later" in text
+    assert f"the run's largest response, {envelope[k] * 1e6:,.3g} um at 9,000 r/min" in text
+    assert "its peak comes lower and later" in text
+    higher = 1.1 * steady
+    j = int(np.argmax(higher))
+    text = runup_text(run(higher, (float(n[j]), float(higher[j]))))
+    assert "10 % above the steady one" in text and "comes lower" not in text
+    assert "largest response" not in text

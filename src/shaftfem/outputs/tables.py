@@ -773,27 +773,51 @@ def level1_text(r) -> str:
     return "\n".join(lines)
 
 
+# the passage of a critical speed: the run-up's envelope within this band of speeds
+# about the steady response's peak (r/min, as fractions of its speed)
+PASSAGE = (0.8, 1.25)
+
+
 def runup_text(r) -> str:
-    """A run-up's peaks beside the steady ones."""
+    """A run-up's peaks beside the steady ones: the passage of each probe's steady peak
+    (its envelope's largest value within PASSAGE of it) against the steady peak, and,
+    where the run's largest response lies elsewhere, that too, and why it is no passage."""
+    import numpy as np
+
     kind = "run-up" if r.accel_rpm_per_s > 0 else "coast-down"
     lines = [f"scene {r.scene.name}: {kind} at {abs(r.accel_rpm_per_s):,.4g} r/min per s from "
              f"{r.speeds_rpm[0]:,.0f} to {r.speeds_rpm[-1]:,.0f} r/min ({r.steps:,} time steps, "
              "Newmark), driven by the unbalances", "",
-             "probe                        peak (um, 0-peak)   at (r/min)   steady peak (um)   "
-             "at (r/min)"]
+             "probe                        passage peak (um, 0-peak)   at (r/min)   steady peak "
+             "(um)   at (r/min)"]
     notes = []
-    for name, (n, amp), steady in zip(r.names, r.peaks, r.steady):
+    lower = True
+    for name, (n, amp), steady, envelope in zip(r.names, r.peaks, r.steady, r.envelopes):
         i = int(steady.argmax())
-        lines.append(f"{name:28s} {amp * 1e6:17.3f} {n:12,.0f} {steady[i] * 1e6:18.3f} "
-                     f"{r.speeds_rpm[i]:12,.0f}")
-        change = amp / steady[i] - 1
-        later = (n - r.speeds_rpm[i]) * (1 if r.accel_rpm_per_s > 0 else -1)
-        notes.append(f"{name}: the peak {abs(change) * 100:.2g} % "
+        at = r.speeds_rpm[i]
+        near = (r.speeds_rpm >= PASSAGE[0] * at) & (r.speeds_rpm <= PASSAGE[1] * at)
+        j = int(np.flatnonzero(near)[np.argmax(envelope[near])])
+        passed, there = float(envelope[j]), float(r.speeds_rpm[j])
+        lines.append(f"{name:28s} {passed * 1e6:25.3f} {there:12,.0f} {steady[i] * 1e6:18.3f} "
+                     f"{at:12,.0f}")
+        change = passed / steady[i] - 1
+        lower = lower and change < 0
+        later = (there - at) * (1 if r.accel_rpm_per_s > 0 else -1)
+        notes.append(f"{name}: the passage's peak {abs(change) * 100:.2g} % "
                      f"{'below' if change < 0 else 'above'} the steady one, "
                      f"{abs(later):,.0f} r/min {'later' if later >= 0 else 'earlier'} in the "
                      "direction of travel")
-    lines += ["", *notes, "(passed at a finite rate, a lightly damped resonance has no time "
-              "to build up: its peak comes lower and later)"]
+        if amp > passed * (1 + 1e-9) and not (PASSAGE[0] * at <= n <= PASSAGE[1] * at):
+            beside = float(np.interp(n, r.speeds_rpm, steady))
+            notes.append(f"{name}: the run's largest response, {amp * 1e6:,.3g} um at "
+                         f"{n:,.0f} r/min, is no passage of a critical speed: there the motion "
+                         f"outgrows the steady response ({beside * 1e6:,.3g} um), free motion "
+                         "the run does not damp out (a mode that grows above an onset of "
+                         "instability)")
+    lines += ["", *notes]
+    if lower:
+        lines.append("(passed at a finite rate, a lightly damped resonance has no time to "
+                     "build up: its peak comes lower and later)")
     return "\n".join(lines)
 
 
