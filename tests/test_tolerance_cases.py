@@ -166,28 +166,35 @@ def test_the_study_takes_the_worst_case():
 
 @pytest.mark.slow
 def test_check_prints_the_cases_side_by_side_and_fails_on_the_worst(tmp_path, capsys):
-    """`check` of the wheel with its tolerances: the three cases side by side, each
-    case's clearance and viscosity in its column, and the exit status the worst case's
-    verdict gives."""
+    """`check` of the wheel with its tolerances and its joint left to the default: four
+    cases side by side, each case's clearance and viscosity in its column; the wheel on
+    a distributing joint lowers the first 1x critical speed (its hub no longer stiffens
+    the shaft under it); the exit status the worst case's verdict gives."""
     import json
 
     import tomli_w
 
     path = tmp_path / "wheel.toml"
-    path.write_bytes(tomli_w.dumps(wheel()).encode())
+    path.write_bytes(tomli_w.dumps(wheel(joint=None)).encode())
     status = main(["check", str(path), "--json", str(tmp_path / "v.json")])
     out = capsys.readouterr().out
     data = json.loads((tmp_path / "v.json").read_text())
     cases = data["cases"]
     assert [c["case"] for c in cases] == ["nominal", "min clearance, cold oil",
-                                          "max clearance, hot oil"]
+                                          "max clearance, hot oil", "distributing joints"]
     assert status == (0 if all(c["ok"] for c in cases) else 1)
     table = out[out.index("the study's cases"):]
     line = next(x for x in table.splitlines() if x.startswith("inboard: radial clearance"))
-    assert line.split()[-3:] == ["45.0", "40.0", "50.0"]
+    assert line.split()[-4:] == ["45.0", "40.0", "50.0", "45.0"]
     line = next(x for x in table.splitlines() if x.startswith("inboard: oil viscosity"))
-    assert [float(v) for v in line.split()[-3:]] == pytest.approx(
+    assert [float(v) for v in line.split()[-4:-1]] == pytest.approx(
         [oil.dynamic(46, t) * 1e3 for t in (45.0, 35.0, 55.0)], abs=0.006)
+    runs = [data["campbell"], *(c["campbell"] for c in cases[1:])]
+
+    def lowest(c: dict) -> float:
+        return min(x["speed_rpm"] for x in c["critical_speeds"]
+                   if x["order"] == 1 and not x["critically_damped"])
+    assert lowest(runs[-1]) < 0.97 * lowest(runs[0])
 
 
 def friswell_tolerances() -> dict:
