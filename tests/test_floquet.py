@@ -592,3 +592,37 @@ def test_a_round_rotor_seen_from_the_shaft_crosses_the_order_lines_at_its_statio
     ours = sorted(((c.order, c.speed_rpm * RPM) for c in found), key=lambda x: x[1])
     assert [o for o, _ in ours] == [o for o, _ in expected]
     np.testing.assert_allclose([w for _, w in ours], [w for _, w in expected], rtol=1e-6)
+
+
+def test_a_periodic_rotor_s_crossings_are_found_twice():
+    """The direct route for a periodic rotor (fem.floquet.periodic_order_roots: Hill's
+    equations at the crossing, linear in Omega^2): on the undamped round Jeffcott rotor
+    on supports kx != ky, solved in the turning frame, exactly the stationary frame's
+    crossings, 1x at sqrt((k + kx) / m) and sqrt((k + ky) / m) and 2x at half of them,
+    within 1e-8, the same four on the curves followed by shape, none by one route only;
+    on an asymmetric shaft on those supports (no closed form), each crossing found
+    directly is one: at its speed Hill's method (the Floquet exponents, solved on their
+    own) has an exponent i m Omega, m the component's order in the turning frame."""
+    from shaftfem.fem.tracking import direct_crossings, track
+    from shaftfem.workflows.campbell import critical_speeds, with_sides
+
+    kx, ky = 0.5 * K1, 1.5 * K1
+    model = jeffcott(kx, ky, 0.0, K1, K1)
+    wx, wy = (math.sqrt((K1 + k) / M) for k in (kx, ky))
+    direct = sorted((d.order, d.omega) for d in direct_crossings(model, (1, 2), 700.0))
+    expected = sorted([(1, wx), (1, wy), (2, wx / 2), (2, wy / 2)])
+    assert [o for o, _ in direct] == [o for o, _ in expected]
+    np.testing.assert_allclose([w for _, w in direct], [w for _, w in expected], rtol=1e-8)
+    curves = [with_sides(model, c) for c in track(model, np.linspace(30.0, 700.0, 37), 4)]
+    found, check = critical_speeds(model, curves, (1, 2), 700.0)
+    assert check.applies and len(found) == 4, check
+    assert check.direct == 4 and check.direct_only == 0 and check.curves_only == 0, check
+    assert check.largest_difference <= 1e-8
+    model = jeffcott(kx, ky, 0.0, K1, K2)
+    direct = direct_crossings(model, (1, 2), 700.0)
+    assert len(direct) >= 4
+    for d in direct:
+        m = d.order - 1 if d.component == "forward" else d.order + 1
+        lam = converged_hill(model, d.omega).lam
+        near = apart(lam, np.array([1j * m * d.omega]), d.omega).min()
+        assert near <= 1e-6 * d.omega, (d, near)

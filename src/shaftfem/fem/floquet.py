@@ -647,3 +647,74 @@ def any_unbalance_response(model: RotorModel, omega: float,
     if model.periodic(omega):
         return periodic_unbalance(model, omega, forces)
     return unbalance_response(model, omega, forces)
+
+
+# the direct route's crossings hold when one more pair of harmonics moves none of them
+# by more than this share of its speed
+DIRECT_TOL = 1e-9
+
+
+def periodic_order_roots(model: RotorModel, m: int, top: float = math.inf
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Where a Floquet component of the undamped periodic rotor meets the turning frame's
+    line f = m n (n the spin): an exponent i m Omega, its form
+    q = sum_k q_k exp(i (m + 2k) Omega t). Hill's equations there,
+
+        [K_0 - Omega^2 (c_k^2 M - i c_k G - K_2)] q_k + (K_c - i K_s)/2 q_(k-1)
+                                                 + (K_c + i K_s)/2 q_(k+1) = 0,  c_k = m + 2k,
+
+    are a linear eigenproblem in Omega^2 (constant, undamped bearings), as a rotor of
+    constant coefficients' crossings are (fem.tracking.order_roots). Harmonics k = -H..H,
+    H raised until the roots up to the spin `top` (rad/s) hold to DIRECT_TOL. Returns the
+    speeds (rad/s, ascending), each one's share of the motion in the component met (its
+    harmonic k = 0) and that component's whirl index."""
+    import scipy.linalg
+
+    from shaftfem.fem.rotor import dominant_kinds, whirl_index
+    from shaftfem.fem.whirl import WHIRLING
+
+    N = model.size
+    K0 = model.matrices(1.0)[1] - model.K2
+    _, _, Kc, Ks = model.periodic_parts(1.0)
+    M, G = model.mass(0.0), model.G
+    plus, minus = 0.5 * (Kc - 1j * Ks), 0.5 * (Kc + 1j * Ks)
+
+    def solve(H: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        size = 2 * H + 1
+        A = np.zeros((size * N, size * N), dtype=complex)
+        B = np.zeros_like(A)
+        for i, k in enumerate(range(-H, H + 1)):
+            c = m + 2 * k
+            at = slice(i * N, (i + 1) * N)
+            A[at, at] = K0
+            B[at, at] = c * c * M - 1j * c * G - model.K2
+            if i > 0:
+                A[at, (i - 1) * N:i * N] = plus
+            if i < size - 1:
+                A[at, (i + 1) * N:(i + 2) * N] = minus
+        lam, X = scipy.linalg.eig(A, B)
+        ok = (np.isfinite(lam) & (np.abs(lam.imag) <= 1e-7 * np.abs(lam)) & (lam.real > 0)
+              & (lam.real <= top**2 * (1 + 1e-9)))
+        X = X[:, ok].reshape(size, N, -1)
+        centre = X[H]
+        share = np.sum(np.abs(centre) ** 2, axis=0) / np.sum(np.abs(X) ** 2, axis=(0, 1))
+        whirling = np.array([k in WHIRLING for k in dominant_kinds(model, centre)], dtype=bool)
+        keep = whirling & (share > 0)
+        order = np.argsort(lam.real[ok][keep])
+        return (np.sqrt(lam.real[ok][keep][order]), share[keep][order],
+                centre[:, keep][:, order])
+
+    H = HILL_START
+    speeds, share, centre = solve(H)
+    while True:
+        more = solve(H + HILL_STEP)
+        held = all(speeds.size and np.min(np.abs(speeds / w - 1)) <= DIRECT_TOL
+                   for w, s in zip(more[0], more[1]) if s >= 1e-3)
+        speeds, share, centre = more
+        H += HILL_STEP
+        if held or H >= HILL_MAX:
+            break
+    if not held:
+        raise UnsettledError(f"the crossings of the line {m} n in the turning frame: "
+                             f"Hill's equations did not settle in {H} harmonics", top, H)
+    return speeds, share, whirl_index(model, centre)

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from shaftfem.fem.floquet import any_roots
+from shaftfem.fem.floquet import any_roots, periodic_order_roots
 from shaftfem.fem.rotor import RotorModel, whirl_index
 from shaftfem.fem.whirl import FORWARD, RPM, WHIRLING, Curve, seen
 
@@ -553,9 +553,6 @@ def direct_applies(model: RotorModel) -> str | None:
     """None where the direct route applies, else why not."""
     if any(len(b.coefficients.speeds) for b in model.bearings):
         return "the bearing coefficients change with speed"
-    if model.periodic(1.0):
-        return ("the equations are periodic in time (a shaft not of revolution in bearings "
-                "that differ along x and y)")
     if any(np.any(np.array(b.coefficients.damping(0.0))) for b in model.bearings):
         return ("the bearings damp: a damped root meets an order line at a speed no "
                 "undamped eigenproblem gives")
@@ -600,9 +597,15 @@ def order_roots(model: RotorModel, m: int, top: float = math.inf
 def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> list[Direct]:
     """Every undamped crossing with each order line up to the spin `top` (rad/s), from
     the linear eigenproblem in Omega^2 of the module's docstring (constant, undamped
-    bearings only: see direct_applies)."""
+    bearings only: see direct_applies); of a periodic rotor, each Floquet component's
+    from Hill's equations at the crossing (fem.floquet.periodic_order_roots)."""
+
+    periodic = model.periodic(1.0)
 
     def solve(m: int) -> tuple[np.ndarray, np.ndarray]:
+        if periodic:   # a Floquet form's component at m n: its dominant one or a side one
+            speeds, share, index = periodic_order_roots(model, m, top)
+            return speeds[share >= SIDE_SHARE_MIN], index[share >= SIDE_SHARE_MIN]
         return order_roots(model, m, top)[:2]
 
     out = []
@@ -628,4 +631,14 @@ def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> 
                         groups.append([d])
                 found = [g[i] for g in groups for i in range(max(1, len(g) // 2))]
             out += found
+    if periodic:
+        # one crossing met by two components of one form (a form of two equal circular
+        # whirls, as a round shaft's in bearings that differ along x and y: its forward
+        # and backward components meet the line at the same speed) is one crossing
+        kept: list[Direct] = []
+        for d in sorted(out, key=lambda d: (d.order, d.omega)):
+            if not (kept and kept[-1].order == d.order
+                    and d.omega <= kept[-1].omega * (1 + 1e-7)):
+                kept.append(d)
+        out = kept
     return out

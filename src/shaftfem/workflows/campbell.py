@@ -186,7 +186,10 @@ def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, .
     why = direct_applies(model)
     if why is not None:
         return out, CrossingCheck(False, why, on_curves=len(out))
-    direct = direct_crossings(model, orders, top)
+    try:
+        direct = direct_crossings(model, orders, top)
+    except UnsettledError as e:   # a periodic rotor's crossings Hill's equations not settle
+        return out, CrossingCheck(False, str(e), on_curves=len(out))
     unused = list(range(len(found)))
     worst, extra = 0.0, []
     for d in sorted(direct, key=lambda d: d.omega):
