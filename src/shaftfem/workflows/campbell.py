@@ -66,6 +66,10 @@ PARAMETRIC_ORDER = 1
 # loss factor (1e-4 to 1e-3, a log decrement of 3e-4 and up) holds a slower growth
 ZONE_LOG_DEC = 1e-4
 PARAMETRIC_STEPS = 2   # regula falsi steps towards where two forms meet
+# a zone's edge is sought in the step between a growing speed and one that does not
+# grow, which may hold another zone: the step's ZONE_SPLITS parts are tried from the
+# growing side before the bisection, so that it finds this zone's edge
+ZONE_SPLITS = 4
 # ... and not where the forms' mean decay rate is above this many times their coupling
 PARAMETRIC_MARGIN = 2.0
 # a curve whose turning-frame frequency moves by more than this many times the speed's
@@ -328,8 +332,18 @@ def divergent_bands(model: RotorModel, speeds: np.ndarray
         inside = [float(w) for w in speeds if lo <= w <= hi] + [0.5 * (lo + hi)]
         return lo / RPM, hi / RPM, max(rate(w) for w in inside)
 
-    return [band(lo, hi) for lo, hi, _, _ in
-            growth_spans(rate, speeds, [rate(om) for om in speeds])]
+    values = [rate(om) for om in speeds]
+    # two diverging speeds in a row may hold two bands (the soft and the stiff diameter's
+    # of two modes): their middle is tried, as parametric_zones does
+    between = [(w, v) for w in (0.5 * (speeds[i] + speeds[i + 1])
+                                for i in range(len(speeds) - 1)
+                                if values[i] > 0 and values[i + 1] > 0)
+               for v in [rate(w)] if v <= 0]
+    points = np.asarray(speeds, dtype=float)
+    if between:
+        merged = sorted([*zip(points, values), *between])
+        points, values = np.array([w for w, _ in merged]), [v for _, v in merged]
+    return [band(lo, hi) for lo, hi, _, _ in growth_spans(rate, points, values)]
 
 
 def growth_spans(rate: Callable[[float], float], points: np.ndarray, values: list[float]
@@ -339,6 +353,17 @@ def growth_spans(rate: Callable[[float], float], points: np.ndarray, values: lis
     before, its last and the one after (to 1e-9 of the speed; the ends of `points` where
     a run reaches them), and the indices of its first and last point."""
     def edge(lo: float, hi: float, inside_high: bool) -> float:
+        # the step may hold another zone beside this one: the bracket is narrowed first
+        # to the last of ZONE_SPLITS parts, from the side inside, that still grows
+        inner = np.linspace(lo, hi, ZONE_SPLITS + 1)[1:-1]
+        for t in (inner[::-1] if inside_high else inner):
+            grows = rate(t) > 0
+            if inside_high:
+                lo, hi = (lo, t) if grows else (t, hi)
+            else:
+                lo, hi = (t, hi) if grows else (lo, t)
+            if not grows:
+                break
         while hi - lo > 1e-9 * hi:
             mid = 0.5 * (lo + hi)
             if (rate(mid) > 0) == inside_high:
@@ -468,10 +493,12 @@ def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
                         speeds.update(meeting(a, i, b, int(j[0]), sign, k, r0 - k, r1 - k))
     points = np.array(sorted(speeds))
     values = [rate(w) for w in points]
+
     # two growing speeds in a row may hold two zones: their middle is tried
-    gaps = [0.5 * (points[i] + points[i + 1]) for i in range(len(points) - 1)
-            if values[i] > 0 and values[i + 1] > 0]
-    between = [(w, v) for w, v in ((w, rate(w)) for w in gaps) if v <= 0]
+    between = [(w, v) for w, v in ((0.5 * (points[i] + points[i + 1]), None)
+                                    for i in range(len(points) - 1)
+                                    if values[i] > 0 and values[i + 1] > 0)
+               for v in [rate(w)] if v <= 0]
     if between:
         merged = sorted([*zip(points, values), *between])
         points, values = np.array([w for w, _ in merged]), [v for _, v in merged]
