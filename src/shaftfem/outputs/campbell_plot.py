@@ -66,7 +66,7 @@ def campbell_figure(c: Campbell):
             ax.axvspan(n * (1 - BAND), n * (1 + BAND), color="gold", alpha=0.3, lw=0)
         ax.axvline(n, color="goldenrod", lw=1)
     labelled = set()
-    sides_drawn = mid_range = False
+    sides_drawn = mid_range = thin_drawn = False
     for cv in c.curves:
         whirls = cv.whirling
         for comp, v, share in component_lines(cv):
@@ -94,6 +94,7 @@ def campbell_figure(c: Campbell):
                                else None))
                 if heavy and not faint:
                     labelled.add(word)
+                thin_drawn = thin_drawn or (not heavy and word != "none")
         # a periodic rotor's form: its harmonics beside the dominant one, thin by their
         # share of the motion (a line of its own in the housing's spectrum)
         for comp, v, share in side_lines(cv):
@@ -175,6 +176,9 @@ def campbell_figure(c: Campbell):
             ax.annotate(f"diverges {lo:,.0f}-{hi:,.0f}"
                         + (f"\nup to {g:.3g} 1/s" if g > 0 else ""), (hi, 0.97 * fmax),
                         fontsize=7, color="tab:red", ha="right", va="top")
+    if thin_drawn:
+        ax.plot([], [], "-", color="grey", lw=0.6,
+                label="thin: a mode's smaller whirl component (2 to 50 % of its motion)")
     if sides_drawn:
         ax.plot([], [], "-", color="grey", lw=0.6, alpha=0.6,
                 label="Floquet form's other harmonics (width: share)")
