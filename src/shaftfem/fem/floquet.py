@@ -655,7 +655,7 @@ DIRECT_TOL = 1e-9
 
 
 def periodic_order_roots(model: RotorModel, m: int, top: float = math.inf
-                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[str, ...]]:
     """Where a Floquet component of the undamped periodic rotor meets the turning frame's
     line f = m n (n the spin): an exponent i m Omega, its form
     q = sum_k q_k exp(i (m + 2k) Omega t). Hill's equations there,
@@ -667,11 +667,10 @@ def periodic_order_roots(model: RotorModel, m: int, top: float = math.inf
     constant coefficients' crossings are (fem.tracking.order_roots). Harmonics k = -H..H,
     H raised until the roots up to the spin `top` (rad/s) hold to DIRECT_TOL. Returns the
     speeds (rad/s, ascending), each one's share of the motion in the component met (its
-    harmonic k = 0) and that component's whirl index."""
+    harmonic k = 0), that component's whirl index and its kind (bending, torsion, ...)."""
     import scipy.linalg
 
     from shaftfem.fem.rotor import dominant_kinds, whirl_index
-    from shaftfem.fem.whirl import WHIRLING
 
     N = model.size
     K0 = model.matrices(1.0)[1] - model.K2
@@ -698,8 +697,7 @@ def periodic_order_roots(model: RotorModel, m: int, top: float = math.inf
         X = X[:, ok].reshape(size, N, -1)
         centre = X[H]
         share = np.sum(np.abs(centre) ** 2, axis=0) / np.sum(np.abs(X) ** 2, axis=(0, 1))
-        whirling = np.array([k in WHIRLING for k in dominant_kinds(model, centre)], dtype=bool)
-        keep = whirling & (share > 0)
+        keep = share > 0
         order = np.argsort(lam.real[ok][keep])
         return (np.sqrt(lam.real[ok][keep][order]), share[keep][order],
                 centre[:, keep][:, order])
@@ -717,4 +715,4 @@ def periodic_order_roots(model: RotorModel, m: int, top: float = math.inf
     if not held:
         raise UnsettledError(f"the crossings of the line {m} n in the turning frame: "
                              f"Hill's equations did not settle in {H} harmonics", top, H)
-    return speeds, share, whirl_index(model, centre)
+    return speeds, share, whirl_index(model, centre), tuple(dominant_kinds(model, centre))

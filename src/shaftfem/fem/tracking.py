@@ -604,8 +604,9 @@ def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> 
 
     def solve(m: int) -> tuple[np.ndarray, np.ndarray]:
         if periodic:   # a Floquet form's component at m n: its dominant one or a side one
-            speeds, share, index = periodic_order_roots(model, m, top)
-            return speeds[share >= SIDE_SHARE_MIN], index[share >= SIDE_SHARE_MIN]
+            speeds, share, index, kinds = periodic_order_roots(model, m, top)
+            met = (share >= SIDE_SHARE_MIN) & np.array([k in WHIRLING for k in kinds], dtype=bool)
+            return speeds[met], index[met]
         return order_roots(model, m, top)[:2]
 
     out = []
