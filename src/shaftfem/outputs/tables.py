@@ -108,6 +108,11 @@ def interval_text(low: float, high: float) -> str:
     return f"[{low:.2f}, {high:.2f}] Hz"
 
 
+def _range(span, unit: float, fmt: str) -> str:
+    """' (min to max)' of a tolerance range (min, nominal, max) in a unit; '' without one."""
+    return "" if span is None else f" ({span[0] * unit:{fmt}} to {span[2] * unit:{fmt}})"
+
+
 def installation_lines(result: ModalResult) -> list[str]:
     """How the shaft is held and what sits on it, one line each."""
     scene = result.scene
@@ -123,18 +128,13 @@ def installation_lines(result: ModalResult) -> list[str]:
             j, t = s.journal, s.tolerance
             what = (f"journal bearing {j.diameter * 1e3:g} x {j.length * 1e3:g} mm, radial "
                     f"clearance {j.clearance * 1e6:g} um"
-                    + (f" ({t.clearance[0] * 1e6:g} to {t.clearance[2] * 1e6:g})"
-                       if t is not None and t.clearance is not None else "")
-                    + f", oil {j.viscosity * 1e3:.3g} mPa s"
-                    + (f" ({t.viscosity[0] * 1e3:.3g} to {t.viscosity[2] * 1e3:.3g})"
-                       if t is not None and t.viscosity is not None else "")
+                    + _range(t and t.clearance, 1e6, "g") + f", oil {j.viscosity * 1e3:.3g} mPa s"
+                    + _range(t and t.viscosity, 1e3, ".3g")
                     + ": its film's coefficients against speed in the rotordynamics section")
         elif what is None and s.seal is not None:
             ring, t = s.seal, s.tolerance
             what = (f"annular seal {ring.diameter * 1e3:g} x {ring.length * 1e3:g} mm, radial "
-                    f"clearance {ring.clearance * 1e6:g} um"
-                    + (f" ({t.clearance[0] * 1e6:g} to {t.clearance[2] * 1e6:g})"
-                       if t is not None and t.clearance is not None else "")
+                    f"clearance {ring.clearance * 1e6:g} um" + _range(t and t.clearance, 1e6, "g")
                     + f", {ring.pressure_drop / 1e6:g} MPa across it: no force at standstill, "
                     "its coefficients against speed in the rotordynamics section")
         elif what is None and s.bearing is not None:
