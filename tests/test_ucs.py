@@ -135,3 +135,25 @@ def test_ucs_as_a_user_runs_it(tmp_path):
     bad = subprocess.run([*cmd[:5], "--stiffness-n-per-mm", "1e6:100:24"], capture_output=True,
                          text=True, cwd=tmp_path)
     assert bad.returncode == 2 and "need 0 < A < B <= 1e12 N/mm" in bad.stderr
+
+
+@pytest.mark.slow
+def test_a_keyed_shaft_s_map_has_two_criticals_per_bending_pair_where_its_campbell_has():
+    """A keyed shaft (tests/test_floquet.py's, on isotropic bearings) is mapped in the
+    frame turning with it: each bending pair splits into two synchronous critical speeds,
+    one per principal plane, and the bearings cross the map where the Campbell diagram
+    of the rotor the curve stands for (crossing_scene) meets 1x forward, within 0.5 %."""
+    from shaftfem.workflows.campbell import run_campbell
+    from shaftfem.workflows.ucs import crossing_scene
+    from test_floquet import keyed
+
+    scene = load_scene(keyed(1.0))
+    assert not scene.axisymmetric
+    m = run_ucs(scene)
+    top = scene.rotor.max_speed * 30 / math.pi
+    met = sorted({round(n, 6) for _, _, _, n in m.bearings[0].crossings if n <= top})
+    assert len(met) == 2 and met[1] / met[0] - 1 < 0.01      # the split first pair
+    c = run_campbell(crossing_scene(m.scene, m.bearings[0]))
+    forward = [x.speed_rpm for x in c.critical_speeds if x.order == 1 and x.whirl == "forward"]
+    for n in met:
+        assert min(abs(f / n - 1) for f in forward) < 0.005

@@ -11,8 +11,11 @@ asked, backward) whirl at omega = Omega is free, gyroscopic moments included,
     (K(k) - Omega^2 (M -+ i G)) a = 0,
 
 a linear eigenproblem in Omega^2 (fem.tracking.order_roots). Its bearing crossings are
-then the Campbell diagram's undamped 1x critical speeds. The standstill map (ross's
-`run_ucs` default: natural frequencies at rest) is kept as kind "standstill".
+then the Campbell diagram's undamped 1x critical speeds (of the rotor crossing_scene
+builds). A shaft that is not a solid of revolution is solved in the frame turning with
+it, where its isotropic bearings are constant and a synchronous forward whirl stands
+still: a root at zero frequency there, one per principal plane. The standstill map
+(ross's `run_ucs` default: natural frequencies at rest) is kept as kind "standstill".
 
 One standstill solve with the bearings at the range's geometric mean, the bearings'
 residual modes beside the modes (fem.rotor): a bearing's stiffness k then enters
@@ -85,6 +88,24 @@ def uniform_bearings(scene: Scene, k: float) -> Scene:
     return replace(scene, supports=supports, rotor=None, unbalances=())
 
 
+def crossing_scene(scene: Scene, curve: BearingCurve, direction: str = "x") -> Scene:
+    """The rotor a bearing curve's crossings stand for: every bearing on that curve's
+    stiffness against speed (its kxx, or with `direction` "y" its kyy), isotropic and
+    undamped, seated as the map seats them; seals left out. Its Campbell diagram's 1x
+    critical speeds are the curve's crossings on the map."""
+    k = curve.kxx if direction == "x" else curve.kyy
+    rpm = np.asarray(curve.speeds_rpm, dtype=float)
+    if np.all(k == k[0]):
+        k, rpm = k[:1], np.empty(0)
+    zeros = (0.0,) * len(k)
+    table = BearingCoefficients(speeds=tuple(rpm * math.pi / 30), kxx=tuple(map(float, k)),
+                                kxy=zeros, kyx=zeros, kyy=tuple(map(float, k)), cxx=zeros,
+                                cxy=zeros, cyx=zeros, cyy=zeros)
+    alike = uniform_bearings(scene, float(k[0]))
+    return replace(alike, supports=tuple(replace(s, bearing=table) for s in alike.supports),
+                   rotor=scene.rotor)
+
+
 # The maps: synchronous forward (the default), synchronous backward, standstill.
 KINDS = ("forward", "backward", "standstill")
 
@@ -115,17 +136,42 @@ def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "fo
     """The lowest `count` synchronous critical speeds of `whirl` (as Hz: Omega / 2 pi) at
     the bearing stiffness k (N/m), and their modal shapes (N, count); NaN where fewer
     exist (a backward branch of a disk whose polar inertia outweighs its diametral one
-    has no synchronous crossing)."""
-    from shaftfem.fem.tracking import order_roots
+    has no synchronous crossing). In the turning frame (a shaft that is not a solid of
+    revolution) a forward synchronous whirl stands still: the roots at zero frequency,
+    one per principal plane (a keyed shaft has two criticals where a round one has a
+    pair); a backward one turns at twice the spin there."""
+    from shaftfem.fem.tracking import SHARE_MIN, order_roots
     from shaftfem.fem.whirl import FORWARD
 
-    speeds, index, A = order_roots(at_stiffness(model, k), 1)
-    keep = np.flatnonzero(index > FORWARD if whirl == "forward" else index < -FORWARD)[:count]
+    stiff = at_stiffness(model, k)
+    if model.frame == "stationary":
+        speeds, index, A = order_roots(stiff, 1)
+        keep = np.flatnonzero(index > FORWARD if whirl == "forward" else index < -FORWARD)
+    elif whirl == "forward":
+        speeds, index, A = order_roots(stiff, 0)
+        keep = _one_of_each_pair(speeds)
+    else:
+        speeds, index, A = order_roots(stiff, 2)
+        keep = np.flatnonzero(0.5 * (1 - index) >= SHARE_MIN)
+    keep = keep[:count]
     out = np.full(count, np.nan)
     out[:keep.size] = speeds[keep] / (2 * math.pi)
     Y = np.zeros((A.shape[0], count), dtype=complex)
     Y[:, :keep.size] = A[:, keep]
     return out, Y
+
+
+def _one_of_each_pair(speeds: np.ndarray) -> np.ndarray:
+    """Of roots standing still in the turning frame (ascending speeds), one of each
+    group met at one speed (a round shaft's x and y): a group of two or three is one
+    critical speed, each root alone is its own (the key splits the pair)."""
+    keep: list[int] = []
+    start = 0
+    for i in range(1, speeds.size + 1):
+        if i == speeds.size or speeds[i] > speeds[start] * (1 + 1e-6):
+            keep += list(range(start, start + max(1, (i - start) // 2)))
+            start = i
+    return np.array(keep, dtype=int)
 
 
 def branches_at(model: RotorModel, k: float, count: int, kind: str
@@ -162,7 +208,7 @@ def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
         options.say(f"critical speed map: {size} standstill modes with the bearings at "
                     f"{reference / 1e3:.3g} N/mm")
         result = run_modes(with_modes(uniform, count=size), options)
-        model = rotor_model(result, "stationary")
+        model = rotor_model(result, "stationary" if scene.axisymmetric else "rotating")
         freqs = np.column_stack([branches_at(model, k, branches, kind)[0] for k in ks])
         smaller = model.truncated(2 * size // 3)
         check = np.column_stack([branches_at(smaller, k, branches, kind)[0] for k in ks])
