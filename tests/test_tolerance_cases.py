@@ -235,3 +235,34 @@ def test_a_tolerance_case_on_journals_against_ross():
         for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"):
             np.testing.assert_allclose(getattr(s.bearing, k), theirs[k], rtol=1e-6)
     meets_ross_591(run_campbell(scene), ross, 0.01)
+
+
+@pytest.mark.slow
+def test_a_pump_that_passes_at_nominal_fails_on_its_loose_hot_case(tmp_path):
+    """The shipped pump on journals with a wider clearance tolerance (45 to 75 um) and a
+    looser oil system (40 to 60 C): its nominal case (60 um, 50 C) keeps its margins,
+    as the shipped scene does; the loose, hot case (75 um, 60 C) has softer films, so
+    its first 1x critical speed comes down towards the running speed and misses its
+    margin. The study fails (exit 1) on that case and names it."""
+    import json
+    import tomllib
+    from pathlib import Path
+
+    import tomli_w
+
+    data = tomllib.loads((Path(__file__).parents[1] / "examples" /
+                          "pump_on_journals.toml").read_text())
+    for s in data["support"]:
+        if s["kind"] == "journal":
+            s["radial_clearance_um"], s["oil_temperature_c"] = [45.0, 75.0], [40.0, 60.0]
+    path = tmp_path / "loose_pump.toml"
+    path.write_bytes(tomli_w.dumps(data).encode())
+    status = main(["check", str(path), "-q", "--json", str(tmp_path / "v.json")])
+    cases = {c["case"]: c for c in json.loads((tmp_path / "v.json").read_text())["cases"]}
+    assert cases["nominal"]["ok"] and not cases["max clearance, hot oil"]["ok"]
+    assert status == 1
+
+    def first(c: dict) -> float:
+        return min(x["speed_rpm"] for x in c["campbell"]["critical_speeds"]
+                   if x["order"] == 1 and not x["critically_damped"])
+    assert first(cases["max clearance, hot oil"]) < first(cases["min clearance, cold oil"])
