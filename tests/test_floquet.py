@@ -647,3 +647,36 @@ def test_a_periodic_rotor_s_crossings_are_found_twice():
         lam = converged_hill(model, d.omega).lam
         near = apart(lam, np.array([1j * m * d.omega]), d.omega).min()
         assert near <= 1e-6 * d.omega, (d, near)
+
+
+def test_a_standing_stretch_inside_one_grid_step_gives_both_its_ends():
+    """The keyed shaft on undamped isotropic bearings given as a speed table (so only the
+    curves find its crossings): its pair stands at zero frequency in the turning frame
+    over some 50 r/min, inside one step of the diagram's 3,000 r/min grid. Both ends of
+    that stretch are 1x forward critical speeds, equal to those of the same bearings
+    given as constants (there found directly too, an eigenproblem in the speed squared),
+    within 1e-6."""
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.campbell import run_campbell
+
+    def rotor(table: bool) -> dict:
+        d = keyed(1.0)
+        for s in d["support"]:
+            for key in ("cxx_n_s_per_mm", "cyy_n_s_per_mm"):
+                s.pop(key, None)
+            if table:
+                s.update(speeds_rpm=[0.0, 24000.0], kxx_n_per_mm=[2e4, 2e4],
+                         kyy_n_per_mm=[2e4, 2e4])
+        return d
+
+    def forward(d: dict) -> tuple[list[float], bool]:
+        c = run_campbell(load_scene(d))
+        applies = c.crossing_check is not None and c.crossing_check.applies
+        return sorted(x.speed_rpm for x in c.critical_speeds
+                      if x.order == 1 and x.whirl == "forward"), applies
+
+    on_curves, direct = forward(rotor(True))
+    both, applies = forward(rotor(False))
+    assert not direct and applies
+    assert len(on_curves) == len(both) >= 2
+    np.testing.assert_allclose(on_curves, both, rtol=1e-6)

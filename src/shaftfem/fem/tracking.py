@@ -467,7 +467,7 @@ def curve_crossings(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                         else:
                             # the curve does not oscillate over part of the step (two roots
                             # met at zero frequency): its ends there are the crossings
-                            ends = _gap_crossings(model, c, int(i), comp, k)
+                            ends = _gap_crossings(model, c, int(i), comp, k, inside=om)
                             if ends is None:   # it oscillates throughout: only just lost
                                 t = (om - lo) / (hi - lo)
                                 fs, decay, index = (
@@ -513,17 +513,25 @@ def _follow(model: RotorModel, om: float, y: np.ndarray, f: float, end: float
     return good, fs, decay, index
 
 
-def _gap_crossings(model: RotorModel, c: Curve, i: int, comp: str, k: int
-                   ) -> list[Crossing] | None:
+def _gap_crossings(model: RotorModel, c: Curve, i: int, comp: str, k: int,
+                   inside: float | None = None) -> list[Crossing] | None:
     """The crossings at a stretch of the step i -> i + 1 where the curve does not
     oscillate (its roots meet at zero frequency in the turning frame, where the forward
     and backward components both stand at 1x): the last speeds the curve reaches from
     either side, each a crossing of the 1x line; None where it reaches across (no such
-    stretch: a conjugate pair passing through zero at one speed)."""
+    stretch: a conjugate pair passing through zero at one speed). `inside`: a spin
+    (rad/s) in the step where the curve is known not to oscillate; each side is followed
+    towards it (a stretch narrower than the step has oscillating roots at both of the
+    step's ends, each like the other's). A stretch narrower than PAIR is one crossing:
+    a round shaft's pair, split by its mesh, stands still over some 1e-5 of the speed."""
     lo, hi = c.speeds_rpm[i] * RPM, c.speeds_rpm[i + 1] * RPM
-    left = _follow(model, lo, c.shapes[:, i], float(c.signed_hz[i]), hi)
-    right = _follow(model, hi, c.shapes[:, i + 1], float(c.signed_hz[i + 1]), lo)
-    if left[0] == hi or right[0] == lo:
+    to_left, to_right = (hi, lo) if inside is None else (inside, inside)
+    left = _follow(model, lo, c.shapes[:, i], float(c.signed_hz[i]), to_left)
+    right = _follow(model, hi, c.shapes[:, i + 1], float(c.signed_hz[i + 1]), to_right)
+    if left[0] == to_left or right[0] == to_right:
+        return None
+    if inside is not None and right[0] - left[0] <= PAIR * inside:
+        # narrower than the split a mesh gives a round shaft's pair: one crossing
         return None
     out = []
     for om, fs, decay, index in (left, right):
