@@ -680,3 +680,24 @@ def test_a_standing_stretch_inside_one_grid_step_gives_both_its_ends():
     assert not direct and applies
     assert len(on_curves) == len(both) >= 2
     np.testing.assert_allclose(on_curves, both, rtol=1e-6)
+
+
+def test_a_curve_s_own_growth_past_its_onset_is_no_zone_of_its_own():
+    """A zone of growth the diagram's end closes, starting a little above a curve's onset
+    (its edge counts growth from a log decrement of -1e-4, so it lies above the onset by
+    as much as the damping falls slowly: here 1.5e-4 of the speed), is that curve's own
+    growth, not a parametric resonance; one that starts where every curve decays is a
+    zone."""
+    from shaftfem.fem.whirl import Curve, Onset
+    from shaftfem.workflows.campbell import _onset_s_own
+
+    speeds = np.array([5000.0, 6000.0, 7000.0, 12000.0])
+    decay = np.array([3.0, 1.0, -0.5, -6.0])        # 1/s: grows from 6,667 r/min
+    curve = Curve(number=2, frame="rotating", speeds_rpm=speeds, signed_hz=np.full(4, 50.0),
+                  decay=decay, index=np.ones(4), kinds=("bending",) * 4,
+                  shapes=np.zeros((1, 4)))
+    onset = [Onset(6666.7, "forward", 2, 55.7)]
+    assert _onset_s_own(6667.7, onset, [curve])
+    assert not _onset_s_own(5500.0, onset, [curve])       # below the onset: a zone
+    recovering = Curve(**{**curve.__dict__, "decay": np.array([3.0, 1.0, -0.5, 2.0])})
+    assert not _onset_s_own(9500.0, onset, [recovering])   # the curve decays there again

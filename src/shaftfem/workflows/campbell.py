@@ -385,6 +385,23 @@ def growth_spans(rate: Callable[[float], float], points: np.ndarray, values: lis
     return spans
 
 
+def _onset_s_own(start: float, unstable: list[Onset], curves: list[Curve]) -> bool:
+    """Whether a zone of growth starting at `start` (r/min) is a curve's own growth past
+    its onset: an onset at or below it whose curve still grows there. The zone's edge
+    lies a little above the onset (a form counts as growing from a log decrement of
+    -ZONE_LOG_DEC), by as much as the curve's damping falls slowly."""
+    by_number = {c.number: c for c in curves}
+    for o in unstable:
+        c = by_number.get(o.mode)
+        if c is None:
+            continue
+        if abs(o.speed_rpm - start) <= 1e-4 * start:
+            return True
+        if o.speed_rpm < start and float(np.interp(start, c.speeds_rpm, c.decay)) < 0:
+            return True
+    return False
+
+
 def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
                      divergent: list[tuple[float, float, float]]
                      ) -> list[tuple[float, float, float, bool]]:
@@ -787,8 +804,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
         # a zone that an onset opens and the diagram's end closes is the onset's own
         top = float(path.max()) / RPM
         zones = [z[:3] for z in found if not z[3] and not (
-            z[1] >= top * (1 - 1e-9)
-            and any(abs(o.speed_rpm - z[0]) <= 1e-4 * z[0] for o in unstable))]
+            z[1] >= top * (1 - 1e-9) and _onset_s_own(z[0], unstable, curves))]
         agree = zones_agree(model, [w * RPM for b in [*bands, *zones] for w in b[:2]]
                             + [o.speed_rpm * RPM for o in unstable],
                             float(path.min()), float(path.max()))
