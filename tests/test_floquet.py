@@ -688,6 +688,8 @@ def test_a_curve_s_own_growth_past_its_onset_is_no_zone_of_its_own():
     as much as the damping falls slowly: here 1.5e-4 of the speed), is that curve's own
     growth, not a parametric resonance; one that starts where every curve decays is a
     zone."""
+    from dataclasses import replace
+
     from shaftfem.fem.whirl import Curve, Onset
     from shaftfem.workflows.campbell import _onset_s_own
 
@@ -699,5 +701,5 @@ def test_a_curve_s_own_growth_past_its_onset_is_no_zone_of_its_own():
     onset = [Onset(6666.7, "forward", 2, 55.7)]
     assert _onset_s_own(6667.7, onset, [curve])
     assert not _onset_s_own(5500.0, onset, [curve])       # below the onset: a zone
-    recovering = Curve(**{**curve.__dict__, "decay": np.array([3.0, 1.0, -0.5, 2.0])})
+    recovering = replace(curve, decay=np.array([3.0, 1.0, -0.5, 2.0]))
     assert not _onset_s_own(9500.0, onset, [recovering])   # the curve decays there again

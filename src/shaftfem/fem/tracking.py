@@ -602,6 +602,20 @@ def order_roots(model: RotorModel, m: int, top: float = math.inf
     return np.sqrt(lam.real[ok][order]), whirl_index(model, A), A
 
 
+def one_of_each_pair(speeds: np.ndarray) -> np.ndarray:
+    """Of roots standing still in the turning frame (ascending speeds), the indices of one
+    of each group met at one speed (within 1e-6): a conjugate pair met at zero is a null
+    space of two shapes on a shaft of revolution (x and y), so a group of two or three is
+    one crossing; a root alone is its own (a keyway splits the pair)."""
+    keep: list[int] = []
+    start = 0
+    for i in range(1, speeds.size + 1):
+        if i == speeds.size or speeds[i] > speeds[start] * (1 + 1e-6):
+            keep += range(start, start + max(1, (i - start) // 2))
+            start = i
+    return np.array(keep, dtype=int)
+
+
 def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> list[Direct]:
     """Every undamped crossing with each order line up to the spin `top` (rad/s), from
     the linear eigenproblem in Omega^2 of the module's docstring (constant, undamped
@@ -632,13 +646,7 @@ def direct_crossings(model: RotorModel, orders: tuple[int, ...], top: float) -> 
                 # zero: each of its crossings is a null space of two shapes on a shaft
                 # of revolution (x and y), of one where the shaft is stiffer one way
                 found = sorted(found, key=lambda d: d.omega)
-                groups: list[list[Direct]] = []
-                for d in found:
-                    if groups and d.omega <= groups[-1][0].omega * (1 + 1e-6):
-                        groups[-1].append(d)
-                    else:
-                        groups.append([d])
-                found = [g[i] for g in groups for i in range(max(1, len(g) // 2))]
+                found = [found[i] for i in one_of_each_pair(np.array([d.omega for d in found]))]
             out += found
     if periodic:
         # one crossing met by two components of one form (a form of two equal circular

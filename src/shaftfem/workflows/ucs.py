@@ -140,7 +140,7 @@ def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "fo
     revolution) a forward synchronous whirl stands still: the roots at zero frequency,
     one per principal plane (a keyed shaft has two criticals where a round one has a
     pair); a backward one turns at twice the spin there."""
-    from shaftfem.fem.tracking import SHARE_MIN, order_roots
+    from shaftfem.fem.tracking import SHARE_MIN, one_of_each_pair, order_roots
     from shaftfem.fem.whirl import FORWARD
 
     stiff = at_stiffness(model, k)
@@ -149,7 +149,7 @@ def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "fo
         keep = np.flatnonzero(index > FORWARD if whirl == "forward" else index < -FORWARD)
     elif whirl == "forward":
         speeds, index, A = order_roots(stiff, 0)
-        keep = _one_of_each_pair(speeds)
+        keep = one_of_each_pair(speeds)
     else:
         speeds, index, A = order_roots(stiff, 2)
         keep = np.flatnonzero(0.5 * (1 - index) >= SHARE_MIN)
@@ -159,19 +159,6 @@ def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "fo
     Y = np.zeros((A.shape[0], count), dtype=complex)
     Y[:, :keep.size] = A[:, keep]
     return out, Y
-
-
-def _one_of_each_pair(speeds: np.ndarray) -> np.ndarray:
-    """Of roots standing still in the turning frame (ascending speeds), one of each
-    group met at one speed (a round shaft's x and y): a group of two or three is one
-    critical speed, each root alone is its own (the key splits the pair)."""
-    keep: list[int] = []
-    start = 0
-    for i in range(1, speeds.size + 1):
-        if i == speeds.size or speeds[i] > speeds[start] * (1 + 1e-6):
-            keep += list(range(start, start + max(1, (i - start) // 2)))
-            start = i
-    return np.array(keep, dtype=int)
 
 
 def branches_at(model: RotorModel, k: float, count: int, kind: str
