@@ -26,16 +26,16 @@ sys.path.insert(0, str(ROOT / "tests"))
 def main(path: str, case: bool = False) -> None:
     from shaftfem.scene.load import load_scene
     from shaftfem.workflows.cases import case_scene, cases_of
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
     from test_journal_bearing import friswell_journals
     from test_tolerance_cases import friswell_tolerances
 
     if case:
         ranged = load_scene(friswell_tolerances())
         tight = next(c for c in cases_of(ranged) if c.name == "min clearance, cold oil")
-        scene = with_journal_loads(case_scene(ranged, tight))
+        scene = equipped(case_scene(ranged, tight))
     else:
-        scene = with_journal_loads(load_scene(friswell_journals()))
+        scene = equipped(load_scene(friswell_journals()))
     out = {"source": "shaftfem's film (shaftfem.parts.journal); N/m, N s/m, rad/s",
            "bearings": []}
     for s in scene.supports:

@@ -44,9 +44,9 @@ def wheel_on_journals(**rotor) -> dict:
 def wheel():
     """The rotor loaded on its journals, its basis and model, and its Campbell diagram."""
     from shaftfem.workflows.campbell import campbell_of, turning
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
 
-    scene = with_journal_loads(load_scene(wheel_on_journals()))
+    scene = equipped(load_scene(wheel_on_journals()))
     result, model, why = turning(scene)
     return scene, result, model, why, campbell_of(scene, result, model, why)
 

@@ -11,6 +11,7 @@ import pytest
 from shaftfem.errors import SceneError
 from shaftfem.parts import wachel
 from shaftfem.scene.load import load_scene
+from shaftfem.workflows.equip import with_parts
 
 
 def test_wachel_is_api_617s_formula():
@@ -35,7 +36,7 @@ def rotor(power_kw: float | None, **stage) -> dict:
 
 
 def test_a_stage_on_a_part_is_its_cross_coupling_against_speed():
-    scene = load_scene(rotor(500.0))
+    scene = with_parts(load_scene(rotor(500.0)))   # the stage asked for its q
     wheel = scene.attachments[1]
     q = 3 * (500e3 / (4000 * math.pi / 30)) / (0.35 * 0.02)
     (kxx, kxy), (kyx, kyy) = wheel.cross_coupling.stiffness(4000 * math.pi / 30)

@@ -155,8 +155,11 @@ def test_a_journal_refuses_what_no_film_can_be(key, value, said):
     if key == "viscosity_mpa_s":
         for s in data["support"]:
             del s["oil_iso_vg"], s["oil_temperature_c"]
+    from shaftfem.workflows.equip import with_parts
+
+    # a load too large for any film is found when the film is asked for its coefficients
     with pytest.raises(SceneError, match=said):
-        load_scene(data)
+        with_parts(load_scene(data))
 
 
 def test_a_journal_needs_its_oil_once_and_a_speed():
@@ -173,7 +176,9 @@ def test_a_journal_needs_its_oil_once_and_a_speed():
 
 
 def test_a_journal_scene_holds_its_film_against_speed():
-    scene = load_scene(journal_rotor())
+    from shaftfem.workflows.equip import with_parts
+
+    scene = with_parts(load_scene(journal_rotor()))
     s = scene.supports[0]
     b = s.journal
     assert b is not None and b.viscosity == pytest.approx(oil.dynamic(32, 50.0))
@@ -218,9 +223,10 @@ def test_the_reduced_whirl_is_the_whirl_on_a_basis_made_for_each_speed():
 
     from shaftfem.fem.rotor import rotor_model
     from shaftfem.workflows.campbell import whirl_at
+    from shaftfem.workflows.equip import with_parts
     from shaftfem.workflows.pipeline import run_modes, with_modes
 
-    scene = load_scene(journal_rotor())
+    scene = with_parts(load_scene(journal_rotor()))
     model = rotor_model(run_modes(with_modes(scene, count=30)), "stationary")
     assert model.residual == 4
     stiff = []
@@ -260,12 +266,12 @@ def test_friswell_591_on_journals_against_ross():
     from pathlib import Path
 
     from shaftfem.workflows.campbell import run_campbell
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
 
     data = Path(__file__).parent / "data"
     table = json.loads((data / "journal_591.json").read_text())
     ross = json.loads((data / "ross_rotors.json").read_text())["5.9.1 journals"]
-    scene = with_journal_loads(load_scene(friswell_journals()))
+    scene = equipped(load_scene(friswell_journals()))
     for s, theirs in zip(scene.supports, table["bearings"]):   # the same bearings
         assert s.journal.load == pytest.approx(theirs["load_n"], rel=1e-6)
         for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"):
@@ -316,21 +322,25 @@ def test_a_short_bearing_against_ross_cylindrical_bearing():
 def test_a_film_table_comes_back_from_the_cache_whole_or_not_at_all(tmp_path, monkeypatch):
     """The film's table is kept in the cache and read back the same; a damaged entry is
     discarded with a warning and solved again."""
-    from shaftfem.scene import load as scene_load
+    from shaftfem.scene.model import JournalBearing
     from shaftfem.store import CacheWarning
+    from shaftfem.workflows.equip import film_table
+
+    b = JournalBearing(diameter=0.04, length=0.03, clearance=5e-5, viscosity=0.02, load=100.0,
+                       cavitation="gumbel")
 
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
     monkeypatch.setattr(journal, "_KNOWN", {})
-    scene_load._film_table(0.75, "gumbel")
+    film_table(b)
     (path,) = (tmp_path / "films").glob("*.npz")
     solved = journal.table(0.75, "gumbel")
     journal._KNOWN.clear()
-    scene_load._film_table(0.75, "gumbel")
+    film_table(b)
     read = journal._KNOWN[(0.75, "gumbel")]
     for name in journal.TABLE_FIELDS:
         np.testing.assert_array_equal(getattr(read, name), getattr(solved, name))
     path.write_bytes(path.read_bytes()[:100])
     journal._KNOWN.clear()
     with pytest.warns(CacheWarning, match="journal film table"):
-        scene_load._film_table(0.75, "gumbel")
+        film_table(b)
     assert path.exists()

@@ -99,3 +99,24 @@ def test_every_subpackage_is_packaged():
     found = {".".join(p.parent.relative_to(root / "src").parts)
              for p in (root / "src" / "shaftfem").rglob("__init__.py")}
     assert found <= listed, sorted(found - listed)
+
+
+def _imports(path: Path) -> list[tuple[str, str]]:
+    """(module, name) for every `from module import name` in a file."""
+    return [(node.module, a.name) for node in ast.walk(ast.parse(path.read_text()))
+            if isinstance(node, ast.ImportFrom) and node.module for a in node.names]
+
+
+def test_the_scene_declares_parts_and_the_workflows_only_load_it():
+    """The walk is one way: scene/ validates and holds declarations and never asks a
+    part for its physics (no import of parts/), and the workflows take from the loader
+    only what loads a scene (the parts' coefficients come from workflows.equip)."""
+    physics = [f"{p.relative_to(SRC)} imports {m}" for p in sorted((SRC / "scene").glob("*.py"))
+               for m, _ in _imports(p) if m == "shaftfem.parts" or m.startswith("shaftfem.parts.")]
+    assert not physics, physics
+    loading = {"load_scene", "SceneText", "read_scene_text", "check_entries", "scene_beside",
+               "resolve_scene_path", "GEOMETRY_DIR", "DEFAULT_SCENE", "scene_from_dict"}
+    beyond = [f"{p.relative_to(SRC)} imports {name} from scene.load"
+              for p in sorted((SRC / "workflows").glob("*.py"))
+              for m, name in _imports(p) if m == "shaftfem.scene.load" and name not in loading]
+    assert not beyond, beyond

@@ -15,6 +15,7 @@ import scipy.optimize
 from shaftfem.errors import SceneError
 from shaftfem.parts import rolling
 from shaftfem.scene.load import load_scene
+from shaftfem.workflows.equip import with_parts
 
 STEEL = {"name": "steel", "youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.3,
          "density_kg_m3": 7810.0}
@@ -52,13 +53,13 @@ def rotor(**bearing) -> dict:
 
 
 def test_a_ball_bearing_in_a_scene_is_its_stiffness_along_and_across_its_load():
-    scene = load_scene(rotor(load_angle_deg=-90.0))
+    scene = with_parts(load_scene(rotor(load_angle_deg=-90.0)))
     along, across = rolling.stiffness("ball", 9, 7.9e-3, 150.0)
     K = np.array(scene.supports[0].bearing.stiffness(0.0))
     np.testing.assert_allclose(K, [[across, 0.0], [0.0, along]], atol=1e-6 * along)
     C = np.array(scene.supports[0].bearing.damping(0.0))
     np.testing.assert_allclose(C, rolling.DAMPING_TIME * K, atol=1e-12 * along)
-    tilted = load_scene(rotor(load_angle_deg=0.0, contact_angle_deg=15.0))
+    tilted = with_parts(load_scene(rotor(load_angle_deg=0.0, contact_angle_deg=15.0)))
     along, across = rolling.stiffness("ball", 9, 7.9e-3, 150.0, math.radians(15.0))
     K = np.array(tilted.supports[0].bearing.stiffness(0.0))
     np.testing.assert_allclose(K, [[along, 0.0], [0.0, across]], atol=1e-6 * along)
@@ -134,7 +135,8 @@ def test_a_preloaded_bearing_has_every_ball_loaded():
 
 
 def test_a_preload_in_a_scene():
-    scene = load_scene(rotor(contact_angle_deg=25.0, preload_n=400.0, load_angle_deg=-90.0))
+    scene = with_parts(load_scene(rotor(contact_angle_deg=25.0, preload_n=400.0,
+                                        load_angle_deg=-90.0)))
     along, across = rolling.preloaded(9, 7.9e-3, math.radians(25.0), 400.0, 150.0)
     K = np.array(scene.supports[0].bearing.stiffness(0.0))
     np.testing.assert_allclose(K, [[across, 0.0], [0.0, along]], atol=1e-6 * along)

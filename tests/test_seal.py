@@ -115,8 +115,9 @@ def test_a_rotor_with_a_seal_against_ross():
     nearly cancel there, and the beam's 0.08 % lower frequency moved their small
     difference by 1.7 %; 2 N s/mm keeps every log decrement off zero.)"""
     from shaftfem.workflows.campbell import run_campbell
+    from shaftfem.workflows.equip import with_parts
 
-    scene = load_scene(seal_scene())
+    scene = with_parts(load_scene(seal_scene()))
     b = scene.supports[2].bearing
     np.testing.assert_allclose(b.speeds, ROSS["table"]["speeds"], rtol=1e-12)
     for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "mxx", "myy"):

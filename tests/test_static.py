@@ -12,7 +12,7 @@ import pytest
 
 from shaftfem.errors import SceneError
 from shaftfem.scene.load import load_scene
-from shaftfem.workflows.static import run_static, with_journal_loads
+from shaftfem.workflows.static import equipped, run_static
 
 E, NU, RHO, G0 = 211e9, 0.3, 7810.0, 9.80665
 STEEL = {"name": "steel", "youngs_modulus_mpa": E / 1e6, "poisson_ratio": NU,
@@ -85,7 +85,7 @@ def test_journals_without_a_load_carry_their_reactions():
         del sup["load_n"]
     scene = load_scene(data)
     assert all(s.bearing is None for s in scene.supports)
-    loaded = with_journal_loads(scene)
+    loaded = equipped(scene)
     weight = (RHO * math.pi * 0.025**2 * 1.0 + 30.0) * G0
     for s in loaded.supports:
         assert s.journal.load == pytest.approx(weight / 2, rel=1e-3)   # a 25 mm mesh

@@ -46,8 +46,14 @@ def wheel(clearance=(40.0, 50.0), temperature=(35.0, 55.0), joint="distributing"
 
 def test_a_range_gives_its_nominal_and_its_ends():
     """[min, max] runs at its middle, [min, nominal, max] at its nominal; the oil's ends
-    are its viscosity at the temperatures' ends (cold oil the most viscous)."""
-    s = load_scene(wheel()).supports[0]
+    are its viscosity at the temperatures' ends (cold oil the most viscous), which the
+    part gives from the oil's grade (the scene holds the temperatures)."""
+    from shaftfem.workflows.equip import with_parts
+
+    declared = load_scene(wheel()).supports[0]
+    assert declared.journal.viscosity is None and declared.tolerance.viscosity is None
+    assert declared.tolerance.temperature == (35.0, 45.0, 55.0)
+    s = with_parts(load_scene(wheel())).supports[0]
     assert s.journal.clearance == pytest.approx(45e-6)
     assert s.journal.viscosity == pytest.approx(oil.dynamic(46, 45.0))
     assert s.tolerance.clearance == pytest.approx((40e-6, 45e-6, 50e-6))
@@ -122,9 +128,9 @@ def test_each_case_s_film_is_the_film_of_its_clearance_and_oil(case, clearance, 
     """At the running speed, each journal's eight coefficients in the case's scene
     against the film solved directly for that clearance and the oil's viscosity at that
     temperature, under the same static load: within 1 %."""
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
 
-    scene = with_journal_loads(case_scene(load_scene(wheel()), case))
+    scene = equipped(case_scene(load_scene(wheel()), case))
     omega = RUNNING * RPM
     for s in scene.held:
         b = s.journal
@@ -220,7 +226,7 @@ def test_a_tolerance_case_on_journals_against_ross():
     from pathlib import Path
 
     from shaftfem.workflows.campbell import run_campbell
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
     from test_journal_bearing import meets_ross_591
 
     data = Path(__file__).parent / "data"
@@ -228,7 +234,7 @@ def test_a_tolerance_case_on_journals_against_ross():
     ross = json.loads((data / "ross_rotors.json").read_text())["5.9.1 journals, tight"]
     ranged = load_scene(friswell_tolerances())
     case = next(c for c in cases_of(ranged) if c.name == "min clearance, cold oil")
-    scene = with_journal_loads(case_scene(ranged, case))
+    scene = equipped(case_scene(ranged, case))
     for s, theirs in zip(scene.supports, table["bearings"]):   # the same bearings
         assert s.journal.clearance == pytest.approx(45e-6)
         assert s.journal.viscosity == pytest.approx(24e-3)

@@ -397,7 +397,8 @@ def seat_loads(result: ModalResult) -> np.ndarray:
             continue
         radius = seat_radius(scene, system.nodes, s.seat)
         w = surface_weights(result.mesh.to_skfem(), system.order, radius, s.seat)
-        unit = replace(s, kind="springs", radial=1.0, axial=0.0, tilting=0.0, bearing=None)
+        unit = replace(s, kind="springs", radial=1.0, axial=0.0, tilting=0.0, bearing=None,
+                       journal=None, seal=None, rolling=None)
         for r in seat_restraints(unit, system.nodes, w)[:2]:
             f = np.zeros(system.n_dofs)
             f[r.dofs] = r.coeffs
@@ -612,13 +613,17 @@ def bearing_modal(result: ModalResult, Phi: np.ndarray | None = None
     out = []
     skmesh = None
     for s in scene.held:
+        if s.awaits_part:
+            raise SolverError(f"support {s.name!r}: its part was not asked for its "
+                              "coefficients (workflows.equip)")
         if s.bearing is None:
             continue
         if skmesh is None:
             skmesh = result.mesh.to_skfem()
         radius = seat_radius(scene, system.nodes, s.seat)
         w = surface_weights(skmesh, system.order, radius, s.seat)
-        unit = replace(s, kind="springs", radial=1.0, axial=0.0, tilting=0.0, bearing=None)
+        unit = replace(s, kind="springs", radial=1.0, axial=0.0, tilting=0.0, bearing=None,
+                       journal=None, seal=None, rolling=None)
         x, y = seat_restraints(unit, system.nodes, w)[:2]
         shapes = result.modes.shapes if Phi is None else Phi
         beta = np.vstack([x.coeffs @ shapes[x.dofs], y.coeffs @ shapes[y.dofs]])

@@ -294,7 +294,10 @@ def ring_stiffness(s: Support) -> tuple[float, ...]:
     rigid = {"rigid": (math.inf, math.inf), "rigid-radial": (math.inf, 0.0)}
     if s.kind == "journal" and s.bearing is None:
         raise SolverError(f"journal bearing {s.name!r} has no load yet: its film needs the "
-                          "static loads solved first (workflows.static.with_journal_loads)")
+                          "static loads solved first (workflows.static.equipped)")
+    if s.awaits_part:
+        raise SolverError(f"support {s.name!r}: its part was not asked for its coefficients "
+                          "(workflows.equip.with_parts)")
     if s.kind in rigid:
         radial, axial = rigid[s.kind]
         return (radial, radial, axial, 0.0, 0.0, 0.0)

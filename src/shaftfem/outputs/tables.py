@@ -113,6 +113,14 @@ def _range(span, unit: float, fmt: str) -> str:
     return "" if span is None else f" ({span[0] * unit:{fmt}} to {span[2] * unit:{fmt}})"
 
 
+def _oil(j) -> str:
+    """A journal's oil: its viscosity, or its grade at its temperature before the part
+    gave the viscosity."""
+    if j.viscosity is None:
+        return f"ISO VG {j.oil_iso_vg} at {j.oil_temperature:g} C"
+    return f"{j.viscosity * 1e3:.3g} mPa s"
+
+
 def installation_lines(result: ModalResult) -> list[str]:
     """How the shaft is held and what sits on it, one line each."""
     scene = result.scene
@@ -128,7 +136,7 @@ def installation_lines(result: ModalResult) -> list[str]:
             j, t = s.journal, s.tolerance
             what = (f"journal bearing {j.diameter * 1e3:g} x {j.length * 1e3:g} mm, radial "
                     f"clearance {j.clearance * 1e6:g} um"
-                    + _range(t and t.clearance, 1e6, "g") + f", oil {j.viscosity * 1e3:.3g} mPa s"
+                    + _range(t and t.clearance, 1e6, "g") + f", oil {_oil(j)}"
                     + _range(t and t.viscosity, 1e3, ".3g")
                     + ": its film's coefficients against speed in the rotordynamics section")
         elif what is None and s.seal is not None:

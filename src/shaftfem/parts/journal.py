@@ -38,9 +38,11 @@ from typing import Any
 
 import numpy as np
 
+from shaftfem.scene.model import JOURNAL_RATIOS, BearingCoefficients, JournalBearing, Rotor
+
 CAVITATION = ("reynolds", "gumbel")
 # The lengths over diameter the film is solved for (outside them a bearing is not plain).
-RATIOS = (0.1, 2.0)
+RATIOS = JOURNAL_RATIOS
 # The film's mesh: cells around the bearing (graded towards the thinnest film) and
 # across its half length. The tests measure what they leave (docs/journal-bearing.md).
 THETA_CELLS = 240
@@ -299,34 +301,6 @@ def table(ratio: float, cavitation: str = "reynolds") -> FilmTable:
 
 
 @dataclass(frozen=True)
-class JournalBearing:
-    """A plain cylindrical journal bearing: its journal diameter, length and radial
-    clearance (m), the oil's dynamic viscosity (Pa s), the static load on the journal
-    (N; 0 until the static solution gives it) and its direction (a unit vector in the
-    xy plane, the load on the journal), the cavitation condition, and the least minimum
-    film that is fine (m)."""
-
-    diameter: float
-    length: float
-    clearance: float
-    viscosity: float
-    load: float
-    direction: tuple[float, float] = (0.0, -1.0)
-    cavitation: str = "reynolds"
-    min_film: float = 10e-6
-
-    @property
-    def ratio(self) -> float:
-        return self.length / self.diameter
-
-    def sommerfeld(self, omega: float) -> float:
-        """S = mu N L D / W (R / c)^2, N in rev/s."""
-        R = self.diameter / 2
-        return (self.viscosity * omega / (2 * math.pi) * self.length * self.diameter
-                / self.load * (R / self.clearance) ** 2)
-
-
-@dataclass(frozen=True)
 class Operating:
     """A journal bearing at one speed: eccentricity ratio, attitude angle (rad), minimum
     film (m), Sommerfeld number, K (N/m) and C (N s/m) on (x, y), and whether the
@@ -427,3 +401,37 @@ def speed_table(b: JournalBearing, top: float, points: int = SPEED_POINTS) -> Sp
     ops = [operating(b, w) for w in speeds]
     return SpeedTable(speeds=speeds, K=np.array([o.K for o in ops]),
                       C=np.array([o.C for o in ops]), lift=float(lift))
+
+
+def with_oil(b: JournalBearing) -> JournalBearing:
+    """The bearing with its oil's viscosity (Pa s): as declared, or its ISO VG grade's at
+    the film's temperature (shaftfem.parts.oil)."""
+    from dataclasses import replace
+
+    from shaftfem.parts import oil
+
+    if b.oil_iso_vg is None or b.oil_temperature is None:
+        return b
+    return replace(b, viscosity=oil.dynamic(b.oil_iso_vg, b.oil_temperature))
+
+
+def coefficients(b: JournalBearing, rotor: Rotor) -> BearingCoefficients:
+    """A loaded journal bearing's coefficients against speed, up to the Campbell
+    diagram's end; its standstill ones at the lowest operating speed (or where its film
+    lifts the journal, if later). A ValueError if the film does not lift it by then."""
+    try:
+        speeds = speed_table(with_oil(b), rotor.max_speed)
+    except ValueError as e:
+        raise ValueError(f"{e}; the load is too large for this film (a larger clearance "
+                         "ratio, viscosity, length or speed carries more)") from None
+    K, C = speeds.K, speeds.C
+
+    def column(A, i: int, j: int) -> tuple[float, ...]:
+        return tuple(float(v) for v in A[:, i, j])
+
+    low = min(lo for lo, _ in rotor.spans)
+    return BearingCoefficients(
+        speeds=tuple(float(w) for w in speeds.speeds), kxx=column(K, 0, 0),
+        kxy=column(K, 0, 1), kyx=column(K, 1, 0), kyy=column(K, 1, 1), cxx=column(C, 0, 0),
+        cxy=column(C, 0, 1), cyx=column(C, 1, 0), cyy=column(C, 1, 1),
+        reference=max(low, speeds.lift))

@@ -29,6 +29,8 @@ from __future__ import annotations
 
 import math
 
+from shaftfem.scene.model import BearingCoefficients, RollingBearing
+
 BALL = 1.3e7
 ROLLER = 1.0e9
 ACROSS = {"ball": ((8, 0.46), (12, 0.64), (16, 0.73)),
@@ -111,3 +113,20 @@ def preloaded(n: int, d: float, angle: float, preload: float, load: float = 0.0
     along = sum(kj * (ca * math.cos(p)) ** 2 for kj, p in zip(k, psi))
     across = sum(kj * (ca * math.sin(p)) ** 2 for kj, p in zip(k, psi))
     return along, across
+
+
+def coefficients(b: RollingBearing) -> BearingCoefficients:
+    """The bearing's constant coefficients: its stiffness along its load and across it
+    (`stiffness`, or `preloaded` for an angular-contact bearing under an axial preload)
+    turned onto the load's direction, and damping DAMPING_TIME times that."""
+    if b.preload is not None:
+        along, across_ = preloaded(b.elements, b.size, b.contact_angle, b.preload, b.load)
+    else:
+        along, across_ = stiffness(b.kind, b.elements, b.size, b.load, b.contact_angle)
+    c, s = math.cos(b.load_angle), math.sin(b.load_angle)
+    # along the load's direction (c, s), across it (-s, c)
+    kxx, kyy = along * c * c + across_ * s * s, along * s * s + across_ * c * c
+    kxy = (along - across_) * c * s
+    d = DAMPING_TIME
+    return BearingCoefficients(speeds=(), kxx=(kxx,), kxy=(kxy,), kyx=(kxy,), kyy=(kyy,),
+                               cxx=(d * kxx,), cxy=(d * kxy,), cyx=(d * kxy,), cyy=(d * kyy,))

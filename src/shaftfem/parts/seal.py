@@ -33,25 +33,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from shaftfem.scene.model import INLET_LOSS, AnnularSeal, BearingCoefficients
+
 # Hirs' friction for smooth surfaces (Yamada's pipe data, as Childs uses them)
 N0, M0 = 0.066, -0.25
-INLET_LOSS = 0.1
-
-
-@dataclass(frozen=True)
-class AnnularSeal:
-    """A plain seal, SI: its length, diameter and radial clearance (m), the pressure
-    drop across it at the speed `rated` (Pa, rad/s), the fluid's density (kg/m^3) and
-    viscosity (Pa s), and the inlet loss coefficient xi."""
-
-    length: float
-    diameter: float
-    clearance: float
-    pressure_drop: float
-    rated: float
-    density: float
-    viscosity: float
-    inlet_loss: float = INLET_LOSS
+__all__ = ["INLET_LOSS", "AnnularSeal", "coefficients", "speed_table", "state"]
 
 
 @dataclass(frozen=True)
@@ -124,3 +110,16 @@ def speed_table(seal: AnnularSeal, top: float, points: int = 41) -> tuple[list[f
     none)."""
     speeds = [top * (0.01 + 0.99 * i / (points - 1)) for i in range(points)]
     return speeds, [state(seal, w) for w in speeds]
+
+
+def coefficients(s: AnnularSeal, top: float) -> BearingCoefficients:
+    """The seal's coefficients against speed up to `top` (rad/s, the Campbell diagram's
+    end): none at standstill, where the pump makes no pressure."""
+    speeds, states = speed_table(s, top)
+
+    def row(name: str, sign: float = 1.0) -> tuple[float, ...]:
+        return (0.0, *(sign * getattr(x, name) for x in states))
+
+    return BearingCoefficients(speeds=(0.0, *speeds), kxx=row("K"), kxy=row("k"),
+                               kyx=row("k", -1.0), kyy=row("K"), cxx=row("C"), cxy=row("c"),
+                               cyx=row("c", -1.0), cyy=row("C"), mxx=row("M"), myy=row("M"))

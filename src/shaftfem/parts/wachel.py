@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import math
 
+from shaftfem.scene.model import BearingCoefficients, Rotor, Stage
+
 B = {"centrifugal": 3.0, "axial": 1.5}
 
 
@@ -45,3 +47,23 @@ KLBF_PER_IN = 4.4482216152605e3 / 0.0254   # N/m
 HP = 745.69987158227                       # W
 IN = 0.0254                                # m
 RPM = math.pi / 30                         # rad/s
+
+# A stage's cross-coupling is tabled at this many speeds from 0 to the Campbell
+# diagram's end (q ~ speed^2; linear between them: 1e-5 of q at most).
+STAGE_POINTS = 161
+
+
+def coefficients(stage: Stage, rotor: Rotor) -> BearingCoefficients:
+    """The stage's cross-coupling against speed: Wachel's q at the highest operating
+    speed, by the fan law elsewhere (the operating speeds in the table: q there
+    exactly)."""
+    rated = rotor.top_speed
+    q = cross_coupling(stage.power, rated, stage.diameter, stage.width, stage.kind,
+                       stage.density_ratio)
+    speeds = sorted({*(rotor.max_speed * k / (STAGE_POINTS - 1) for k in range(STAGE_POINTS)),
+                     *rotor.speeds})
+    kxy = tuple(at_speed(q, rated, w) for w in speeds)
+    zero = (0.0,)
+    return BearingCoefficients(speeds=tuple(speeds), kxx=zero, kxy=kxy,
+                               kyx=tuple(-k for k in kxy), kyy=zero, cxx=zero, cxy=zero,
+                               cyx=zero, cyy=zero)

@@ -12,33 +12,34 @@ import tomllib
 import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from shaftfem.errors import SceneError
-from shaftfem.parts import seal
 from shaftfem.scene.checks import PlausibilityWarning, check_grooves, check_seats, implausible
 from shaftfem.scene.model import (
+    INLET_LOSS,
+    JOURNAL_RATIOS,
     MM,
+    AnnularSeal,
     Attachment,
     BearingCoefficients,
     Excitation,
     Grooves,
+    JournalBearing,
     Material,
     MeshSettings,
     ModeRequest,
     PointForce,
+    RollingBearing,
     Rotor,
     Scene,
     Shaft,
+    Stage,
     Support,
     Tolerance,
     Unbalance,
 )
 from shaftfem.scene.profile import shaft_from_tables
 from shaftfem.scene.schema import DEFAULT_SPEED_HEADROOM, SCHEMA, TITLE_KEYS
-
-if TYPE_CHECKING:
-    from shaftfem.parts.journal import JournalBearing
 from shaftfem.scene.toml_reading import (
     entry,
     read_toml,
@@ -196,7 +197,7 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                         enumerate(zip(_array(source, data, "attachment"), attachments)))
     check_seats(source, shaft, grooves, supports, attachments, mesh)
     if (rotor is not None and rotor.level1 and rotor.level1_qa is None
-            and not any(a.cross_coupling is not None for a in attachments)):
+            and not any(a.stage is not None for a in attachments)):
         raise SceneError(f"{where(source, 'rotor', 'level1')} = true: the Level I screening "
                          "needs the anticipated cross-coupling Q_A: give [rotor] "
                          "level1_qa_n_per_mm, or a stage's stage_power_kw on an [[attachment]] "
@@ -365,11 +366,9 @@ PHYSICS_KEYS = {"journal": (*JOURNAL_KEYS, "load_n", "load_angle_deg"),
                            "contact_angle_deg", "load_n", "load_angle_deg")}
 
 
-def _rolling(source: str, table: str, t: dict) -> BearingCoefficients:
-    """A ball or roller bearing's constant coefficients from its elements and load
-    (shaftfem.parts.rolling), turned onto the load's direction."""
-    from shaftfem.parts import rolling
-
+def _rolling(source: str, table: str, t: dict) -> RollingBearing:
+    """A ball or roller bearing as declared: its elements, load and contact angle, SI
+    (its coefficients: shaftfem.parts.rolling)."""
     size_key = "element_diameter_mm" if t["kind"] == "ball" else "roller_length_mm"
     preload = t["preload_n"]
     for key in ("elements", size_key, *(("load_n",) if preload is None else ())):
@@ -388,21 +387,10 @@ def _rolling(source: str, table: str, t: dict) -> BearingCoefficients:
         raise SceneError(f"{where(source, table, 'elements')} = {n}: {n} balls of {d:g} mm "
                          f"need {n * d:.1f} mm of a pitch circle {math.pi * pitch:.1f} mm round "
                          f"(pitch_diameter_mm = {pitch:g}): they do not fit")
-    angle = math.radians(t["contact_angle_deg"])
-    if preload is not None:
-        along, across = rolling.preloaded(t["elements"], t[size_key] * MM, angle, preload,
-                                          t["load_n"] or 0.0)
-    else:
-        along, across = rolling.stiffness(t["kind"], t["elements"], t[size_key] * MM,
-                                          t["load_n"], angle)
-    a = math.radians(t["load_angle_deg"])
-    c, s = math.cos(a), math.sin(a)
-    # along the load's direction (c, s), across it (-s, c)
-    kxx, kyy = along * c * c + across * s * s, along * s * s + across * c * c
-    kxy = (along - across) * c * s
-    d = rolling.DAMPING_TIME
-    return BearingCoefficients(speeds=(), kxx=(kxx,), kxy=(kxy,), kyx=(kxy,), kyy=(kyy,),
-                               cxx=(d * kxx,), cxy=(d * kxy,), cyx=(d * kxy,), cyy=(d * kyy,))
+    return RollingBearing(kind=t["kind"], elements=t["elements"], size=t[size_key] * MM,
+                          contact_angle=math.radians(t["contact_angle_deg"]), preload=preload,
+                          load=t["load_n"] or 0.0,
+                          load_angle=math.radians(t["load_angle_deg"]))
 
 
 # the keys a journal (all three) or a seal (its clearance) takes as a tolerance range
@@ -443,10 +431,9 @@ def _scaled(span: tuple[float, ...], unit: float) -> tuple[float, float, float]:
 
 def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
              rotor: Rotor | None, ranges: dict[str, tuple[float, float, float]]) -> Support:
-    """A journal bearing's support: its film's coefficients against speed, up to the
-    Campbell diagram's end (shaftfem.parts.journal), at the nominal clearance and oil,
-    and their tolerance ranges."""
-    from shaftfem.parts import journal, oil
+    """A journal bearing's support as declared: its film's bearing (its coefficients:
+    shaftfem.parts.journal) at the nominal clearance and oil, and their tolerance
+    ranges."""
     from shaftfem.scene.schema import DEFAULT_MIN_FILM_UM
 
     table = entry("support", i, raw)
@@ -460,11 +447,11 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
     if (t["viscosity_mpa_s"] is None) == (t["oil_iso_vg"] is None):
         raise SceneError(f"{where(source, table, 'viscosity_mpa_s')}: give the oil as "
                          "viscosity_mpa_s, or as oil_iso_vg with oil_temperature_c (one of them)")
+    viscosity = None
     if t["oil_iso_vg"] is not None:
         if t["oil_temperature_c"] is None:
             raise SceneError(f"{where(source, table, 'oil_temperature_c')}: missing (with "
                              "oil_iso_vg, the film's mean temperature, C)")
-        viscosity = oil.dynamic(t["oil_iso_vg"], t["oil_temperature_c"])
     else:
         if t["oil_temperature_c"] is not None:
             raise SceneError(f"{where(source, table, 'oil_temperature_c')}: only with "
@@ -479,58 +466,26 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
                          "diameter; a journal bearing's radial clearance is about 0.0005 to "
                          "0.003 of it (the film theory holds below 0.05)")
     ratio = s.width / diameter
-    if not journal.RATIOS[0] <= ratio <= journal.RATIOS[1]:
+    if not JOURNAL_RATIOS[0] <= ratio <= JOURNAL_RATIOS[1]:
         raise SceneError(f"{where(source, table, 'width_mm')} = {s.width / MM:g}: length / "
-                         f"diameter {ratio:.3g}; the film is solved for {journal.RATIOS[0]:g} "
-                         f"to {journal.RATIOS[1]:g}")
+                         f"diameter {ratio:.3g}; the film is solved for {JOURNAL_RATIOS[0]:g} "
+                         f"to {JOURNAL_RATIOS[1]:g}")
     angle = math.radians(t["load_angle_deg"])
-    bearing = journal.JournalBearing(
+    bearing = JournalBearing(
         diameter=diameter, length=s.width, clearance=clearance, viscosity=viscosity,
         load=t["load_n"] or 0.0, direction=(math.cos(angle), math.sin(angle)),
         cavitation=t["cavitation"],
         min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
-        * 1e-6)
+        * 1e-6, oil_iso_vg=t["oil_iso_vg"], oil_temperature=t["oil_temperature_c"])
+    # an oil given by its grade: the viscosities of its temperature range come from the
+    # part (shaftfem.parts.oil), with the film's coefficients
     temperature = ranges.get("oil_temperature_c")
-    # cold oil is the most viscous: the viscosities run (min, nominal, max) as the
-    # temperatures run (max, nominal, min)
-    spread = (_scaled(tuple(oil.dynamic(t["oil_iso_vg"], c) for c in temperature[::-1]), 1.0)
-              if temperature is not None else
-              _scaled(ranges["viscosity_mpa_s"], 1e-3) if "viscosity_mpa_s" in ranges else None)
+    spread = _scaled(ranges["viscosity_mpa_s"], 1e-3) if "viscosity_mpa_s" in ranges else None
     tolerance = (Tolerance(clearance=_scaled(ranges["radial_clearance_um"], 1e-6)
                            if "radial_clearance_um" in ranges else None,
                            viscosity=spread, temperature=temperature)
                  if ranges else None)
-    s = replace(s, tolerance=tolerance)
-    if t["load_n"] is None:   # its reaction to the static loads, once they are solved
-        return replace(s, journal=bearing)
-    try:
-        return replace(s, bearing=journal_coefficients(bearing, rotor), journal=bearing)
-    except ValueError as e:
-        raise SceneError(f"{where(source, table, 'load_n')} = {t['load_n']:g}: {e}") from None
-
-
-def _film_table(ratio: float, cavitation: str) -> None:
-    """A journal film's table from the cache (keyed by its L / D, cavitation and the
-    film's settings), else solved and kept there: every run of a scene needs it, and it
-    takes seconds to solve."""
-    import numpy as np
-
-    from shaftfem.parts import journal
-    from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
-
-    key = content_key({"ratio": ratio, "cavitation": cavitation, **journal.SETTINGS})
-    path = cache_dir() / "films" / f"{key}.npz"
-    if path.exists():
-        fields, why = load_arrays(path, journal.TABLE_FIELDS)
-        if fields is not None:
-            journal.remember(journal.FilmTable(ratio, cavitation, **fields))
-            return
-        discard("journal film table", why, path)
-    t = journal.table(ratio, cavitation)
-    try:
-        save_arrays(path, {n: np.asarray(getattr(t, n)) for n in journal.TABLE_FIELDS})
-    except OSError:   # a cache that cannot be written costs time, not the result
-        pass
+    return replace(s, tolerance=tolerance, journal=bearing)
 
 
 def _seat_diameter(source: str, table: str, t: dict, shaft: Shaft, s: Support,
@@ -563,8 +518,8 @@ def _seat_diameter(source: str, table: str, t: dict, shaft: Shaft, s: Support,
 
 def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
           rotor: Rotor | None, ranges: dict[str, tuple[float, float, float]]) -> Support:
-    """A plain annular seal's support: its coefficients against speed, up to the
-    Campbell diagram's end (shaftfem.parts.seal), none at standstill."""
+    """A plain annular seal's support as declared (its coefficients against speed:
+    shaftfem.parts.seal)."""
     table = entry("support", i, raw)
     t = validate_table(source, table, _as_lists(raw, BEARING_KEYS), SCHEMA["support"])
     for key, what in (("radial_clearance_um", "the seal's radial clearance, um"),
@@ -586,54 +541,15 @@ def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
                          f"{widest:g}: {widest * 1e-6 / diameter:.3g} of the "
                          "diameter; a plain seal's radial clearance is about 0.001 to 0.005 "
                          "of it (the bulk-flow model holds below 0.02)")
-    annular = seal.AnnularSeal(length=s.width, diameter=diameter, clearance=clearance,
+    annular = AnnularSeal(length=s.width, diameter=diameter, clearance=clearance,
                                pressure_drop=t["pressure_drop_mpa"] * MPA, rated=rotor.top_speed,
                                density=t["fluid_density_kg_m3"],
                                viscosity=t["viscosity_mpa_s"] * 1e-3,
-                               inlet_loss=seal.INLET_LOSS if t["inlet_loss"] is None
+                               inlet_loss=INLET_LOSS if t["inlet_loss"] is None
                                else t["inlet_loss"])
     tolerance = (Tolerance(clearance=_scaled(ranges["radial_clearance_um"], 1e-6))
                  if ranges else None)
-    return replace(s, bearing=seal_coefficients(annular, rotor), seal=annular,
-                   tolerance=tolerance)
-
-
-def seal_coefficients(s: seal.AnnularSeal, rotor: Rotor) -> BearingCoefficients:
-    """A seal's coefficients against speed up to the Campbell diagram's end: none at
-    standstill, where the pump makes no pressure."""
-    speeds, states = seal.speed_table(s, rotor.max_speed)
-
-    def row(name: str, sign: float = 1.0) -> tuple[float, ...]:
-        return (0.0, *(sign * getattr(x, name) for x in states))
-
-    return BearingCoefficients(speeds=(0.0, *speeds), kxx=row("K"), kxy=row("k"),
-                               kyx=row("k", -1.0), kyy=row("K"), cxx=row("C"), cxy=row("c"),
-                               cyx=row("c", -1.0), cyy=row("C"), mxx=row("M"), myy=row("M"))
-
-
-def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoefficients:
-    """A loaded journal bearing's coefficients against speed, up to the Campbell
-    diagram's end; its standstill ones at the lowest operating speed (or where its film
-    lifts the journal, if later). A ValueError if the film does not lift it by then."""
-    from shaftfem.parts import journal
-
-    _film_table(round(bearing.ratio, 9), bearing.cavitation)
-    try:
-        speeds = journal.speed_table(bearing, rotor.max_speed)
-    except ValueError as e:
-        raise ValueError(f"{e}; the load is too large for this film (a larger clearance "
-                         "ratio, viscosity, length or speed carries more)") from None
-    K, C = speeds.K, speeds.C
-
-    def column(A, i: int, j: int) -> tuple[float, ...]:
-        return tuple(float(v) for v in A[:, i, j])
-
-    low = min(lo for lo, _ in rotor.spans)
-    return BearingCoefficients(
-        speeds=tuple(float(w) for w in speeds.speeds), kxx=column(K, 0, 0),
-        kxy=column(K, 0, 1), kyx=column(K, 1, 0), kyy=column(K, 1, 1), cxx=column(C, 0, 0),
-        cxy=column(C, 0, 1), cyx=column(C, 1, 0), cyy=column(C, 1, 1),
-        reference=max(low, speeds.lift))
+    return replace(s, seal=annular, tolerance=tolerance)
 
 
 def _support(source: str, i: int, t: dict) -> Support:
@@ -677,8 +593,7 @@ def _support(source: str, i: int, t: dict) -> Support:
         raise SceneError(f"{where(source, table, 'coupling')} = \"rigid\": a {t['kind']}"
                          f"{'' if t['kind'] == 'seal' else ' bearing'} acts on the seat's mean "
                          "motion; leave coupling out")
-    if t["kind"] in ("ball", "roller"):
-        bearing = _rolling(source, table, t)
+    rolling = _rolling(source, table, t) if t["kind"] in ("ball", "roller") else None
     if t["kind"] != "bearing":
         for key in (*BEARING_KEYS, "speeds_rpm"):
             if t[key] is not None:
@@ -693,7 +608,7 @@ def _support(source: str, i: int, t: dict) -> Support:
                    width=width, kind=t["kind"], radial=radial,
                    axial=(t["axial_stiffness_n_per_mm"] or 0.0) * 1e3,
                    tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3,
-                   coupling=t["coupling"], bearing=bearing)
+                   coupling=t["coupling"], bearing=bearing, rolling=rolling)
 
 
 def _placed(source: str, table: str, t: dict, shaft: Shaft,
@@ -832,16 +747,8 @@ def _attachment(source: str, i: int, t: dict) -> Attachment:
                       coupled_inertia=t["coupled_inertia_kg_m2"] or 0.0)
 
 
-# A stage's cross-coupling is tabled at this many speeds from 0 to the Campbell
-# diagram's end (q ~ speed^2; linear between them: 1e-5 of q at most).
-STAGE_POINTS = 161
-
-
 def _stage(source: str, i: int, raw: dict, a: Attachment, rotor: Rotor | None) -> Attachment:
-    """A part with a stage's cross-coupling (Wachel, shaftfem.parts.wachel): q at the
-    highest operating speed, by the fan law elsewhere."""
-    from shaftfem.parts import wachel
-
+    """A part with a stage on it, as declared (its cross-coupling: shaftfem.parts.wachel)."""
     table = entry("attachment", i, raw)
     t = validate_table(source, table, raw, SCHEMA["attachment"])
     if t["stage_power_kw"] is None:
@@ -849,14 +756,7 @@ def _stage(source: str, i: int, raw: dict, a: Attachment, rotor: Rotor | None) -
     if rotor is None:
         raise SceneError(f"{where(source, table, 'stage_power_kw')}: a stage's cross-coupling "
                          "needs the shaft turning: add [rotor] with its speed_rpm")
-    rated = rotor.top_speed
-    q = wachel.cross_coupling(t["stage_power_kw"] * 1e3, rated, t["stage_diameter_mm"] * MM,
-                              t["stage_width_mm"] * MM, t["stage_kind"], t["density_ratio"])
-    # the operating speeds in the table: q there exactly
-    speeds = sorted({*(rotor.max_speed * k / (STAGE_POINTS - 1) for k in range(STAGE_POINTS)),
-                     *rotor.speeds})
-    kxy = tuple(wachel.at_speed(q, rated, w) for w in speeds)
-    zero = (0.0,)
-    return replace(a, cross_coupling=BearingCoefficients(
-        speeds=tuple(speeds), kxx=zero, kxy=kxy, kyx=tuple(-k for k in kxy), kyy=zero,
-        cxx=zero, cxy=zero, cyx=zero, cyy=zero))
+    return replace(a, stage=Stage(power=t["stage_power_kw"] * 1e3,
+                                  diameter=t["stage_diameter_mm"] * MM,
+                                  width=t["stage_width_mm"] * MM, kind=t["stage_kind"],
+                                  density_ratio=t["density_ratio"]))

@@ -4,9 +4,9 @@ rad/s, Hz), made from a scene file by shaftfem.scene.load."""
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from shaftfem.scene.schema import (
     DEFAULT_DAMPING_PERCENT,
@@ -15,10 +15,6 @@ from shaftfem.scene.schema import (
     DEFAULT_MODE_COUNT,
     STANDARD_GRAVITY,
 )
-
-if TYPE_CHECKING:
-    from shaftfem.parts.journal import JournalBearing
-    from shaftfem.parts.seal import AnnularSeal
 
 MM = 1e-3  # m per mm: scene files are in mm
 
@@ -364,6 +360,94 @@ class PointForce:
     fy: float
 
 
+# --------------------------------------------------------------------------
+# The parts as the scene declares them. Their coefficients come from their physics
+# (shaftfem.parts), which the rotor model asks once the static loads are known.
+
+# the journals' length / diameter ratios the film is solved for
+JOURNAL_RATIOS = (0.1, 2.0)
+# a seal's inlet loss coefficient where the scene gives none
+INLET_LOSS = 0.1
+
+
+@dataclass(frozen=True)
+class JournalBearing:
+    """A plain cylindrical journal bearing: its journal diameter, length and radial
+    clearance (m), the oil's dynamic viscosity (Pa s; None while the scene gives the oil
+    as its ISO VG grade `oil_iso_vg` at the film's mean temperature `oil_temperature`, C,
+    which shaftfem.parts.oil turns into one), the static load on the journal (N; 0
+    until the static solution gives it) and its direction (a unit vector in the xy
+    plane, the load on the journal), the cavitation condition, and the least minimum
+    film that is fine (m)."""
+
+    diameter: float
+    length: float
+    clearance: float
+    viscosity: float | None
+    load: float
+    direction: tuple[float, float] = (0.0, -1.0)
+    cavitation: str = "reynolds"
+    min_film: float = 10e-6
+    oil_iso_vg: int | None = None
+    oil_temperature: float | None = None
+
+    @property
+    def ratio(self) -> float:
+        return self.length / self.diameter
+
+    def sommerfeld(self, omega: float) -> float:
+        """S = mu N L D / W (R / c)^2, N in rev/s."""
+        assert self.viscosity is not None, "the oil's viscosity comes from shaftfem.parts.oil"
+        R = self.diameter / 2
+        return (self.viscosity * omega / (2 * math.pi) * self.length * self.diameter
+                / self.load * (R / self.clearance) ** 2)
+
+
+@dataclass(frozen=True)
+class AnnularSeal:
+    """A plain seal, SI: its length, diameter and radial clearance (m), the pressure
+    drop across it at the speed `rated` (Pa, rad/s), the fluid's density (kg/m^3) and
+    viscosity (Pa s), and the inlet loss coefficient xi."""
+
+    length: float
+    diameter: float
+    clearance: float
+    pressure_drop: float
+    rated: float
+    density: float
+    viscosity: float
+    inlet_loss: float = INLET_LOSS
+
+
+@dataclass(frozen=True)
+class RollingBearing:
+    """A ball or roller bearing (`kind` "ball" or "roller"): its number of elements, their
+    diameter (balls) or length (rollers), m, the contact angle (rad), an angular-contact
+    bearing's axial preload (N, or None), and the radial load on it (N) at the angle
+    `load_angle` (rad from x towards y)."""
+
+    kind: str
+    elements: int
+    size: float
+    contact_angle: float = 0.0
+    preload: float | None = None
+    load: float = 0.0
+    load_angle: float = 0.0
+
+
+@dataclass(frozen=True)
+class Stage:
+    """An impeller or compressor stage on a part: its power (W) at the highest operating
+    speed, its diameter and flow width (m), its kind ("centrifugal" or "axial") and the
+    ratio of the gas densities across it (Wachel's estimate, API 617)."""
+
+    power: float
+    diameter: float
+    width: float
+    kind: str = "centrifugal"
+    density_ratio: float = 1.0
+
+
 @dataclass(frozen=True)
 class Tolerance:
     """A journal's or a seal's tolerance ranges, each (min, nominal, max), None where the
@@ -392,13 +476,23 @@ class Support:
     axial: float = 0.0
     tilting: float = 0.0
     coupling: str = "distributing"   # or "rigid": the band moves as a rigid ring
-    bearing: BearingCoefficients | None = None   # kind "bearing", "journal": its coefficients
+    # its coefficients: kind "bearing" as given; a journal, ball, roller or seal as its
+    # physics gives them (None until the parts are asked: workflows.equip)
+    bearing: BearingCoefficients | None = None
     journal: JournalBearing | None = None   # kind "journal": the film's bearing
     seal: AnnularSeal | None = None   # kind "seal": the seal its coefficients come from
+    rolling: RollingBearing | None = None   # kind "ball", "roller": the bearing's elements
     tolerance: Tolerance | None = None   # a journal's or seal's tolerance ranges
     # the standstill modes hold the bearing's mean of kxx and kyy on both axes: the
     # basis of a rotor solved in the frame turning with it, which every angle sees alike
     mean_seat: bool = False
+
+    @property
+    def awaits_part(self) -> bool:
+        """A part declared (journal, ball or roller bearing, seal) whose coefficients are
+        not in yet."""
+        return self.bearing is None and any(
+            p is not None for p in (self.journal, self.seal, self.rolling))
 
     @property
     def radial_xy(self) -> tuple[float, float]:
@@ -433,7 +527,9 @@ class Attachment:
                            # centre, no stiffness
     joint_given: bool = True   # False: the scene left it to the default (the study
                                # brackets it, workflows.cases)
-    # a stage's aerodynamic cross-coupling on the part's motion (Wachel), N/m against speed
+    # a stage on the part, and its aerodynamic cross-coupling on the part's motion
+    # (Wachel: shaftfem.parts.wachel), N/m against speed
+    stage: Stage | None = None
     cross_coupling: BearingCoefficients | None = None
     # a flexible coupling from the part's turn to another machine's rotor: its torsional
     # stiffness (N m/rad) and that rotor's polar inertia (kg m^2); 0: none

@@ -42,9 +42,9 @@ def run_bounded(scene: Scene, estimate: bool = True,
     (bounded when `estimate`). `choose`: an order-2 scene's target may be met on another
     discretisation, the one workflows.route chooses. Journal bearings without their load
     carry their reactions to the static loads (workflows.static)."""
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
 
-    scene = with_journal_loads(scene, options)
+    scene = equipped(scene, options)
     if (choose and scene.target_error is not None and scene.mesh.order == 2
             and scene.mesh.geometry_order == 2):
         from shaftfem.workflows.route import choose_route

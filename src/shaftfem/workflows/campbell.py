@@ -663,9 +663,9 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
     whirl still moves by more than TRUNCATION on it."""
     from shaftfem.fem.rotor import rotor_model
     from shaftfem.workflows.pipeline import run_modes, with_modes
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
 
-    scene = with_journal_loads(scene, options)
+    scene = equipped(scene, options)
     frame, why = choose_frame(scene)
     if frame == "rotating":
         # the basis is turned with the shaft past the bearings: made on their mean stiffness
@@ -709,9 +709,9 @@ def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
     the Campbell diagram (`speeds_rpm`, default 0 to [rotor] max_speed_rpm at
     [rotor] campbell_points) and at the operating speeds, the critical speeds, the
     stability and the basis check, and the unbalance response."""
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
 
-    scene = with_journal_loads(scene, options)
+    scene = equipped(scene, options)
     result, model, why = turning(scene, options)
     return campbell_of(scene, result, model, why, speeds_rpm)
 

@@ -19,7 +19,6 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
-from shaftfem.errors import SceneError
 from shaftfem.runtime import RunOptions
 
 if TYPE_CHECKING:
@@ -48,7 +47,7 @@ def cases_of(scene: Scene) -> tuple[Case, ...]:
     joint where a part leaves its joint to the default. One case: nothing to bracket."""
     spans = [s.tolerance for s in scene.supports if s.tolerance is not None]
     clear = any(t.clearance is not None for t in spans)
-    oil = any(t.viscosity is not None for t in spans)
+    oil = any(t.viscosity is not None or t.temperature is not None for t in spans)
     out = [Case("nominal")]
     if clear or oil:
         words = [w for w, on in (("clearance", clear), ("oil", oil)) if on]
@@ -70,29 +69,24 @@ def _end(span: tuple[float, float, float] | None, end: str) -> float | None:
 
 def case_support(s: Support, case: Case, scene: Scene) -> Support:
     """A journal's or seal's support at the case's ends of its tolerance ranges: its
-    clearance and viscosity, and the coefficients they give (a journal still waiting for
-    its static load gets them once it is solved, workflows.static)."""
-    from shaftfem.scene.load import journal_coefficients, seal_coefficients
-
+    clearance and its oil (a viscosity, or the temperature of an oil given by its
+    grade), its coefficients cleared for its part to give again (workflows.equip)."""
     t = s.tolerance
     if t is None or (case.clearance == "nominal" and case.oil == "nominal"):
         return s
     clearance = _end(t.clearance, case.clearance)
-    viscosity = _end(t.viscosity, {"cold": "max", "hot": "min", "nominal": "nominal"}[case.oil])
-    assert scene.rotor is not None   # journals and seals need [rotor] (scene.load)
+    # cold oil: the most viscous, at the lowest temperature
+    hot = {"cold": "min", "hot": "max", "nominal": "nominal"}[case.oil]
     if s.journal is not None:
-        j = replace(s.journal, clearance=clearance or s.journal.clearance,
-                    viscosity=viscosity or s.journal.viscosity)
-        if s.bearing is None:   # its load is its reaction, solved later
-            return replace(s, journal=j)
-        try:
-            return replace(s, journal=j, bearing=journal_coefficients(j, scene.rotor))
-        except ValueError as e:
-            raise SceneError(f"{scene.source}: journal bearing {s.name!r}, case {case.name}: "
-                             f"{e}") from None
+        j = replace(s.journal, clearance=clearance or s.journal.clearance)
+        if t.temperature is not None:
+            j = replace(j, oil_temperature=_end(t.temperature, hot), viscosity=None)
+        elif t.viscosity is not None:
+            j = replace(j, viscosity=_end(t.viscosity, {"min": "max", "max": "min",
+                                                        "nominal": "nominal"}[hot]))
+        return replace(s, journal=j, bearing=None)
     if s.seal is not None and clearance is not None:
-        seal = replace(s.seal, clearance=clearance)
-        return replace(s, seal=seal, bearing=seal_coefficients(seal, scene.rotor))
+        return replace(s, seal=replace(s.seal, clearance=clearance), bearing=None)
     return s
 
 

@@ -121,10 +121,13 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
 
     from shaftfem.fem.rotor import BearingModal, section_motion
     from shaftfem.workflows.campbell import RPM, turning
+    from shaftfem.workflows.static import equipped
 
     if scene.rotor is None:
         raise SceneError(f"{scene.source}: no [rotor] table: Level I screens the shaft at its "
                          "highest operating speed; add [rotor] speed_rpm")
+    scene = equipped(scene, options)
+    assert scene.rotor is not None
     z, where = screening_plane(scene, at)
     if q_anticipated is None and scene.rotor.level1_qa is not None:
         q_anticipated = scene.rotor.level1_qa

@@ -147,7 +147,9 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
     from shaftfem.fem.assembly import assemble, discretise
     from shaftfem.fem.eigen import SolverSettings
     from shaftfem.fem.factor import analyse_in_background, uses_pardiso
+    from shaftfem.workflows.equip import with_parts
 
+    scene = with_parts(scene)   # the installed shaft holds its bearings' stiffness
     watch = watch or Stopwatch()
     with watch.lap("assembly"):
         d = discretise(mesh)

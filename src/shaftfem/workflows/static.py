@@ -1,5 +1,6 @@
 """The shaft's static loads solved (fem.static), and the journal bearings that carry
-them: a journal without its load_n takes its reaction."""
+them: a journal without its load_n takes its reaction, and its film's coefficients
+come from it (the other parts' need no static solution: workflows.equip)."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from shaftfem.errors import SceneError
 from shaftfem.fem.static import StaticSolution, static_solution
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
+from shaftfem.workflows.equip import film_table, with_parts
 
 
 @dataclass(frozen=True)
@@ -45,9 +47,9 @@ def run_static(scene: Scene, options: RunOptions = RunOptions()) -> StaticResult
         raise SceneError(f"{scene.source}: no [[support]] holds the shaft: a free shaft has "
                          "no static solution")
     held = replace(scene, supports=tuple(
-        replace(s, kind="rigid-radial", bearing=None) if s.kind == "journal" else s
-        for s in scene.supports))
-    placed, _, mesh = built(held, options)
+        replace(s, kind="rigid-radial", bearing=None, journal=None, tolerance=None)
+        if s.kind == "journal" else s for s in scene.supports))
+    placed, _, mesh = built(with_parts(held), options)
     options.say("assembling K and M; solving the static loads")
     system = assemble(mesh, placed.material, threads=options.threads)
     skmesh = mesh.to_skfem()
@@ -59,7 +61,7 @@ def reactions(scene: Scene, options: RunOptions = RunOptions()) -> dict[str, np.
     """Each support's reaction (N) to the static loads, by name: from the cache where it
     holds this scene's (keyed by all that makes them), else solved and kept there."""
     from shaftfem.store import discard, load_arrays, save_arrays
-
+    scene = with_parts(scene)   # a ball bearing's or seal's stiffness holds the shaft too
     path = _reactions_path(scene) if options.use_cache else None
     if path is not None and path.exists():
         fields, why = load_arrays(path, ("names", "forces"))
@@ -97,12 +99,13 @@ def _reactions_path(scene: Scene):
     return cache_dir() / "static" / f"{key}.npz"
 
 
-def with_journal_loads(scene: Scene, options: RunOptions = RunOptions()) -> Scene:
-    """The scene with every journal bearing that has no load_n loaded by its reaction to
-    the static loads (the load on the journal: the reaction's opposite), and its film's
-    coefficients computed for it; the scene itself if none waits for one."""
-    from shaftfem.scene.load import journal_coefficients
+def equipped(scene: Scene, options: RunOptions = RunOptions()) -> Scene:
+    """The scene with every part's coefficients (`with_parts`), every journal without its
+    load_n loaded by its reaction to the static loads (the load on the journal: the
+    reaction's opposite) and its film's coefficients computed for it."""
+    from shaftfem.parts import journal
 
+    scene = with_parts(scene)
     waiting = [s for s in scene.supports if s.journal is not None and s.bearing is None]
     if not waiting:
         return scene
@@ -119,8 +122,9 @@ def with_journal_loads(scene: Scene, options: RunOptions = RunOptions()) -> Scen
             raise SceneError(f"{scene.source}: journal bearing {s.name!r}: the static loads "
                              "leave it unloaded; give its load_n")
         bearing = replace(s.journal, load=load, direction=(fx / load, fy / load))
+        film_table(bearing)
         try:
-            coefficients = journal_coefficients(bearing, scene.rotor)
+            coefficients = journal.coefficients(bearing, scene.rotor)
         except ValueError as e:
             raise SceneError(f"{scene.source}: journal bearing {s.name!r} carries "
                              f"{load:,.0f} N of the static loads: {e}") from None

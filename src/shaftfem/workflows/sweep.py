@@ -122,7 +122,7 @@ def _turning_fields(row: dict, scene, options: RunOptions):
         top = max(c.unbalance.peaks, key=lambda p: p.amplitude)
         row["unbalance_peak_um"] = float(top.amplitude) * 1e6
         row["unbalance_peak_rpm"] = float(top.speed_rpm)
-    if any(a.cross_coupling is not None for a in scene.attachments):
+    if any(a.stage is not None for a in scene.attachments):
         from shaftfem.workflows.level1 import run_level1
 
         level1 = run_level1(scene, options=options)

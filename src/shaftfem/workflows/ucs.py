@@ -180,13 +180,13 @@ def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
     from shaftfem.fem.rotor import rotor_model
     from shaftfem.fem.static import line
     from shaftfem.workflows.pipeline import run_modes, with_modes
-    from shaftfem.workflows.static import with_journal_loads
+    from shaftfem.workflows.static import equipped
 
     if scene.mesh.order > 2:
         raise SceneError(f"{scene.source}: element order {scene.mesh.order}: the critical "
                          "speed map takes orders 1 and 2")
     if scene.rotor is not None:
-        scene = with_journal_loads(scene, options)
+        scene = equipped(scene, options)
     ks = default_range(scene) if stiffness is None else np.asarray(stiffness, dtype=float)
     reference = float(math.exp(np.log(ks).mean()))
     uniform = uniform_bearings(scene, reference)

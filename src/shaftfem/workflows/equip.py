@@ -1,0 +1,104 @@
+"""The scene's parts asked for their coefficients: each journal, ball or roller bearing,
+seal and stage as its physics gives them (shaftfem.parts), at the loads the static
+solution puts on the journals that wait for theirs.
+
+The scene holds the parts as declared; the rotor model is built on what they answer.
+A part that answered once keeps its answer (`with_parts` is idempotent), and a case that
+changes a part's declaration clears it to be asked again (workflows.cases). The journals
+that wait for their load get it from the static solution (workflows.static.equipped).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from shaftfem.errors import SceneError
+from shaftfem.scene.model import Attachment, JournalBearing, Scene, Support
+from shaftfem.scene.toml_reading import entry, where
+
+
+def film_table(bearing: JournalBearing) -> None:
+    """A journal film's table from the cache (keyed by its L / D, cavitation and the
+    film's settings), else solved and kept there: every run of a scene needs it, and it
+    takes seconds to solve."""
+    import numpy as np
+
+    from shaftfem.parts import journal
+    from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
+
+    ratio, cavitation = round(bearing.ratio, 9), bearing.cavitation
+    key = content_key({"ratio": ratio, "cavitation": cavitation, **journal.SETTINGS})
+    path = cache_dir() / "films" / f"{key}.npz"
+    if path.exists():
+        fields, why = load_arrays(path, journal.TABLE_FIELDS)
+        if fields is not None:
+            journal.remember(journal.FilmTable(ratio, cavitation, **fields))
+            return
+        discard("journal film table", why, path)
+    t = journal.table(ratio, cavitation)
+    try:
+        save_arrays(path, {n: np.asarray(getattr(t, n)) for n in journal.TABLE_FIELDS})
+    except OSError:   # a cache that cannot be written costs time, not the result
+        pass
+
+
+def _journal(scene: Scene, i: int, s: Support) -> Support:
+    """A journal's support with its oil's viscosity (and its tolerance range's, from the
+    oil temperatures), and its film's coefficients if its load is known."""
+    from shaftfem.parts import journal, oil
+
+    assert s.journal is not None and scene.rotor is not None   # scene.load checks both
+    b = journal.with_oil(s.journal)
+    t = s.tolerance
+    if t is not None and t.temperature is not None and t.viscosity is None:
+        assert b.oil_iso_vg is not None
+        # cold oil is the most viscous: the viscosities run (min, nominal, max) as the
+        # temperatures run (max, nominal, min)
+        lo, nominal, hi = (oil.dynamic(b.oil_iso_vg, c) for c in t.temperature[::-1])
+        t = replace(t, viscosity=(lo, nominal, hi))
+    s = replace(s, journal=b, tolerance=t)
+    if s.bearing is not None or b.load <= 0:   # its load: its reaction, once solved
+        return s
+    film_table(b)
+    try:
+        return replace(s, bearing=journal.coefficients(b, scene.rotor))
+    except ValueError as e:
+        raise SceneError(f"{where(scene.source, entry('support', i, s), 'load_n')} = "
+                         f"{b.load:g}: {e}") from None
+
+
+def support_coefficients(scene: Scene, i: int, s: Support) -> Support:
+    """Support i of the scene with its part's coefficients (a support without a part, or
+    whose part answered already, as it is)."""
+    from shaftfem.parts import rolling, seal
+
+    if s.journal is not None:
+        return _journal(scene, i, s)
+    if s.bearing is not None:
+        return s
+    if s.seal is not None:
+        assert scene.rotor is not None   # scene.load checks it
+        return replace(s, bearing=seal.coefficients(s.seal, scene.rotor.max_speed))
+    if s.rolling is not None:
+        return replace(s, bearing=rolling.coefficients(s.rolling))
+    return s
+
+
+def stage_coefficients(scene: Scene, a: Attachment) -> Attachment:
+    """A part with its stage's cross-coupling (Wachel)."""
+    from shaftfem.parts import wachel
+
+    if a.stage is None or a.cross_coupling is not None:
+        return a
+    assert scene.rotor is not None   # scene.load checks it
+    return replace(a, cross_coupling=wachel.coefficients(a.stage, scene.rotor))
+
+
+def with_parts(scene: Scene) -> Scene:
+    """The scene with every part's coefficients that need no static solution: bearings,
+    seals and stages, and the journals given their load."""
+    supports = tuple(support_coefficients(scene, i, s) for i, s in enumerate(scene.supports))
+    attachments = tuple(stage_coefficients(scene, a) for a in scene.attachments)
+    if supports == scene.supports and attachments == scene.attachments:
+        return scene
+    return replace(scene, supports=supports, attachments=attachments)
