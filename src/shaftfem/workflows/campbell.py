@@ -659,13 +659,87 @@ def truncation(model: RotorModel, speeds: tuple[float, ...], count: int) -> Trun
 def turning(scene: Scene, options: RunOptions = RunOptions()
             ) -> tuple[ModalResult, RotorModel, str]:
     """The scene's standstill modes (the basis), the turning shaft on them, and why its
-    frame. A basis that [rotor] basis_modes does not fix is doubled while the reported
-    whirl still moves by more than TRUNCATION on it."""
-    from shaftfem.fem.rotor import rotor_model
-    from shaftfem.workflows.pipeline import run_modes, with_modes
+    frame: built once per scene in a process (`_MODELS`), so that a study's Campbell
+    diagram, Level I, run-up and receptance share it; a tolerance case (the same shaft,
+    only its bearings' coefficients changed) turns on the nominal case's basis, which
+    holds the bearings' static shapes (its residual modes) and so takes any
+    coefficients exactly to first order (tests/test_journal_bearing.py: 1e-6 for 32
+    times the stiffness). A basis that [rotor] basis_modes does not fix is doubled while
+    the reported whirl still moves by more than TRUNCATION on it."""
     from shaftfem.workflows.static import equipped
 
     scene = equipped(scene, options)
+    key, shaft_key = _model_keys(scene, options)
+    if key in _MODELS:
+        return _MODELS[key]
+    shared = _MODELS.get(shaft_key)
+    if shared is not None:
+        out = _on_basis(scene, *shared)
+        if out is not None:
+            return _kept(key, shaft_key, out)
+    return _kept(key, shaft_key, _turned(scene, options))
+
+
+# The rotor models built in this process, by the content of their scene (and by their
+# shaft's alone, for the tolerance cases): few, each a basis of tens of MB at most.
+_MODELS: dict[str, tuple[ModalResult, RotorModel, str]] = {}
+KEPT_MODELS = 4
+
+
+def _model_keys(scene: Scene, options: RunOptions) -> tuple[str, str]:
+    """A scene's key, and its shaft's: the scene with its bearings' coefficients and
+    their declarations left out (what a tolerance case changes)."""
+    import hashlib
+
+    bare = replace(scene, supports=tuple(
+        replace(s, bearing=None, journal=None, seal=None, tolerance=None)
+        if s.journal is not None or s.seal is not None else s for s in scene.supports))
+
+    def key(what: Scene, kind: str) -> str:
+        return kind + hashlib.sha256(f"{options.factoriser}|{what!r}".encode()).hexdigest()
+
+    return key(scene, "scene:"), key(bare, "shaft:")
+
+
+def _kept(key: str, shaft_key: str, out: tuple[ModalResult, RotorModel, str]
+          ) -> tuple[ModalResult, RotorModel, str]:
+    _MODELS.pop(key, None)
+    _MODELS[key] = out
+    _MODELS.setdefault(shaft_key, out)
+    while len(_MODELS) > 2 * KEPT_MODELS:
+        _MODELS.pop(next(iter(_MODELS)))
+    return out
+
+
+def _on_basis(scene: Scene, result: ModalResult, model: RotorModel, why: str
+              ) -> tuple[ModalResult, RotorModel, str] | None:
+    """The scene turning on another case's basis: its bearings' coefficients in the
+    model, the basis (and its standstill run) as they are; None where the scene is not
+    one of those cases (another frame, other bearings) or where the whirl would still
+    move on a larger basis."""
+    frame, _ = choose_frame(scene)
+    coefficients = {s.name: s.bearing for s in scene.held if s.bearing is not None}
+    names = {b.name for b in model.bearings if not b.name.endswith(" (stage)")}
+    if frame != model.frame or names != set(coefficients):
+        return None
+    bearings = tuple(b if b.name not in coefficients
+                     else replace(b, coefficients=coefficients[b.name])
+                     for b in model.bearings)
+    rotor = scene.rotor
+    assert rotor is not None
+    moved = replace(model, bearings=bearings)
+    speeds = tuple(sorted({*rotor.speeds, rotor.max_speed}))
+    if (not rotor.basis_modes and model.size - model.residual < MAX_MODE_COUNT
+            and truncation(moved, speeds, scene.modes.count).change > TRUNCATION):
+        return None
+    return result, moved, why
+
+
+def _turned(scene: Scene, options: RunOptions) -> tuple[ModalResult, RotorModel, str]:
+    """The scene's basis and rotor model, built."""
+    from shaftfem.fem.rotor import rotor_model
+    from shaftfem.workflows.pipeline import run_modes, with_modes
+
     frame, why = choose_frame(scene)
     if frame == "rotating":
         # the basis is turned with the shaft past the bearings: made on their mean stiffness
