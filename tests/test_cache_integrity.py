@@ -87,3 +87,28 @@ def test_a_damaged_entry_is_rebuilt(clean, entry, damage):
         warnings.simplefilter("error", CacheWarning)
         again = run_modes(_scene())
     assert again.mesh.from_cache and again.shape.from_cache
+
+
+def test_a_bound_comes_back_from_the_cache_as_made_and_a_damaged_one_is_made_again(clean):
+    """A warm run reads its mesh's bound back (keyed by the scene and the mesh's nodes):
+    the same numbers as a bound made afresh; a damaged entry is said and made again."""
+    from dataclasses import replace
+
+    from shaftfem.runtime import RunOptions
+    from shaftfem.store import cache_dir
+    from shaftfem.workflows.bounded import estimate_errors
+
+    result = run_modes(_scene())
+    made = estimate_errors(result)
+    (path,) = cache_dir().glob("bounds/*.npz")
+    kept = estimate_errors(result)
+    fresh = estimate_errors(result, replace(RunOptions(), use_cache=False))
+    for name in ("relative_error", "recovery", "two_mesh", "reliable"):
+        np.testing.assert_array_equal(getattr(kept, name), getattr(made, name))
+        np.testing.assert_allclose(getattr(kept, name), getattr(fresh, name), rtol=1e-9)
+    assert (kept.coarse_dofs, kept.method, kept.notes) == (fresh.coarse_dofs, fresh.method,
+                                                           fresh.notes)
+    _garble(path)
+    with pytest.warns(CacheWarning, match="damaged"):
+        again = estimate_errors(result)
+    np.testing.assert_array_equal(again.relative_error, made.relative_error)

@@ -120,8 +120,57 @@ def timed_estimate(result: ModalResult, options: RunOptions = RunOptions()) -> E
     return replace(est, seconds=time.perf_counter() - t)
 
 
+# the bounds kept in the cache: raise when what makes a bound changes
+BOUND_VERSION = 1
+BOUND_FIELDS = ("relative_error", "recovery", "two_mesh", "reliable", "coarse_dofs", "method",
+                "geometry", "notes", "straightening")
+
+
 def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
                     ratio: float = COARSER) -> ErrorEstimate:
+    """The bound of a fixed mesh's frequencies (`bound_of`), kept in the cache by the
+    content of everything that makes it (the scene's shaft, material, seats and parts,
+    the mode request, the mesh's settings and its very nodes and cells), unless the
+    options say not to: a warm run of the same scene reads it back."""
+    import numpy as np
+
+    from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.store import discard, load_arrays, save_arrays
+    from shaftfem.workflows.pipeline import _solve_path
+
+    if not options.use_cache:
+        return bound_of(result, options, ratio)
+    stem = _solve_path(result.scene, result.mesh, f"bound {BOUND_VERSION} {ratio:g}").stem
+    path = _solve_path(result.scene, result.mesh, "").parent.parent / "bounds" / f"{stem}.npz"
+    if path.exists():
+        fields, why = load_arrays(path, BOUND_FIELDS)
+        if fields is not None and fields["relative_error"].shape == (result.modes.count,):
+            options.say("error estimate: this mesh's bound, from the cache")
+            return ErrorEstimate(
+                relative_error=fields["relative_error"], recovery=fields["recovery"],
+                two_mesh=fields["two_mesh"], reliable=fields["reliable"].astype(bool),
+                coarse_dofs=int(fields["coarse_dofs"]), method=str(fields["method"]),
+                geometry=float(fields["geometry"]),
+                notes=tuple(str(n) for n in fields["notes"]),
+                straightening=(None if fields["straightening"].size == 0
+                               else fields["straightening"]))
+        discard("error bound", why or "another mode count", path)
+    est = bound_of(result, options, ratio)
+    try:
+        save_arrays(path, {
+            "relative_error": est.relative_error, "recovery": est.recovery,
+            "two_mesh": est.two_mesh, "reliable": est.reliable,
+            "coarse_dofs": np.int64(est.coarse_dofs), "method": np.str_(est.method),
+            "geometry": np.float64(est.geometry), "notes": np.array(est.notes, dtype=str),
+            "straightening": (np.zeros(0) if est.straightening is None
+                              else est.straightening)})
+    except OSError:   # a cache that cannot be written costs time, not the result
+        pass
+    return est
+
+
+def bound_of(result: ModalResult, options: RunOptions = RunOptions(),
+             ratio: float = COARSER) -> ErrorEstimate:
     """The bound of a fixed mesh's frequencies: its recovery estimate, confirmed by the
     same scene solved on a mesh `ratio` times coarser (cached like any solve, unless
     the options say not to)."""
