@@ -16,6 +16,8 @@ from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:
+    import numpy as np
+
     from shaftfem.fem.estimate import ErrorEstimate
     from shaftfem.fem.result import ModalResult
     from shaftfem.workflows.adapt import Adapted
@@ -61,8 +63,14 @@ def run_bounded(scene: Scene, estimate: bool = True,
     else:
         from shaftfem.workflows.pipeline import run_modes
 
-        result = run_modes(scene, options)
-        bounded = Bounded(result, timed_estimate(result, options) if estimate else None)
+        ahead = CoarseAhead.start(scene, options) if estimate else None
+        try:
+            result = run_modes(scene, options)
+            bounded = Bounded(result, timed_estimate(result, options, ahead)
+                              if estimate else None)
+        finally:
+            if ahead is not None:
+                ahead.close()
     _warn_if_implausible(bounded.result)
     return bounded
 
@@ -111,12 +119,13 @@ def _warn_if_implausible(result: ModalResult) -> None:
             warnings.warn(message, PlausibilityWarning, stacklevel=3)
 
 
-def timed_estimate(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
+def timed_estimate(result: ModalResult, options: RunOptions = RunOptions(),
+                   ahead: CoarseAhead | None = None) -> ErrorEstimate:
     """estimate_errors, with the wall time it took (`ErrorEstimate.seconds`)."""
     import time
 
     t = time.perf_counter()
-    est = estimate_errors(result, options)
+    est = estimate_errors(result, options, ahead=ahead)
     return replace(est, seconds=time.perf_counter() - t)
 
 
@@ -127,7 +136,7 @@ BOUND_FIELDS = ("relative_error", "recovery", "two_mesh", "reliable", "coarse_do
 
 
 def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
-                    ratio: float = COARSER) -> ErrorEstimate:
+                    ratio: float = COARSER, ahead: CoarseAhead | None = None) -> ErrorEstimate:
     """The bound of a fixed mesh's frequencies (`bound_of`), kept in the cache by the
     content of everything that makes it (the scene's shaft, material, seats and parts,
     the mode request, the mesh's settings and its very nodes and cells), unless the
@@ -139,7 +148,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     from shaftfem.workflows.pipeline import _solve_path
 
     if not options.use_cache:
-        return bound_of(result, options, ratio)
+        return bound_of(result, options, ratio, ahead)
     stem = _solve_path(result.scene, result.mesh, f"bound {BOUND_VERSION} {ratio:g}").stem
     path = _solve_path(result.scene, result.mesh, "").parent.parent / "bounds" / f"{stem}.npz"
     if path.exists():
@@ -155,7 +164,7 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
                 straightening=(None if fields["straightening"].size == 0
                                else fields["straightening"]))
         discard("error bound", why or "another mode count", path)
-    est = bound_of(result, options, ratio)
+    est = bound_of(result, options, ratio, ahead)
     try:
         save_arrays(path, {
             "relative_error": est.relative_error, "recovery": est.recovery,
@@ -170,43 +179,113 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
 
 
 def bound_of(result: ModalResult, options: RunOptions = RunOptions(),
-             ratio: float = COARSER) -> ErrorEstimate:
+             ratio: float = COARSER, ahead: CoarseAhead | None = None) -> ErrorEstimate:
     """The bound of a fixed mesh's frequencies: its recovery estimate, confirmed by the
     same scene solved on a mesh `ratio` times coarser (cached like any solve, unless
-    the options say not to)."""
+    the options say not to; solved in another process while this one solved the fine
+    mesh where `ahead` did)."""
     from shaftfem.fem.estimate import (
         RECOVERY_SHORTFALL,
         combine,
         geometry_allowances,
         matched,
         recovery_estimate,
-        straightening,
         with_straightening,
     )
-    from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
-
     if result.system.degrees is not None and result.system.order > result.mesh.geometry_order:
         return hierarchy_errors(result, options)
     scene, m = result.scene, result.modes
     size_mm = scene.mesh.size * 1e3 * ratio
     options.say(f"error estimate: recovery on this mesh, and a coarser mesh ({size_mm:.3g} mm)")
     fine = recovery_estimate(result.mesh, scene.material, m)
-    # the same modes, counted (a frequency limit could select others on a coarse mesh)
-    coarse_scene = with_modes(with_mesh(scene, size_mm), count=m.count)
-    coarse = run_modes(coarse_scene, replace(options, progress=None))
-    ceta = recovery_estimate(coarse.mesh, scene.material, coarse.modes).relative
-    cshift = straightening(coarse.mesh, scene.material, coarse.modes).shift
+    side = ahead.result(scene, m.count, ratio) if ahead is not None else None
+    if side is None:
+        side = coarse_side(scene, m.count, ratio, options)
     geometry, straightened = geometry_allowances(result.mesh, result.shape, scene.shaft,
                                                  scene.material, m, fine.volume)
     return with_straightening(
         combine(m.frequencies, fine.relative,
-                matched(m.kinds, coarse.modes.kinds, coarse.modes.frequencies),
-                matched(m.kinds, coarse.modes.kinds, ceta), coarse.modes.n_dofs,
+                matched(m.kinds, side.kinds, side.frequencies),
+                matched(m.kinds, side.kinds, side.recovery), side.n_dofs,
                 method=f"recovery, confirmed on a {ratio:g}x coarser mesh", geometry=geometry,
                 # no BREP: a plain bar, meshed as one sector copied round the axis
                 shortfall=1.0 if result.shape.brep is None else RECOVERY_SHORTFALL,
-                shifts=(straightened.shift, matched(m.kinds, coarse.modes.kinds, cshift))),
+                shifts=(straightened.shift, matched(m.kinds, side.kinds, side.shift))),
         m.frequencies, straightened.relative)
+
+
+@dataclass(frozen=True)
+class CoarseSide:
+    """What the bound takes of the coarser mesh's solve: its modes' frequencies (Hz),
+    kinds, recovery estimates and straightening shifts, and its DOF count."""
+
+    frequencies: np.ndarray
+    kinds: list[str]
+    recovery: np.ndarray
+    shift: np.ndarray
+    n_dofs: int
+
+
+def coarse_side(scene: Scene, count: int, ratio: float = COARSER,
+                options: RunOptions = RunOptions()) -> CoarseSide:
+    """The scene solved on a mesh `ratio` times coarser, as many modes as the fine run
+    (counted: a frequency limit could select others on a coarse mesh)."""
+    from shaftfem.fem.estimate import recovery_estimate, straightening
+    from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
+
+    coarse_scene = with_modes(with_mesh(scene, scene.mesh.size * 1e3 * ratio), count=count)
+    coarse = run_modes(coarse_scene, replace(options, progress=None))
+    return CoarseSide(
+        frequencies=coarse.modes.frequencies, kinds=list(coarse.modes.kinds),
+        recovery=recovery_estimate(coarse.mesh, scene.material, coarse.modes).relative,
+        shift=straightening(coarse.mesh, scene.material, coarse.modes).shift,
+        n_dofs=coarse.modes.n_dofs)
+
+
+class CoarseAhead:
+    """The bound's coarser solve started in another process before the fine one, so that
+    the two meshes and solves share the machine's cores (a cold run: on a warm one the
+    solid and the bound come from the cache and nothing is started). Its answer is taken
+    only for the very scene, mode count and ratio the bound asks; else, or if that
+    process failed, the bound solves the coarse mesh itself."""
+
+    def __init__(self, scene: Scene, count: int, ratio: float, future, pool) -> None:
+        self.asked = (scene, count, ratio)
+        self._future, self._pool = future, pool
+
+    @classmethod
+    def start(cls, scene: Scene, options: RunOptions, ratio: float = COARSER
+              ) -> CoarseAhead | None:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        from shaftfem.cad.solid import needs_cad
+        from shaftfem.workflows.stages import solid_is_kept
+
+        if (not options.use_cache or scene.mesh.order > 2 or scene.modes.max_frequency
+                is not None or not needs_cad(scene.shaft, scene.grooves)
+                or solid_is_kept(scene)):
+            return None
+        pool = ProcessPoolExecutor(max_workers=1,
+                                   mp_context=multiprocessing.get_context("spawn"))
+        quiet = replace(options, progress=None)
+        future = pool.submit(coarse_side, scene, scene.modes.count, ratio, quiet)
+        return cls(scene, scene.modes.count, ratio, future, pool)
+
+    def result(self, scene: Scene, count: int, ratio: float) -> CoarseSide | None:
+        if (scene, count, ratio) != self.asked:
+            return None
+        try:
+            return self._future.result()
+        except Exception:   # the bound solves it here, where its error is said
+            return None
+
+    def close(self) -> None:
+        """Stop the other process if it still runs (an error or Ctrl-C here)."""
+        if not self._future.done():
+            for process in list(getattr(self._pool, "_processes", {}).values()):
+                process.terminate()
+        self._pool.shutdown(wait=True, cancel_futures=True)
 
 
 def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
