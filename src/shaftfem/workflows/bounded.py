@@ -61,11 +61,15 @@ def run_bounded(scene: Scene, estimate: bool = True,
         a = run(scene, scene.target_error, scene.max_dofs, options)
         bounded = Bounded(a.result, a.estimate, a)
     else:
-        from shaftfem.workflows.pipeline import run_modes
+        from shaftfem.workflows.pipeline import Stopwatch, built, solve_mesh
 
-        ahead = CoarseAhead.start(scene, options) if estimate else None
+        watch = Stopwatch()
+        placed, shape, mesh = built(scene, options, watch)
+        # a mesh just made: the bound's coarser one is made and solved beside this solve
+        ahead = (CoarseAhead.start(placed, options)
+                 if estimate and not mesh.from_cache else None)
         try:
-            result = run_modes(scene, options)
+            result = solve_mesh(placed, shape, mesh, options, watch)
             bounded = Bounded(result, timed_estimate(result, options, ahead)
                               if estimate else None)
         finally:
@@ -242,10 +246,21 @@ def coarse_side(scene: Scene, count: int, ratio: float = COARSER,
         n_dofs=coarse.modes.n_dofs)
 
 
+def _silent() -> None:
+    """In the other process: its standard input and output are not its own (a test
+    runner's channel, a pipe the user reads); it has nothing to say there."""
+    import os
+
+    null = os.open(os.devnull, os.O_RDWR)
+    for fd in (0, 1):
+        os.dup2(null, fd)
+    os.close(null)
+
+
 class CoarseAhead:
-    """The bound's coarser solve started in another process before the fine one, so that
-    the two meshes and solves share the machine's cores (a cold run: on a warm one the
-    solid and the bound come from the cache and nothing is started). Its answer is taken
+    """The bound's coarser mesh made and solved in another process while this one solves
+    the fine mesh, so that the two share the machine's cores (started where the fine mesh
+    was just made: on a warm run the bound comes from the cache). Its answer is taken
     only for the very scene, mode count and ratio the bound asks; else, or if that
     process failed, the bound solves the coarse mesh itself."""
 
@@ -260,13 +275,11 @@ class CoarseAhead:
         from concurrent.futures import ProcessPoolExecutor
 
         from shaftfem.cad.solid import needs_cad
-        from shaftfem.workflows.stages import solid_is_kept
 
-        if (not options.use_cache or scene.mesh.order > 2 or scene.modes.max_frequency
-                is not None or not needs_cad(scene.shaft, scene.grooves)
-                or solid_is_kept(scene)):
+        if (scene.mesh.order > 2 or scene.modes.max_frequency is not None
+                or not needs_cad(scene.shaft, scene.grooves)):
             return None
-        pool = ProcessPoolExecutor(max_workers=1,
+        pool = ProcessPoolExecutor(max_workers=1, initializer=_silent,
                                    mp_context=multiprocessing.get_context("spawn"))
         quiet = replace(options, progress=None)
         future = pool.submit(coarse_side, scene, scene.modes.count, ratio, quiet)

@@ -45,12 +45,6 @@ def shape_key(shaft: Shaft, grooves: Grooves | None) -> str:
                         "grooves": asdict(grooves) if grooves else None})
 
 
-def solid_is_kept(scene: Scene) -> bool:
-    """Whether the cache holds the scene's solid (a cold run builds it)."""
-    key = shape_key(scene.shaft, scene.grooves)
-    return (cache_dir() / "shapes" / f"{key}.brep").exists()
-
-
 def solid(scene: Scene, use_cache: bool = True) -> tuple[Scene, ShaftShape]:
     """The scene placed (a STEP shaft's length and diameter as its import found them) and
     its checked solid, from the cache where it holds them; without `use_cache` the cache
