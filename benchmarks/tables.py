@@ -38,6 +38,7 @@ TABLES = {
                      ["verification.py", "--write"]),
     "profiles": ("performance: Stepped shafts, tubes and STEP files", ["profiles.py"]),
     "cold-runs": ("performance: First runs and geometry changes", ["cold_runs.py"]),
+    "study-cost": ("performance: A study's cost", ["study_cost.py"]),
     "sweeps": ("performance: Sweeps", ["sweeps.py"]),
     "bound-intervals": ("accuracy: How far each frequency is from converged",
                         ["bound_intervals.py"]),

@@ -150,6 +150,11 @@ def test_a_keyed_shaft_s_map_has_two_criticals_per_bending_pair_where_its_campbe
     scene = load_scene(keyed(1.0))
     assert not scene.axisymmetric
     m = run_ucs(scene)
+    from shaftfem.workflows.ucs import BRANCHES
+
+    # twice the branches of a round shaft: the first pairs, plane by plane, side by side
+    assert m.frequencies.shape[0] == 2 * BRANCHES
+    assert np.all(m.frequencies[1] / m.frequencies[0] - 1 < 0.02)
     top = scene.rotor.max_speed * 30 / math.pi
     met = sorted({round(n, 6) for _, _, _, n in m.bearings[0].crossings if n <= top})
     assert len(met) == 2 and met[1] / met[0] - 1 < 0.01      # the split first pair

@@ -37,7 +37,11 @@ def ucs_figure(m: UcsMap):
     ax.set_ylabel("undamped critical speed, r/min")
     ax.set_title(f"Undamped critical speed map: {m.scene.name}\n{m.title}", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    # a shaft not of revolution: each bending pair is split by its two principal planes
+    ax.legend(fontsize=7, loc="upper left", title_fontsize=7,
+              title=None if m.scene.axisymmetric else
+              "not a solid of revolution: each bending mode\nis two branches, one per "
+              "principal plane")
     for j, (lines, where) in enumerate(((m.soft_lines, k[0]), (m.stiff_lines, k[-1]))):
         sub = fig.add_subplot(grid[j, 1])
         for i, amp in enumerate(lines):

@@ -170,11 +170,13 @@ def branches_at(model: RotorModel, k: float, count: int, kind: str
 
 
 def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
-            options: RunOptions = RunOptions(), branches: int = BRANCHES,
+            options: RunOptions = RunOptions(), branches: int | None = None,
             kind: str = "forward") -> UcsMap:
     """The scene's undamped critical speed map over `stiffness` (N/m; default
     default_range): synchronous forward (`kind` "forward", the default) or backward
-    critical speeds, or the standstill natural frequencies ("standstill")."""
+    critical speeds, or the standstill natural frequencies ("standstill"); `branches`
+    of them (default BRANCHES, twice that for a shaft that is not a solid of revolution,
+    whose bending modes each split into two, one in each principal plane)."""
     if kind not in KINDS:
         raise SceneError(f"critical speed map of kind {kind!r}: one of {', '.join(KINDS)}")
     from shaftfem.fem.rotor import rotor_model
@@ -188,6 +190,8 @@ def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
     if scene.rotor is not None:
         scene = equipped(scene, options)
     ks = default_range(scene) if stiffness is None else np.asarray(stiffness, dtype=float)
+    if branches is None:
+        branches = BRANCHES if scene.axisymmetric else 2 * BRANCHES
     reference = float(math.exp(np.log(ks).mean()))
     uniform = uniform_bearings(scene, reference)
     size = max(BASIS_MIN, 3 * (2 * branches + 2))
