@@ -10,10 +10,18 @@ that wait for their load get it from the static solution (workflows.static.equip
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 
 from shaftfem.errors import SceneError
-from shaftfem.scene.model import Attachment, JournalBearing, Scene, Support
+from shaftfem.scene.model import (
+    Attachment,
+    BearingCoefficients,
+    JournalBearing,
+    Rotor,
+    Scene,
+    Support,
+)
 from shaftfem.scene.toml_reading import entry, where
 
 
@@ -42,6 +50,17 @@ def film_table(bearing: JournalBearing) -> None:
         pass
 
 
+@functools.lru_cache(maxsize=64)
+def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoefficients:
+    """A loaded journal's coefficients against speed (parts.journal.coefficients), its
+    film's table from the cache; kept for the process: every study of a scene and each
+    of its cases asks for the same journals."""
+    from shaftfem.parts import journal
+
+    film_table(bearing)
+    return journal.coefficients(bearing, rotor)
+
+
 def _journal(scene: Scene, i: int, s: Support) -> Support:
     """A journal's support with its oil's viscosity (and its tolerance range's, from the
     oil temperatures), and its film's coefficients if its load is known."""
@@ -59,9 +78,8 @@ def _journal(scene: Scene, i: int, s: Support) -> Support:
     s = replace(s, journal=b, tolerance=t)
     if s.bearing is not None or b.load <= 0:   # its load: its reaction, once solved
         return s
-    film_table(b)
     try:
-        return replace(s, bearing=journal.coefficients(b, scene.rotor))
+        return replace(s, bearing=journal_coefficients(b, scene.rotor))
     except ValueError as e:
         raise SceneError(f"{where(scene.source, entry('support', i, s), 'load_n')} = "
                          f"{b.load:g}: {e}") from None

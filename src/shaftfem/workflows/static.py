@@ -13,7 +13,7 @@ from shaftfem.errors import SceneError
 from shaftfem.fem.static import StaticSolution, static_solution
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
-from shaftfem.workflows.equip import film_table, with_parts
+from shaftfem.workflows.equip import journal_coefficients, with_parts
 
 
 @dataclass(frozen=True)
@@ -83,12 +83,15 @@ def _reactions_path(scene: Scene):
 
     from shaftfem.store import cache_dir, content_key
 
+    # a bearing's or seal's part in the static solution is its stiffness at standstill
+    # (its reference speed's): a tolerance case's seal, which has none there, or its
+    # journals, held rigidly here, leave the reactions as they are
     seats = [{"name": s.name, "position": s.position, "width": s.width,
               "kind": "rigid-radial" if s.kind == "journal" else s.kind, "radial": s.radial,
               "axial": s.axial, "tilting": s.tilting, "coupling": s.coupling,
-              "bearing": None if s.bearing is None or s.kind == "journal"
-              else asdict(s.bearing)} for s in scene.supports]
-    key = content_key({"version": 1, "shaft": asdict(scene.shaft),
+              "standstill": None if s.bearing is None or s.kind == "journal"
+              else list(s.radial_xy)} for s in scene.supports]
+    key = content_key({"version": 2, "shaft": asdict(scene.shaft),
                        "grooves": asdict(scene.grooves) if scene.grooves else None,
                        "material": asdict(scene.material), "mesh": asdict(scene.mesh),
                        "supports": seats,
@@ -103,8 +106,6 @@ def equipped(scene: Scene, options: RunOptions = RunOptions()) -> Scene:
     """The scene with every part's coefficients (`with_parts`), every journal without its
     load_n loaded by its reaction to the static loads (the load on the journal: the
     reaction's opposite) and its film's coefficients computed for it."""
-    from shaftfem.parts import journal
-
     scene = with_parts(scene)
     waiting = [s for s in scene.supports if s.journal is not None and s.bearing is None]
     if not waiting:
@@ -122,9 +123,8 @@ def equipped(scene: Scene, options: RunOptions = RunOptions()) -> Scene:
             raise SceneError(f"{scene.source}: journal bearing {s.name!r}: the static loads "
                              "leave it unloaded; give its load_n")
         bearing = replace(s.journal, load=load, direction=(fx / load, fy / load))
-        film_table(bearing)
         try:
-            coefficients = journal.coefficients(bearing, scene.rotor)
+            coefficients = journal_coefficients(bearing, scene.rotor)
         except ValueError as e:
             raise SceneError(f"{scene.source}: journal bearing {s.name!r} carries "
                              f"{load:,.0f} N of the static loads: {e}") from None
