@@ -272,3 +272,28 @@ def test_a_pump_that_passes_at_nominal_fails_on_its_loose_hot_case(tmp_path):
         return min(x["speed_rpm"] for x in c["campbell"]["critical_speeds"]
                    if x["order"] == 1 and not x["critically_damped"])
     assert first(cases["max clearance, hot oil"]) < first(cases["min clearance, cold oil"])
+
+
+def test_a_case_turns_on_the_nominal_basis_as_on_a_basis_of_its_own():
+    """Within a study a tolerance case turns on the nominal case's basis (workflows.
+    campbell.turning shares it: only the journals' coefficients differ, and the basis
+    holds their static shapes): its whirl and log decrements at the operating speed and
+    its critical speeds are those on a basis made with its own journals, within 1e-7
+    (log decrements within 1e-7; measured: 5e-9 at most)."""
+    from shaftfem.workflows import campbell as cb
+
+    ranged = load_scene(wheel())
+    tight = case_scene(ranged, next(c for c in cases_of(ranged) if c.clearance == "min"))
+    cb._MODELS.clear()
+    own = cb.run_campbell(tight)
+    cb._MODELS.clear()
+    nominal = cb.run_campbell(ranged)
+    shared = cb.run_campbell(tight)
+    assert shared.result is nominal.result and own.result is not nominal.result
+    assert len(shared.operating) == len(own.operating) >= 4
+    for a, b in zip(shared.operating, own.operating):
+        assert a.frequency_hz == pytest.approx(b.frequency_hz, rel=1e-7)
+        assert a.log_dec == pytest.approx(b.log_dec, abs=1e-7)
+    assert [c.order for c in shared.critical_speeds] == [c.order for c in own.critical_speeds]
+    for a, b in zip(shared.critical_speeds, own.critical_speeds):
+        assert a.speed_rpm == pytest.approx(b.speed_rpm, rel=1e-7)
