@@ -671,6 +671,7 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
     scene = equipped(scene, options)
     key, shaft_key = _model_keys(scene, options)
     if key in _MODELS:
+        _MODELS[key] = _MODELS.pop(key)   # the last used is the last to go
         return _MODELS[key]
     shared = _MODELS.get(shaft_key)
     if shared is not None:
@@ -683,7 +684,7 @@ def turning(scene: Scene, options: RunOptions = RunOptions()
 # The rotor models built in this process, by the content of their scene (and by their
 # shaft's alone, for the tolerance cases): few, each a basis of tens of MB at most.
 _MODELS: dict[str, tuple[ModalResult, RotorModel, str]] = {}
-KEPT_MODELS = 4
+KEPT_MODELS = 3
 
 
 def _model_keys(scene: Scene, options: RunOptions) -> tuple[str, str]:
