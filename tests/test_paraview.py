@@ -47,10 +47,14 @@ def test_one_warp_deforms_every_mode(cylinder, exported):
 
 
 class Screen:
-    """An X server of the test's own (Xvfb) for ParaView to open its window on: it picks
-    a free display itself and says which when it is ready (-displayfd), so two of them
-    started at once (a suite's workers) never race for one display, as xvfb-run -a's
-    lock files can."""
+    """An X server of the test's own (Xvfb) for ParaView to open its window on.
+
+    It picks a free display itself and says which when it is ready (-displayfd), so two
+    started at once (a suite's workers) never race for one display as xvfb-run -a's lock
+    files can; it does not reset when its last client leaves (-noreset: ParaView opens
+    a test window, closes it and opens its own, and a server resetting between the two
+    refuses the second, "bad X server connection"); and the display is opened once
+    before ParaView is started on it."""
 
     def __init__(self) -> None:
         import os
@@ -58,11 +62,33 @@ class Screen:
         read, write = os.pipe()
         self.server = subprocess.Popen(
             ["Xvfb", "-displayfd", str(write), "-screen", "0", "1920x1080x24", "-nolisten",
-             "tcp", "+extension", "GLX"], pass_fds=(write,), stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL)
+             "tcp", "+extension", "GLX", "-noreset"], pass_fds=(write,),
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         os.close(write)
         with os.fdopen(read) as f:
             self.display = f":{f.readline().strip()}"
+        self.ready = self._opens()
+
+    def _opens(self, seconds: float = 10.0) -> bool:
+        """Whether a client can open the display (XOpenDisplay), waiting up to `seconds`."""
+        import ctypes
+        import time
+
+        try:
+            x11 = ctypes.cdll.LoadLibrary("libX11.so.6")
+        except OSError:
+            return True   # no probe to be had: ParaView will say
+        x11.XOpenDisplay.restype = ctypes.c_void_p
+        x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+        x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            handle = x11.XOpenDisplay(self.display.encode())
+            if handle:
+                x11.XCloseDisplay(handle)
+                return True
+            time.sleep(0.1)
+        return False
 
     def close(self) -> None:
         self.server.terminate()
@@ -83,6 +109,7 @@ def test_the_exported_paraview_script_renders(exported, tmp_path):
     for attempt in range(3):
         screen = Screen()
         try:
+            assert screen.ready, f"Xvfb on {screen.display} takes no client"
             run = subprocess.run([PVPYTHON, "open_in_paraview.py", "--png", str(png),
                                   "--mode", "3"], cwd=exported, capture_output=True,
                                  text=True, timeout=300,
