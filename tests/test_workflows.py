@@ -135,7 +135,7 @@ def test_exit_status_says_what_failed(monkeypatch, capsys, raised, code):
     def broken(*_a, **_k):
         raise exc("injected failure\nsecond line")
 
-    monkeypatch.setattr(pipeline, "run_modes", broken)
+    monkeypatch.setattr(pipeline, "solve_mesh", broken)   # every modal run's solve
     assert main(["check", "plain_cylinder", "-q"]) == code
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "injected failure second line" in err

@@ -246,59 +246,76 @@ def coarse_side(scene: Scene, count: int, ratio: float = COARSER,
         n_dofs=coarse.modes.n_dofs)
 
 
-def _silent() -> None:
-    """In the other process: its standard input and output are not its own (a test
-    runner's channel, a pipe the user reads); it has nothing to say there."""
-    import os
-
-    null = os.open(os.devnull, os.O_RDWR)
-    for fd in (0, 1):
-        os.dup2(null, fd)
-    os.close(null)
-
-
 class CoarseAhead:
     """The bound's coarser mesh made and solved in another process while this one solves
     the fine mesh, so that the two share the machine's cores (started where the fine mesh
-    was just made: on a warm run the bound comes from the cache). Its answer is taken
-    only for the very scene, mode count and ratio the bound asks; else, or if that
-    process failed, the bound solves the coarse mesh itself."""
+    was just made: on a warm run the bound comes from the cache). That process is a new
+    Python (`python -m shaftfem.workflows.bounded IN OUT`, the scene handed over as a
+    pickle), never a copy of the caller's: a user's script is not run again in it, as
+    multiprocessing's spawn would. Its answer is taken only for the very scene, mode
+    count and ratio the bound asks; else, or if that process failed, the bound solves
+    the coarse mesh itself."""
 
-    def __init__(self, scene: Scene, count: int, ratio: float, future, pool) -> None:
+    def __init__(self, scene: Scene, count: int, ratio: float, process, folder) -> None:
         self.asked = (scene, count, ratio)
-        self._future, self._pool = future, pool
+        self._process, self._folder = process, folder
 
     @classmethod
     def start(cls, scene: Scene, options: RunOptions, ratio: float = COARSER
               ) -> CoarseAhead | None:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
+        import pickle
+        import subprocess
+        import sys
+        import tempfile
+        from pathlib import Path
 
         from shaftfem.cad.solid import needs_cad
 
         if (scene.mesh.order > 2 or scene.modes.max_frequency is not None
                 or not needs_cad(scene.shaft, scene.grooves)):
             return None
-        pool = ProcessPoolExecutor(max_workers=1, initializer=_silent,
-                                   mp_context=multiprocessing.get_context("spawn"))
+        folder = tempfile.TemporaryDirectory(prefix="shaftfem-bound-")
+        asked = Path(folder.name) / "asked.pickle"
         quiet = replace(options, progress=None)
-        future = pool.submit(coarse_side, scene, scene.modes.count, ratio, quiet)
-        return cls(scene, scene.modes.count, ratio, future, pool)
+        asked.write_bytes(pickle.dumps((scene, scene.modes.count, ratio, quiet)))
+        process = subprocess.Popen(
+            [sys.executable, "-m", "shaftfem.workflows.bounded", str(asked),
+             str(Path(folder.name) / "side.pickle")], stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        return cls(scene, scene.modes.count, ratio, process, folder)
 
     def result(self, scene: Scene, count: int, ratio: float) -> CoarseSide | None:
-        if (scene, count, ratio) != self.asked:
-            return None
+        import pickle
+        from pathlib import Path
+
+        if (scene, count, ratio) != self.asked or self._process.wait() != 0:
+            return None   # the bound solves it here, where its error is said
         try:
-            return self._future.result()
-        except Exception:   # the bound solves it here, where its error is said
+            side = pickle.loads((Path(self._folder.name) / "side.pickle").read_bytes())
+        except Exception:   # likewise
             return None
+        return side if isinstance(side, CoarseSide) else None
 
     def close(self) -> None:
         """Stop the other process if it still runs (an error or Ctrl-C here)."""
-        if not self._future.done():
-            for process in list(getattr(self._pool, "_processes", {}).values()):
-                process.terminate()
-        self._pool.shutdown(wait=True, cancel_futures=True)
+        if self._process.poll() is None:
+            self._process.terminate()
+            self._process.wait()
+        self._folder.cleanup()
+
+
+def _coarse_main(asked: str, out: str) -> None:
+    """The other process of CoarseAhead: the coarse side of the scene in `asked`, kept in
+    `out` (both pickles)."""
+    import pickle
+    from pathlib import Path
+
+    from shaftfem.runtime import configure_threads
+
+    configure_threads()
+    scene, count, ratio, options = pickle.loads(Path(asked).read_bytes())
+    side = coarse_side(scene, count, ratio, options)
+    Path(out).write_bytes(pickle.dumps(side))
 
 
 def hierarchy_errors(result: ModalResult, options: RunOptions = RunOptions()) -> ErrorEstimate:
@@ -378,3 +395,12 @@ def with_accuracy(scene: Scene, percent: float | None = None, max_dofs: int | No
         target = percent / 100
     return replace(scene, target_error=target,
                    max_dofs=scene.max_dofs if max_dofs is None else max_dofs)
+
+
+if __name__ == "__main__":
+    import sys
+
+    # the module's own copy (not this __main__'s), so that what it pickles names it
+    from shaftfem.workflows import bounded
+
+    bounded._coarse_main(sys.argv[1], sys.argv[2])
