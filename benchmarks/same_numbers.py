@@ -38,7 +38,8 @@ COMMANDS = {
 }
 # keys whose values are the run's circumstances, not its physics
 SKIP = {"seconds", "timings", "time", "times", "wall", "elapsed", "version", "path", "paths",
-        "out", "files", "cache", "created", "source", "folder", "date", "peak_mb"}
+        "out", "files", "cache", "created", "source", "folder", "date", "peak_mb",
+        "timings_s"}
 
 
 def examples() -> list[Path]:
