@@ -27,18 +27,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 from _common import machine, options  # noqa: E402
+from cold_runs import checkout  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 PUMPS = ("pump_on_journals", "keyed_pump_on_journals")
-
-
-def checkout(rev: str) -> Path:
-    """`rev`'s src and geometry in a temporary folder."""
-    tmp = Path(tempfile.mkdtemp(prefix="shaftfem-baseline-"))
-    archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev, "src", "geometry"],
-                             capture_output=True, check=True).stdout
-    subprocess.run(["tar", "-x", "-C", str(tmp)], input=archive, check=True)
-    return tmp
 
 
 def run(src: Path, args: list[str], cache: Path) -> tuple[float, str]:
