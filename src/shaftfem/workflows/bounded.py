@@ -148,13 +148,14 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     import numpy as np
 
     from shaftfem.fem.estimate import ErrorEstimate
-    from shaftfem.store import discard, load_arrays, save_arrays
+    from shaftfem.store import cache_dir, discard, load_arrays, save_arrays
     from shaftfem.workflows.pipeline import _solve_path
 
     if not options.use_cache:
         return bound_of(result, options, ratio, ahead)
+    # the key of a solve of this scene on this mesh, in a space of its own
     stem = _solve_path(result.scene, result.mesh, f"bound {BOUND_VERSION} {ratio:g}").stem
-    path = _solve_path(result.scene, result.mesh, "").parent.parent / "bounds" / f"{stem}.npz"
+    path = cache_dir() / "bounds" / f"{stem}.npz"
     if path.exists():
         fields, why = load_arrays(path, BOUND_FIELDS)
         if fields is not None and fields["relative_error"].shape == (result.modes.count,):
