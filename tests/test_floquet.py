@@ -703,3 +703,32 @@ def test_a_curve_s_own_growth_past_its_onset_is_no_zone_of_its_own():
     assert not _onset_s_own(5500.0, onset, [curve])       # below the onset: a zone
     recovering = replace(curve, decay=np.array([3.0, 1.0, -0.5, 2.0]))
     assert not _onset_s_own(9500.0, onset, [recovering])   # the curve decays there again
+
+
+def test_each_rotor_keeps_its_own_roots_and_they_go_with_it():
+    """Level I makes one rotor per applied Q, each freed before the next: every one's
+    growth meets the stationary frame's integration, and its remembered solves go
+    when it does (a memo keyed by a reused id would hand a new rotor an old one's
+    roots)."""
+    import gc
+    from dataclasses import replace
+
+    from shaftfem.fem import floquet
+
+    base = jeffcott(1e4, 1.5e4)
+    omega = math.sqrt((K1 + K2 + 5e4) / (2 * M))
+    grown = []
+    for kx in (1e4, 3e4, 6e4, 1e5):
+        support = BearingCoefficients(speeds=(), kxx=(kx,), kxy=(0.0,), kyx=(0.0,),
+                                      kyy=(1.5 * kx,), cxx=(C,), cxy=(0.0,), cyx=(0.0,),
+                                      cyy=(C,))
+        model = replace(base, bearings=(replace(base.bearings[0], coefficients=support),))
+        g = growth(model, omega)
+        assert g == pytest.approx(stationary_growth(kx, 1.5 * kx, C, omega), abs=1e-6)
+        grown.append(g)
+        key = id(model)
+        assert key in floquet._MEMOS
+        del model
+        gc.collect()
+        assert key not in floquet._MEMOS
+    assert len(set(np.round(grown, 3))) == len(grown)   # four rotors, four answers

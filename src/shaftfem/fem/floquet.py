@@ -23,6 +23,7 @@ Two routes, independent of each other:
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
@@ -77,13 +78,32 @@ CENTRE_SLACK = 1e-3
 SIDES = 3
 
 
-# the harmonics each model's converged solves took, by speed: a slower spin needs at
-# least as many as a faster one (the forms spread as 2 Omega shrinks against the
-# bearings' split), so the next solve starts from the slowest speed above it
-_TOOK: dict[int, dict[float, int]] = {}
-# the roots of the last speeds solved (a Campbell run asks the same speed again: its
-# curves, its rows, its bands)
-_ROOTS: dict[tuple, Roots] = {}
+@dataclass
+class _Memo:
+    """What one model's solves leave for its next: the harmonics each converged solve
+    took, by speed (a slower spin needs at least as many as a faster one: the forms
+    spread as 2 Omega shrinks against the bearings' split, so the next solve starts
+    from the slowest speed above it), and the roots of the last speeds solved (a
+    Campbell run asks the same speed again: its curves, its rows, its bands)."""
+
+    took: dict[float, int]
+    roots: dict[float, Roots]
+
+
+# by id(model), each entry dropped when its model is collected: an id is reused once
+# its object is gone, and a memo kept past it would hand a new model (Level I's rotor
+# at another Q) the old one's roots
+_MEMOS: dict[int, _Memo] = {}
+
+
+def _memo(model: RotorModel) -> _Memo:
+    """The model's own memo, made on first use."""
+    key = id(model)
+    memo = _MEMOS.get(key)
+    if memo is None:
+        memo = _MEMOS[key] = _Memo({}, {})
+        weakref.finalize(model, _MEMOS.pop, key, None)
+    return memo
 
 
 @dataclass(frozen=True)
@@ -275,7 +295,7 @@ def converged_hill(model: RotorModel, omega: float) -> Hill:
     not settle, H goes on up to HILL_WIDE for the forms reported there (a slow spin's
     higher forms, those of the bearings' stiffness split by far more than 2 Omega,
     would take hundreds). An UnsettledError (a SolverError) if they do not settle."""
-    took = _TOOK.setdefault(id(model), {})
+    took = _memo(model).took
     above = [w for w in took if w >= omega]
     below = [w for w in took if w < omega]
     H = (took[min(above)] if above else took[max(below)] if below else HILL_START)
@@ -415,7 +435,7 @@ def solved_from(model: RotorModel, speeds: np.ndarray, lowest: float) -> float:
         # with harmonics to spare: the speeds the tracker puts between two of the grid's
         # have been seen to need four more than either (the keyed pump: 8 at 250 r/min
         # and 6 at 500 r/min, 12 at 254 to 266 r/min), the dearest solves of the diagram
-        return _TOOK.get(id(model), {}).get(w, HILL_START) <= HILL_MAX - 3 * HILL_STEP
+        return _memo(model).took.get(w, HILL_START) <= HILL_MAX - 3 * HILL_STEP
 
     positive = [float(w) for w in speeds if w > 0]
     floor = positive[-1]
@@ -587,9 +607,9 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     as the stationary frame sees it kept (fem.rotor.still_seen)."""
     from shaftfem.fem.rotor import still_seen, whirl_index
 
-    key = (id(model), model.size, float(model.omega2.sum()), float(omega))
-    if key in _ROOTS:
-        return _ROOTS[key]
+    kept = _memo(model).roots
+    if float(omega) in kept:
+        return kept[float(omega)]
     h = converged_hill(model, omega)
     forms = h.forms
     assert forms is not None
@@ -628,9 +648,9 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     out = Roots(lam=lam[order], y=y[:, order],
                 divergence=divergence if divergence > 1e-9 * scale else 0.0,
                 sides=share[:, order], side_index=index[:, order])
-    if len(_ROOTS) >= 512:
-        _ROOTS.pop(next(iter(_ROOTS)))
-    _ROOTS[key] = out
+    if len(kept) >= 512:
+        kept.pop(next(iter(kept)))
+    kept[float(omega)] = out
     return out
 
 
