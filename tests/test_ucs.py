@@ -162,3 +162,17 @@ def test_a_keyed_shaft_s_map_has_two_criticals_per_bending_pair_where_its_campbe
     forward = [x.speed_rpm for x in c.critical_speeds if x.order == 1 and x.whirl == "forward"]
     for n in met:
         assert min(abs(f / n - 1) for f in forward) < 0.005
+
+
+def test_the_map_is_solved_on_the_rotor_s_own_mesh():
+    """The map's scene (every bearing alike, seals, unbalances and probes left out)
+    cuts and refines the shaft where the rotor's does: the mesher is given the same
+    planes and seats, so the map's basis is built on the rotor's mesh."""
+    from shaftfem.workflows.ucs import uniform_bearings
+
+    scene = load_scene(Path(__file__).parents[1] / "examples" / "pump_on_journals.toml")
+    assert any(s.kind == "seal" for s in scene.supports) and scene.unbalances
+    alike = uniform_bearings(scene, 1e7)
+    assert not any(s.kind == "seal" for s in alike.supports) and not alike.unbalances
+    assert alike.seat_cuts() == scene.seat_cuts()
+    assert alike.hubs() == scene.hubs()

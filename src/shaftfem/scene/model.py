@@ -572,6 +572,9 @@ class Scene:
     free_free_intended: bool = False  # [resonance] free_free: the check is meant free-free
     # the supports left off (free-free), their seats kept in the mesh
     hanging_free: bool = False
+    # planes the mesh follows besides the scene's own: a study's copy with other supports
+    # (the critical speed map's) keeps its scene's mesh
+    mesh_cuts: tuple[float, ...] = ()
     rotor: Rotor | None = None  # [rotor]: the shaft turns (None: it stands still)
     unbalances: tuple[Unbalance, ...] = ()  # [[unbalance]]: what drives it at 1x
     # the static loads: gravity's acceleration vector (m/s^2) and the [[force]] tables
@@ -657,6 +660,7 @@ class Scene:
         zs |= {u.position for u in self.unbalances}
         zs |= {f.position for f in self.forces}
         zs |= set(self.rotor.probes if self.rotor is not None else ())
+        zs |= set(self.mesh_cuts)
         return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))
 
     def hubs(self) -> tuple[tuple[float, float], ...]:

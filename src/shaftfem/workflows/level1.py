@@ -137,8 +137,11 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
     # them); their seats stay in the mesh and the basis, as the Campbell run has them
     seals = {s.name for s in scene.supports if s.kind == "seal"}
     stages = {f"{a.name} (stage)" for a in scene.attachments if a.cross_coupling is not None}
-    model = replace(model, bearings=tuple(b for b in model.bearings
-                                          if b.name not in seals | stages))
+    # (their coefficients zero rather than the part dropped: what the standstill basis
+    # holds of them is taken off too)
+    model = replace(model, bearings=tuple(
+        replace(b, coefficients=cross(0.0)) if b.name in seals | stages else b
+        for b in model.bearings))
     omega = scene.rotor.top_speed
     beta = section_motion(result, z, model.shapes)
     plane: BearingModal = BearingModal("applied Q", beta, cross(0.0), (0.0, 0.0))

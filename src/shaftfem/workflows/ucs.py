@@ -20,8 +20,11 @@ still: a root at zero frequency there, one per principal plane. The standstill m
 One standstill solve with the bearings at the range's geometric mean, the bearings'
 residual modes beside the modes (fem.rotor): a bearing's stiffness k then enters
 exactly as diag(w^2) + sum_b beta_b^T (k - k_ref) beta_b on the basis, every stiffness
-one small eigenproblem, and the map is checked on two thirds of the basis.
-Seals are left out (they hold nothing at standstill), as in ross.
+one small eigenproblem, and the map is checked on two thirds of the basis. It is the
+one study with a basis of its own: its bearings range over four decades about their
+mean, the rotor's basis holds the rotor's own bearings; it is solved on the rotor's
+mesh (uniform_bearings keeps its cuts). Seals are left out (they hold nothing at
+standstill), as in ross.
 """
 
 from __future__ import annotations
@@ -74,7 +77,8 @@ def default_range(scene: Scene) -> np.ndarray:
 
 def uniform_bearings(scene: Scene, k: float) -> Scene:
     """The scene with every support but its seals an isotropic undamped bearing of radial
-    stiffness k (N/m) on its seat's mean motion, free to tilt; its axial hold kept."""
+    stiffness k (N/m) on its seat's mean motion, free to tilt; its axial hold kept; on
+    the scene's mesh."""
     if not scene.held:
         raise SceneError(f"{scene.source}: no [[support]]: the critical speed map varies the "
                          "bearings' stiffness; give the bearings' seats")
@@ -85,7 +89,9 @@ def uniform_bearings(scene: Scene, k: float) -> Scene:
                 radial=0.0, tilting=0.0,
                 axial=s.axial if s.kind not in ("rigid", "clamped") else 1e3 * k)
         for s in scene.supports if s.kind != "seal")
-    return replace(scene, supports=supports, rotor=None, unbalances=())
+    # on the scene's own mesh: its seals' seats, unbalances and probes cut it still
+    return replace(scene, supports=supports, rotor=None, unbalances=(),
+                   mesh_cuts=scene.seat_cuts())
 
 
 def crossing_scene(scene: Scene, curve: BearingCurve, direction: str = "x") -> Scene:
