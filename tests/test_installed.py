@@ -479,3 +479,22 @@ def test_the_models_choices_flipped_move_the_frequencies_the_way_physics_says(ca
         assert np.all(moves >= -1e-7), (choice, moves)    # stiffer: none falls
     sprocket = flips["sprocket: joint rigid (scene: distributing)"]
     assert sprocket[bending].max() > 0.1                   # a 40 mm rigid hub: > 0.1 %
+
+
+def test_a_warm_solve_of_an_installed_shaft_refines_its_kept_solve(on_soft_springs,
+                                                                    monkeypatch):
+    """The installed shaft's last solve on its mesh is kept in its reduced coordinates:
+    solved again, it is refined from there (Lanczos never runs) to the cold run's
+    frequencies (1e-9) with small residuals; the shaft hanging free from the same scene
+    is another solve (its own count of rigid motions), not this one's start."""
+    from shaftfem.fem import eigen
+    from shaftfem.workflows.pipeline import run_modes
+
+    cold = on_soft_springs
+    monkeypatch.setattr(eigen, "eigsh", lambda *a, **k: pytest.fail("Lanczos ran"))
+    warm = run_modes(cold.scene)
+    assert np.max(np.abs(warm.modes.frequencies / cold.modes.frequencies - 1)) < 1e-8
+    assert warm.modes.residuals.max() < 1e-8
+    monkeypatch.undo()
+    free = run_modes(cold.scene.free())
+    assert free.modes.frequencies[0] > cold.modes.frequencies[0]

@@ -110,6 +110,10 @@ class EigenSolution:
     factoriser: str
     inertia_count: int
     inertia_shift: float  # rad^2/s^2
+    # the further pairs' vectors proven below inertia_shift (n_dofs, inertia_count -
+    # given rigid - wanted): with the pairs', a start from which the next solve of the
+    # pencil refines every pair below that shift (refine_below)
+    beyond: np.ndarray | None = None
 
     @property
     def eigenvalues(self) -> np.ndarray:
@@ -196,13 +200,10 @@ def search(p: Problem, factor: ShiftedFactor, max_frequency: float | None,
         good, found, s_top = verified_gap(pairs, p.r + k, p.zero, p.r)
         if ceiling is not None and _under_ceiling(pairs, good, ceiling, p.r + k):
             s, n = ceiling
-            return EigenSolution(pairs=good.first(p.r + k), scale=p.scale,
-                                 factoriser=factor.backend, inertia_count=n, inertia_shift=s)
+            return _proven(p, good, p.r + k, factor, n, s)
         counted = count_below(factor, s_top) if found else 0
         if counted == found >= p.r + k:
-            return EigenSolution(pairs=good.first(p.r + k), scale=p.scale,
-                                 factoriser=factor.backend, inertia_count=counted,
-                                 inertia_shift=s_top)
+            return _proven(p, good, p.r + k, factor, counted, s_top)
         # a skipped mode is most often the partner of a repeated frequency (a bending
         # pair, exactly repeated on a symmetric mesh): a wider search asks for more pairs
         # as well as a larger space
@@ -257,9 +258,7 @@ def slice_below(p: Problem, factor: ShiftedFactor, s: float, ncv: int | None
             return None
         if (pairs.verified(p.zero, ACCEPT_RESIDUAL, p.r).all()
                 and int(np.sum(pairs.lam < s)) == counted):
-            return EigenSolution(pairs=pairs.first(p.r + p.k), scale=p.scale,
-                                 factoriser=factor.backend, inertia_count=counted,
-                                 inertia_shift=s)
+            return _proven(p, pairs, p.r + p.k, factor, counted, s)
         ncv = min(p.K.shape[0] - p.r - 1, 2 * ncv_used)
     return None
 
@@ -289,8 +288,16 @@ def refine_below(p: Problem, factor: ShiftedFactor, s: float, start: np.ndarray
     if not (pairs.verified(p.zero, ACCEPT_RESIDUAL, p.r).all()
             and int(np.sum(pairs.lam < s)) == counted):
         return None
-    return EigenSolution(pairs=pairs.first(p.r + p.k), scale=p.scale,
-                         factoriser=factor.backend, inertia_count=counted, inertia_shift=s)
+    return _proven(p, pairs, p.r + p.k, factor, counted, s)
+
+
+def _proven(p: Problem, pairs: Ritz, n: int, factor: ShiftedFactor, counted: int, s: float
+            ) -> EigenSolution:
+    """The first n of the pairs, proven by `counted` eigenvalues below s, with the
+    vectors of the rest of those below s (EigenSolution.beyond)."""
+    rest = pairs.X[:, n:counted] if counted > n and pairs.X.shape[1] >= counted else None
+    return EigenSolution(pairs=pairs.first(n), scale=p.scale, factoriser=factor.backend,
+                         inertia_count=counted, inertia_shift=s, beyond=rest)
 
 
 def one_norm(A: sp.csr_matrix) -> float:

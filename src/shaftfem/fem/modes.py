@@ -9,7 +9,7 @@ motions its seats leave free; the shapes come back as displacements of every nod
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -64,6 +64,9 @@ class Modes:
     # the coupled machines' turns in each mode (m, n), rad / sqrt(kg m^2): the shaft's
     # shapes do not hold them (fem.installation, coupled_inertia_kg_m2)
     trains: np.ndarray | None = None
+    # the further pairs the solver proved below inertia_shift, in its own coordinates
+    # (the installed shaft's reduced ones): kept with the shapes as the next solve's start
+    beyond: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def inertia_shift_hz(self) -> float:
@@ -116,7 +119,8 @@ def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
                  shift=-SHIFT_FACTOR * sol.scale, n_dofs=K.shape[0], factoriser=sol.factoriser,
                  inertia_count=sol.inertia_count, inertia_shift=sol.inertia_shift,
                  trains=elastic.X[elastic.X.shape[0] - installed.trains:]
-                 if installed is not None and installed.trains else None)
+                 if installed is not None and installed.trains else None,
+                 beyond=sol.beyond)
 
 
 # Eigenvalues closer than this (relative) are one within the solver's tolerance: the

@@ -191,17 +191,32 @@ def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOpti
     kept in turn (unless the options say not to). `ceiling`: see fem.eigen.search."""
     from shaftfem.fem.modes import modal_analysis
 
-    path = (_solve_path(scene, mesh, space) if options.use_cache and installed is None
+    path = (_solve_path(scene, mesh, space) if options.use_cache
             and scene.modes.max_frequency is None else None)
-    last = last_solve(path, system.n_dofs, scene.modes.count) if path else None
+    # an installed shaft is solved, and its solve kept, in its reduced coordinates
+    n = system.n_dofs if installed is None else installed.K.shape[0]
+    last = last_solve(path, n, scene.modes.count) if path else None
     hint = last[0] if last else (shift_hint(scene) if options.use_cache else None)
     modes = modal_analysis(system, scene.modes, settings, installed=installed,
                            shift_hint=hint, start=last[1] if last else None, ceiling=ceiling)
     if options.use_cache and modes.inertia_shift != hint:
         keep_shift(scene, modes.inertia_shift)
     if path and options.keep_solves and (last is None or modes.inertia_shift != hint):
-        keep_solve(path, modes.inertia_shift, modes.shapes)
+        keep_solve(path, modes.inertia_shift, solver_start(modes, installed))
     return modes
+
+
+def solver_start(modes: Modes, installed: Installed | None = None) -> np.ndarray:
+    """Every pair the solve proved below its inertia shift, in the coordinates its pencil
+    is solved in (an installed shaft's reduced ones: the shaft's part from its
+    displacements, then the coupled machines' turns): the next solve's start."""
+    import numpy as np
+
+    q = modes.shapes
+    if installed is not None:
+        q = installed.shaft_coordinates(q)
+        q = q if modes.trains is None else np.vstack([q, modes.trains])
+    return q if modes.beyond is None else np.hstack([q, modes.beyond])
 
 
 def _shift_path(scene: Scene):
@@ -212,12 +227,12 @@ def _shift_path(scene: Scene):
 
     from shaftfem.store import cache_dir, content_key
 
-    key = content_key({"version": 1, "shaft": asdict(scene.shaft),
+    key = content_key({"version": 2, "shaft": asdict(scene.shaft),
                        "grooves": asdict(scene.grooves) if scene.grooves else None,
                        "material": asdict(scene.material), "order": scene.mesh.order,
                        "supports": [asdict(s) for s in scene.supports],
                        "attachments": [asdict(a) for a in scene.attachments],
-                       "modes": asdict(scene.modes)})
+                       "hanging_free": scene.hanging_free, "modes": asdict(scene.modes)})
     return cache_dir() / "shifts" / f"{key}.npz"
 
 
@@ -256,23 +271,23 @@ def _solve_path(scene: Scene, mesh: ShaftMesh, space: str) -> Path:
     from shaftfem.store import cache_dir, content_key
 
     digest = hashlib.sha256(mesh.points.tobytes() + mesh.cells.tobytes()).hexdigest()
-    key = content_key({"version": 1, "scene": _shift_path(scene).stem,
+    key = content_key({"version": 2, "scene": _shift_path(scene).stem,
                        "mesh": asdict(scene.mesh), "nodes": digest, "space": space})
     return cache_dir() / "solves" / f"{key}.npz"
 
 
 def last_solve(path: Path, n_dofs: int, count: int) -> tuple[float, np.ndarray] | None:
     """(shift, shapes) of the last solve kept at `path` (_solve_path), if any: the shift
-    (rad^2/s^2) where it proved its modes complete and its mode shapes (n_dofs, count),
-    from which the next solve refines the modes instead of searching for them
-    (fem.eigen.refine_below proves them anew)."""
+    (rad^2/s^2) where it proved its modes complete and every pair below it (n_dofs, at
+    least count), from which the next solve refines the modes instead of searching for
+    them (fem.eigen.refine_below proves them anew)."""
     from shaftfem.store import discard, load_arrays
 
     if not path.exists():
         return None
     fields, why = load_arrays(path, ("shift", "shapes"))
     if (fields is None or not float(fields["shift"]) > 0
-            or fields["shapes"].shape != (n_dofs, count)):
+            or fields["shapes"].shape[0] != n_dofs or fields["shapes"].shape[1] < count):
         discard("last solve", why or "another system's shift or shapes", path)
         return None
     return float(fields["shift"]), fields["shapes"]
