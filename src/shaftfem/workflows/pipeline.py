@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 from shaftfem.errors import SceneError
 from shaftfem.fem.result import ModalResult, Timings
 from shaftfem.runtime import RunOptions
-from shaftfem.scene.model import Scene
+from shaftfem.scene.model import Scene, Support
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
     from pathlib import Path
@@ -221,19 +221,27 @@ def solver_start(modes: Modes, installed: Installed | None = None) -> np.ndarray
 
 def _shift_path(scene: Scene):
     """Where the proven shift of the scene's pencil is kept: keyed by everything that
-    makes K and M except the mesh, so that a finer or adapted mesh of the same shaft
-    starts from it too."""
+    makes K and M except the mesh (of the supports, what _seated keeps), so that a finer
+    or adapted mesh of the same shaft starts from it too."""
     from dataclasses import asdict
 
     from shaftfem.store import cache_dir, content_key
 
-    key = content_key({"version": 2, "shaft": asdict(scene.shaft),
+    key = content_key({"version": 3, "shaft": asdict(scene.shaft),
                        "grooves": asdict(scene.grooves) if scene.grooves else None,
                        "material": asdict(scene.material), "order": scene.mesh.order,
-                       "supports": [asdict(s) for s in scene.supports],
+                       "supports": [_seated(s) for s in scene.supports],
                        "attachments": [asdict(a) for a in scene.attachments],
                        "hanging_free": scene.hanging_free, "modes": asdict(scene.modes)})
     return cache_dir() / "shifts" / f"{key}.npz"
+
+
+def _seated(s: Support) -> dict:
+    """What of a support makes K and M: its seat, kind, coupling, holds and stiffness at
+    standstill; not its coefficients at speed, its damping or the part they come from
+    (a tolerance case, a table and its constant, solve on one pencil)."""
+    return {"position": s.position, "width": s.width, "kind": s.kind, "coupling": s.coupling,
+            "radial_xy": list(s.radial_xy), "axial": s.axial, "tilting": s.tilting}
 
 
 def shift_hint(scene: Scene) -> float | None:
