@@ -154,7 +154,8 @@ def estimate_errors(result: ModalResult, options: RunOptions = RunOptions(),
     if not options.use_cache:
         return bound_of(result, options, ratio, ahead)
     # the key of a solve of this scene on this mesh, in a space of its own
-    stem = _solve_path(result.scene, result.mesh, f"bound {BOUND_VERSION} {ratio:g}").stem
+    stem = _solve_path(result.scene, result.mesh,
+                       f"bound {BOUND_VERSION} {ratio:g} {result.modes.count}").stem
     path = cache_dir() / "bounds" / f"{stem}.npz"
     if path.exists():
         fields, why = load_arrays(path, BOUND_FIELDS)

@@ -79,6 +79,13 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     if scene.sizing is not None:
         say("sizing (equations 1-9)")
         sizing = size_from_scene(scene)
+    if scene.rotor is not None:
+        from shaftfem.workflows.campbell import turning
+
+        # the whirl's basis first (kept in the process for the study): the design's
+        # modes, fewer, of the same pencil are then refined from its solve
+        say("the shaft turning: its standstill basis")
+        turning(scene, options)
     bounded = run_bounded(scene, estimate, options, choose)
     result, est = bounded.result, bounded.estimate
     verdict = check_result(result, margin)

@@ -219,20 +219,28 @@ def solver_start(modes: Modes, installed: Installed | None = None) -> np.ndarray
     return q if modes.beyond is None else np.hstack([q, modes.beyond])
 
 
+def _pencil(scene: Scene) -> dict:
+    """Everything that makes the scene's K and M but the mesh (of the supports, what
+    _seated keeps)."""
+    from dataclasses import asdict
+
+    return {"shaft": asdict(scene.shaft),
+            "grooves": asdict(scene.grooves) if scene.grooves else None,
+            "material": asdict(scene.material), "order": scene.mesh.order,
+            "supports": [_seated(s) for s in scene.supports],
+            "attachments": [asdict(a) for a in scene.attachments],
+            "hanging_free": scene.hanging_free}
+
+
 def _shift_path(scene: Scene):
-    """Where the proven shift of the scene's pencil is kept: keyed by everything that
-    makes K and M except the mesh (of the supports, what _seated keeps), so that a finer
+    """Where the proven shift of the scene's pencil is kept, for as many modes as it
+    asks: keyed by its pencil (_pencil) and mode request, not its mesh, so that a finer
     or adapted mesh of the same shaft starts from it too."""
     from dataclasses import asdict
 
     from shaftfem.store import cache_dir, content_key
 
-    key = content_key({"version": 3, "shaft": asdict(scene.shaft),
-                       "grooves": asdict(scene.grooves) if scene.grooves else None,
-                       "material": asdict(scene.material), "order": scene.mesh.order,
-                       "supports": [_seated(s) for s in scene.supports],
-                       "attachments": [asdict(a) for a in scene.attachments],
-                       "hanging_free": scene.hanging_free, "modes": asdict(scene.modes)})
+    key = content_key({"version": 3, **_pencil(scene), "modes": asdict(scene.modes)})
     return cache_dir() / "shifts" / f"{key}.npz"
 
 
@@ -270,17 +278,18 @@ def keep_shift(scene: Scene, shift: float) -> None:
 
 
 def _solve_path(scene: Scene, mesh: ShaftMesh, space: str) -> Path:
-    """Where the last solve of this scene on this very mesh is kept (the shift key's
-    fields, the mesh settings, the mesh's own nodes and cells, and the basis); a solve
-    up to a frequency limit keeps none (its count varies)."""
+    """Where the last solve of this scene's pencil on this very mesh is kept (its pencil,
+    the mesh settings, the mesh's own nodes and cells, and the basis), whatever its
+    count: a solve of fewer modes refines those of more kept before (the whirl's basis,
+    then the design's modes); a solve up to a frequency limit keeps none."""
     import hashlib
     from dataclasses import asdict
 
     from shaftfem.store import cache_dir, content_key
 
     digest = hashlib.sha256(mesh.points.tobytes() + mesh.cells.tobytes()).hexdigest()
-    key = content_key({"version": 2, "scene": _shift_path(scene).stem,
-                       "mesh": asdict(scene.mesh), "nodes": digest, "space": space})
+    key = content_key({"version": 3, "pencil": _pencil(scene), "mesh": asdict(scene.mesh),
+                       "nodes": digest, "space": space})
     return cache_dir() / "solves" / f"{key}.npz"
 
 
@@ -294,9 +303,10 @@ def last_solve(path: Path, n_dofs: int, count: int) -> tuple[float, np.ndarray] 
     if not path.exists():
         return None
     fields, why = load_arrays(path, ("shift", "shapes"))
-    if (fields is None or not float(fields["shift"]) > 0
-            or fields["shapes"].shape[0] != n_dofs or fields["shapes"].shape[1] < count):
+    if fields is None or not float(fields["shift"]) > 0 or fields["shapes"].shape[0] != n_dofs:
         discard("last solve", why or "another system's shift or shapes", path)
+        return None
+    if fields["shapes"].shape[1] < count:   # a solve of fewer modes: this one replaces it
         return None
     return float(fields["shift"]), fields["shapes"]
 
