@@ -103,77 +103,82 @@ def integrate(model: RotorModel, start: float, accel: float, times: np.ndarray,
     spin's change adds the Euler force (accel / 2) G q (G = 2 int rho Phi^T S Phi, the
     Coriolis matrix per rad/s), an unbalance's force stands still, and each probe's
     motion is turned back by phi."""
+    from scipy.linalg.lapack import dgesv
+
     rotating = model.frame == "rotating"
     ends = (start, start + accel * float(times[-1]))
     speeds = np.linspace(min(ends), max(ends), TABLE)
+    N = model.size
     table = [model.matrices(float(w)) for w in speeds]
-    parts = ([model.periodic_parts(float(w)) if model.periodic(float(w))
-              else (np.zeros((model.size, model.size)),) * 4 for w in speeds]
-             if rotating else None)
     D_tab = np.array([d for d, _ in table])
-    K_tab = np.array([k for _, k in table])
-    P_tab = np.array(parts) if parts is not None else None      # (TABLE, 4, N, N)
+    K_tab = np.array([k for _, k in table]) + (0.5 * accel * model.G if rotating else 0.0)
+    # the spin's change adds the Euler force (accel / 2) G q in the turning frame
+    P_tab = (np.array([model.periodic_parts(float(w)) if model.periodic(float(w))
+                       else (np.zeros((N, N)),) * 4 for w in speeds])
+             if rotating and any(model.periodic(float(w)) for w in speeds) else None)
     M_tab = np.array([model.mass(float(w)) for w in speeds]) if any(
         b.coefficients.has_mass for b in model.bearings) else None
-    eye = np.eye(model.size)
-    euler = 0.5 * accel * model.G if rotating else 0.0 * eye
 
-    def at(t: float):
-        w = start + accel * t
-        span = speeds[-1] - speeds[0]
-        s = (w - speeds[0]) / span * (TABLE - 1) if span > 0 else 0.0
-        i = int(min(max(math.floor(s), 0), TABLE - 2))
-        f = s - i
-
-        def mix(A: np.ndarray) -> np.ndarray:
-            return (1 - f) * A[i] + f * A[i + 1]
-        M, D, K = (eye if M_tab is None else mix(M_tab)), mix(D_tab), mix(K_tab) + euler
-        if P_tab is not None:
-            phi = start * t + 0.5 * accel * t * t
-            c, sn = math.cos(2 * phi), math.sin(2 * phi)
-            Dc, Ds, Kc, Ks = mix(P_tab)
-            D, K = D + c * Dc + sn * Ds, K + c * Kc + sn * Ks
-        return M, D, K
-
-    B = np.array([beta for beta, _ in forces]) if forces else np.zeros((0, 2, model.size))
+    # each step's place in the table (linear in the speed between its rows), angle, load
+    span = speeds[-1] - speeds[0]
+    w_t = start + accel * times
+    pos = (w_t - speeds[0]) / span * (TABLE - 1) if span > 0 else np.zeros(times.size)
+    row = np.clip(np.floor(pos), 0, TABLE - 2).astype(int)
+    frac = pos - row
+    phi_t = start * times + 0.5 * accel * times * times
+    B = np.array([beta for beta, _ in forces]) if forces else np.zeros((0, 2, N))
     U = np.array([u for _, u in forces], dtype=complex)          # m e e^{i theta}
     P = np.array(probes)                                    # (p, 2, N)
 
-    def load(t: float) -> np.ndarray:
-        w = start + accel * t
-        phi = 0.0 if rotating else start * t + 0.5 * accel * t * t
-        c = U * np.exp(1j * phi)
+    def loads(k0: int, k1: int) -> np.ndarray:
+        """The unbalances' modal forces at steps k0..k1-1 (k1 - k0, N)."""
+        w = w_t[k0:k1, None]
+        c = U[None, :] * (1.0 if rotating else np.exp(1j * phi_t[k0:k1, None]))
         fx = w * w * c.real + accel * c.imag
         fy = w * w * c.imag - accel * c.real
-        return np.einsum("u,un->n", fx, B[:, 0]) + np.einsum("u,un->n", fy, B[:, 1])
+        return fx @ B[:, 0] + fy @ B[:, 1]
 
-    def seen(k: int, q: np.ndarray) -> np.ndarray:   # the probes' (x, y), housing's frame
-        xy = P @ q                                           # (p, 2)
-        if not rotating:
-            return xy
-        t = float(times[k])
-        phi = start * t + 0.5 * accel * t * t
-        c, sn = math.cos(phi), math.sin(phi)
-        return np.stack([c * xy[:, 0] - sn * xy[:, 1], sn * xy[:, 0] + c * xy[:, 1]], axis=1)
+    def at(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        i, f = int(row[k]), float(frac[k])
+        D = (1 - f) * D_tab[i] + f * D_tab[i + 1]
+        K = (1 - f) * K_tab[i] + f * K_tab[i + 1]
+        M = eye if M_tab is None else (1 - f) * M_tab[i] + f * M_tab[i + 1]
+        if P_tab is not None:
+            Dc, Ds, Kc, Ks = (1 - f) * P_tab[i] + f * P_tab[i + 1]
+            c, sn = math.cos(2 * phi_t[k]), math.sin(2 * phi_t[k])
+            D, K = D + c * Dc + sn * Ds, K + c * Kc + sn * Ks
+        return M, D, K
 
-    q = np.zeros(model.size) if q0 is None else np.array(q0, dtype=float)
-    v = np.zeros(model.size)
-    M, D, K = at(0.0)
-    a = np.linalg.solve(M, load(0.0) - D @ v - K @ q)
+    # each probe's (x, y) in the turning frame, turned back by phi to the housing's
     out = np.empty((P.shape[0], 2, times.size))
-    out[:, :, 0] = seen(0, q)
+    eye = np.eye(N)
+    q = np.zeros(N) if q0 is None else np.array(q0, dtype=float)
+    v = np.zeros(N)
+    M, D, K = at(0)
+    a = np.linalg.solve(M, loads(0, 1)[0] - D @ v - K @ q)
+    out[:, :, 0] = P @ q
     beta_n, gamma = 0.25, 0.5
+    CHUNK = 4096   # the loads made a block of steps at a time
+    F = loads(1, min(1 + CHUNK, times.size))
     for k in range(1, times.size):
-        t = float(times[k])
-        dt = t - float(times[k - 1])
-        M, D, K = at(t)
+        if (k - 1) % CHUNK == 0 and k > 1:
+            F = loads(k, min(k + CHUNK, times.size))
+        dt = float(times[k] - times[k - 1])
+        M, D, K = at(k)
         pred_q = q + dt * v + (0.5 - beta_n) * dt * dt * a
         pred_v = v + (1 - gamma) * dt * a
-        a = np.linalg.solve(M + gamma * dt * D + beta_n * dt * dt * K,
-                            load(t) - D @ pred_v - K @ pred_q)
+        S = M + (gamma * dt) * D + (beta_n * dt * dt) * K
+        rhs = F[(k - 1) % CHUNK] - D @ pred_v - K @ pred_q
+        _, _, a, info = dgesv(S, rhs)
+        if info != 0:
+            raise np.linalg.LinAlgError(f"Newmark's step {k}: a singular system")
         q = pred_q + beta_n * dt * dt * a
         v = pred_v + gamma * dt * a
-        out[:, :, k] = seen(k, q)
+        out[:, :, k] = P @ q
+    if rotating:
+        c, sn = np.cos(phi_t), np.sin(phi_t)
+        x, y = out[:, 0].copy(), out[:, 1].copy()
+        out[:, 0], out[:, 1] = c * x - sn * y, sn * x + c * y
     return [out[i] for i in range(P.shape[0])]
 
 
