@@ -3,9 +3,9 @@ in the same run: each command a fresh process, medians of N.
 
     .venv/bin/python benchmarks/study_cost.py [--baseline REV] [--repeat N]
 
-REV (default 789c61b, before the rotor model was shared) is checked out into a
-temporary folder and run by this Python with PYTHONPATH pointing at it, alternating
-with this tree. Prints Markdown tables:
+REV (default 789c61b, before the rotor model was shared; `none`: this tree alone) is
+checked out into a temporary folder and run by this Python with PYTHONPATH pointing at
+it, alternating with this tree. Prints Markdown tables:
 
 * `shaftfem design` and `shaftfem campbell` of examples/pump_on_journals.toml and
   examples/keyed_pump_on_journals.toml (whose [rotor] runs the run-up at 1,500 r/min
@@ -61,7 +61,9 @@ def cold(src: Path, args: list[str]) -> tuple[float, str]:
 def main() -> None:
     opts, _ = options(sys.argv[1:], {"--baseline": "789c61b", "--repeat": "3"})
     rev, repeat = opts["--baseline"], int(opts["--repeat"])
-    trees = {f"{rev} (before)": checkout(rev) / "src", "this tree": ROOT / "src"}
+    trees = {"this tree": ROOT / "src"}
+    if rev != "none":   # --baseline none: this tree alone
+        trees = {f"{rev} (before)": checkout(rev) / "src", **trees}
     print(f"machine: {machine()}; medians of {repeat}, each run a fresh process\n")
     print("| scene | revision | campbell, cold (s) | design, cold (s) | design / campbell |")
     print("|---|---|---|---|---|")

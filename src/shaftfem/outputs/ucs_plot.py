@@ -38,7 +38,8 @@ def ucs_figure(m: UcsMap):
     ax.set_title(f"Undamped critical speed map: {m.scene.name}\n{m.title}", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     # a shaft not of revolution: each bending pair is split by its two principal planes
-    ax.legend(fontsize=7, loc="upper left", title_fontsize=7,
+    # lower right: under the first branch's stiff-end plateau, where no branch runs
+    ax.legend(fontsize=7, loc="lower right", title_fontsize=7, framealpha=0.9,
               title=None if m.scene.axisymmetric else
               "not a solid of revolution: each bending mode\nis two branches, one per "
               "principal plane")
