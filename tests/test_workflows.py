@@ -95,8 +95,11 @@ def test_installed_package_finds_its_scenes_from_any_folder(tmp_path):
     py = env_dir / "bin" / "python"
     wheels, source = tmp_path / "wheels", tmp_path / "source"
     # built from a copy: an in-tree build would leave build/ in the checkout
+    # (every .venv* and tool cache: a developer's checkout holds ross's benchmark venv,
+    # 1.4 GB, beside .venv)
     shutil.copytree(REPO, source, ignore=shutil.ignore_patterns(
-        ".venv", ".git", "build", "out", "*.egg-info", "__pycache__"))
+        ".venv*", ".*_cache", ".hypothesis", ".git", "build", "out", "*.egg-info",
+        "__pycache__"))
     quiet = dict(capture_output=True, text=True, check=True)
     subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(wheels),
                     str(source)], **quiet)
