@@ -111,11 +111,11 @@ def integrate(model: RotorModel, start: float, accel: float, times: np.ndarray,
     N = model.size
     table = [model.matrices(float(w)) for w in speeds]
     D_tab = np.array([d for d, _ in table])
-    K_tab = np.array([k for _, k in table]) + (0.5 * accel * model.G if rotating else 0.0)
     # the spin's change adds the Euler force (accel / 2) G q in the turning frame
-    P_tab = (np.array([model.periodic_parts(float(w)) if model.periodic(float(w))
-                       else (np.zeros((N, N)),) * 4 for w in speeds])
-             if rotating and any(model.periodic(float(w)) for w in speeds) else None)
+    K_tab = np.array([k for _, k in table]) + (0.5 * accel * model.G if rotating else 0.0)
+    periodic = [rotating and model.periodic(float(w)) for w in speeds]
+    P_tab = (np.array([model.periodic_parts(float(w)) if p else (np.zeros((N, N)),) * 4
+                       for w, p in zip(speeds, periodic)]) if any(periodic) else None)
     M_tab = np.array([model.mass(float(w)) for w in speeds]) if any(
         b.coefficients.has_mass for b in model.bearings) else None
 
@@ -159,9 +159,8 @@ def integrate(model: RotorModel, start: float, accel: float, times: np.ndarray,
     out[:, :, 0] = P @ q
     beta_n, gamma = 0.25, 0.5
     CHUNK = 4096   # the loads made a block of steps at a time
-    F = loads(1, min(1 + CHUNK, times.size))
     for k in range(1, times.size):
-        if (k - 1) % CHUNK == 0 and k > 1:
+        if (k - 1) % CHUNK == 0:
             F = loads(k, min(k + CHUNK, times.size))
         dt = float(times[k] - times[k - 1])
         M, D, K = at(k)
