@@ -143,11 +143,18 @@ def export_modes(result: ModalResult, out: str | Path,
 def write_mode_files(result: ModalResult, folder: Path,
                      est: ErrorEstimate | None = None) -> list[Path]:
     """The files of export_modes, written straight into `folder`."""
+    shapes = write_shape_files(result, folder)
+    return shapes[:-1] + write_mode_tables(result, folder, est) + shapes[-1:] + write_solid_files(
+        result, folder)
+
+
+def write_shape_files(result: ModalResult, folder: Path) -> list[Path]:
+    """The mode shapes for ParaView (mode_NN.vtu, modes.pvd, modes_all.vtu,
+    open_in_paraview.py) and the mesh (mesh.msh), in `folder`: what needs no bound."""
     import shutil
 
     import meshio
 
-    from shaftfem.cad.build import write_solid
     from shaftfem.outputs.vtk import write_vtu
 
     shapes = result.shapes_at_points()
@@ -171,15 +178,27 @@ def write_mode_files(result: ModalResult, folder: Path,
               {"frequency_hz": m.frequencies, KIND_FIELD: [KINDS.index(k) for k in m.kinds]})
     shutil.copyfile(Path(__file__).with_name("paraview_script.py"),
                     folder / "open_in_paraview.py")
-    write_csv(folder / "modes.csv", modes_table(result, est))
-    (folder / "modes.json").write_text(json_text(modes_record(result, est)))
     meshio.write(folder / "mesh.msh", meshio.Mesh(mesh.points, [(mesh.cell_type, msh_cells(mesh))]),
                  file_format="gmsh", binary=False)
-    write_solid(result.shape.brep, result.scene.shaft,
-                [folder / "shaft.step", folder / "shaft.brep"])
     return [folder / n for n in names + ["modes.pvd", "modes_all.vtu", "open_in_paraview.py",
-                                          "modes.csv", "modes.json", "mesh.msh", "shaft.step",
-                                          "shaft.brep"]]
+                                          "mesh.msh"]]
+
+
+def write_mode_tables(result: ModalResult, folder: Path,
+                      est: ErrorEstimate | None = None) -> list[Path]:
+    """modes.csv and modes.json: each mode's frequency, kind and bound, in `folder`."""
+    write_csv(folder / "modes.csv", modes_table(result, est))
+    (folder / "modes.json").write_text(json_text(modes_record(result, est)))
+    return [folder / "modes.csv", folder / "modes.json"]
+
+
+def write_solid_files(result: ModalResult, folder: Path) -> list[Path]:
+    """The solid the mesh was made from, as shaft.step and shaft.brep, in `folder`."""
+    from shaftfem.cad.build import write_solid
+
+    paths = [folder / "shaft.step", folder / "shaft.brep"]
+    write_solid(result.shape.brep, result.scene.shaft, paths)
+    return paths
 
 
 def msh_cells(mesh) -> np.ndarray:

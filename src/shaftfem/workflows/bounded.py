@@ -16,6 +16,8 @@ from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     import numpy as np
 
     from shaftfem.fem.estimate import ErrorEstimate
@@ -37,16 +39,20 @@ class Bounded:
 
 
 def run_bounded(scene: Scene, estimate: bool = True,
-                options: RunOptions = RunOptions(), choose: bool = False) -> Bounded:
+                options: RunOptions = RunOptions(), choose: bool = False,
+                solved: Callable[[ModalResult], object] | None = None) -> Bounded:
     """The modes with their error bounds (`Bounded.estimate.relative_error`, fractions
     of each frequency): adapted to the scene's target_error when it has one (the mesh at
     order 2, the element orders up to the scene's order 3 to 5), else on its fixed mesh
     (bounded when `estimate`). `choose`: an order-2 scene's target may be met on another
     discretisation, the one workflows.route chooses. Journal bearings without their load
-    carry their reactions to the static loads (workflows.static)."""
+    carry their reactions to the static loads (workflows.static). `solved(result)` is
+    called as soon as the modes are known, before their bound is (design starts its
+    pictures there)."""
     from shaftfem.workflows.static import equipped
 
     scene = equipped(scene, options)
+    told = False   # whether `solved` heard of the modes
     if (choose and scene.target_error is not None and scene.mesh.order == 2
             and scene.mesh.geometry_order == 2):
         from shaftfem.workflows.route import choose_route
@@ -70,11 +76,16 @@ def run_bounded(scene: Scene, estimate: bool = True,
                  if estimate and not mesh.from_cache else None)
         try:
             result = solve_mesh(placed, shape, mesh, options, watch)
+            if solved is not None:
+                solved(result)
+                told = True
             bounded = Bounded(result, timed_estimate(result, options, ahead)
                               if estimate else None)
         finally:
             if ahead is not None:
                 ahead.close()
+    if solved is not None and not told:
+        solved(bounded.result)
     _warn_if_implausible(bounded.result)
     return bounded
 

@@ -13,7 +13,7 @@ skips the sizing.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -24,6 +24,7 @@ from shaftfem.scene.model import Scene
 MANIFEST = "design.manifest.json"   # lists every file of the last complete design run
 
 if TYPE_CHECKING:
+    from shaftfem.aside import Aside
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
@@ -64,76 +65,131 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
     the scene's; `choose`: as run_bounded's."""
     import time
 
-    from shaftfem.checks.resonance import check_result
-    from shaftfem.checks.sizing import size_from_scene
-    from shaftfem.outputs.export import write_mode_files
-    from shaftfem.outputs.render import drawing, load_pyvista, render_into
-    from shaftfem.outputs.report import write_report
     from shaftfem.store import staged_directory
-    from shaftfem.workflows.bounded import run_bounded
 
     started = time.perf_counter()
-    say = options.say
     out = Path(out)
-    sizing = None
-    if scene.sizing is not None:
-        say("sizing (equations 1-9)")
-        sizing = size_from_scene(scene)
-    if scene.rotor is not None:
-        from shaftfem.workflows.campbell import turning
-
-        # the whirl's basis first (kept in the process for the study): the design's
-        # modes, fewer, of the same pencil are then refined from its solve
-        say("the shaft turning: its standstill basis")
-        turning(scene, options)
-    bounded = run_bounded(scene, estimate, options, choose)
-    result, est = bounded.result, bounded.estimate
-    verdict = check_result(result, margin)
-    campbell, study = None, None
-    if scene.rotor is not None:
-        from shaftfem.outputs.report import RotorStudy
-        from shaftfem.outputs.tables import campbell_text
-        from shaftfem.workflows.cases import combined, run_cases
-
-        say("the shaft turning: whirl, Campbell diagram, critical speeds")
-        cases = run_cases(scene, margin, options)   # the nominal one first
-        campbell, verdict = cases[0].campbell, combined(cases)
-        ucs, level1 = _map_and_level1(scene, options, cases[0].level1)
-        runup = None
-        if scene.rotor.runup is not None and scene.unbalances:
-            from shaftfem.workflows.runup import run_run_up
-
-            say("the rotordynamic study: the run-up")
-            top = scene.rotor.max_speed * 30 / math.pi
-            runup = run_run_up(scene, 0.0, top, scene.rotor.runup * 30 / math.pi, options)
-        study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell), runup,
-                           cases if len(cases) > 1 else None)
-    free, part, response, basis = None, None, None, None
-    if scene.held:
-        from shaftfem.fem.response import modal_basis, participation, response_sweep
-        from shaftfem.workflows.pipeline import solve_mesh
-
-        say("the same shaft hanging free, on the same mesh, for comparison")
-        free = solve_mesh(scene.free(), result.shape, result.mesh, options)
-        basis = modal_basis(result)
-        part = participation(basis)
-        if base_motion_drawn(scene):
-            response = response_sweep(result, "x", basis=basis)
-    # every file of the run is published at once, under design.manifest.json
+    # every file of the run is published at once, under design.manifest.json; what
+    # nothing downstream reads (mode shapes, their pictures, the critical speed map) is
+    # made beside the run, on the other core, into the same staged folder
     with staged_directory(out, MANIFEST) as stage:
-        say("exporting mode shapes, mesh and solid")
-        files = write_mode_files(result, stage, est)
-        say("rendering pictures")
-        d = drawing(load_pyvista(), result)   # once, for the pictures and report.html
-        pictures = render_into(result, stage, say, d)
+        run = _Run(scene, stage, options)
+        try:
+            return run.design(out, margin, estimate, html, choose, started)
+        finally:
+            run.close()
+
+
+class _Run:
+    """One design run and the work it has put aside (aside.Aside), stopped with it."""
+
+    def __init__(self, scene: Scene, stage: Path, options: RunOptions) -> None:
+        self.scene, self.stage, self.options = scene, stage, options
+        self.map: Aside | None = None
+        self.pictures: Aside | None = None
+
+    def close(self) -> None:
+        for job in (self.map, self.pictures):
+            if job is not None:
+                job.close()
+
+    def design(self, out: Path, margin, estimate, html, choose, started) -> DesignResult:
+        import time
+
+        from shaftfem.aside import Aside
+        from shaftfem.checks.resonance import check_result
+        from shaftfem.checks.sizing import size_from_scene
+        from shaftfem.outputs.export import (
+            write_mode_tables,
+            write_shape_files,
+            write_solid_files,
+        )
+        from shaftfem.outputs.report import write_report
+        from shaftfem.workflows.bounded import run_bounded
+
+        scene, stage, options = self.scene, self.stage, self.options
+        say = options.say
+        sizing = None
+        if scene.sizing is not None:
+            say("sizing (equations 1-9)")
+            sizing = size_from_scene(scene)
+        if scene.rotor is not None:
+            from shaftfem.workflows.campbell import turning
+
+            # the whirl's basis first (kept in the process for the study): the design's
+            # modes, fewer, of the same pencil are then refined from its solve
+            say("the shaft turning: its standstill basis")
+            turning(scene, options)
+            say("the rotordynamic study: the critical speed map, beside the run")
+            self.map = Aside(_map, scene, replace(options, progress=None))
+
+        def solved(result: ModalResult) -> None:
+            say("mode shapes, mesh and pictures, beside the run")
+            # a rotor's study leaves the other core idle long enough for its shapes too;
+            # a standing shaft's bound does not (the paper's cold design: 11 s after its
+            # modal run with the shapes written here, 15 s with them aside)
+            self.pictures = Aside(_shapes_and_pictures, result, stage, scene.rotor is not None)
+
+        bounded = run_bounded(scene, estimate, options, choose, solved)
+        result, est = bounded.result, bounded.estimate
+        verdict = check_result(result, margin)
+        campbell, study = None, None
+        if scene.rotor is not None:
+            from shaftfem.outputs.report import RotorStudy
+            from shaftfem.outputs.tables import campbell_text
+            from shaftfem.workflows.cases import combined, run_cases
+            from shaftfem.workflows.level1 import run_level1
+
+            say("the shaft turning: whirl, Campbell diagram, critical speeds")
+            cases = run_cases(scene, margin, options)   # the nominal one first
+            campbell, verdict = cases[0].campbell, combined(cases)
+            level1 = cases[0].level1
+            if level1 is None:
+                say("the rotordynamic study: Level I")
+                level1 = _or_none(run_level1, scene, options)
+            runup = None
+            if scene.rotor.runup is not None and scene.unbalances:
+                from shaftfem.workflows.runup import run_run_up
+
+                say("the rotordynamic study: the run-up")
+                top = scene.rotor.max_speed * 30 / math.pi
+                runup = run_run_up(scene, 0.0, top, scene.rotor.runup * 30 / math.pi, options)
+            assert self.map is not None
+            ucs = self.map.result()
+            study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell), runup,
+                               cases if len(cases) > 1 else None)
+        free, part, response, basis = None, None, None, None
+        if scene.held:
+            from shaftfem.fem.response import modal_basis, participation, response_sweep
+            from shaftfem.workflows.pipeline import solve_mesh
+
+            say("the same shaft hanging free, on the same mesh, for comparison")
+            free = solve_mesh(scene.free(), result.shape, result.mesh, options)
+            basis = modal_basis(result)
+            part = participation(basis)
+            if base_motion_drawn(scene):
+                response = response_sweep(result, "x", basis=basis)
+        assert self.pictures is not None
+        shapes, pictures = (self.pictures.result() if scene.rotor is not None
+                            else (write_shape_files(result, stage), None))
+        say("the mode table and the solid (shaft.step)")
+        tables = write_mode_tables(result, stage, est) + write_solid_files(result, stage)
+        more = []
         if response is not None:
-            pictures.append(_response_picture(result, response, basis, stage / "response.png"))
+            more.append(_response_picture(result, response, basis, stage / "response.png"))
+        whirl_files = []
         if campbell is not None:
             from shaftfem.outputs.whirl_files import write_whirl_files
 
-            pictures += campbell_pictures(campbell, stage)
-            pictures += study_pictures(study, stage)
-            files += write_whirl_files(campbell, stage)
+            more += campbell_pictures(campbell, stage)
+            more += study_pictures(study, stage)
+            whirl_files = write_whirl_files(campbell, stage)
+        if pictures is None:
+            pictures = self.pictures.result()[1]
+        for p in pictures:
+            say(f"picture {p.name}")
+        files = shapes[:-1] + tables[:2] + shapes[-1:] + tables[2:] + whirl_files
+        pictures = pictures + more
         wall = time.perf_counter() - started
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
                      free=free, participation=part, rotor=study, wall_seconds=wall)
@@ -142,14 +198,40 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
 
             say("report.html: the report with a 3D view of every mode")
             write_report_html(stage / "report.html", result, verdict, sizing, pictures, est,
-                              free=free, participation=part, rotor=study, drawing=d,
+                              free=free, participation=part, rotor=study,
                               wall_seconds=wall)
-    files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
-    report = out / "report.md"
-    say(f"report written: {report}")
-    return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
-                        files=files, pictures=pictures, report=report, adapted=bounded.adapted,
-                        participation=part)
+        files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
+        report = out / "report.md"
+        say(f"report written: {report}")
+        return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
+                            files=files, pictures=pictures, report=report,
+                            adapted=bounded.adapted, participation=part)
+
+
+def _shapes_and_pictures(result: ModalResult, folder: Path,
+                         shapes: bool) -> tuple[list[Path], list[Path]]:
+    """The pictures of the modes, after (when `shapes`) the mode shapes for ParaView and
+    the mesh."""
+    from shaftfem.outputs.export import write_shape_files
+    from shaftfem.outputs.render import render_into
+
+    return write_shape_files(result, folder) if shapes else [], render_into(result, folder)
+
+
+def _map(scene: Scene, options: RunOptions):
+    """The critical speed map of the study, None where the scene allows none."""
+    from shaftfem.workflows.ucs import run_ucs
+
+    return _or_none(run_ucs, scene, options)
+
+
+def _or_none(run, scene: Scene, options: RunOptions):
+    """`run(scene, options=options)`, None where the scene does not allow it (no
+    bearings to vary, no forward mode)."""
+    try:
+        return run(scene, options=options)
+    except SceneError:
+        return None
 
 
 def base_motion_drawn(scene: Scene) -> bool:
@@ -175,24 +257,6 @@ def write_campbell_csv(c, path: Path) -> Path:
     for row in c.csv_rows():
         w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
     return write_text(path, buf.getvalue())
-
-
-def _map_and_level1(scene: Scene, options: RunOptions, level1=None):
-    """The turning shaft's critical speed map and Level I screening for the report (the
-    screening `level1` where the verdict made it already); each None where the scene
-    does not allow it (no bearings to vary, no forward mode)."""
-    from shaftfem.workflows.level1 import run_level1
-    from shaftfem.workflows.ucs import run_ucs
-
-    out: list = []
-    for what, run in (("the critical speed map", run_ucs),
-                      ("Level I", run_level1 if level1 is None else lambda *_, **__: level1)):
-        options.say(f"the rotordynamic study: {what}")
-        try:
-            out.append(run(scene, options=options))
-        except SceneError:
-            out.append(None)
-    return out
 
 
 def study_pictures(study, folder: Path) -> list[Path]:

@@ -1,0 +1,42 @@
+"""Work put aside (shaftfem.aside): the same answer as done in line, its errors raised
+in the run, and stopped with the run."""
+
+import os
+import time
+
+import numpy as np
+import pytest
+
+from shaftfem.aside import Aside, aside_allowed
+from shaftfem.errors import SceneError
+from shaftfem.scene.load import load_scene
+
+
+def test_work_aside_gives_what_it_would_give_in_line():
+    a = np.random.default_rng(1).normal(size=(60, 60))
+    a = a @ a.T
+    assert aside_allowed()   # not a daemon: the job goes to another process
+    assert Aside(os.getpid).result() != os.getpid()
+    assert np.array_equal(Aside(np.linalg.eigvalsh, a).result(), np.linalg.eigvalsh(a))
+
+
+def test_work_aside_raises_its_error_in_the_run():
+    job = Aside(load_scene, "no_such_scene_here")
+    with pytest.raises(SceneError, match="no_such_scene_here"):
+        job.result()
+
+
+def test_work_aside_is_done_in_line_when_turned_off(monkeypatch):
+    monkeypatch.setenv("SHAFTFEM_ASIDE", "0")
+    assert not aside_allowed()
+    assert Aside(os.getpid).result() == os.getpid()
+    with pytest.raises(SceneError, match="no_such_scene_here"):
+        Aside(load_scene, "no_such_scene_here").result()
+
+
+def test_work_aside_stops_with_the_run():
+    t = time.perf_counter()
+    job = Aside(time.sleep, 30.0)
+    process = job._process
+    job.close()
+    assert process.returncode is not None and time.perf_counter() - t < 10
