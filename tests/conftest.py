@@ -17,8 +17,22 @@ sys.path.insert(0, str(Path(__file__).parent))  # tests/references.py
 
 @pytest.fixture(scope="session", autouse=True)
 def _fresh_shape_cache(tmp_path_factory):
-    """Every test session builds its CAD from scratch (the volume checks run)."""
-    os.environ["SHAFTFEM_CACHE"] = str(tmp_path_factory.mktemp("cache"))
+    """Every test session builds its CAD from scratch (the volume checks run), into one
+    cache that its workers share, as a sweep's Dask workers do: what one worker built,
+    the other reads (its entries are written whole and renamed into place)."""
+    base = tmp_path_factory.getbasetemp()
+    shared = base.parent if "PYTEST_XDIST_WORKER" in os.environ else base
+    os.environ["SHAFTFEM_CACHE"] = str(shared / "cache")
+
+
+@pytest.fixture(scope="module")
+def own_cache(tmp_path_factory):
+    """A cache of the module's own, for the module's tests: for a module whose fixture
+    must start cold, as no other worker's run of that fixture may have warmed it."""
+    before = os.environ["SHAFTFEM_CACHE"]
+    os.environ["SHAFTFEM_CACHE"] = str(tmp_path_factory.mktemp("own_cache"))
+    yield
+    os.environ["SHAFTFEM_CACHE"] = before
 
 
 @pytest.fixture(scope="session")

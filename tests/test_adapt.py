@@ -13,6 +13,7 @@ from shaftfem.workflows.adapt import run_adaptive
 from shaftfem.workflows.pipeline import with_mesh
 
 TARGET = 1e-4
+pytestmark = pytest.mark.usefixtures("own_cache")   # its fixture starts cold
 
 
 @pytest.fixture(scope="module")

@@ -58,10 +58,8 @@ def _alter(p):
 
 
 @pytest.fixture(scope="module")
-def clean(tmp_path_factory):
-    import os
-
-    os.environ["SHAFTFEM_CACHE"] = str(tmp_path_factory.mktemp("cache"))
+def clean(own_cache):
+    """The module's own cache, which its tests damage, filled by a clean run."""
     return run_modes(_scene()).modes.frequencies
 
 

@@ -10,6 +10,7 @@ import pytest
 from references import torsion_hz
 
 SIZE_MM = 16.0
+pytestmark = pytest.mark.usefixtures("own_cache")   # its fixture starts cold
 
 
 @pytest.fixture(scope="module")
