@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
     from shaftfem.fem.whirl import Campbell, Level1, RunUp, UcsMap
@@ -105,12 +106,12 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
 def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                     files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
-                    free: ModalResult | None = None,
+                    free: Modes | None = None,
                     participation: Participation | None = None,
                     rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> str:
     """report.md's text; picture and file names are relative to the report's folder;
-    `rotor`: the rotordynamic study, for a shaft with [rotor]; `wall_seconds`: the
-    whole run's time until the report (s)."""
+    `rotor`: the rotordynamic study, for a shaft with [rotor]; `free`: the same shaft's
+    modes hanging free; `wall_seconds`: the whole run's time until the report (s)."""
     scene = result.scene
     lines = [f"# Modal design report: {scene.name}", ""]
     head, rows = title_rows(scene, wall_seconds)
@@ -174,7 +175,7 @@ def shaft_facts(result: ModalResult) -> list[str]:
 def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdict | None,
                  sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                  files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
-                 free: ModalResult | None = None,
+                 free: Modes | None = None,
                  participation: Participation | None = None,
                  rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> Path:
     return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,

@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult, ModelMoves
     from shaftfem.scene.model import Scene
@@ -451,9 +452,10 @@ def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> lis
     return markdown(*modes_rows(result, est))
 
 
-def side_by_side_rows(installed: ModalResult, free: ModalResult) -> Rows:
-    """The installed modes beside the free-free ones, mode by mode."""
-    a, b = installed.modes, free.modes
+def side_by_side_rows(installed: ModalResult, free: Modes) -> Rows:
+    """The installed modes beside the free-free ones (the same shaft's modes hanging
+    free), mode by mode."""
+    a, b = installed.modes, free
     rows = []
     for i in range(max(a.count, b.count)):
         left = [f"{a.frequencies[i]:.2f}", a.kinds[i]] if i < a.count else ["", ""]
@@ -462,7 +464,7 @@ def side_by_side_rows(installed: ModalResult, free: ModalResult) -> Rows:
     return ["mode", "installed (Hz)", "kind", "free-free (Hz)", "kind"], rows
 
 
-def side_by_side_markdown(installed: ModalResult, free: ModalResult) -> list[str]:
+def side_by_side_markdown(installed: ModalResult, free: Modes) -> list[str]:
     return markdown(*side_by_side_rows(installed, free))
 
 

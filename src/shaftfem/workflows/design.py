@@ -25,9 +25,12 @@ MANIFEST = "design.manifest.json"   # lists every file of the last complete desi
 
 if TYPE_CHECKING:
     from shaftfem.aside import Aside
+    from shaftfem.cad.mesh import ShaftMesh
+    from shaftfem.cad.solid import ShaftShape
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
     from shaftfem.workflows.adapt import Adapted
@@ -87,9 +90,10 @@ class _Run:
         self.scene, self.stage, self.options = scene, stage, options
         self.map: Aside | None = None
         self.pictures: Aside | None = None
+        self.free: Aside | None = None
 
     def close(self) -> None:
-        for job in (self.map, self.pictures):
+        for job in (self.map, self.pictures, self.free):
             if job is not None:
                 job.close()
 
@@ -109,10 +113,15 @@ class _Run:
 
         scene, stage, options = self.scene, self.stage, self.options
         say = options.say
+        quiet = replace(options, progress=None)   # for the work aside
         sizing = None
         if scene.sizing is not None:
             say("sizing (equations 1-9)")
             sizing = size_from_scene(scene)
+        if scene.held and scene.target_error is None:
+            # on the scene's own mesh, which does not hang on the modes
+            say("the same shaft hanging free, on the same mesh, for comparison, beside the run")
+            self.free = Aside(_free_modes, scene, quiet)
         if scene.rotor is not None:
             from shaftfem.workflows.campbell import turning
 
@@ -121,14 +130,16 @@ class _Run:
             say("the shaft turning: its standstill basis")
             turning(scene, options)
             say("the rotordynamic study: the critical speed map, beside the run")
-            self.map = Aside(_map, scene, replace(options, progress=None))
+            self.map = Aside(_map, scene, quiet)
+
+        # a rotor's study leaves the other core idle long enough for its mode shapes too;
+        # a standing shaft's bound does not (the paper's cold design: 11 s after its
+        # modal run with the shapes written here, 15 s with them aside)
+        turns = scene.rotor is not None
 
         def solved(result: ModalResult) -> None:
             say("mode shapes, mesh and pictures, beside the run")
-            # a rotor's study leaves the other core idle long enough for its shapes too;
-            # a standing shaft's bound does not (the paper's cold design: 11 s after its
-            # modal run with the shapes written here, 15 s with them aside)
-            self.pictures = Aside(_shapes_and_pictures, result, stage, scene.rotor is not None)
+            self.pictures = Aside(_shapes_and_pictures, result, stage, turns)
 
         bounded = run_bounded(scene, estimate, options, choose, solved)
         result, est = bounded.result, bounded.estimate
@@ -161,16 +172,18 @@ class _Run:
         free, part, response, basis = None, None, None, None
         if scene.held:
             from shaftfem.fem.response import modal_basis, participation, response_sweep
-            from shaftfem.workflows.pipeline import solve_mesh
 
-            say("the same shaft hanging free, on the same mesh, for comparison")
-            free = solve_mesh(scene.free(), result.shape, result.mesh, options)
+            if self.free is not None:
+                free = self.free.result()
+            else:   # an adapted mesh: known only now
+                say("the same shaft hanging free, on the same mesh, for comparison")
+                free = _free_modes(scene, options, result.shape, result.mesh)
             basis = modal_basis(result)
             part = participation(basis)
             if base_motion_drawn(scene):
                 response = response_sweep(result, "x", basis=basis)
         assert self.pictures is not None
-        shapes, pictures = (self.pictures.result() if scene.rotor is not None
+        shapes, pictures = (self.pictures.result() if turns
                             else (write_shape_files(result, stage), None))
         say("the mode table and the solid (shaft.step)")
         tables = write_mode_tables(result, stage, est) + write_solid_files(result, stage)
@@ -186,6 +199,7 @@ class _Run:
             whirl_files = write_whirl_files(campbell, stage)
         if pictures is None:
             pictures = self.pictures.result()[1]
+        assert pictures is not None
         for p in pictures:
             say(f"picture {p.name}")
         files = shapes[:-1] + tables[:2] + shapes[-1:] + tables[2:] + whirl_files
@@ -216,6 +230,17 @@ def _shapes_and_pictures(result: ModalResult, folder: Path,
     from shaftfem.outputs.render import render_into
 
     return write_shape_files(result, folder) if shapes else [], render_into(result, folder)
+
+
+def _free_modes(scene: Scene, options: RunOptions, shape: ShaftShape | None = None,
+                mesh: ShaftMesh | None = None) -> Modes:
+    """The modes of the shaft hanging free, on the installed shaft's mesh (`shape` and
+    `mesh`; else the scene's own, from the cache where the run has built them)."""
+    from shaftfem.workflows.pipeline import built, solve_mesh
+
+    if shape is None or mesh is None:
+        _, shape, mesh = built(scene, options)
+    return solve_mesh(scene.free(), shape, mesh, options).modes
 
 
 def _map(scene: Scene, options: RunOptions):
