@@ -40,3 +40,15 @@ def test_work_aside_stops_with_the_run():
     process = job._process
     job.close()
     assert process.returncode is not None and time.perf_counter() - t < 10
+
+
+def test_a_waiting_process_takes_its_job_when_it_comes_and_ends_without_one():
+    job = Aside.waiting("numpy", "no_such_module_at_all")   # a missing one is no matter
+    assert job._process is not None and job._process.poll() is None
+    a = np.arange(12.0).reshape(3, 4)
+    job.start(np.linalg.norm, a)
+    assert job.result() == np.linalg.norm(a)
+    idle = Aside.waiting("numpy")
+    process = idle._process
+    idle.close()   # the run ended before its job came
+    assert process.returncode is not None

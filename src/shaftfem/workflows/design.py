@@ -22,6 +22,9 @@ from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
 MANIFEST = "design.manifest.json"   # lists every file of the last complete design run
+# what the pictures' process needs, imported before the modes come
+PICTURE_MODULES = ("numpy", "scipy.sparse", "skfem", "pyvista", "PIL.Image", "meshio",
+                   "shaftfem.fem.result", "shaftfem.outputs.render", "shaftfem.outputs.export")
 
 if TYPE_CHECKING:
     from shaftfem.aside import Aside
@@ -118,6 +121,8 @@ class _Run:
         if scene.sizing is not None:
             say("sizing (equations 1-9)")
             sizing = size_from_scene(scene)
+        # the pictures' process loads its libraries while the modes are solved
+        self.pictures = Aside.waiting(*PICTURE_MODULES)
         if scene.held and scene.target_error is None:
             # on the scene's own mesh, which does not hang on the modes
             say("the same shaft hanging free, on the same mesh, for comparison, beside the run")
@@ -139,7 +144,8 @@ class _Run:
 
         def solved(result: ModalResult) -> None:
             say("mode shapes, mesh and pictures, beside the run")
-            self.pictures = Aside(_shapes_and_pictures, result, stage, turns)
+            assert self.pictures is not None
+            self.pictures.start(_shapes_and_pictures, result, stage, turns)
 
         bounded = run_bounded(scene, estimate, options, choose, solved)
         result, est = bounded.result, bounded.estimate
