@@ -1,11 +1,12 @@
 """What a study costs against its Campbell diagram, this tree against an earlier revision
 in the same run: each command a fresh process, medians of N.
 
-    .venv/bin/python benchmarks/study_cost.py [--baseline REV] [--repeat N]
+    .venv/bin/python benchmarks/study_cost.py [--baseline REV] [--repeat N] [--part P]
 
 REV (default 789c61b, before the rotor model was shared; `none`: this tree alone) is
 checked out into a temporary folder and run by this Python with PYTHONPATH pointing at
-it, alternating with this tree. Prints Markdown tables:
+it, alternating with this tree. P: `pumps`, `paper` or `all` (default). Prints Markdown
+tables:
 
 * `shaftfem design` and `shaftfem campbell` of examples/pump_on_journals.toml and
   examples/keyed_pump_on_journals.toml (whose [rotor] runs the run-up at 1,500 r/min
@@ -59,12 +60,20 @@ def cold(src: Path, args: list[str]) -> tuple[float, str]:
 
 
 def main() -> None:
-    opts, _ = options(sys.argv[1:], {"--baseline": "789c61b", "--repeat": "3"})
-    rev, repeat = opts["--baseline"], int(opts["--repeat"])
+    opts, _ = options(sys.argv[1:], {"--baseline": "789c61b", "--repeat": "3",
+                                     "--part": "all"})
+    rev, repeat, part = opts["--baseline"], int(opts["--repeat"]), opts["--part"]
     trees = {"this tree": ROOT / "src"}
     if rev != "none":   # --baseline none: this tree alone
         trees = {f"{rev} (before)": checkout(rev) / "src", **trees}
     print(f"machine: {machine()}; medians of {repeat}, each run a fresh process\n")
+    if part in ("all", "pumps"):
+        pumps(trees, repeat)
+    if part in ("all", "paper"):
+        paper(trees, repeat)
+
+
+def pumps(trees: dict[str, Path], repeat: int) -> None:
     print("| scene | revision | campbell, cold (s) | design, cold (s) | design / campbell |")
     print("|---|---|---|---|---|")
     for name in PUMPS:
@@ -80,14 +89,22 @@ def main() -> None:
             c = statistics.median(walls[tree]["campbell"])
             d = statistics.median(walls[tree]["design"])
             print(f"| {name} | {tree} | {c:.1f} | {d:.1f} | {d / c:.2f} |", flush=True)
+
+
+def paper(trees: dict[str, Path], repeat: int) -> None:
     print("\n| paper2018 | revision | wall (s) | cad | mesh | assembly | solve | bound |")
     print("|---|---|---|---|---|---|---|---|")
-    for tree, src in trees.items():
-        with tempfile.TemporaryDirectory() as d:
-            run(src, ["modes"], Path(d) / "cache")   # fills the cache
-            warm = [run(src, ["modes"], Path(d) / "cache") for _ in range(repeat)]
-        cold_design = [cold(src, ["design"]) for _ in range(repeat)]
-        for what, runs in (("modes, warm", warm), ("design, cold", cold_design)):
+    warm: dict[str, list] = {t: [] for t in trees}
+    cold_design: dict[str, list] = {t: [] for t in trees}
+    with tempfile.TemporaryDirectory() as d:
+        for tree, src in trees.items():
+            run(src, ["modes"], Path(d) / tree / "cache")   # fills the cache
+        for _ in range(repeat):   # the trees alternate, so that the machine's pace is shared
+            for tree, src in trees.items():
+                warm[tree].append(run(src, ["modes"], Path(d) / tree / "cache"))
+                cold_design[tree].append(cold(src, ["design"]))
+    for tree in trees:
+        for what, runs in (("modes, warm", warm[tree]), ("design, cold", cold_design[tree])):
             wall = statistics.median(w for w, _ in runs)
             parts = [statistics.median(steps(t).get(k, 0.0) for _, t in runs)
                      for k in ("cad", "mesh", "assembly", "solve", "bound")]
