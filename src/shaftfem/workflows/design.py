@@ -75,9 +75,10 @@ def run_design(scene: Scene, out: str | Path, margin: float | None = None,
 
     started = time.perf_counter()
     out = Path(out)
-    # every file of the run is published at once, under design.manifest.json; what
-    # nothing downstream reads (mode shapes, their pictures, the critical speed map) is
-    # made beside the run, on the other core, into the same staged folder
+    # every file of the run is published at once, under design.manifest.json; work that
+    # the study does not wait on (the modes' pictures, a rotor's mode shapes, the free
+    # shaft's modes, the critical speed map) is done beside it, on the other core, the
+    # files into the same staged folder
     with staged_directory(out, MANIFEST) as stage:
         run = _Run(scene, stage, options)
         try:
