@@ -143,7 +143,10 @@ def test_a_scene_with_a_byte_order_mark_is_read(tmp_path):
     assert not read_scene_text(f).text.startswith("\ufeff")
 
 
-def test_a_sweep_whose_scheduler_never_answers_leaves_nothing(tmp_path, capsys):
+def test_a_sweep_whose_scheduler_never_answers_leaves_nothing(tmp_path, capsys, monkeypatch):
+    from shaftfem.workflows import sweep as sweeping
+
+    monkeypatch.setattr(sweeping, "CONNECT_TIMEOUT", "1s")   # the port refuses at once
     f = tmp_path / "sweep.toml"
     f.write_text('base = "plain_cylinder"\nmesh_size_mm = 16.0\n[axes]\n'
                  '"shaft.length_mm" = [500.0]\n')

@@ -83,7 +83,10 @@ def test_workers_of_another_version_are_refused(cluster, tmp_path, monkeypatch):
         run_sweep(sweep, tmp_path / "out" / "results.csv", scheduler=cluster)
 
 
-def test_no_scheduler_is_a_clear_error(tmp_path):
+def test_no_scheduler_is_a_clear_error(tmp_path, monkeypatch):
+    from shaftfem.workflows import sweep as sweeping
+
+    monkeypatch.setattr(sweeping, "CONNECT_TIMEOUT", "1s")   # the port refuses at once
     sweep = load_sweep(_user_sweep(tmp_path / "user"))
     with pytest.raises(ClusterError, match="no Dask scheduler answers"):
         run_sweep(sweep, tmp_path / "out" / "results.csv", scheduler="tcp://127.0.0.1:9")

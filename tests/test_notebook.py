@@ -24,6 +24,32 @@ def _picture(path: Path) -> np.ndarray:
     return np.asarray(Image.open(path).convert("RGB"), float)
 
 
+def test_every_cell_of_the_notebook_compiles_and_names_what_shaftfem_has():
+    """The fast twin of the run below: each code cell is Python (its IPython magics
+    aside), and every `sf.NAME` it calls is in shaftfem's public namespace, so a renamed
+    or dropped function breaks this test before a user's notebook."""
+    import ast
+
+    import nbformat
+
+    import shaftfem
+
+    nb = nbformat.read(EXAMPLES / "shaft_in_code.ipynb", as_version=4)
+    nbformat.validate(nb)
+    cells = [c.source for c in nb.cells if c.cell_type == "code"]
+    assert len(cells) >= 8
+    used = set()
+    for source in cells:
+        code = "\n".join(line for line in source.splitlines() if not line.startswith("%"))
+        for node in ast.walk(ast.parse(code)):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                    and node.value.id == "sf"):
+                used.add(node.attr)
+    assert {"make_scene", "solve", "vary", "load_scene", "RunOptions"} <= used
+    assert [n for n in sorted(used) if not hasattr(shaftfem, n)] == []
+
+
+@pytest.mark.slow
 def test_the_notebook_builds_solves_draws_sweeps_and_writes_its_scene(monkeypatch):
     import nbformat
     from nbclient import NotebookClient

@@ -212,6 +212,7 @@ def test_a_variant_keeps_no_mode_shapes_but_a_single_run_does(tmp_path, monkeypa
     assert len(list((tmp_path / "cache" / "solves").glob("*.npz"))) == 1
 
 
+@pytest.mark.slow
 def test_an_overhang_sweep_of_a_turning_pump_resumes_after_a_kill(tmp_path):
     """examples/overhang_sweep.toml: 12 positions of the overhung impeller on two Dask
     workers, killed after three rows and resumed: each variant once, its critical speeds,
@@ -220,23 +221,39 @@ def test_an_overhang_sweep_of_a_turning_pump_resumes_after_a_kill(tmp_path):
     longer, softer overhang); the critical speeds drawn against the overhang."""
     from pathlib import Path
 
+    _overhang_sweep(Path(__file__).resolve().parents[1] / "examples" / "overhang_sweep.toml",
+                    tmp_path / "out", 12, 3)
+
+
+def test_a_shorter_overhang_sweep_resumes_after_a_kill(tmp_path):
+    """The fast twin of the one above: the example's sweep over 4 of its positions,
+    killed after one row."""
+    from pathlib import Path
+
     examples = Path(__file__).resolve().parents[1] / "examples"
-    sweep_file = examples / "overhang_sweep.toml"
-    out = tmp_path / "out"
+    text = (examples / "overhang_sweep.toml").read_text()
+    assert "num = 12" in text and 'base = "overhung_pump.toml"' in text
+    sweep_file = tmp_path / "overhang_sweep.toml"
+    sweep_file.write_text(text.replace("num = 12", "num = 4").replace(
+        'base = "overhung_pump.toml"', f'base = "{(examples / "overhung_pump.toml").as_posix()}"'))
+    _overhang_sweep(sweep_file, tmp_path / "out", 4, 1)
+
+
+def _overhang_sweep(sweep_file, out, n: int, killed_after: int) -> None:
     p = subprocess.Popen([sys.executable, "-m", "shaftfem", "sweep", str(sweep_file), "--out",
                           str(out), "--workers", "2", "-q"], start_new_session=True,
                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.time() + 300
-    while time.time() < deadline and len(read_results(out / "results.csv")) < 3:
+    while time.time() < deadline and len(read_results(out / "results.csv")) < killed_after:
         time.sleep(0.05)
     os.killpg(p.pid, signal.SIGKILL)
     p.wait()
     _released(out / ".sweep.lock")
     before = read_results(out / "results.csv")
-    assert 3 <= len(before) < 12
+    assert killed_after <= len(before) < n
     sweep = load_sweep(sweep_file)
     rows = run_sweep(sweep, out / "results.csv", workers=2)
-    assert len(rows) == 12 and len({r["id"] for r in rows}) == 12
+    assert len(rows) == n and len({r["id"] for r in rows}) == n
     assert all(r["status"] == "ok" for r in rows), [r["error"] for r in rows]
     rows.sort(key=lambda r: float(r["attachment[0].position_mm"]))
     for key, sign in (("crit1_rpm", -1), ("crit2_rpm", -1), ("critical_margin", -1),

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 from shaftfem.errors import SceneError
 from shaftfem.fem.result import ModalResult, Timings
 from shaftfem.runtime import RunOptions
-from shaftfem.scene.model import Scene, Support
+from shaftfem.scene.model import Attachment, Scene, Support
 
 if TYPE_CHECKING:  # the steps' modules load gmsh, scikit-fem and SciPy: only when run
     from pathlib import Path
@@ -228,7 +228,7 @@ def _pencil(scene: Scene) -> dict:
             "grooves": asdict(scene.grooves) if scene.grooves else None,
             "material": asdict(scene.material), "order": scene.mesh.order,
             "supports": [_seated(s) for s in scene.supports],
-            "attachments": [asdict(a) for a in scene.attachments],
+            "attachments": [_carried(a) for a in scene.attachments],
             "hanging_free": scene.hanging_free}
 
 
@@ -250,6 +250,16 @@ def _seated(s: Support) -> dict:
     (a tolerance case, a table and its constant, solve on one pencil)."""
     return {"position": s.position, "width": s.width, "kind": s.kind, "coupling": s.coupling,
             "radial_xy": list(s.radial_xy), "axial": s.axial, "tilting": s.tilting}
+
+
+def _carried(a: Attachment) -> dict:
+    """What of a part makes K and M: its seat, mass, inertias, joint and coupled
+    machine; not its name, its stage or its cross-coupling at speed (a Level I that
+    varies the stage's power solves on one pencil)."""
+    return {"position": a.position, "width": a.width, "mass": a.mass,
+            "polar_inertia": a.polar_inertia, "diametral_inertia": a.diametral_inertia,
+            "joint": a.joint, "coupling_stiffness": a.coupling_stiffness,
+            "coupled_inertia": a.coupled_inertia}
 
 
 def shift_hint(scene: Scene) -> float | None:

@@ -84,6 +84,9 @@ def run_variant(base: SceneText | str, overrides: dict, mesh_size_mm: float | No
     return row
 
 
+# how long a client waits for a scheduler to answer (Dask retries a refused connection
+# until then)
+CONNECT_TIMEOUT = "10s"
 # a turning shaft's columns: its lowest 1x critical speeds, the separation margin
 # check_whirl judges (the closest approach), the least log decrement up to the highest
 # operating speed, the largest unbalance peak and its speed, and Level I's Q_0 / Q_A
@@ -144,7 +147,7 @@ def _connect(address: str):
     from shaftfem import __version__
 
     try:
-        client = Client(address, timeout="10s")
+        client = Client(address, timeout=CONNECT_TIMEOUT)
     except OSError as exc:
         raise ClusterError(f"no Dask scheduler answers at {address}: {exc}") from exc
     try:
