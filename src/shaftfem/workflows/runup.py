@@ -103,8 +103,6 @@ def integrate(model: RotorModel, start: float, accel: float, times: np.ndarray,
     spin's change adds the Euler force (accel / 2) G q (G = 2 int rho Phi^T S Phi, the
     Coriolis matrix per rad/s), an unbalance's force stands still, and each probe's
     motion is turned back by phi."""
-    from scipy.linalg.lapack import dgesv
-
     rotating = model.frame == "rotating"
     ends = (start, start + accel * float(times[-1]))
     speeds = np.linspace(min(ends), max(ends), TABLE)
@@ -138,42 +136,52 @@ def integrate(model: RotorModel, start: float, accel: float, times: np.ndarray,
         fy = w * w * c.imag - accel * c.real
         return fx @ B[:, 0] + fy @ B[:, 1]
 
-    def at(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        i, f = int(row[k]), float(frac[k])
+    def matrices(k0: int, k1: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """M, D and K at steps k0..k1-1 (k1 - k0, N, N): linear in the speed between
+        the table's rows, the parts that differ along x and y turned by 2 phi."""
+        i, f = row[k0:k1], frac[k0:k1, None, None]
         D = (1 - f) * D_tab[i] + f * D_tab[i + 1]
         K = (1 - f) * K_tab[i] + f * K_tab[i + 1]
-        M = eye if M_tab is None else (1 - f) * M_tab[i] + f * M_tab[i + 1]
+        M = (np.broadcast_to(np.eye(N), D.shape) if M_tab is None
+             else (1 - f) * M_tab[i] + f * M_tab[i + 1])
         if P_tab is not None:
-            Dc, Ds, Kc, Ks = (1 - f) * P_tab[i] + f * P_tab[i + 1]
-            c, sn = math.cos(2 * phi_t[k]), math.sin(2 * phi_t[k])
+            Dc, Ds, Kc, Ks = ((1 - f) * P_tab[i, j] + f * P_tab[i + 1, j] for j in range(4))
+            c, sn = np.cos(2 * phi_t[k0:k1, None, None]), np.sin(2 * phi_t[k0:k1, None, None])
             D, K = D + c * Dc + sn * Ds, K + c * Kc + sn * Ks
         return M, D, K
 
     # each probe's (x, y) in the turning frame, turned back by phi to the housing's
     out = np.empty((P.shape[0], 2, times.size))
-    eye = np.eye(N)
     q = np.zeros(N) if q0 is None else np.array(q0, dtype=float)
     v = np.zeros(N)
-    M, D, K = at(0)
-    a = np.linalg.solve(M, loads(0, 1)[0] - D @ v - K @ q)
+    M0, D0, K0 = (m[0] for m in matrices(0, 1))
+    a = np.linalg.solve(M0, loads(0, 1)[0] - D0 @ v - K0 @ q)
     out[:, :, 0] = P @ q
     beta_n, gamma = 0.25, 0.5
-    CHUNK = 4096   # the loads made a block of steps at a time
-    for k in range(1, times.size):
-        if (k - 1) % CHUNK == 0:
-            F = loads(k, min(k + CHUNK, times.size))
-        dt = float(times[k] - times[k - 1])
-        M, D, K = at(k)
-        pred_q = q + dt * v + (0.5 - beta_n) * dt * dt * a
-        pred_v = v + (1 - gamma) * dt * a
-        S = M + (gamma * dt) * D + (beta_n * dt * dt) * K
-        rhs = F[(k - 1) % CHUNK] - D @ pred_v - K @ pred_q
-        _, _, a, info = dgesv(S, rhs)
-        if info != 0:
-            raise np.linalg.LinAlgError(f"Newmark's step {k}: a singular system")
-        q = pred_q + beta_n * dt * dt * a
-        v = pred_v + gamma * dt * a
-        out[:, :, k] = P @ q
+    # a block of steps at a time: their loads, matrices and Newmark's inverse
+    # (M + gamma dt D + beta dt^2 K)^-1 made at once, the step itself three products
+    BLOCK = 1024
+    for k0 in range(1, times.size, BLOCK):
+        k1 = min(k0 + BLOCK, times.size)
+        F = loads(k0, k1)
+        dt = times[k0:k1] - times[k0 - 1:k1 - 1]
+        M, D, K = matrices(k0, k1)
+        try:
+            inv = np.linalg.inv(M + (gamma * dt)[:, None, None] * D
+                                + (beta_n * dt * dt)[:, None, None] * K)
+        except np.linalg.LinAlgError:
+            raise np.linalg.LinAlgError(f"Newmark's steps {k0} to {k1 - 1}: a singular "
+                                        "system") from None
+        Q = np.empty((k1 - k0, N))
+        for j in range(k1 - k0):
+            h = float(dt[j])
+            pred_q = q + h * v + ((0.5 - beta_n) * h * h) * a
+            pred_v = v + ((1 - gamma) * h) * a
+            a = inv[j] @ (F[j] - D[j] @ pred_v - K[j] @ pred_q)
+            q = pred_q + (beta_n * h * h) * a
+            v = pred_v + (gamma * h) * a
+            Q[j] = q
+        out[:, :, k0:k1] = np.einsum("pcn,kn->pck", P, Q)
     if rotating:
         c, sn = np.cos(phi_t), np.sin(phi_t)
         x, y = out[:, 0].copy(), out[:, 1].copy()
