@@ -344,3 +344,33 @@ def test_a_film_table_comes_back_from_the_cache_whole_or_not_at_all(tmp_path, mo
     with pytest.warns(CacheWarning, match="journal film table"):
         film_table(b)
     assert path.exists()
+
+
+def test_a_film_table_solved_beside_the_run_is_the_table_solved_in_it(tmp_path, monkeypatch):
+    """films_ahead solves a table in another process while the static loads are solved;
+    the journal then takes that one (no solve of its own) and keeps it in the cache, the
+    same to the last bit as the table solved in this process; one started and not taken
+    is stopped."""
+    from shaftfem.scene.model import JournalBearing
+    from shaftfem.workflows import equip
+
+    b = JournalBearing(diameter=0.04, length=0.026, clearance=5e-5, viscosity=0.02,
+                       load=100.0, cavitation="gumbel")
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
+    monkeypatch.setattr(journal, "_KNOWN", {})
+    started = equip.films_ahead([b])
+    assert len(started) == 1 and equip.films_ahead([b]) == []   # one job per table
+    inline = journal.table.__wrapped__(0.65, "gumbel")
+    monkeypatch.setattr(journal, "table", lambda *a: pytest.fail("solved in the run"))
+    equip.film_table(b)
+    equip.films_dropped(started)                  # taken already: nothing to stop
+    beside = journal._KNOWN[(0.65, "gumbel")]
+    for name in journal.TABLE_FIELDS:
+        np.testing.assert_array_equal(getattr(beside, name), getattr(inline, name))
+    assert len(list((tmp_path / "films").glob("*.npz"))) == 1
+    other = JournalBearing(diameter=0.04, length=0.03, clearance=5e-5, viscosity=0.02,
+                           load=100.0, cavitation="gumbel")
+    (path,) = equip.films_ahead([other])
+    job = equip._AHEAD[path]
+    equip.films_dropped([path])
+    assert path not in equip._AHEAD and job._process is None     # stopped

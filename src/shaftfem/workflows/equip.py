@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from shaftfem.errors import SceneError
 from shaftfem.scene.model import (
@@ -24,26 +25,77 @@ from shaftfem.scene.model import (
 )
 from shaftfem.scene.toml_reading import entry, where
 
+if TYPE_CHECKING:
+    from shaftfem.aside import Aside
 
-def film_table(bearing: JournalBearing) -> None:
-    """A journal film's table from the cache (keyed by its L / D, cavitation and the
-    film's settings), else solved and kept there: every run of a scene needs it, and it
-    takes seconds to solve."""
-    import numpy as np
 
+def _film_path(bearing: JournalBearing):
+    """The film's L / D (rounded) and cavitation, and where its table is kept."""
     from shaftfem.parts import journal
-    from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
+    from shaftfem.store import cache_dir, content_key
 
     ratio, cavitation = round(bearing.ratio, 9), bearing.cavitation
     key = content_key({"ratio": ratio, "cavitation": cavitation, **journal.SETTINGS})
-    path = cache_dir() / "films" / f"{key}.npz"
-    if path.exists():
+    return ratio, cavitation, cache_dir() / "films" / f"{key}.npz"
+
+
+# film tables being solved beside the run (films_ahead), by their cache path
+_AHEAD: dict[str, Aside] = {}
+
+
+def films_ahead(bearings: list[JournalBearing]) -> list[str]:
+    """Start solving beside the run (aside.Aside) the film tables of these journals that
+    the cache lacks: a table hangs on the journal's L / D alone, not on the load the
+    static solution is about to give it, and takes seconds. The paths started, for
+    `film_table` to take them from and `films_dropped` to stop."""
+    from shaftfem.aside import Aside
+
+    started = []
+    for b in bearings:
+        ratio, cavitation, path = _film_path(b)
+        if not path.exists() and str(path) not in _AHEAD:
+            _AHEAD[str(path)] = Aside(_solved_table, ratio, cavitation)
+            started.append(str(path))
+    return started
+
+
+def films_dropped(paths: list[str]) -> None:
+    """Stop the film tables started by films_ahead that no journal took."""
+    for p in paths:
+        job = _AHEAD.pop(p, None)
+        if job is not None:
+            job.close()
+
+
+def _solved_table(ratio: float, cavitation: str):
+    from shaftfem.parts import journal
+
+    return journal.table(ratio, cavitation)
+
+
+def film_table(bearing: JournalBearing) -> None:
+    """A journal film's table from the cache (keyed by its L / D, cavitation and the
+    film's settings), else solved (or taken from beside the run, films_ahead) and kept
+    there: every run of a scene needs it, and it takes seconds to solve."""
+    import numpy as np
+
+    from shaftfem.parts import journal
+    from shaftfem.store import discard, load_arrays, save_arrays
+
+    ratio, cavitation, path = _film_path(bearing)
+    ahead = _AHEAD.pop(str(path), None)
+    if ahead is not None:
+        t = ahead.result()
+        journal.remember(t)
+    elif path.exists():
         fields, why = load_arrays(path, journal.TABLE_FIELDS)
         if fields is not None:
             journal.remember(journal.FilmTable(ratio, cavitation, **fields))
             return
         discard("journal film table", why, path)
-    t = journal.table(ratio, cavitation)
+        t = journal.table(ratio, cavitation)
+    else:
+        t = journal.table(ratio, cavitation)
     try:
         save_arrays(path, {n: np.asarray(getattr(t, n)) for n in journal.TABLE_FIELDS})
     except OSError:   # a cache that cannot be written costs time, not the result

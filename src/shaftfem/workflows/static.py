@@ -12,8 +12,13 @@ import numpy as np
 from shaftfem.errors import SceneError
 from shaftfem.fem.static import StaticSolution, static_solution
 from shaftfem.runtime import RunOptions
-from shaftfem.scene.model import Scene
-from shaftfem.workflows.equip import journal_coefficients, with_parts
+from shaftfem.scene.model import Scene, Support
+from shaftfem.workflows.equip import (
+    films_ahead,
+    films_dropped,
+    journal_coefficients,
+    with_parts,
+)
 
 
 @dataclass(frozen=True)
@@ -111,7 +116,18 @@ def equipped(scene: Scene, options: RunOptions = RunOptions()) -> Scene:
     if not waiting:
         return scene
     assert scene.rotor is not None   # a journal needs [rotor] (scene.load)
-    reaction = reactions(scene, options)
+    # their films' tables are solved beside the static solution they wait for
+    ahead = films_ahead([s.journal for s in waiting if s.journal is not None])
+    try:
+        return replace(scene, supports=_loaded(scene, reactions(scene, options)))
+    finally:
+        films_dropped(ahead)
+
+
+def _loaded(scene: Scene, reaction: dict[str, np.ndarray]) -> tuple[Support, ...]:
+    """The supports with each waiting journal loaded by its reaction, with its film's
+    coefficients."""
+    assert scene.rotor is not None
     supports = []
     for s in scene.supports:
         if s.journal is None or s.bearing is not None:
@@ -129,4 +145,4 @@ def equipped(scene: Scene, options: RunOptions = RunOptions()) -> Scene:
             raise SceneError(f"{scene.source}: journal bearing {s.name!r} carries "
                              f"{load:,.0f} N of the static loads: {e}") from None
         supports.append(replace(s, journal=bearing, bearing=coefficients))
-    return replace(scene, supports=tuple(supports))
+    return tuple(supports)
