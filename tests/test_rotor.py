@@ -406,3 +406,31 @@ def test_a_torsional_curve_is_seen_at_its_own_frequency_in_the_turning_frame():
     bending = Curve(2, "rotating", speeds, f, np.zeros(3), np.ones(3), ("bending",) * 3,
                     np.ones((2, 3)))
     assert np.allclose(bending.seen_hz, f + speeds / 60.0)   # a forward orbit: f + n
+
+
+def test_fewer_modes_of_the_whirl_s_pencil_are_the_lowest_of_its_basis(monkeypatch):
+    """A design's standstill modes of a rotor, after its whirl's basis (18 or more modes
+    of the same pencil on the same mesh) in the same process: the basis' lowest, their
+    frequencies and shapes those of the basis bit for bit, K and M not assembled again;
+    on another mesh, a solve of its own."""
+    from shaftfem.fem import assembly
+    from shaftfem.workflows.campbell import turning
+    from shaftfem.workflows.pipeline import run_modes, with_mesh, with_modes
+
+    scene = load_scene(friswell(ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=2.0), two_disks(),
+                                {"speed_rpm": 3000.0, "campbell_points": 2}))
+    basis, _, _ = turning(scene)
+    f = basis.modes.frequencies
+    # a count that splits no pair of one frequency (that pair's basis would be any)
+    n = next(i for i in range(4, f.size) if f[i] - f[i - 1] > 1e-4 * f[i])
+    assemble = assembly.assemble
+    monkeypatch.setattr(assembly, "assemble", lambda *a, **k: pytest.fail("assembled again"))
+    design = run_modes(with_modes(scene, count=n))
+    assert np.array_equal(design.modes.frequencies, basis.modes.frequencies[:n])
+    assert np.array_equal(design.modes.shapes, basis.modes.shapes[:, :n])
+    assert design.modes.kinds == basis.modes.kinds[:n] and design.modes.count == n
+    monkeypatch.setattr(assembly, "assemble", assemble)
+    calls = []
+    monkeypatch.setattr(assembly, "assemble", lambda *a, **k: calls.append(1) or assemble(*a, **k))
+    run_modes(with_mesh(with_modes(scene, count=n), 30.0))
+    assert calls

@@ -81,6 +81,17 @@ class Modes:
     def count(self) -> int:
         return len(self.frequencies)
 
+    def lowest(self, n: int) -> Modes:
+        """The lowest n of these modes, with their proof: the inertia count below
+        inertia_shift holds for any of them (the further pairs left out)."""
+        from dataclasses import replace
+
+        return replace(self, frequencies=self.frequencies[:n], shapes=self.shapes[:, :n],
+                       residuals=self.residuals[:n], backward_errors=self.backward_errors[:n],
+                       kinds=self.kinds[:n], energy=self.energy[:n],
+                       trains=None if self.trains is None else self.trains[:, :n],
+                       beyond=None)
+
 
 def modal_analysis(system: System, wanted: ModeRequest = ModeRequest(),
                    settings: SolverSettings = SolverSettings(),
@@ -150,7 +161,12 @@ def fixed_basis(pairs: Ritz, shapes: np.ndarray, mass_scalar: sp.csr_matrix) -> 
         i = j
     out = pairs.rotated(Q) if rotated else pairs
     full = shapes @ Q
-    biggest = full[np.argmax(np.abs(full), axis=0), np.arange(n)]
+    # the sign: the largest motion positive; among motions as large as it to 1e-6 (a
+    # torsion mode's at every node of the rim), the first DOF's, so that round-off in
+    # the solve does not choose
+    size = np.abs(full)
+    first = np.argmax(size >= (1 - 1e-6) * size.max(axis=0), axis=0)
+    biggest = full[first, np.arange(n)]
     return out.scaled(np.where(biggest < 0, -1.0, 1.0))
 
 

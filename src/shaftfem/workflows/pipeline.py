@@ -151,6 +151,13 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
 
     scene = with_parts(scene)   # the installed shaft holds its bearings' stiffness
     watch = watch or Stopwatch()
+    solved = _solved_here(scene, mesh, options)
+    if solved is not None:
+        options.say(f"{solved.modes.n_dofs} DOFs; the lowest {scene.modes.count} of the "
+                    f"{solved.modes.count} modes solved on this mesh in this run")
+        modes = solved.modes.lowest(scene.modes.count)
+        return replace(solved, scene=scene, shape=shape, modes=modes,
+                       timings=watch.timings(), warnings=scene_warnings(scene, modes))
     with watch.lap("assembly"):
         d = discretise(mesh)
         # The solver's ordering needs only the sparsity: it runs while K and M are filled
@@ -173,9 +180,51 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
     with watch.lap("solve"):
         modes = solve_system(scene, mesh, system, options,
                              SolverSettings(options.factoriser, analysis=analysis), installed)
-    return ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
-                       timings=watch.timings(), warnings=scene_warnings(scene, modes),
-                       installed=installed)
+    result = ModalResult(scene=scene, shape=shape, mesh=mesh, system=system, modes=modes,
+                         timings=watch.timings(), warnings=scene_warnings(scene, modes),
+                         installed=installed)
+    _keep_here(result, options)
+    return result
+
+
+# The last solves of this process, by their pencil and mesh (_solve_path): a solve of
+# fewer modes of the same pencil on the same mesh takes the lowest of one of more (the
+# design's standstill modes, those of the whirl's basis), not assembling K and M again.
+_SOLVED: dict[str, ModalResult] = {}
+KEPT_SOLVES = 2
+
+
+def _here_key(scene: Scene, mesh: ShaftMesh, options: RunOptions) -> str | None:
+    if not options.use_cache or scene.modes.max_frequency is not None:
+        return None
+    return f"{options.factoriser}|{_solve_path(scene, mesh, '')}"
+
+
+def _solved_here(scene: Scene, mesh: ShaftMesh, options: RunOptions) -> ModalResult | None:
+    """A solve of this process on this pencil and mesh of more modes than the scene asks,
+    where its lowest are a solve of their own (no pair split at the count)."""
+    from shaftfem.fem.modes import DEGENERATE_SPLIT
+
+    key = _here_key(scene, mesh, options)
+    kept = _SOLVED.get(key) if key is not None else None
+    n = scene.modes.count
+    if kept is None or kept.modes.count <= n:
+        return None
+    # a pair split by the count would be another basis of that pair than a solve's own
+    f = kept.modes.frequencies
+    if f[n] - f[n - 1] <= 100 * DEGENERATE_SPLIT * f[n]:
+        return None
+    return kept
+
+
+def _keep_here(result: ModalResult, options: RunOptions) -> None:
+    key = _here_key(result.scene, result.mesh, options)
+    if key is None:
+        return
+    _SOLVED.pop(key, None)
+    _SOLVED[key] = result
+    while len(_SOLVED) > KEPT_SOLVES:
+        _SOLVED.pop(next(iter(_SOLVED)))
 
 
 def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOptions,
