@@ -144,8 +144,14 @@ def write_mode_files(result: ModalResult, folder: Path,
                      est: ErrorEstimate | None = None) -> list[Path]:
     """The files of export_modes, written straight into `folder`."""
     shapes = write_shape_files(result, folder)
-    return shapes[:-1] + write_mode_tables(result, folder, est) + shapes[-1:] + write_solid_files(
-        result, folder)
+    return listed(shapes, write_mode_tables(result, folder, est),
+                  write_solid_files(result, folder))
+
+
+def listed(shapes: list[Path], tables: list[Path], solid: list[Path]) -> list[Path]:
+    """The export's files in the order they are listed: the mode shapes, the tables,
+    the mesh (the shapes' last file), the solid."""
+    return shapes[:-1] + tables + shapes[-1:] + solid
 
 
 def write_shape_files(result: ModalResult, folder: Path) -> list[Path]:

@@ -108,6 +108,7 @@ class _Run:
         from shaftfem.checks.resonance import check_result
         from shaftfem.checks.sizing import size_from_scene
         from shaftfem.outputs.export import (
+            listed,
             write_mode_tables,
             write_shape_files,
             write_solid_files,
@@ -193,7 +194,7 @@ class _Run:
         shapes, pictures = (self.pictures.result() if turns
                             else (write_shape_files(result, stage), None))
         say("the mode table and the solid (shaft.step)")
-        tables = write_mode_tables(result, stage, est) + write_solid_files(result, stage)
+        tables, solid = write_mode_tables(result, stage, est), write_solid_files(result, stage)
         more = []
         if response is not None:
             more.append(_response_picture(result, response, basis, stage / "response.png"))
@@ -209,7 +210,7 @@ class _Run:
         assert pictures is not None
         for p in pictures:
             say(f"picture {p.name}")
-        files = shapes[:-1] + tables[:2] + shapes[-1:] + tables[2:] + whirl_files
+        files = listed(shapes, tables, solid) + whirl_files
         pictures = pictures + more
         wall = time.perf_counter() - started
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,

@@ -84,18 +84,14 @@ def film_table(bearing: JournalBearing) -> None:
 
     ratio, cavitation, path = _film_path(bearing)
     ahead = _AHEAD.pop(str(path), None)
-    if ahead is not None:
-        t = ahead.result()
-        journal.remember(t)
-    elif path.exists():
+    if ahead is None and path.exists():
         fields, why = load_arrays(path, journal.TABLE_FIELDS)
         if fields is not None:
             journal.remember(journal.FilmTable(ratio, cavitation, **fields))
             return
         discard("journal film table", why, path)
-        t = journal.table(ratio, cavitation)
-    else:
-        t = journal.table(ratio, cavitation)
+    t = journal.table(ratio, cavitation) if ahead is None else ahead.result()
+    journal.remember(t)
     try:
         save_arrays(path, {n: np.asarray(getattr(t, n)) for n in journal.TABLE_FIELDS})
     except OSError:   # a cache that cannot be written costs time, not the result

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import time
+import weakref
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import replace
@@ -187,11 +188,12 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
     return result
 
 
-# The last solves of this process, by their pencil and mesh (_solve_path): a solve of
-# fewer modes of the same pencil on the same mesh takes the lowest of one of more (the
-# design's standstill modes, those of the whirl's basis), not assembling K and M again.
-_SOLVED: dict[str, ModalResult] = {}
-KEPT_SOLVES = 2
+# The solves of this process that are still in use, by their pencil and mesh
+# (_solve_path): a solve of fewer modes of the same pencil on the same mesh takes the
+# lowest of one of more (the design's standstill modes, those of the whirl's basis,
+# which the rotor model keeps), not assembling K and M again. Held weakly: a solve
+# nothing else holds (a sweep's last variant) is let go as before.
+_SOLVED: weakref.WeakValueDictionary[str, ModalResult] = weakref.WeakValueDictionary()
 
 
 def _here_key(scene: Scene, mesh: ShaftMesh, options: RunOptions) -> str | None:
@@ -219,12 +221,8 @@ def _solved_here(scene: Scene, mesh: ShaftMesh, options: RunOptions) -> ModalRes
 
 def _keep_here(result: ModalResult, options: RunOptions) -> None:
     key = _here_key(result.scene, result.mesh, options)
-    if key is None:
-        return
-    _SOLVED.pop(key, None)
-    _SOLVED[key] = result
-    while len(_SOLVED) > KEPT_SOLVES:
-        _SOLVED.pop(next(iter(_SOLVED)))
+    if key is not None:
+        _SOLVED[key] = result
 
 
 def solve_system(scene: Scene, mesh: ShaftMesh, system: System, options: RunOptions,
