@@ -91,7 +91,7 @@ def test_installed_package_finds_its_scenes_from_any_folder(tmp_path):
     """A non-editable install into a fresh virtual environment (the dependencies are
     taken from the test's own environment through a .pth line), run elsewhere."""
     env_dir = tmp_path / "venv"
-    venv.create(env_dir, with_pip=True)
+    venv.create(env_dir)     # without pip of its own: this one's installs into it
     py = env_dir / "bin" / "python"
     wheels, source = tmp_path / "wheels", tmp_path / "source"
     # built from a copy: an in-tree build would leave build/ in the checkout
@@ -103,8 +103,8 @@ def test_installed_package_finds_its_scenes_from_any_folder(tmp_path):
     quiet = dict(capture_output=True, text=True, check=True)
     subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(wheels),
                     str(source)], **quiet)
-    subprocess.run([str(py), "-m", "pip", "install", "--no-deps", "-q",
-                    *map(str, wheels.glob("*.whl"))], **quiet)
+    subprocess.run([sys.executable, "-m", "pip", "--python", str(py), "install", "--no-deps",
+                    "-q", *map(str, wheels.glob("*.whl"))], **quiet)
     site = subprocess.run([str(py), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                           **quiet).stdout.strip()
     deps = [p for p in sys.path if p.endswith("site-packages")]
