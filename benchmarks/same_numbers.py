@@ -8,8 +8,16 @@ number by number.
 `run` uses the shaftfem of folder SRC (a checkout's src/, default this one's) with a
 fresh cache, so that a version compared is computed, not read back. `compare` reads the
 JSON files of two runs, walks them side by side and lists every number that differs by
-more than rtol of its size (timings and paths are not numbers of the physics: skipped),
-then exits 1 if any does. Used to show that a rebuild of the code changed no number.
+more than rtol of its size, then exits 1 if any does. Used to show that a rebuild of the
+code changed no number.
+
+What is not a number of the physics is skipped: timings and paths, and the round-off
+diagnostics (a mode's residual and backward error, the mass-orthonormality error), which
+measure round-off itself. A number's size is that of the quantity it belongs to: in a
+list of records (the modes), the largest of its quantity over the list along any axis (a
+bending mode's effective mass along the axis, 1e-25 kg, is round-off of a quantity whose
+modes reach kilograms), and a percentage of a frequency (an error bound) is
+compared as the part of that frequency it is.
 """
 
 from __future__ import annotations
@@ -17,6 +25,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -36,10 +45,11 @@ COMMANDS = {
     "frf": ["--at-mm", "100", "--frequencies-hz", "10:500:25"],
     "design": ["--no-html"],
 }
-# keys whose values are the run's circumstances, not its physics
+# keys whose values are the run's circumstances, not its physics; and round-off's own
+# measures
 SKIP = {"seconds", "timings", "time", "times", "wall", "elapsed", "version", "path", "paths",
         "out", "files", "cache", "created", "source", "folder", "date", "peak_mb",
-        "timings_s"}
+        "timings_s", "residual", "residuals", "backward_error", "mass_orthonormality_error"}
 
 
 def examples() -> list[Path]:
@@ -80,33 +90,70 @@ def run(out: Path, src: Path, only: str | None, commands: list[str]) -> int:
     return 1 if failed else 0
 
 
-def differences(a: object, b: object, where: str, rtol: float) -> list[str]:
+def _number(x: object) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def family(key: str) -> str:
+    """A field's quantity whatever its axis: effective_mass_x_kg and effective_mass_rz_kg_m2
+    are both effective_mass_*."""
+    return re.sub(r"_(x|y|z|rx|ry|rz)(_.*)?$", "_*", key)
+
+
+def field_sizes(a: list, b: list) -> dict[str, float]:
+    """Each numeric field's size over two lists of records: the largest magnitude of its
+    quantity (family) over the lists, along any axis."""
+    sizes: dict[str, float] = {}
+    for rec in (*a, *b):
+        if isinstance(rec, dict):
+            for k, v in rec.items():
+                if _number(v) and math.isfinite(v):
+                    sizes[family(k)] = max(sizes.get(family(k), 0.0), abs(v))
+    return {k: sizes[family(k)] for rec in (*a, *b) if isinstance(rec, dict) for k in rec
+            if family(k) in sizes}
+
+
+def differences(a: object, b: object, where: str, rtol: float, size: float = 0.0
+                ) -> list[str]:
     """Every place where two JSON values differ: a number by more than rtol of the
-    larger, anything else at all."""
+    larger or of `size` (its quantity's, see the module's docstring), anything else at
+    all."""
     if isinstance(a, dict) and isinstance(b, dict):
-        out = []
-        for k in sorted(set(a) | set(b)):
-            if k in SKIP:
-                continue
-            if k not in a or k not in b:
-                out.append(f"{where}.{k}: only in {'after' if k in b else 'before'}")
-                continue
-            out += differences(a[k], b[k], f"{where}.{k}", rtol)
-        return out
+        return _record(a, b, where, rtol, {})
     if isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             return [f"{where}: {len(a)} items before, {len(b)} after"]
-        return [d for i, (x, y) in enumerate(zip(a, b))
-                for d in differences(x, y, f"{where}[{i}]", rtol)]
-    numbers = (int, float)
-    if (isinstance(a, numbers) and isinstance(b, numbers) and not isinstance(a, bool)
-            and not isinstance(b, bool)):
+        sizes = field_sizes(a, b)
+        out = []
+        for i, (x, y) in enumerate(zip(a, b)):
+            if isinstance(x, dict) and isinstance(y, dict):
+                out += _record(x, y, f"{where}[{i}]", rtol, sizes)
+            else:
+                out += differences(x, y, f"{where}[{i}]", rtol, size)
+        return out
+    if _number(a) and _number(b):
+        assert isinstance(a, (int, float)) and isinstance(b, (int, float))
         if math.isnan(a) and math.isnan(b):
             return []
-        if a == b or abs(a - b) <= rtol * max(abs(a), abs(b)):
+        if a == b or abs(a - b) <= rtol * max(abs(a), abs(b), size):
             return []
         return [f"{where}: {a!r} before, {b!r} after"]
     return [] if a == b else [f"{where}: {a!r} before, {b!r} after"]
+
+
+def _record(a: dict, b: dict, where: str, rtol: float, sizes: dict[str, float]) -> list[str]:
+    """A record of a list compared field by field, each at its field's size over the
+    list (a percentage at 100)."""
+    out = []
+    for k in sorted(set(a) | set(b)):
+        if k in SKIP:
+            continue
+        if k not in a or k not in b:
+            out.append(f"{where}.{k}: only in {'after' if k in b else 'before'}")
+            continue
+        out += differences(a[k], b[k], f"{where}.{k}", rtol,
+                           100.0 if k.endswith("_percent") else sizes.get(k, 0.0))
+    return out
 
 
 def compare(before: Path, after: Path, rtol: float) -> int:
