@@ -7,8 +7,11 @@ import shaftfem.runtime  # noqa: E402
 
 shaftfem.runtime.configure_threads()
 if "PYTEST_XDIST_WORKER" in os.environ:
-    # one worker per core: MKL's threads in each would only fight the other worker's
+    # one worker per core: MKL's threads in each would only fight the other worker's, and
+    # so would work put beside a run (shaftfem.aside), as in a sweep's Dask workers: it
+    # runs in line there (the tests of the work beside a run turn it back on)
     os.environ.setdefault("MKL_NUM_THREADS", "1")
+    os.environ.setdefault("SHAFTFEM_ASIDE", "0")
 
 import pytest
 

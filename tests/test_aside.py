@@ -12,6 +12,13 @@ from shaftfem.errors import SceneError
 from shaftfem.scene.load import load_scene
 
 
+@pytest.fixture(autouse=True)
+def _beside(monkeypatch):
+    """Work beside the run on, as a user's run has it (tests/conftest.py turns it off in
+    the suite's workers)."""
+    monkeypatch.setenv("SHAFTFEM_ASIDE", "1")
+
+
 def test_work_aside_gives_what_it_would_give_in_line():
     a = np.random.default_rng(1).normal(size=(60, 60))
     a = a @ a.T

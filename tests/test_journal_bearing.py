@@ -357,6 +357,7 @@ def test_a_film_table_solved_beside_the_run_is_the_table_solved_in_it(tmp_path, 
     b = JournalBearing(diameter=0.04, length=0.026, clearance=5e-5, viscosity=0.02,
                        load=100.0, cavitation="gumbel")
     monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
+    monkeypatch.setenv("SHAFTFEM_ASIDE", "1")   # as a user's run has it
     monkeypatch.setattr(journal, "_KNOWN", {})
     started = equip.films_ahead([b])
     assert len(started) == 1 and equip.films_ahead([b]) == []   # one job per table
