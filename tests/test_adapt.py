@@ -13,9 +13,7 @@ from shaftfem.workflows.adapt import run_adaptive
 from shaftfem.workflows.pipeline import with_mesh
 
 TARGET = 1e-4
-# its fixture starts cold, and is built once: one worker runs the module (make test's
-# --dist loadgroup)
-pytestmark = [pytest.mark.usefixtures("own_cache"), pytest.mark.xdist_group("adapt")]
+pytestmark = pytest.mark.usefixtures("own_cache")   # its fixture starts cold
 
 
 @pytest.fixture(scope="module")

@@ -20,10 +20,6 @@ from shaftfem.cli import main
 from shaftfem.fem.whirl import RPM, WHIRLING
 from shaftfem.scene.load import load_scene
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("api684_verdicts")
-
-
 STEEL = {"name": "steel", "youngs_modulus_mpa": 206000.0, "poisson_ratio": 0.29,
          "density_kg_m3": 7850.0}
 SLOW_ROLL, RUNNING = 25.0, 3600.0

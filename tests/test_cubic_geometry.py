@@ -10,9 +10,6 @@ import pytest
 
 from references import torsion_hz
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("cubic_geometry")
-
 
 @pytest.fixture(scope="module")
 def cubic_runs(cylinder):

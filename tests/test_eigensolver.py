@@ -16,9 +16,6 @@ from shaftfem.fem.modes import modal_analysis
 from shaftfem.fem.supports import rigid_body_modes
 from shaftfem.scene.model import ModeRequest
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("eigensolver")
-
 
 def _chain(n=300, cut=None):
     """A free-free spring-mass chain with uneven masses: one rigid mode, distinct

@@ -9,9 +9,6 @@ import scipy.sparse.linalg as sla
 
 from references import torsion_hz
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("hierarchical")
-
 
 @pytest.fixture(scope="module")
 def runs(cylinder):

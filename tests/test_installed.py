@@ -13,10 +13,6 @@ from shaftfem.cli import main
 from shaftfem.errors import SceneError
 from shaftfem.scene.load import scene_from_dict
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("installed")
-
-
 STEEL = {"youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.277, "density_kg_m3": 7870.0}
 L_MM, D_MM, SEAT_MM = 320.0, 32.0, 2.0
 

@@ -12,10 +12,6 @@ import pytest
 from shaftfem.scene.load import scene_from_dict
 from shaftfem.workflows.pipeline import run_modes
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("low_modes")
-
-
 STEEL = {"youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.277, "density_kg_m3": 7870.0}
 L, D, A = 0.55, 0.032, 0.25          # m: length, diameter, bearings at the centre +- A
 

@@ -10,9 +10,7 @@ import pytest
 from references import torsion_hz
 
 SIZE_MM = 16.0
-# its fixture starts cold, and is built once: one worker runs the module (make test's
-# --dist loadgroup)
-pytestmark = [pytest.mark.usefixtures("own_cache"), pytest.mark.xdist_group("order_adapt")]
+pytestmark = pytest.mark.usefixtures("own_cache")   # its fixture starts cold
 
 
 @pytest.fixture(scope="module")

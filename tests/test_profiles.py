@@ -25,10 +25,6 @@ from references import rod_profile_hz, timoshenko_profile_hz
 from shaftfem.errors import SceneError
 from shaftfem.scene.load import SceneText, load_scene
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("profiles")
-
-
 MATERIAL = """
 [material]
 youngs_modulus_mpa = 210000.0

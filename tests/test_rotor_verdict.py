@@ -23,10 +23,6 @@ from shaftfem.fem.tracking import curve_crossings, direct_crossings, reported, t
 from shaftfem.fem.whirl import RPM
 from shaftfem.scene.load import load_scene
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("rotor_verdict")
-
-
 M, ID, IP, K, KT = 10.0, 0.1, 0.05, 1e6, 2e4
 STEEL = {"name": "steel", "youngs_modulus_mpa": 211000.0, "poisson_ratio": 0.3,
          "density_kg_m3": 7810.0}

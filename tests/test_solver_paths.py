@@ -7,9 +7,6 @@ from shaftfem.fem.eigen import SolverSettings
 from shaftfem.fem.factor import available_factorisers
 from shaftfem.fem.modes import modal_analysis
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("solver_paths")
-
 
 @pytest.fixture(scope="module")
 def short_grooved(_fresh_shape_cache):

@@ -18,9 +18,6 @@ from shaftfem.scene.load import scene_from_dict
 from shaftfem.scene.model import Material
 from shaftfem.workflows.pipeline import run_modes
 
-# one worker runs the module: its module fixture is built once (make test: --dist loadgroup)
-pytestmark = pytest.mark.xdist_group("stability")
-
 
 def _scene(length_mm, diameter_mm, size_mm, nu=0.277, order=2, grooves=None):
     d = {
