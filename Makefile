@@ -15,10 +15,10 @@ run:
 	.venv/bin/shaftfem design
 test:
 	bash scripts/setup.sh test
-	.venv/bin/python -m pytest -q -n auto
+	.venv/bin/python -m pytest -q -n auto --dist worksteal
 test-all:
 	bash scripts/setup.sh test
-	.venv/bin/python -m pytest -q -n auto -m "slow or not slow"
+	.venv/bin/python -m pytest -q -n auto --dist worksteal -m "slow or not slow"
 lint:
 	bash scripts/setup.sh test
 	.venv/bin/ruff check src tests benchmarks scripts examples docs

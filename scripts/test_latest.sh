@@ -13,4 +13,4 @@ rm -rf .venv-latest
 "$uv" pip install --quiet --python .venv-latest/bin/python --no-deps -e .
 echo "test-latest: packages at other versions than the lock:"
 .venv-latest/bin/python scripts/check_lock.py requirements/dev.txt 2>&1 | sed 's/^check_lock: /  /' || true
-.venv-latest/bin/python -m pytest -q -n auto "$@"
+.venv-latest/bin/python -m pytest -q -n auto --dist worksteal "$@"
