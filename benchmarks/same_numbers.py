@@ -14,9 +14,10 @@ code changed no number.
 What is not a number of the physics is skipped: timings and paths, and the round-off
 diagnostics (a mode's residual and backward error, the mass-orthonormality error), which
 measure round-off itself. A number's size is that of the quantity it belongs to: in a
-list of records (the modes), the largest of its quantity over the list along any axis (a
-bending mode's effective mass along the axis, 1e-25 kg, is round-off of a quantity whose
-modes reach kilograms), and a percentage of a frequency (an error bound) is
+list of records (the modes), a quantity given along an axis is sized by its largest over
+the list along any axis (a bending mode's effective mass along the axis, 1e-25 kg, is
+round-off of a quantity whose modes reach kilograms; a frequency is its own size), and a
+percentage of a frequency (an error bound) is
 compared as the part of that frequency it is.
 """
 
@@ -101,8 +102,10 @@ def family(key: str) -> str:
 
 
 def field_sizes(a: list, b: list) -> dict[str, float]:
-    """Each numeric field's size over two lists of records: the largest magnitude of its
-    quantity (family) over the lists, along any axis."""
+    """The size of each numeric field given along an axis, over two lists of records: the
+    largest magnitude of its quantity (family) over the lists, along any axis (such a
+    field is zero by symmetry on some records, and round-off there). Any other field,
+    a frequency, is its own size."""
     sizes: dict[str, float] = {}
     for rec in (*a, *b):
         if isinstance(rec, dict):
@@ -110,7 +113,7 @@ def field_sizes(a: list, b: list) -> dict[str, float]:
                 if _number(v) and math.isfinite(v):
                     sizes[family(k)] = max(sizes.get(family(k), 0.0), abs(v))
     return {k: sizes[family(k)] for rec in (*a, *b) if isinstance(rec, dict) for k in rec
-            if family(k) in sizes}
+            if family(k) in sizes and family(k) != k}
 
 
 def differences(a: object, b: object, where: str, rtol: float, size: float = 0.0
