@@ -102,18 +102,16 @@ def family(key: str) -> str:
 
 
 def field_sizes(a: list, b: list) -> dict[str, float]:
-    """The size of each numeric field given along an axis, over two lists of records: the
-    largest magnitude of its quantity (family) over the lists, along any axis (such a
-    field is zero by symmetry on some records, and round-off there). Any other field,
-    a frequency, is its own size."""
+    """The size of each quantity given along an axis (family), over two lists of records:
+    its largest magnitude there along any axis (such a field is zero by symmetry on some
+    records, and round-off there). Any other field, a frequency, is its own size."""
     sizes: dict[str, float] = {}
     for rec in (*a, *b):
         if isinstance(rec, dict):
             for k, v in rec.items():
-                if _number(v) and math.isfinite(v):
+                if family(k) != k and _number(v) and math.isfinite(v):
                     sizes[family(k)] = max(sizes.get(family(k), 0.0), abs(v))
-    return {k: sizes[family(k)] for rec in (*a, *b) if isinstance(rec, dict) for k in rec
-            if family(k) in sizes and family(k) != k}
+    return sizes
 
 
 def differences(a: object, b: object, where: str, rtol: float, size: float = 0.0
@@ -145,8 +143,8 @@ def differences(a: object, b: object, where: str, rtol: float, size: float = 0.0
 
 
 def _record(a: dict, b: dict, where: str, rtol: float, sizes: dict[str, float]) -> list[str]:
-    """A record of a list compared field by field, each at its field's size over the
-    list (a percentage at 100)."""
+    """A record of a list compared field by field, each at its quantity's size over the
+    list (field_sizes; a percentage at 100)."""
     out = []
     for k in sorted(set(a) | set(b)):
         if k in SKIP:
@@ -155,7 +153,7 @@ def _record(a: dict, b: dict, where: str, rtol: float, sizes: dict[str, float]) 
             out.append(f"{where}.{k}: only in {'after' if k in b else 'before'}")
             continue
         out += differences(a[k], b[k], f"{where}.{k}", rtol,
-                           100.0 if k.endswith("_percent") else sizes.get(k, 0.0))
+                           100.0 if k.endswith("_percent") else sizes.get(family(k), 0.0))
     return out
 
 
