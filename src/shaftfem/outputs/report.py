@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.hanging import HangingModes
     from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
@@ -106,7 +107,7 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
 def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                     files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
-                    free: Modes | None = None,
+                    free: Modes | HangingModes | None = None,
                     participation: Participation | None = None,
                     rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> str:
     """report.md's text; picture and file names are relative to the report's folder;
@@ -175,7 +176,7 @@ def shaft_facts(result: ModalResult) -> list[str]:
 def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdict | None,
                  sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                  files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
-                 free: Modes | None = None,
+                 free: Modes | HangingModes | None = None,
                  participation: Participation | None = None,
                  rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> Path:
     return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.hanging import HangingModes
     from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
@@ -135,7 +136,7 @@ The motion is drawn large (a mode shape has no amplitude of its own).</p>
 
 def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
                 sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
-                estimate: ErrorEstimate | None = None, free: Modes | None = None,
+                estimate: ErrorEstimate | None = None, free: Modes | HangingModes | None = None,
                 participation: Participation | None = None, rotor: RotorStudy | None = None,
                 drawing: Drawing | None = None, wall_seconds: float | None = None) -> str:
     """report.html's text: the vtk.js viewer page with the report around its view
@@ -199,7 +200,7 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
 def write_report_html(path: str | Path, result: ModalResult,
                       verdict: ResonanceVerdict | None, sizing: SizingResult | None = None,
                       pictures: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
-                      free: Modes | None = None,
+                      free: Modes | HangingModes | None = None,
                       participation: Participation | None = None,
                       rotor: RotorStudy | None = None, drawing: Drawing | None = None,
                       wall_seconds: float | None = None) -> Path:

@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.hanging import HangingModes
     from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult, ModelMoves
@@ -452,7 +453,7 @@ def modes_markdown(result: ModalResult, est: ErrorEstimate | None = None) -> lis
     return markdown(*modes_rows(result, est))
 
 
-def side_by_side_rows(installed: ModalResult, free: Modes) -> Rows:
+def side_by_side_rows(installed: ModalResult, free: Modes | HangingModes) -> Rows:
     """The installed modes beside the free-free ones (the same shaft's modes hanging
     free), mode by mode."""
     a, b = installed.modes, free
@@ -464,7 +465,7 @@ def side_by_side_rows(installed: ModalResult, free: Modes) -> Rows:
     return ["mode", "installed (Hz)", "kind", "free-free (Hz)", "kind"], rows
 
 
-def side_by_side_markdown(installed: ModalResult, free: Modes) -> list[str]:
+def side_by_side_markdown(installed: ModalResult, free: Modes | HangingModes) -> list[str]:
     return markdown(*side_by_side_rows(installed, free))
 
 

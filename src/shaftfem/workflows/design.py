@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     from shaftfem.checks.resonance import ResonanceVerdict
     from shaftfem.checks.sizing import SizingResult
     from shaftfem.fem.estimate import ErrorEstimate
+    from shaftfem.fem.hanging import HangingModes
     from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
@@ -95,6 +96,7 @@ class _Run:
         self.map: Aside | None = None
         self.pictures: Aside | None = None
         self.free: Aside | None = None
+        self.hanging: HangingModes | None = None
 
     def close(self) -> None:
         for job in (self.map, self.pictures, self.free):
@@ -107,6 +109,7 @@ class _Run:
         from shaftfem.aside import Aside
         from shaftfem.checks.resonance import check_result
         from shaftfem.checks.sizing import size_from_scene
+        from shaftfem.fem.hanging import hanging_modes, held_by_bearings_alone
         from shaftfem.outputs.export import (
             listed,
             write_mode_tables,
@@ -125,7 +128,11 @@ class _Run:
             sizing = size_from_scene(scene)
         # the pictures' process loads its libraries while the modes are solved
         self.pictures = Aside.waiting(*PICTURE_MODULES)
-        if scene.held and scene.target_error is None:
+        compare = bool(scene.held) and scene.target_error is None
+        # a rotor in bearings alone hangs free on its own basis (fem.hanging), known once
+        # the basis is; another shaft's free modes are solved beside the run from the start
+        hanging = compare and scene.rotor is not None and held_by_bearings_alone(scene)
+        if compare and not hanging:
             # on the scene's own mesh, which does not hang on the modes
             say("the same shaft hanging free, on the same mesh, for comparison, beside the run")
             self.free = Aside(_free_modes, scene, quiet)
@@ -135,7 +142,16 @@ class _Run:
             # the whirl's basis first (kept in the process for the study): the design's
             # modes, fewer, of the same pencil are then refined from its solve
             say("the shaft turning: its standstill basis")
-            turning(scene, options)
+            standstill, model, _ = turning(scene, options)
+            if hanging:
+                self.hanging = hanging_modes(standstill, model, scene.modes.count)
+                if self.hanging is not None:
+                    say("the same shaft hanging free: on the rotor's basis, its bearings "
+                        "taken out")
+                else:
+                    say("the same shaft hanging free, on the same mesh, for comparison, "
+                        "beside the run")
+                    self.free = Aside(_free_modes, scene, quiet)
             say("the rotordynamic study: the critical speed map, beside the run")
             self.map = Aside(_map, scene, quiet)
 
@@ -177,11 +193,14 @@ class _Run:
             ucs = self.map.result()
             study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell), runup,
                                cases if len(cases) > 1 else None)
-        free, part, response, basis = None, None, None, None
+        free: Modes | HangingModes | None = None
+        part, response, basis = None, None, None
         if scene.held:
             from shaftfem.fem.response import modal_basis, participation, response_sweep
 
-            if self.free is not None:
+            if self.hanging is not None:
+                free = self.hanging
+            elif self.free is not None:
                 free = self.free.result()
             else:   # an adapted mesh: known only now
                 say("the same shaft hanging free, on the same mesh, for comparison")
