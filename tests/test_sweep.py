@@ -226,7 +226,7 @@ def test_an_overhang_sweep_of_a_turning_pump_resumes_after_a_kill(tmp_path):
 
 
 def test_a_shorter_overhang_sweep_resumes_after_a_kill(tmp_path):
-    """The fast twin of the one above: the example's sweep over 4 of its positions,
+    """The fast twin of the one above: the example's sweep over 3 of its positions,
     killed after one row."""
     from pathlib import Path
 
@@ -234,9 +234,9 @@ def test_a_shorter_overhang_sweep_resumes_after_a_kill(tmp_path):
     text = (examples / "overhang_sweep.toml").read_text()
     assert "num = 12" in text and 'base = "overhung_pump.toml"' in text
     sweep_file = tmp_path / "overhang_sweep.toml"
-    sweep_file.write_text(text.replace("num = 12", "num = 4").replace(
+    sweep_file.write_text(text.replace("num = 12", "num = 3").replace(
         'base = "overhung_pump.toml"', f'base = "{(examples / "overhung_pump.toml").as_posix()}"'))
-    _overhang_sweep(sweep_file, tmp_path / "out", 4, 1)
+    _overhang_sweep(sweep_file, tmp_path / "out", 3, 1)
 
 
 def _overhang_sweep(sweep_file, out, n: int, killed_after: int) -> None:
