@@ -96,3 +96,29 @@ def test_check_screens_level1_when_the_scene_asks(tmp_path):
     assert runs[0].returncode == 1, runs[0].stderr[-2000:]
     assert "Level I screening fails API 617's criteria" in runs[0].stdout
     assert runs[1].returncode == 0, runs[1].stdout[-2000:]
+
+
+def test_design_leaves_level1_to_its_command_where_hill_spreads_wide():
+    """A rotor periodic at its running speed (an asymmetric Jeffcott rotor in supports
+    twice as stiff along x as along y): the slower it turns against the supports' split,
+    the more harmonics its Floquet forms spread over (2 at 3,000 r/min, past HILL_MAX at
+    30); there design leaves Level I, some fifty more such solves, to `shaftfem level1`
+    and says why. A round rotor's equations are constant: screened at any speed."""
+    import math
+
+    from shaftfem.fem.floquet import HILL_MAX, floquet_roots, harmonics_taken, widen
+    from shaftfem.workflows.design import level1_too_slow
+    from test_floquet import jeffcott
+
+    taken = {}
+    for rpm in (3000.0, 30.0):
+        w = rpm * math.pi / 30
+        model = widen(jeffcott(4e5, 2e5), (w,), 2)
+        floquet_roots(model, w)
+        taken[rpm] = harmonics_taken(model, w)
+        said = level1_too_slow(model, w)
+        assert (said is not None) == (taken[rpm] > HILL_MAX), (rpm, taken[rpm])
+    assert taken[3000.0] <= HILL_MAX < taken[30.0]
+    assert "`shaftfem level1`" in level1_too_slow(model, w)
+    round_ = jeffcott(3e5, 3e5, k1=2e5, k2=2e5)
+    assert not round_.periodic(w) and level1_too_slow(round_, w) is None

@@ -88,6 +88,8 @@ class _Memo:
 
     took: dict[float, int]
     roots: dict[float, Roots]
+    # every converged solve's harmonics by speed, widened ones too (harmonics_taken)
+    harmonics: dict[float, int]
 
 
 # by id(model), each entry dropped when its model is collected: an id is reused once
@@ -101,7 +103,7 @@ def _memo(model: RotorModel) -> _Memo:
     key = id(model)
     memo = _MEMOS.get(key)
     if memo is None:
-        memo = _MEMOS[key] = _Memo({}, {})
+        memo = _MEMOS[key] = _Memo({}, {}, {})
         weakref.finalize(model, _MEMOS.pop, key, None)
     return memo
 
@@ -309,7 +311,18 @@ def converged_hill(model: RotorModel, omega: float) -> Hill:
         took.clear()
     if h.harmonics <= HILL_MAX:   # (a widened speed's are no start for the diagram's)
         took[omega] = h.harmonics
+    taken = _memo(model).harmonics
+    if len(taken) >= 4096:
+        taken.clear()
+    taken[float(omega)] = h.harmonics
     return h
+
+
+def harmonics_taken(model: RotorModel, omega: float) -> int | None:
+    """The harmonics Hill's method took at the spin omega (rad/s) for this model, if it
+    was solved there: past HILL_MAX a slow spin's forms spread wide, and each solve
+    there costs as the cube of them."""
+    return _memo(model).harmonics.get(float(omega))
 
 
 def _settled(model: RotorModel, omega: float, H: int, wide: bool) -> Hill:

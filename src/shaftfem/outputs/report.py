@@ -34,6 +34,7 @@ class RotorStudy:
     text: str
     runup: RunUp | None = None
     cases: list | None = None   # the study's cases side by side (workflows.cases), if several
+    unscreened: str | None = None   # why Level I was left out, where it was
 
 
 STUDY_NOTE = ("The verdict at the top (and the exit status) takes the scene's flat "

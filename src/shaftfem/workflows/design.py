@@ -178,10 +178,14 @@ class _Run:
             say("the shaft turning: whirl, Campbell diagram, critical speeds")
             cases = run_cases(scene, margin, options)   # the nominal one first
             campbell, verdict = cases[0].campbell, combined(cases)
-            level1 = cases[0].level1
+            level1, unscreened = cases[0].level1, None
             if level1 is None:
-                say("the rotordynamic study: Level I")
-                level1 = _or_none(run_level1, scene, options)
+                unscreened = level1_too_slow(model, scene.rotor.top_speed)
+                if unscreened is None:
+                    say("the rotordynamic study: Level I")
+                    level1 = _or_none(run_level1, scene, options)
+                else:
+                    say(f"the rotordynamic study: Level I not screened: {unscreened}")
             runup = None
             if scene.rotor.runup is not None and scene.unbalances:
                 from shaftfem.workflows.runup import run_run_up
@@ -192,7 +196,7 @@ class _Run:
             assert self.map is not None
             ucs = self.map.result()
             study = RotorStudy(campbell, verdict, ucs, level1, campbell_text(campbell), runup,
-                               cases if len(cases) > 1 else None)
+                               cases if len(cases) > 1 else None, unscreened)
         free: Modes | HangingModes | None = None
         part, response, basis = None, None, None
         if scene.held:
@@ -275,6 +279,24 @@ def _map(scene: Scene, options: RunOptions):
     from shaftfem.workflows.ucs import run_ucs
 
     return _or_none(run_ucs, scene, options)
+
+
+def level1_too_slow(model, top: float) -> str | None:
+    """Why design leaves out the Level I screening the scene did not ask for, or None:
+    a rotor whose equations are periodic at its highest operating speed `top` (rad/s),
+    where Hill's method took more than HILL_MAX harmonics for the Campbell diagram (a
+    spin slow against the bearings' split): Level I solves that again at some fifty
+    applied cross-couplings, each costing as the cube of the harmonics. `shaftfem
+    level1`, or [rotor] level1 = true, screens it all the same."""
+    from shaftfem.fem.floquet import HILL_MAX, harmonics_taken
+
+    taken = harmonics_taken(model, top) if model.periodic(top) else None
+    if taken is None or taken <= HILL_MAX:
+        return None
+    return (f"at {top * 30 / math.pi:,.0f} r/min the shaft (not of revolution, in bearings "
+            f"that differ along x and y) took {taken} harmonics of Hill's method, against "
+            f"{HILL_MAX} at most for a quick solve; Level I would solve it again at some fifty "
+            "cross-couplings: `shaftfem level1` (or [rotor] level1 = true) screens it")
 
 
 def _or_none(run, scene: Scene, options: RunOptions):
