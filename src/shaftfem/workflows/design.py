@@ -138,9 +138,16 @@ class _Run:
             self.free = Aside(_free_modes, scene, quiet)
         if scene.rotor is not None:
             from shaftfem.workflows.campbell import turning
+            from shaftfem.workflows.static import equipped
 
-            # the whirl's basis first (kept in the process for the study): the design's
-            # modes, fewer, of the same pencil are then refined from its solve
+            # the map needs the journals' loads and the mesh, not the whirl's basis: it is
+            # solved beside the basis (which leaves the other core half idle), not beside
+            # the study's line after it, which keeps both busy
+            loaded = equipped(scene, options)
+            say("the rotordynamic study: the critical speed map, beside the run")
+            self.map = Aside(_map, loaded, quiet)
+            # the whirl's basis (kept in the process for the study): the design's modes,
+            # fewer, of the same pencil are then refined from its solve
             say("the shaft turning: its standstill basis")
             standstill, model, _ = turning(scene, options)
             if hanging:
@@ -152,8 +159,6 @@ class _Run:
                     say("the same shaft hanging free, on the same mesh, for comparison, "
                         "beside the run")
                     self.free = Aside(_free_modes, scene, quiet)
-            say("the rotordynamic study: the critical speed map, beside the run")
-            self.map = Aside(_map, scene, quiet)
 
         # a rotor's study leaves the other core idle long enough for its mode shapes too;
         # a standing shaft's bound does not (the paper's cold design: 11 s after its
