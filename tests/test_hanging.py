@@ -26,22 +26,30 @@ def bar_in_bearings() -> dict:
             "rotor": {"speed_rpm": 3000.0}}
 
 
-def test_a_bar_hangs_free_on_its_rotor_basis_as_timoshenko_says():
-    """The bar's bearings taken out of its rotor basis: its free modes are the free bar's
-    own solve on the same mesh to 1e-6, and its first two bending pairs a free-free
-    Timoshenko beam's (0.03 % and 0.11 % above it on the 10 mm mesh)."""
+def hanging_and_own(scene):
+    """The scene's rotor basis (its standstill run), its free modes from that basis, and
+    the free shaft's own solve on the same mesh, checked against each other: the same
+    count and kinds, the frequencies to 1e-6, the basis' own check within CHANGE."""
     from shaftfem.workflows.campbell import turning
     from shaftfem.workflows.pipeline import solve_mesh
 
-    scene = load_scene(bar_in_bearings())
     assert held_by_bearings_alone(scene)
     result, model, _ = turning(scene)
     hanging = hanging_modes(result, model, scene.modes.count)
     assert hanging is not None and hanging.change <= CHANGE
     own = solve_mesh(result.scene.free(), result.shape, result.mesh).modes.lowest(
         scene.modes.count)
+    assert hanging.count == own.count == scene.modes.count
     assert np.max(np.abs(hanging.frequencies / own.frequencies - 1)) < 1e-6
     assert hanging.kinds == list(own.kinds)
+    return result, hanging
+
+
+def test_a_bar_hangs_free_on_its_rotor_basis_as_timoshenko_says():
+    """The bar's bearings taken out of its rotor basis: its free modes are the free bar's
+    own solve on the same mesh to 1e-6, and its first two bending pairs a free-free
+    Timoshenko beam's (0.03 % and 0.11 % above it on the 10 mm mesh)."""
+    _, hanging = hanging_and_own(load_scene(bar_in_bearings()))
     bending = hanging.frequencies[[i for i, k in enumerate(hanging.kinds) if k == "bending"]]
     beam = timoshenko_free_free_hz(2, 0.4, 0.015, 211e9, 0.3, 7810.0)
     assert bending[[0, 2]] == pytest.approx(beam, rel=3e-3)
@@ -55,22 +63,10 @@ def test_a_rotor_hangs_free_on_its_basis_as_on_its_own_solve():
     bending pairs, the third bending mode) are the free shaft's own solve on the same
     mesh to 1e-6, of the same kinds; on two thirds of the basis they move by less than
     CHANGE."""
-    from shaftfem.workflows.campbell import turning
-    from shaftfem.workflows.pipeline import solve_mesh
-
-    scene = load_scene(EXAMPLES / "pump_on_journals.toml",
-                       overrides={"mesh.element_size_mm": 30.0})
-    assert held_by_bearings_alone(scene)
-    result, model, _ = turning(scene)
-    hanging = hanging_modes(result, model, scene.modes.count)
-    assert hanging is not None and hanging.change <= CHANGE
-    own = solve_mesh(result.scene.free(), result.shape, result.mesh).modes.lowest(
-        scene.modes.count)
-    assert hanging.count == own.count == scene.modes.count
-    assert np.max(np.abs(hanging.frequencies / own.frequencies - 1)) < 1e-6
-    assert hanging.kinds == list(own.kinds)
+    result, hanging = hanging_and_own(load_scene(EXAMPLES / "pump_on_journals.toml",
+                                                 overrides={"mesh.element_size_mm": 30.0}))
     # hanging free, the journals no longer hold it: every bending mode rises
-    bending = [i for i, k in enumerate(own.kinds) if k == "bending"]
+    bending = [i for i, k in enumerate(hanging.kinds) if k == "bending"]
     assert np.all(hanging.frequencies[bending] > result.modes.frequencies[bending])
 
 
