@@ -102,7 +102,7 @@ def test_design_leaves_level1_to_its_command_where_hill_spreads_wide():
     """A rotor periodic at its running speed (an asymmetric Jeffcott rotor in supports
     twice as stiff along x as along y): the slower it turns against the supports' split,
     the more harmonics its Floquet forms spread over (2 at 3,000 r/min, past HILL_MAX at
-    30); there design leaves Level I, some fifty more such solves, to `shaftfem level1`
+    30); there design leaves Level I, over a hundred more such solves, to `shaftfem level1`
     and says why. A round rotor's equations are constant: screened at any speed."""
     import math
 

@@ -290,7 +290,7 @@ def level1_too_slow(model, top: float) -> str | None:
     """Why design leaves out the Level I screening the scene did not ask for, or None:
     a rotor whose equations are periodic at its highest operating speed `top` (rad/s),
     where Hill's method took more than HILL_MAX harmonics for the Campbell diagram (a
-    spin slow against the bearings' split): Level I solves that again at some fifty
+    spin slow against the bearings' split): Level I solves that again at over a hundred
     applied cross-couplings, each costing as the cube of the harmonics. `shaftfem
     level1`, or [rotor] level1 = true, screens it all the same."""
     from shaftfem.fem.floquet import HILL_MAX, harmonics_taken
@@ -300,7 +300,7 @@ def level1_too_slow(model, top: float) -> str | None:
         return None
     return (f"at {top * 30 / math.pi:,.0f} r/min the shaft (not of revolution, in bearings "
             f"that differ along x and y) took {taken} harmonics of Hill's method, against "
-            f"{HILL_MAX} at most for a quick solve; Level I would solve it again at some fifty "
+            f"{HILL_MAX} at most for a quick solve; Level I would solve it again at over a hundred "
             "cross-couplings: `shaftfem level1` (or [rotor] level1 = true) screens it")
 
 
