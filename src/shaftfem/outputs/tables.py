@@ -894,7 +894,7 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
             rows.append(["largest unbalance response", f"{worst * 1e6:,.3g} um",
                          f"{limit * 1e6:,.3g} um", "pass" if worst <= limit else "FAIL"])
     lv = study.level1
-    if lv is None and getattr(study, "unscreened", None):
+    if lv is None and study.unscreened:
         rows.append(["Level I screening (API 617 8th ed.)", "not screened in this run",
                      "Q_0 / Q_A >= 2, log dec at Q_A >= 0.1", study.unscreened])
     if lv is not None:

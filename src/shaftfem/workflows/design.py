@@ -98,6 +98,15 @@ class _Run:
         self.free: Aside | None = None
         self.hanging: HangingModes | None = None
 
+    def free_beside(self, options: RunOptions) -> None:
+        """The same shaft hanging free, solved beside the run on the scene's own mesh
+        (which does not hang on the modes)."""
+        from shaftfem.aside import Aside
+
+        self.options.say("the same shaft hanging free, on the same mesh, for comparison, "
+                         "beside the run")
+        self.free = Aside(_free_modes, self.scene, options)
+
     def close(self) -> None:
         for job in (self.map, self.pictures, self.free):
             if job is not None:
@@ -133,9 +142,7 @@ class _Run:
         # the basis is; another shaft's free modes are solved beside the run from the start
         hanging = compare and scene.rotor is not None and held_by_bearings_alone(scene)
         if compare and not hanging:
-            # on the scene's own mesh, which does not hang on the modes
-            say("the same shaft hanging free, on the same mesh, for comparison, beside the run")
-            self.free = Aside(_free_modes, scene, quiet)
+            self.free_beside(quiet)
         if scene.rotor is not None:
             from shaftfem.workflows.campbell import turning
             from shaftfem.workflows.static import equipped
@@ -149,16 +156,14 @@ class _Run:
             # the whirl's basis (kept in the process for the study): the design's modes,
             # fewer, of the same pencil are then refined from its solve
             say("the shaft turning: its standstill basis")
-            standstill, model, _ = turning(scene, options)
+            standstill, model, _ = turning(loaded, options)
             if hanging:
                 self.hanging = hanging_modes(standstill, model, scene.modes.count)
                 if self.hanging is not None:
                     say("the same shaft hanging free: on the rotor's basis, its bearings "
                         "taken out")
                 else:
-                    say("the same shaft hanging free, on the same mesh, for comparison, "
-                        "beside the run")
-                    self.free = Aside(_free_modes, scene, quiet)
+                    self.free_beside(quiet)
 
         # a rotor's study leaves the other core idle long enough for its mode shapes too;
         # a standing shaft's bound does not (the paper's cold design: 11 s after its
@@ -295,7 +300,7 @@ def level1_too_slow(model, top: float) -> str | None:
     level1`, or [rotor] level1 = true, screens it all the same."""
     from shaftfem.fem.floquet import HILL_MAX, harmonics_taken
 
-    taken = harmonics_taken(model, top) if model.periodic(top) else None
+    taken = harmonics_taken(model, top)   # (none where the equations are constant)
     if taken is None or taken <= HILL_MAX:
         return None
     return (f"at {top * 30 / math.pi:,.0f} r/min the shaft (not of revolution, in bearings "
