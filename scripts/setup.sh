@@ -5,7 +5,7 @@
 #   scripts/setup.sh test   the same, plus requirements/dev.txt (pytest, ruff, mypy, uv)
 #                           and the independent programs the tests compare with:
 #                           CalculiX (ccx), ParaView (pvpython) and xvfb
-# The lock files pin every package with its hashes (`make lock` writes them); pip
+# The lock files pin every package with its hashes (`make lock` writes them); uv
 # installs them with --require-hashes --no-deps, so nothing outside the lock comes in,
 # and scripts/check_lock.py then compares what is installed with the lock.
 # Safe to run again: a stamp holding the lock's checksum skips what is done.
@@ -32,9 +32,14 @@ fi
 stamp=.venv/.shaftfem-$kind
 sum=$(cat "$lock" pyproject.toml | sha256sum | cut -d' ' -f1)
 if [ "$(cat "$stamp" 2>/dev/null)" != "$sum" ]; then
+    # uv installs the lock (pip took a minute, uv seconds): uv itself comes first, by
+    # pip, pinned with its hashes in requirements/dev.txt like every other package
     pip=(.venv/bin/python -m pip --disable-pip-version-check --quiet)
-    "${pip[@]}" install --require-hashes --no-deps -r "$lock"
-    "${pip[@]}" install --no-deps -e .
+    awk '/^uv==/{p=1} p{print; if ($0 !~ /\\$/) exit}' requirements/dev.txt > .venv/uv-lock.txt
+    "${pip[@]}" install --require-hashes --no-deps -r .venv/uv-lock.txt
+    uv=(.venv/bin/uv pip install --quiet --python .venv/bin/python --no-deps)
+    "${uv[@]}" --require-hashes -r "$lock"
+    "${uv[@]}" -e .
     .venv/bin/python scripts/check_lock.py "$lock"
     echo "$sum" > "$stamp"
 fi
