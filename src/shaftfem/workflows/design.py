@@ -96,6 +96,7 @@ class _Run:
         self.map: Aside | None = None
         self.pictures: Aside | None = None
         self.free: Aside | None = None
+        self.charts: Aside | None = None
         self.hanging: HangingModes | None = None
 
     def free_beside(self, options: RunOptions) -> None:
@@ -108,7 +109,7 @@ class _Run:
         self.free = Aside(_free_modes, self.scene, options)
 
     def close(self) -> None:
-        for job in (self.map, self.pictures, self.free):
+        for job in (self.map, self.pictures, self.free, self.charts):
             if job is not None:
                 job.close()
 
@@ -188,6 +189,8 @@ class _Run:
             say("the shaft turning: whirl, Campbell diagram, critical speeds")
             cases = run_cases(scene, margin, options)   # the nominal one first
             campbell, verdict = cases[0].campbell, combined(cases)
+            # its charts and whirl files are drawn beside Level I and the run-up
+            self.charts = Aside(_campbell_files, campbell, stage)
             level1, unscreened = cases[0].level1, None
             if level1 is None:
                 unscreened = level1_too_slow(model, scene.rotor.top_speed)
@@ -233,11 +236,10 @@ class _Run:
             more.append(_response_picture(result, response, basis, stage / "response.png"))
         whirl_files = []
         if campbell is not None:
-            from shaftfem.outputs.whirl_files import write_whirl_files
-
-            more += campbell_pictures(campbell, stage)
-            more += study_pictures(study, stage)
-            whirl_files = write_whirl_files(campbell, stage)
+            assert self.charts is not None
+            charts = study_pictures(study, stage)
+            drawn, whirl_files = self.charts.result()
+            more += drawn + charts
         if pictures is None:
             pictures = self.pictures.result()[1]
         assert pictures is not None
@@ -271,6 +273,14 @@ def _shapes_and_pictures(result: ModalResult, folder: Path,
     from shaftfem.outputs.render import render_into
 
     return write_shape_files(result, folder) if shapes else [], render_into(result, folder)
+
+
+def _campbell_files(c, folder: Path) -> tuple[list[Path], list[Path]]:
+    """The Campbell diagram's pictures (campbell_pictures) and its whirl files for
+    ParaView, in `folder`."""
+    from shaftfem.outputs.whirl_files import write_whirl_files
+
+    return campbell_pictures(c, folder), write_whirl_files(c, folder)
 
 
 def _free_modes(scene: Scene, options: RunOptions, shape: ShaftShape | None = None,
