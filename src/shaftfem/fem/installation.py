@@ -175,19 +175,35 @@ def _parts_and_rings(scene: Scene, seats: _Seats, n_q: int, first: int
                      ) -> tuple[sp.csr_matrix, sp.csr_matrix, np.ndarray]:
     """The parts' masses and the rings' springs on their (U, Theta) columns (from `first`
     on), and which columns stay: a ring's DOF held exactly is dropped."""
-    extra_K, extra_M = sp.lil_matrix((n_q, n_q)), sp.lil_matrix((n_q, n_q))
+    # (entries gathered, then one sparse matrix: a LIL matrix of the shaft's size costs a
+    # list per row, 60 ms on a 40k-DOF pump, twice per run)
+    rows, cols, masses = [], [], []
     for k, a in enumerate(seats.parts):
         c = first + 6 * k
-        extra_M[c:c + 6, c:c + 6] = part_mass(a)
+        block = np.asarray(part_mass(a), dtype=float)
+        r, q = np.nonzero(block)
+        rows.append(c + r)
+        cols.append(c + q)
+        masses.append(block[r, q])
     keep = np.ones(n_q, dtype=bool)
+    springs: list[tuple[int, float]] = []
     for j, (s, _) in enumerate(seats.rings):
         c = first + 6 * (len(seats.parts) + j)
         for d, stiff in enumerate(ring_stiffness(s)):
             if math.isinf(stiff):
                 keep[c + d] = False      # held exactly: the ring's DOF is dropped
             elif stiff > 0:
-                extra_K[c + d, c + d] = stiff
-    return extra_K.tocsr(), extra_M.tocsr(), keep
+                springs.append((c + d, stiff))
+    extra_M = sp.csr_matrix((np.concatenate(masses) if masses else np.zeros(0),
+                             (np.concatenate(rows) if rows else np.zeros(0, int),
+                              np.concatenate(cols) if cols else np.zeros(0, int))),
+                            shape=(n_q, n_q))
+    at = np.array([c for c, _ in springs], dtype=int)
+    extra_K = sp.csr_matrix((np.array([k for _, k in springs], dtype=float), (at, at)),
+                            shape=(n_q, n_q))
+    extra_K.sort_indices()   # as the solvers and the sums after it expect
+    extra_M.sort_indices()
+    return extra_K, extra_M, keep
 
 
 def _trains(seats: _Seats, first: int, K_r: sp.csr_matrix, M_r: sp.csr_matrix,
@@ -214,11 +230,24 @@ def _trains(seats: _Seats, first: int, K_r: sp.csr_matrix, M_r: sp.csr_matrix,
     m = len(hubs)
     G = sp.hstack([sp.csr_matrix(np.vstack([g for _, g in hubs])), -sp.eye(m)]).tocsr()
     K_c = G.T @ sp.diags([a.coupling_stiffness for a, _ in hubs]) @ G   # g reads a few DOFs
-    K_r = (sp.block_diag([K_r, sp.csr_matrix((m, m))]) + K_c).tocsr()
-    M_r = sp.block_diag([M_r, sp.diags([a.coupled_inertia for a, _ in hubs])]).tocsr()
+    K_r = (_padded(K_r, m) + K_c).tocsr()
+    M_r = (_padded(M_r, m) + sp.diags(np.concatenate(
+        [np.zeros(n_q), [a.coupled_inertia for a, _ in hubs]]))).tocsr()
     T = sp.hstack([T, sp.csr_matrix((T.shape[0], m))]).tocsr()
     rigid = np.vstack([rigid, np.vstack([g for _, g in hubs]) @ rigid])
-    return ((K_r + K_r.T) * 0.5).tocsr(), M_r, T, rigid
+    K_r = ((K_r + K_r.T) * 0.5).tocsr()
+    K_r.sort_indices()
+    M_r.sort_indices()
+    return K_r, M_r, T, rigid
+
+
+def _padded(A: sp.csr_matrix, m: int) -> sp.csr_matrix:
+    """A with m empty rows and columns after its own (block_diag with zeros, without
+    rebuilding A's structure)."""
+    A = A.tocsr()
+    n = A.shape[0]
+    indptr = np.concatenate([A.indptr, np.full(m, A.indptr[-1])])
+    return sp.csr_matrix((A.data, A.indices, indptr), shape=(n + m, n + m))
 
 
 def _free_rigid_motions(nodes: np.ndarray, T: sp.csr_matrix, Tt: sp.csr_matrix,
