@@ -133,12 +133,12 @@ def _shaftfem(*args: str, cwd: Path) -> subprocess.CompletedProcess:
 
 
 def test_turning_examples_against_ross(tmp_path):
-    """The overhung spindle and the motor with its fan, as a user runs them: `campbell`
-    (its JSON and pictures) and the speed-aware `check`, against ross-rotordynamics 2.3's
-    beam model of the same rotors (tests/data/ross_rotors.json, benchmarks/ross_reference.py):
-    the first whirl pair at the operating speed within 1 %, the first 1x critical speeds
-    within 2 %. The motor's Campbell diagram is read from its check's JSON, which holds
-    it (the same run: `campbell` of it would solve it again)."""
+    """The overhung spindle and the motor with its fan, as a user runs them: the
+    speed-aware `check`, whose JSON holds its Campbell diagram, against
+    ross-rotordynamics 2.3's beam model of the same rotors (tests/data/ross_rotors.json,
+    benchmarks/ross_reference.py): the first whirl pair at the operating speed within
+    1 %, the first 1x critical speeds within 2 %. (`campbell`'s own files and pictures:
+    test_rotor_verdict.py and test_rotor_study below.)"""
     import json
 
     ross = json.loads((Path(__file__).parent / "data" / "ross_rotors.json").read_text())
@@ -147,16 +147,10 @@ def test_turning_examples_against_ross(tmp_path):
         out = tmp_path / name
         out.mkdir()
         # 16 mm elements: 40 and 35 mm shafts, their first pairs within 0.05 % of 10 mm
-        if name == "overhung_spindle":
-            run = _shaftfem("campbell", scene, "--out", str(out), "--json",
-                            str(out / "c.json"), "--mesh-size", "16", "-q", cwd=tmp_path)
-            assert run.returncode == 0, run.stderr[-2000:]
-            assert (out / "campbell.png").stat().st_size > 20_000
         check = _shaftfem("check", scene, "--mesh-size", "16", "-q", "--json",
                           str(out / "check.json"), cwd=tmp_path)
         assert check.returncode == 0, check.stderr[-2000:]
-        c = (json.loads((out / "c.json").read_text()) if name == "overhung_spindle"
-             else json.loads((out / "check.json").read_text())["campbell"])
+        c = json.loads((out / "check.json").read_text())["campbell"]
         assert {"whirl", "critical_speeds"} <= set(c)
         rpm = next(k for k in ross[name] if k != "critical_1x")
         at = [w for w in c["operating"] if w["kind"] == "bending"][:2]
@@ -260,7 +254,7 @@ def test_the_rotordynamic_commands_on_the_pump(tmp_path):
     c = run("campbell")
     still = [w["frequency_hz"] for w in c["whirl"] if w["speed_rpm"] == 0.0
              and w["kind"] == "bending"]
-    r = run("runup", "--accel-rpm-per-s", "300", "--speeds-rpm", "2000:5000")["probes"][0]
+    r = run("runup", "--accel-rpm-per-s", "300", "--speeds-rpm", "2500:4500")["probes"][0]
     assert r["peak_speed_rpm"] == pytest.approx(r["steady_peak_speed_rpm"], rel=0.05)
     assert r["peak_um"] < 1.05 * r["steady_peak_um"]
     lv = run("level1", "--qa-n-per-mm", "2")
