@@ -107,7 +107,7 @@ def test_design_leaves_level1_to_its_command_where_hill_spreads_wide():
     import math
 
     from shaftfem.fem.floquet import HILL_MAX, floquet_roots, harmonics_taken, widen
-    from shaftfem.workflows.design import level1_too_slow
+    from shaftfem.workflows.level1 import level1_too_slow
     from test_floquet import jeffcott
 
     taken = {}

@@ -184,7 +184,7 @@ class _Run:
             from shaftfem.outputs.report import RotorStudy
             from shaftfem.outputs.tables import campbell_text
             from shaftfem.workflows.cases import combined, run_cases
-            from shaftfem.workflows.level1 import run_level1
+            from shaftfem.workflows.level1 import level1_too_slow, run_level1
 
             say("the shaft turning: whirl, Campbell diagram, critical speeds")
             cases = run_cases(scene, margin, options)   # the nominal one first
@@ -299,24 +299,6 @@ def _map(scene: Scene, options: RunOptions):
     from shaftfem.workflows.ucs import run_ucs
 
     return _or_none(run_ucs, scene, options)
-
-
-def level1_too_slow(model, top: float) -> str | None:
-    """Why design leaves out the Level I screening the scene did not ask for, or None:
-    a rotor whose equations are periodic at its highest operating speed `top` (rad/s),
-    where Hill's method took more than HILL_MAX harmonics for the Campbell diagram (a
-    spin slow against the bearings' split): Level I solves that again at over a hundred
-    applied cross-couplings, each costing as the cube of the harmonics. `shaftfem
-    level1`, or [rotor] level1 = true, screens it all the same."""
-    from shaftfem.fem.floquet import HILL_MAX, harmonics_taken
-
-    taken = harmonics_taken(model, top)   # (none where the equations are constant)
-    if taken is None or taken <= HILL_MAX:
-        return None
-    return (f"at {top * 30 / math.pi:,.0f} r/min the shaft (not of revolution, in bearings "
-            f"that differ along x and y) took {taken} harmonics of Hill's method, against "
-            f"{HILL_MAX} at most for a quick solve; Level I would solve it again at over a hundred "
-            "cross-couplings: `shaftfem level1` (or [rotor] level1 = true) screens it")
 
 
 def _or_none(run, scene: Scene, options: RunOptions):
