@@ -61,7 +61,9 @@ def _released(lock, within=5.0):
     assert not lock.exists() or time.time() < deadline, "the killed sweep still holds its lock"
 
 
-@pytest.mark.parametrize("kill_after_rows", [0, 2])
+# killed after two rows: what was made is kept (the default run); killed before any row
+# (slow: the same resume from an empty results file)
+@pytest.mark.parametrize("kill_after_rows", [pytest.param(0, marks=pytest.mark.slow), 2])
 def test_a_killed_sweep_resumes_without_recomputing(sweep_file, tmp_path, kill_after_rows):
     """SIGKILL as soon as the sweep holds its folder (no row yet) and after two rows: the
     resumed sweep has every variant once, one header, and keeps the rows made before."""
