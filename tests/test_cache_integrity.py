@@ -63,8 +63,17 @@ def clean(own_cache):
     return run_modes(_scene()).modes.frequencies
 
 
-@pytest.mark.parametrize("damage", [_truncate, _empty, _garble, _alter])
-@pytest.mark.parametrize("entry", ["brep", "meta", "mesh", "shift", "solve"])
+# every kind of entry and every kind of damage in the default run, each once; all twenty
+# pairs in the slow one
+QUICK = {("brep", _truncate), ("meta", _alter), ("mesh", _garble), ("shift", _empty),
+         ("solve", _alter)}
+DAMAGED = [pytest.param(entry, damage, id=f"{entry}-{damage.__name__}",
+                        marks=() if (entry, damage) in QUICK else pytest.mark.slow)
+           for entry in ("brep", "meta", "mesh", "shift", "solve")
+           for damage in (_truncate, _empty, _garble, _alter)]
+
+
+@pytest.mark.parametrize("entry,damage", DAMAGED)
 def test_a_damaged_entry_is_rebuilt(clean, entry, damage):
     from shaftfem.store import cache_dir
 
