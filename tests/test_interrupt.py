@@ -64,7 +64,10 @@ def _interrupt_at(scene, out, cache, marker, delay):
     os.killpg(p.pid, signal.SIGINT)
     code = p.wait(timeout=30)
     elapsed = time.perf_counter() - t
-    while time.perf_counter() - t < 5:   # every process of the run ends with it
+    # every process of the run ends with it: killed at once, though a kill takes effect
+    # only when a disk read in flight returns (a process loading VTK's libraries on a
+    # busy machine), hence the wait's length
+    while time.perf_counter() - t < 15:
         try:
             os.killpg(p.pid, 0)
         except ProcessLookupError:
@@ -72,8 +75,24 @@ def _interrupt_at(scene, out, cache, marker, delay):
         time.sleep(0.05)
     else:
         raise AssertionError(f"a process of the run outlived it, Ctrl-C {delay} s after "
-                             f"{marker!r}")
+                             f"{marker!r}: {_group(p.pid)}")
     return code, elapsed, "".join(seen) + p.stderr.read()
+
+
+def _group(pgid: int) -> list[str]:
+    """The processes still in the process group: pid, state and command line (what a
+    failure should name)."""
+    import psutil
+
+    out = []
+    for proc in psutil.process_iter(["pid", "status", "cmdline"]):
+        try:
+            if os.getpgid(proc.info["pid"]) == pgid:
+                out.append(f"{proc.info['pid']} {proc.info['status']} "
+                           f"{' '.join(proc.info['cmdline'] or [])[:200]}")
+        except (ProcessLookupError, psutil.Error):
+            pass
+    return out
 
 
 def _check(scene, tmp_path, points):
