@@ -177,7 +177,7 @@ def _parts_and_rings(scene: Scene, seats: _Seats, n_q: int, first: int
     on), and which columns stay: a ring's DOF held exactly is dropped."""
     # (entries gathered, then one sparse matrix: a LIL matrix of the shaft's size costs a
     # list per row, 60 ms on a 40k-DOF pump, twice per run)
-    rows, cols, masses = [], [], []
+    rows, cols, masses = [np.zeros(0, int)], [np.zeros(0, int)], [np.zeros(0)]
     for k, a in enumerate(seats.parts):
         c = first + 6 * k
         block = np.asarray(part_mass(a), dtype=float)
@@ -194,10 +194,8 @@ def _parts_and_rings(scene: Scene, seats: _Seats, n_q: int, first: int
                 keep[c + d] = False      # held exactly: the ring's DOF is dropped
             elif stiff > 0:
                 springs.append((c + d, stiff))
-    extra_M = sp.csr_matrix((np.concatenate(masses) if masses else np.zeros(0),
-                             (np.concatenate(rows) if rows else np.zeros(0, int),
-                              np.concatenate(cols) if cols else np.zeros(0, int))),
-                            shape=(n_q, n_q))
+    extra_M = sp.csr_matrix((np.concatenate(masses),
+                             (np.concatenate(rows), np.concatenate(cols))), shape=(n_q, n_q))
     at = np.array([c for c, _ in springs], dtype=int)
     extra_K = sp.csr_matrix((np.array([k for _, k in springs], dtype=float), (at, at)),
                             shape=(n_q, n_q))

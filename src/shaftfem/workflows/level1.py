@@ -105,13 +105,12 @@ def anticipated(scene: Scene, given: float | None) -> tuple[float | None, str]:
             f"Wachel's estimate of {len(stages)} stage(s) at the highest operating speed")
 
 
-def level1_too_slow(model, top: float) -> str | None:
-    """Why design leaves out the Level I screening the scene did not ask for, or None:
-    a rotor whose equations are periodic at its highest operating speed `top` (rad/s),
-    where Hill's method took more than HILL_MAX harmonics for the Campbell diagram (a
-    spin slow against the bearings' split): Level I solves that again at over a hundred
-    applied cross-couplings, each costing as the cube of the harmonics. `shaftfem
-    level1`, or [rotor] level1 = true, screens it all the same."""
+def slow_spin(model, top: float) -> str | None:
+    """What makes Level I slow on this rotor, or None: its equations periodic at its
+    highest operating speed `top` (rad/s), where Hill's method took more than HILL_MAX
+    harmonics for the Campbell diagram (a spin slow against the bearings' split); Level
+    I solves that again at over a hundred applied cross-couplings, each costing as the
+    cube of the harmonics."""
     from shaftfem.fem.floquet import HILL_MAX, harmonics_taken
 
     taken = harmonics_taken(model, top)   # (none where the equations are constant)
@@ -119,8 +118,16 @@ def level1_too_slow(model, top: float) -> str | None:
         return None
     return (f"at {top * 30 / math.pi:,.0f} r/min the shaft (not of revolution, in bearings "
             f"that differ along x and y) took {taken} harmonics of Hill's method, against "
-            f"{HILL_MAX} at most for a quick solve; Level I would solve it again at over a hundred "
-            "cross-couplings: `shaftfem level1` (or [rotor] level1 = true) screens it")
+            f"{HILL_MAX} at most for a quick solve")
+
+
+def level1_too_slow(model, top: float) -> str | None:
+    """Why design leaves out the Level I screening the scene did not ask for (slow_spin),
+    or None. `shaftfem level1`, or [rotor] level1 = true, screens it all the same."""
+    why = slow_spin(model, top)
+    return None if why is None else (
+        f"{why}; Level I would solve it again at over a hundred cross-couplings: "
+        "`shaftfem level1` (or [rotor] level1 = true) screens it")
 
 
 def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
@@ -151,10 +158,10 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
         q_anticipated = scene.rotor.level1_qa
     qa, qa_from = anticipated(scene, q_anticipated)
     result, model, _ = turning(scene, options)
-    slow = level1_too_slow(model, scene.rotor.top_speed)
+    slow = slow_spin(model, scene.rotor.top_speed)
     if slow is not None:   # said before the wait, not after it
-        options.say(f"Level I will take long: {slow.split('; ')[0]}; it is solved again "
-                    "at over a hundred cross-couplings")
+        options.say(f"Level I will take long: {slow}; it is solved again at over a hundred "
+                    "cross-couplings")
     # the seals and the stages' own cross-coupling out of the loaded rotor (Q stands for
     # them); their seats stay in the mesh and the basis, as the Campbell run has them
     seals = {s.name for s in scene.supports if s.kind == "seal"}
