@@ -64,10 +64,7 @@ def _interrupt_at(scene, out, cache, marker, delay):
     os.killpg(p.pid, signal.SIGINT)
     code = p.wait(timeout=30)
     elapsed = time.perf_counter() - t
-    # every process of the run ends with it: killed at once, though a kill takes effect
-    # only when a disk read in flight returns (a process loading VTK's libraries on a
-    # busy machine), hence the wait's length
-    while time.perf_counter() - t < 15:
+    while time.perf_counter() - t < 5:   # every process of the run ends with it
         try:
             os.killpg(p.pid, 0)
         except ProcessLookupError:
