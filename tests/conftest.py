@@ -19,10 +19,10 @@ sys.path.insert(0, str(Path(__file__).parent))  # tests/references.py
 
 
 def pytest_xdist_auto_num_workers(config):
-    """`-n auto`: one worker more than the cores. A worker waits a fair part of its time
-    (on the programs a test starts, a Ctrl-C test's pauses, ParaView's window), and a
-    third worker on two cores fills it: 1085 passed in 8:02 with three against 9:18 with
-    two, one after the other from one clone (PYTEST_XDIST_AUTO_NUM_WORKERS still wins)."""
+    """`-n auto`: one worker more than the cores. A worker waits part of its time (on the
+    programs a test starts, a Ctrl-C test's pauses, ParaView's window), and the extra
+    worker fills those waits: with two workers on two cores 1.87 cores were busy on
+    average, with three 1.93 (PYTEST_XDIST_AUTO_NUM_WORKERS still wins)."""
     if os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS"):
         return None   # xdist's own hook reads it
     return len(os.sched_getaffinity(0)) + 1
