@@ -1,7 +1,7 @@
 # The two commands of the README:
 #   make run    set up .venv from the lock (what the run needs) and run `shaftfem design`
 #   make test   set up .venv from the lock (plus test tools and the cross-check programs)
-#               and run the tests, one worker more than the cores (.ci/run calls this)
+#               and run the tests, one worker per core (.ci/run calls this)
 # And for developers:
 #   make test-all     the tests with the long cases marked slow too (about an hour)
 #   make lint         ruff and mypy, as CI runs them

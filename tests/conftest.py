@@ -7,7 +7,7 @@ import shaftfem.runtime  # noqa: E402
 
 shaftfem.runtime.configure_threads()
 if "PYTEST_XDIST_WORKER" in os.environ:
-    # one thread in each worker: MKL's threads would only fight the other workers', and
+    # one worker per core: MKL's threads in each would only fight the other worker's, and
     # so would work put beside a run (shaftfem.aside), as in a sweep's Dask workers: it
     # runs in line there (the tests of the work beside a run turn it back on)
     os.environ.setdefault("MKL_NUM_THREADS", "1")
@@ -16,16 +16,6 @@ if "PYTEST_XDIST_WORKER" in os.environ:
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))  # tests/references.py
-
-
-def pytest_xdist_auto_num_workers(config):
-    """`-n auto`: one worker more than the cores. A worker waits part of its time (on the
-    programs a test starts, a Ctrl-C test's pauses, ParaView's window), and the extra
-    worker fills those waits: with two workers on two cores 1.87 cores were busy on
-    average, with three 1.93 (PYTEST_XDIST_AUTO_NUM_WORKERS still wins)."""
-    if os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS"):
-        return None   # xdist's own hook reads it
-    return len(os.sched_getaffinity(0)) + 1
 
 
 @pytest.fixture(scope="session", autouse=True)

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from shaftfem.runtime import RunOptions
 from shaftfem.scene.load import load_scene
 from shaftfem.workflows.level1 import run_level1
 
@@ -34,6 +35,36 @@ def test_q0_and_the_log_decrement_against_q_against_ross():
     assert r.q0 == pytest.approx(ROSS["q0_n_per_m"], rel=0.02)
     np.testing.assert_allclose(r.log_dec, ROSS["log_dec"], rtol=0.02)
     assert r.qa is None and r.passed is None        # no stage, no Q_A: no verdict
+
+
+def test_a_scene_solved_on_another_s_solve_keeps_its_own_parts(monkeypatch):
+    """Two scenes on one pencil (the same shaft, seats and parts; in the first the 350 mm
+    disk is a compressor stage): the second takes its standstill modes from the first's
+    solve in this process, and its rotor model holds its own parts, not the other's
+    stage: its Level I is the one it has solved on its own (with the stage's
+    cross-coupling left in, Q_0 came out 10 % lower, and the suite's order decided which)."""
+    import weakref
+
+    from shaftfem.workflows import campbell, pipeline
+    from test_rotor import ends, friswell, two_disks
+
+    def in_a_new_process():   # nothing solved in this one yet
+        monkeypatch.setattr(campbell, "_MODELS", {})
+        monkeypatch.setattr(pipeline, "_SOLVED", weakref.WeakValueDictionary())
+
+    q, at = np.array(ROSS["q_n_per_m"]) / 1e3, ROSS["at_m"] * 1e3
+    in_a_new_process()
+    alone = run_level1(load_scene(rotor()), q, at_mm=at)
+    in_a_new_process()
+    disks = two_disks()
+    disks[1].update(stage_power_kw=1.0, stage_diameter_mm=350.0, stage_width_mm=20.0)
+    run_level1(load_scene(friswell(ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=2.0), disks,
+                                   {"speed_rpm": 3000.0, "campbell_points": 2})))
+    after = run_level1(load_scene(rotor()), q, at_mm=at)
+    assert "(stage)" not in " ".join(b.name for b in campbell._MODELS[
+        campbell._model_keys(after.scene, RunOptions())[0]][1].bearings)
+    assert after.q0 == pytest.approx(alone.q0, rel=1e-6)
+    np.testing.assert_allclose(after.log_dec, alone.log_dec, rtol=1e-6)
 
 
 def test_api617_criteria_on_a_stage(monkeypatch):

@@ -12,7 +12,7 @@ the solve.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -67,6 +67,26 @@ class Installed:
     def expand(self, X: np.ndarray) -> np.ndarray:
         """Reduced vectors (n_q, m) as displacements of every node (3 n, m)."""
         return self.T @ X
+
+    def for_scene(self, was: Scene, scene: Scene) -> Installed:
+        """This installation of `was` as `scene`'s, a scene on the same pencil (the same
+        seats and parts, in the same order, making the same K and M; their names, a
+        bearing's coefficients at speed and a stage's cross-coupling may differ): its
+        matrices as they are, its parts and its seats' names the scene's own."""
+        tied = tuple(a for a in scene.attachments if a.joint != "distributing")
+        spread = [a for a in scene.attachments if a.joint == "distributing"]
+        if len(tied) != len(self.parts) or len(spread) != len(self.carried):
+            raise SolverError(f"{scene.source}: its parts are not those of the installation "
+                              "it was given")
+        names = {f"{a.name}: ": f"{b.name}: " for a, b in zip(was.supports, scene.supports)}
+
+        def renamed(r: Restraint) -> Restraint:
+            old = next((n for n in names if r.name.startswith(n)), None)
+            return r if old is None else replace(r, name=names[old] + r.name[len(old):])
+
+        return replace(self, parts=tied,
+                       carried=tuple(replace(c, part=a) for c, a in zip(self.carried, spread)),
+                       restraints=tuple(map(renamed, self.restraints)))
 
     def shaft_coordinates(self, U: np.ndarray) -> np.ndarray:
         """The reduced coordinates (n_q - trains, m) of the shaft's displacements U = T q

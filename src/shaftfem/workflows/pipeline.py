@@ -157,7 +157,11 @@ def solve_mesh(scene: Scene, shape: ShaftShape, mesh: ShaftMesh,
         options.say(f"{solved.modes.n_dofs} DOFs; the lowest {scene.modes.count} of the "
                     f"{solved.modes.count} modes solved on this mesh in this run")
         modes = solved.modes.lowest(scene.modes.count)
-        return replace(solved, scene=scene, shape=shape, modes=modes,
+        # the same K and M, but the parts (their names, a stage's cross-coupling) are
+        # this scene's: the rotor model reads them from the installation
+        installed = (None if solved.installed is None
+                     else solved.installed.for_scene(solved.scene, scene))
+        return replace(solved, scene=scene, shape=shape, modes=modes, installed=installed,
                        timings=watch.timings(), warnings=scene_warnings(scene, modes))
     with watch.lap("assembly"):
         d = discretise(mesh)
