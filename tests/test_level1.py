@@ -58,8 +58,8 @@ def test_a_scene_solved_on_another_s_solve_keeps_its_own_parts(monkeypatch):
     in_a_new_process()
     disks = two_disks()
     disks[1].update(stage_power_kw=1.0, stage_diameter_mm=350.0, stage_width_mm=20.0)
-    run_level1(load_scene(friswell(ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=2.0), disks,
-                                   {"speed_rpm": 3000.0, "campbell_points": 2})))
+    campbell.turning(load_scene(friswell(ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=2.0), disks,
+                                         {"speed_rpm": 3000.0, "campbell_points": 2})))
     after = run_level1(load_scene(rotor()), q, at_mm=at)
     assert "(stage)" not in " ".join(b.name for b in campbell._MODELS[
         campbell._model_keys(after.scene, RunOptions())[0]][1].bearings)
