@@ -73,8 +73,8 @@ class Installed:
         seats and parts, in the same order, making the same K and M; their names, a
         bearing's coefficients at speed and a stage's cross-coupling may differ): its
         matrices as they are, its parts and its seats' names the scene's own."""
-        tied = tuple(a for a in scene.attachments if not is_carried(a))
-        spread = [a for a in scene.attachments if is_carried(a)]
+        tied = tuple(a for a in scene.attachments if not a.carried)
+        spread = [a for a in scene.attachments if a.carried]
         if len(tied) != len(self.parts) or len(spread) != len(self.carried):
             raise SolverError(f"{scene.source}: its parts are not those of the installation "
                               "it was given")
@@ -154,12 +154,6 @@ def seat_radius(scene: Scene, nodes: np.ndarray, seat: tuple[float, float]) -> f
     return float(np.hypot(nodes[inside, 0], nodes[inside, 1]).max()) if inside.any() else 0.0
 
 
-def is_carried(a: Attachment) -> bool:
-    """A part on a distributing joint is carried by its section's mean motion (its own
-    coordinates kept); any other joint ties it to its slice's rigid motion."""
-    return a.joint == "distributing"
-
-
 def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int,
            mass_diagonal: np.ndarray) -> _Seats:
     """Each seat's band and what holds it; each part's slice (rigid joint) or section
@@ -186,7 +180,7 @@ def _seats(scene: Scene, nodes: np.ndarray, skmesh, order: int,
         idx = band_nodes(nodes, seat_radius(scene, nodes, a.seat), a.seat)
         if idx.size == 0:
             raise SolverError(f"{a.name}: no mesh node on its seat band")
-        if is_carried(a):
+        if a.carried:
             out.carried.append(carried(a, nodes, section_weights(nodes, a.position, mass_diagonal)))
             continue
         out.parts.append(a)

@@ -540,6 +540,12 @@ class Attachment:
     def seat(self) -> tuple[float, float]:
         return self.position - self.width / 2, self.position + self.width / 2
 
+    @property
+    def carried(self) -> bool:
+        """On a distributing joint: carried by its section's mean motion (its own
+        coordinates kept); any other joint ties it to its slice's rigid motion."""
+        return self.joint == "distributing"
+
 
 @dataclass(frozen=True)
 class Scene:
@@ -656,7 +662,7 @@ class Scene:
         on distributing joints, the planes of unbalances, static forces and the rotor's
         probes (they act on, or read, that cross-section): the mesh follows them."""
         zs = {z for part in self.supports + self.attachments for z in part.seat}
-        zs |= {a.position for a in self.attachments if a.joint == "distributing"}
+        zs |= {a.position for a in self.attachments if a.carried}
         zs |= {u.position for u in self.unbalances}
         zs |= {f.position for f in self.forces}
         zs |= set(self.rotor.probes if self.rotor is not None else ())
