@@ -32,7 +32,8 @@ def rotor(power_kw: float | None, **stage) -> dict:
         disks[1] = {**disks[1], "stage_power_kw": power_kw, "stage_diameter_mm": 350.0,
                     "stage_width_mm": 20.0, **stage}
     return friswell(ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=0.5), disks,
-                    {"speed_rpm": 4000.0, "max_speed_rpm": 6000.0, "campbell_points": 7})
+                    {"speed_rpm": 4000.0, "max_speed_rpm": 6000.0, "campbell_points": 7,
+                     "rated_speed_rpm": 4000.0})
 
 
 def test_a_stage_on_a_part_is_its_cross_coupling_against_speed():

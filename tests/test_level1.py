@@ -59,7 +59,8 @@ def test_a_scene_solved_on_another_s_solve_keeps_its_own_parts(monkeypatch):
     disks = two_disks()
     disks[1].update(stage_power_kw=1.0, stage_diameter_mm=350.0, stage_width_mm=20.0)
     campbell.turning(load_scene(friswell(ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=2.0), disks,
-                                         {"speed_rpm": 3000.0, "campbell_points": 2})))
+                                         {"speed_rpm": 3000.0, "rated_speed_rpm": 3000.0,
+                                          "campbell_points": 2})))
     after = run_level1(load_scene(rotor()), q, at_mm=at)
     assert "(stage)" not in " ".join(b.name for b in campbell._MODELS[
         campbell._model_keys(after.scene, RunOptions())[0]][1].bearings)
@@ -80,7 +81,8 @@ def test_api617_criteria_on_a_stage(monkeypatch):
         disks = two_disks()
         disks[1].update(stage_power_kw=power_kw, stage_diameter_mm=350.0, stage_width_mm=20.0)
         return load_scene(friswell(ends(kxx_n_per_mm=1000.0, cxx_n_s_per_mm=2.0), disks,
-                                   {"speed_rpm": 3000.0, "campbell_points": 2}))
+                                   {"speed_rpm": 3000.0, "rated_speed_rpm": 3000.0,
+                                    "campbell_points": 2}))
     small = run_level1(scene(1.0))
     assert small.plane == pytest.approx(1.0) and small.qa is not None
     assert small.ratio is not None and small.ratio >= 2 and small.log_dec_a >= 0.1

@@ -104,6 +104,7 @@ def seal_scene(**override) -> dict:
     return friswell([*ends(kxx_n_per_mm=1000.0,
                            cxx_n_s_per_mm=ROSS["bearing_damping_n_s_per_m"] / 1e3), wear_ring],
                     two_disks(), {"speed_rpm": p["rated_rpm"], "max_speed_rpm": p["top_rpm"],
+                                  "rated_speed_rpm": p["rated_rpm"],
                                   "campbell_points": 5})
 
 
@@ -164,4 +165,31 @@ def test_a_seal_needs_the_shaft_turning():
     data = seal_scene()
     del data["rotor"]
     with pytest.raises(SceneError, match="add \\[rotor\\]"):
+        load_scene(data)
+
+
+def test_the_diagram_is_the_machine_s_whatever_its_running_speed():
+    """A seal's pressure drop is given at the machine's rated speed ([rotor]
+    rated_speed_rpm), not at the running speed: moving speed_rpm moves where the
+    machine runs, and its Campbell diagram and critical speeds stay as they were."""
+    from shaftfem.workflows.campbell import run_campbell
+
+    runs = []
+    for rpm in (1000.0, 4000.0):
+        data = seal_scene()
+        data["rotor"]["speed_rpm"] = rpm
+        runs.append(run_campbell(load_scene(data)))
+    a, b = runs
+    assert a.speeds_rpm == b.speeds_rpm
+    for ca, cb in zip(a.curves, b.curves):
+        np.testing.assert_allclose(ca.seen_hz, cb.seen_hz, rtol=1e-6)
+        np.testing.assert_allclose(ca.decay, cb.decay, rtol=1e-6, atol=1e-9)
+    assert [round(c.speed_rpm, 3) for c in a.critical_speeds] == [
+        round(c.speed_rpm, 3) for c in b.critical_speeds]
+
+
+def test_a_seal_needs_the_machine_s_rated_speed():
+    data = seal_scene()
+    del data["rotor"]["rated_speed_rpm"]
+    with pytest.raises(SceneError, match=r"rotor\.rated_speed_rpm: missing"):
         load_scene(data)

@@ -54,10 +54,10 @@ STAGE_POINTS = 161
 
 
 def coefficients(stage: Stage, rotor: Rotor) -> BearingCoefficients:
-    """The stage's cross-coupling against speed: Wachel's q at the highest operating
+    """The stage's cross-coupling against speed: Wachel's q at the machine's rated
     speed, by the fan law elsewhere (the operating speeds in the table: q there
     exactly)."""
-    rated = rotor.top_speed
+    rated = rotor.rated
     q = cross_coupling(stage.power, rated, stage.diameter, stage.width, stage.kind,
                        stage.density_ratio)
     speeds = sorted({*(rotor.max_speed * k / (STAGE_POINTS - 1) for k in range(STAGE_POINTS)),

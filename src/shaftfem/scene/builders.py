@@ -231,6 +231,7 @@ class Rotor(_Table):
     TABLE: ClassVar[str] = "rotor"
     speed_rpm: Numbers | None = None
     max_speed_rpm: Number | None = None
+    rated_speed_rpm: Number | None = None
     frame: str | None = None
     campbell_points: int | None = None
     probes_mm: Numbers | None = None
@@ -238,6 +239,7 @@ class Rotor(_Table):
     speed_range_rpm: Numbers | None = None
     amplitude_limit_um: Number | None = None
     min_log_dec: Number | None = None
+    log_dec_modes: str | None = None
     level1: bool | None = None
     level1_qa_n_per_mm: Number | None = None
     runup_rpm_per_s: Number | None = None

@@ -344,6 +344,18 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
                          "give lists of values against these speeds, or leave speeds_rpm out")
     if len(speeds) == 1:   # a table of one speed is constant coefficients
         speeds = []
+    # a bearing that holds the shaft one way and not the other leaves it free to slide
+    # across: no whirl settles on it (a zero typed for a missing number, most often)
+    for a, b in (("kxx_n_per_mm", "kyy_n_per_mm"), ("kyy_n_per_mm", "kxx_n_per_mm")):
+        free = [i for i, (x, y) in enumerate(zip(
+            values[a] * (len(values[b]) if len(values[a]) == 1 else 1),
+            values[b] * (len(values[a]) if len(values[b]) == 1 else 1))) if x > 0 and y == 0]
+        if free and t[b] is not None:
+            given = t[b][0] if len(t[b]) == 1 else t[b]
+            raise SceneError(f"{where(source, table, b)} = {given!r}: the bearing holds the "
+                             f"shaft along {a[1]} ({a} > 0) but not along {b[1]}: give its "
+                             f"stiffness along {b[1]} too, above 0 N/mm (leave {b} out for "
+                             f"the same as {a})")
     per_mm = {k: tuple(x * 1e3 for x in v) for k, v in values.items()}
     return BearingCoefficients(
         speeds=tuple(n * RPM for n in speeds), kxx=per_mm["kxx_n_per_mm"],
@@ -424,6 +436,11 @@ def _ranges(source: str, i: int, raw: dict) -> tuple[dict, dict[str, tuple[float
     return out, ranges
 
 
+# the least radial clearance over the diameter the film is solved for: below it the
+# Sommerfeld number runs off the film's tables (a clearance in mm typed as um)
+MIN_CLEARANCE_RATIO = 1e-4
+
+
 def _scaled(span: tuple[float, ...], unit: float) -> tuple[float, float, float]:
     lo, nominal, hi = span
     return lo * unit, nominal * unit, hi * unit
@@ -460,6 +477,13 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
     diameter = _seat_diameter(source, table, t, shaft, s, "journal")
     clearance = t["radial_clearance_um"] * 1e-6
     widest = ranges.get("radial_clearance_um", (0.0, 0.0, t["radial_clearance_um"]))[2]
+    tightest = ranges.get("radial_clearance_um", (t["radial_clearance_um"],))[0]
+    if tightest * 1e-6 < MIN_CLEARANCE_RATIO * diameter:
+        raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "
+                         f"{tightest:g}: {tightest * 1e-6 / diameter:.2g} of the diameter; a "
+                         "journal bearing's radial clearance is about 0.0005 to 0.003 of it, "
+                         f"and the film is solved from {MIN_CLEARANCE_RATIO:g} (the key is in "
+                         "um: 0.05 mm is 50 um)")
     if widest * 1e-6 > 0.05 * diameter:
         raise SceneError(f"{where(source, table, 'radial_clearance_um')} = "
                          f"{widest:g}: {widest * 1e-6 / diameter:.3g} of the "
@@ -523,8 +547,8 @@ def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
     table = entry("support", i, raw)
     t = validate_table(source, table, _as_lists(raw, BEARING_KEYS), SCHEMA["support"])
     for key, what in (("radial_clearance_um", "the seal's radial clearance, um"),
-                      ("pressure_drop_mpa", "the pressure drop across it at the highest "
-                       "operating speed, MPa"),
+                      ("pressure_drop_mpa", "the pressure drop across it at the machine's "
+                       "rated speed ([rotor] rated_speed_rpm), MPa"),
                       ("fluid_density_kg_m3", "the sealed fluid's density, kg/m^3"),
                       ("viscosity_mpa_s", "the sealed fluid's viscosity, mPa s")):
         if t[key] is None:
@@ -533,6 +557,7 @@ def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
     if rotor is None:
         raise SceneError(f"{where(source, table, 'kind')} = \"seal\": a seal's forces come "
                          "from its speed; add [rotor] with the operating speed")
+    _needs_rated(source, table, "pressure_drop_mpa", rotor)
     diameter = _seat_diameter(source, table, t, shaft, s, "seal")
     clearance = t["radial_clearance_um"] * 1e-6
     widest = ranges.get("radial_clearance_um", (0.0, 0.0, t["radial_clearance_um"]))[2]
@@ -542,7 +567,7 @@ def _seal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
                          "diameter; a plain seal's radial clearance is about 0.001 to 0.005 "
                          "of it (the bulk-flow model holds below 0.02)")
     annular = AnnularSeal(length=s.width, diameter=diameter, clearance=clearance,
-                               pressure_drop=t["pressure_drop_mpa"] * MPA, rated=rotor.top_speed,
+                               pressure_drop=t["pressure_drop_mpa"] * MPA, rated=rotor.rated,
                                density=t["fluid_density_kg_m3"],
                                viscosity=t["viscosity_mpa_s"] * 1e-3,
                                inlet_loss=INLET_LOSS if t["inlet_loss"] is None
@@ -702,14 +727,24 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
                  basis_modes=t["basis_modes"] or 0,
                  probes=tuple(z * MM for z in t["probes_mm"]),
                  ranges=() if band is None else ((band[0] * RPM, band[1] * RPM),),
-                 min_log_dec=t["min_log_dec"],
+                 min_log_dec=t["min_log_dec"], log_dec_modes=t["log_dec_modes"],
                  amplitude_limit=(None if t["amplitude_limit_um"] is None
                                   else t["amplitude_limit_um"] * 1e-6),
                  level1=t["level1"],
                  level1_qa=(None if t["level1_qa_n_per_mm"] is None
                             else t["level1_qa_n_per_mm"] * 1e3),
                  runup=(None if t["runup_rpm_per_s"] is None
-                        else t["runup_rpm_per_s"] * RPM))
+                        else t["runup_rpm_per_s"] * RPM),
+                 rated=(t["rated_speed_rpm"] or 0.0) * RPM)
+
+
+def _needs_rated(source: str, table: str, key: str, rotor: Rotor) -> None:
+    """A seal's drop or a stage's power is the machine's at its rated speed: without it
+    the operating speeds would change the machine, not where it runs."""
+    if rotor.rated <= 0:
+        raise SceneError(f"{where(source, 'rotor', 'rated_speed_rpm')}: missing ({table}'s "
+                         f"{key} is given at the machine's rated speed: say which, r/min, "
+                         "for example the highest operating speed)")
 
 
 def _attachment(source: str, i: int, t: dict) -> Attachment:
@@ -756,6 +791,7 @@ def _stage(source: str, i: int, raw: dict, a: Attachment, rotor: Rotor | None) -
     if rotor is None:
         raise SceneError(f"{where(source, table, 'stage_power_kw')}: a stage's cross-coupling "
                          "needs the shaft turning: add [rotor] with its speed_rpm")
+    _needs_rated(source, table, "stage_power_kw", rotor)
     return replace(a, stage=Stage(power=t["stage_power_kw"] * 1e3,
                                   diameter=t["stage_diameter_mm"] * MM,
                                   width=t["stage_width_mm"] * MM, kind=t["stage_kind"],

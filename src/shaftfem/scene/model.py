@@ -320,10 +320,13 @@ class Rotor:
     probes: tuple[float, ...] = ()   # z (m) of points whose unbalance response is shown
     ranges: tuple[tuple[float, float], ...] = ()   # operating speed ranges (rad/s)
     min_log_dec: float | None = None   # None: 0, or API 684's 0.1 with criterion "api684"
+    log_dec_modes: str = "forward"   # the modes min_log_dec holds for: "forward",
+                                     # "first_forward" or "all" (a growing mode always fails)
     amplitude_limit: float | None = None   # m, 0-peak, at any probe
     level1: bool = False   # check and design screen it by API 684's Level I
     level1_qa: float | None = None   # its Q_A, N/m (None: the stages' Wachel estimates)
     runup: float | None = None   # design runs it up at this acceleration, rad/s^2
+    rated: float = 0.0   # rad/s: where seals' pressure drops and stages' powers are given
 
     @property
     def spans(self) -> tuple[tuple[float, float], ...]:

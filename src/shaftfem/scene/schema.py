@@ -329,8 +329,9 @@ SCHEMA: dict[str, dict[str, Key]] = {
                          "(kind = \"ball\", contact_angle_deg > 0): every ball loaded, their "
                          "loads shared ball by ball (Palmgren's contacts; load_n then optional)",
                          *upto(1e7, "up to 10^7 N"), required=False),
-        "pressure_drop_mpa": Key(float, "the pressure drop across the seal at the highest "
-                                 "operating speed, MPa (kind = \"seal\"; at other speeds as "
+        "pressure_drop_mpa": Key(float, "the pressure drop across the seal at the machine's "
+                                 "rated speed ([rotor] rated_speed_rpm), MPa (kind = "
+                                 "\"seal\"; at other speeds as "
                                  "the square of the speed, as a pump's head)",
                                  *upto(1_000, "up to 1000 MPa"), required=False),
         "fluid_density_kg_m3": Key(float, "the sealed fluid's density, kg/m^3 (kind = "
@@ -358,9 +359,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "diametral_inertia_kg_m2": Key(
             float, "moment of inertia about a diameter through its centre, kg m^2",
             *upto(1e6, "up to 10^6 kg m^2", closed_low=True), default=0.0, required=False),
-        "stage_power_kw": Key(float, "a compressor or turbine stage's power at the highest "
-                              "operating speed, kW: its aerodynamic cross-coupling on the part, "
-                              "Wachel's estimate (API 617; docs/cross-coupling.md)",
+        "stage_power_kw": Key(float, "a compressor or turbine stage's power at the machine's "
+                              "rated speed ([rotor] rated_speed_rpm), kW: its aerodynamic "
+                              "cross-coupling on the part, Wachel's estimate (API 617; "
+                              "docs/cross-coupling.md)",
                               *upto(1e6, "up to 1 GW"), required=False),
         "stage_diameter_mm": Key(float, "the impeller's diameter (an axial stage's pitch "
                                  "diameter), mm (with stage_power_kw)",
@@ -399,6 +401,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "max_speed_rpm": Key(float, "end of the Campbell diagram, r/min (default "
                              f"{DEFAULT_SPEED_HEADROOM:g} times the highest operating speed)",
                              *upto(1e6, "up to 10^6 r/min"), required=False),
+        "rated_speed_rpm": Key(float, "the machine's rated speed, r/min: where its seals' "
+                               "pressure drops and its stages' powers are given (a seal's "
+                               "drop goes as the speed squared, a stage's cross-coupling by "
+                               "the fan law); needed with a seal or a stage, so that the "
+                               "operating speeds change where the machine runs, not what it "
+                               "is", *upto(1e6, "up to 10^6 r/min"), required=False),
         "frame": Key(str, "the frame the shaft's motion is written in: \"stationary\" (a "
                      "shaft of revolution: gyroscopic moments; bearings may be anisotropic), "
                      "\"rotating\" (any shaft, turning with it: Coriolis and spin softening; "
@@ -430,6 +438,15 @@ SCHEMA: dict[str, dict[str, Key]] = {
                            "its journals' lift-off (default 0, i.e. no mode may grow; 0.1 "
                            "with [resonance] criterion = \"api684\")",
                            *upto(10.0, "up to 10", closed_low=True), required=False),
+        "log_dec_modes": Key(str, "the whirling modes min_log_dec is required of: "
+                             "\"forward\" (default: every forward mode; API 684 judges the "
+                             "forward modes an unbalance or a stage drives), \"first_forward\" "
+                             "(API 684 Level I and II: the first forward mode), \"all\" "
+                             "(backward modes too); the others are listed, and a mode that "
+                             "grows fails whatever its whirl",
+                             lambda v: v in ("forward", "first_forward", "all"),
+                             '"forward", "first_forward", "all"', default="forward",
+                             required=False),
         "level1": Key(bool, "screen the rotor by API 684's Level I in check and design: a "
                       "failed screening (API 617: Q_0 / Q_A below 2, or a log decrement "
                       "below 0.1 at Q_A) fails the check (docs/rotating.md)", default=False,
