@@ -172,3 +172,34 @@ def test_ctrl_c_stops_a_sweep_and_its_workers(tmp_path):
     gone, alive = psutil.wait_procs(family, timeout=2.0)
     assert not alive, alive
     assert not (out / ".sweep.lock").exists() and not (out / ".sweep-tmp").exists()
+
+
+def test_a_stop_after_publishing_says_what_stands(tmp_path):
+    """Ctrl-C after the command has published its files (a manifest-vouched set) and
+    while it still works: the one line says what stands, not that nothing was
+    published, and the files stay."""
+    out = tmp_path / "out"
+    script = f"""
+import sys, time
+from pathlib import Path
+from shaftfem.store import staged_directory
+from shaftfem.supervise import supervised
+
+def run():
+    with staged_directory({str(out)!r}, "manifest.json") as stage:
+        (stage / "report.md").write_text("# done")
+    print("published", flush=True)
+    time.sleep(60)
+    return 0
+
+sys.exit(supervised(run, [Path({str(out)!r})]))
+"""
+    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, start_new_session=True)
+    assert p.stdout is not None and p.stdout.readline().strip() == "published"
+    os.killpg(p.pid, signal.SIGINT)
+    assert p.wait(timeout=30) == 130
+    last = p.stderr.read().strip().splitlines()[-1]
+    assert "nothing was published" not in last
+    assert "2 files in" in last and str(out) in last, last
+    assert (out / "report.md").read_text() == "# done"

@@ -145,6 +145,7 @@ def journal_rotor(mesh_mm: float = 25.0, **bearing) -> dict:
 @pytest.mark.parametrize("key, value, said", [
     ("radial_clearance_um", 0.0, "radial_clearance_um"),
     ("radial_clearance_um", 3000.0, "radial_clearance_um"),
+    ("radial_clearance_um", 0.06, "radial_clearance_um = 0.06: 1.2e-06 of the diameter"),
     ("viscosity_mpa_s", -3.0, "viscosity_mpa_s"),
     ("load_n", 2e6, "load_n"),
     ("oil_iso_vg", 33, "oil_iso_vg"),

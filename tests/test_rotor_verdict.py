@@ -276,6 +276,7 @@ def test_instability_above_the_running_speed_warns_and_inside_fails(pulley):
 def test_a_required_log_decrement_fails_a_lightly_damped_rotor(pulley):
     """[rotor] min_log_dec = 0.1 on bearings that damp little: FAIL, naming the mode."""
     from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.outputs.tables import verdict_lines
     from shaftfem.workflows.campbell import run_campbell
 
     data = pulley_rotor(cxx_n_s_per_mm=0.05)
@@ -284,7 +285,48 @@ def test_a_required_log_decrement_fails_a_lightly_damped_rotor(pulley):
     c = run_campbell(load_scene(data))
     assert c.stability is not None and 0 < c.stability.log_dec <= 0.1
     v = check_whirl(c, 0.15)
-    assert not v.ok and "damped less than required" in v.unstable[0]
+    # stable (every log decrement positive), so no instability: the criterion fails
+    assert not v.ok and v.exit_status == 1 and not v.unstable
+    assert "damped less than required" in v.underdamped[0]
+    assert "UNSTABLE" not in "\n".join(verdict_lines(v))
+
+
+def test_the_required_log_decrement_holds_for_the_modes_log_dec_modes_names():
+    """min_log_dec is required of the forward modes by default, of the first forward
+    mode alone, or of every whirling mode: set between the least damped backward and
+    forward modes where the shaft runs, it fails only the rules that take in the less
+    damped one; a backward mode is listed, not judged, under "forward"."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.workflows.campbell import least_damped, run_campbell
+
+    data = pulley_rotor(cxx_n_s_per_mm=0.05)
+    data["rotor"]["campbell_points"] = 7
+    c = run_campbell(load_scene(data))
+    n = c.operating_rpm[0]
+    least: dict[str, float] = {}
+    first_forward = None
+    for cv in c.curves:
+        if not cv.whirling:
+            continue
+        i = int(np.argmin(abs(cv.speeds_rpm - n)))
+        word, d = cv.whirl[i], float(cv.log_dec[i])
+        least[word] = min(least.get(word, math.inf), d)
+        if word == "forward" and (first_forward is None or cv.seen_hz[i] < first_forward[0]):
+            first_forward = (float(cv.seen_hz[i]), d)
+    assert {"forward", "backward"} <= set(least) and first_forward is not None
+    lo, hi = sorted((least["forward"], least["backward"]))
+    assert hi > 1.1 * lo > 0
+    required = 0.5 * (lo + hi)
+    outcome = {}
+    for rule in ("forward", "first_forward", "all"):   # the same curves, judged anew
+        data["rotor"].update(min_log_dec=required, log_dec_modes=rule)
+        scene = load_scene(data)
+        judged = replace(c, scene=scene,
+                         stability=least_damped(scene, list(c.curves), c.lift_rpm))
+        outcome[rule] = check_whirl(judged, 0.15).ok
+    assert outcome["all"] is False
+    assert outcome["forward"] is (least["forward"] > required)
+    assert outcome["first_forward"] is (first_forward[1] > required)
 
 
 # --------------------------------------------------------------------------------------
@@ -301,6 +343,19 @@ def test_a_coefficient_that_is_no_number_is_refused_at_load(key, value):
     with pytest.raises(SceneError, match=key) as e:
         load_scene(data)
     assert "finite" in str(e.value)
+
+
+@pytest.mark.parametrize("given", [{"kyy_n_per_mm": 0.0},
+                                   {"kxx_n_per_mm": 0.0, "kyy_n_per_mm": 5e4}])
+def test_a_bearing_that_holds_one_way_only_is_refused_naming_the_key(given):
+    """kyy = 0 beside kxx > 0 (or the other way round) leaves the shaft free to slide
+    across its bearing: refused at once, naming the zero, not minutes later by a whirl
+    that does not settle."""
+    from shaftfem.errors import SceneError
+
+    zero = next(k for k, v in given.items() if v == 0.0)
+    with pytest.raises(SceneError, match=rf"{zero} = 0.0: the bearing holds the shaft"):
+        load_scene(pulley_rotor(**given))
 
 
 def test_the_rotor_table_refuses_what_it_cannot_mean():
@@ -588,14 +643,64 @@ def test_a_zone_of_growth_inside_the_running_range_fails_and_beyond_it_warns(pul
     and growth; one beyond it is a warning with its margin from the nearest running
     speed (here 25 %)."""
     from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.fem.whirl import GrowthZone
     from shaftfem.workflows.campbell import campbell_of
 
     scene, result, model, why = pulley
     c = campbell_of(at_speed(scene, 3000.0), result, model, why)
-    inside = check_whirl(replace(c, zones=((2900.0, 3100.0, 4.2),)), 0.15)
+
+    def zone(lo: float, hi: float) -> tuple[GrowthZone]:
+        return (GrowthZone(lo, hi, 4.2, 0.5 * (lo + hi), ("parametric",)),)
+
+    inside = check_whirl(replace(c, zones=zone(2900.0, 3100.0)), 0.15)
     assert not inside.ok and inside.exit_status == 1
     assert any("zone of growth" in u and "2,900" in u and "4.2 1/s" in u
                for u in inside.unstable)
-    beyond = check_whirl(replace(c, zones=((3750.0, 3900.0, 4.2),)), 0.15)
+    beyond = check_whirl(replace(c, zones=zone(3750.0, 3900.0)), 0.15)
     assert not any("zone of growth" in u for u in beyond.unstable)
     assert any("zone of growth" in w and "25.0 %" in w for w in beyond.warnings)
+
+
+def test_an_undamped_cross_coupled_rotor_grows_from_standstill_and_says_so(pulley):
+    """No damping anywhere and a constant cross-coupling kxy = -kyx: a forward mode
+    grows from standstill on (its log decrement a little below zero, with no positive
+    stretch to fall from). The onset is the diagram's first speed, one zone of growth
+    runs to its end, the check fails, and no note calls the log decrements zero."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.scene.model import BearingCoefficients
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    zero = (0.0,)
+    coeffs = BearingCoefficients(speeds=(), kxx=(5e7,), kxy=(2e6,), kyx=(-2e6,),
+                                 kyy=(5e7,), cxx=zero, cxy=zero, cyx=zero, cyy=zero)
+    coupled = replace(model, bearings=tuple(replace(b, coefficients=coeffs)
+                                            for b in model.bearings))
+    c = campbell_of(scene, result, coupled, why)
+    growing = [cv for cv in c.curves if cv.whirling and np.all(cv.log_dec[1:] < 0)]
+    assert growing, "a circulatory force with no damping makes one mode of a pair grow"
+    assert c.onsets and c.onsets[0].speed_rpm == pytest.approx(0.0, abs=1e-6)
+    assert len(c.zones) == 1 and c.zones[0].from_rpm == pytest.approx(0.0, abs=1e-6)
+    assert c.zones[0].open and c.stable_above_rpm is None
+    assert not any("log decrements are zero" in n for n in c.notes)
+    v = check_whirl(c, 0.15)
+    assert not v.ok and v.exit_status == 1 and any("starts to grow" in u for u in v.unstable)
+
+
+def test_overlapping_growth_is_one_zone_and_the_rotor_is_stable_above_it():
+    """Three overlapping bands of growth (a parametric zone and two onsets inside it)
+    are one zone with the outer edges and the fastest growth; a band apart stays
+    apart; the zone that stops short of the diagram's end leaves the rotor stable."""
+    from shaftfem.fem.whirl import growth_zones
+
+    parts = [(4507.0, 4815.0, 1.0, 4700.0, "parametric"),
+             (4507.0, 5501.0, 3.0, 5000.0, "curve 3 (forward whirl)"),
+             (5108.0, 5502.0, 2.0, 5300.0, "curve 4 (backward whirl)"),
+             (7000.0, 9000.0, 0.5, 9000.0, "divergence")]
+    one, two = growth_zones(parts, 9000.0)
+    assert (one.from_rpm, one.to_rpm, one.growth_per_s, one.fastest_rpm) == (
+        4507.0, 5502.0, 3.0, 5000.0)
+    assert len(one.holds) == 3 and not one.open
+    assert two.open and two.holds == ("divergence",)
+    (alone,) = growth_zones(parts[:3], 9000.0)
+    assert not alone.open and alone.to_rpm == 5502.0

@@ -69,6 +69,7 @@ def test_a_range_gives_its_nominal_and_its_ends():
     ("radial_clearance_um", [40.0, 45.0, 50.0, 55.0], "tolerance range"),
     ("radial_clearance_um", [0.0, 50.0], "radial_clearance_um = 0"),
     ("radial_clearance_um", ["40", 50.0], "tolerance range"),
+    ("radial_clearance_um", [0.05, 0.08], "0.05 mm is 50 um"),   # mm typed as um
     ("oil_temperature_c", [-40.0, 50.0], "oil_temperature_c = -40"),
 ])
 def test_a_bad_range_is_refused_naming_its_key(tmp_path, capsys, key, value, said):

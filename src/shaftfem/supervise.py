@@ -36,6 +36,9 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
     if os.name != "posix" or os.environ.get("SHAFTFEM_NO_SUPERVISOR"):
         return run()
     made = _missing(outputs)
+    import time
+
+    started = time.time()
 
     def stop(signum, _frame):
         raise _Stop(signum)
@@ -71,7 +74,11 @@ def supervised(run: Callable[[], int], outputs: list[Path]) -> int:
             _kill_tree(pid)
         _clean(outputs, made, pid)
         what = "interrupted" if s.signum == signal.SIGINT else "terminated"
-        print(f"shaftfem: {what}; nothing was published", file=sys.stderr, flush=True)
+        done = _published(outputs, started)
+        print(f"shaftfem: {what}; " + ("nothing was published" if not done else
+              f"what it had published stands ({', '.join(done)}: each set complete, "
+              "vouched by its manifest); nothing half-written was left"),
+              file=sys.stderr, flush=True)
         return 128 + s.signum
     finally:
         for sig, handler in old.items():
@@ -112,6 +119,20 @@ def _kill_tree(pid: int) -> None:
             os.waitpid(pid, 0)
         except ChildProcessError:
             pass
+
+
+def _published(outputs: list[Path], since: float) -> list[str]:
+    """For each output folder the run published files in (written since `since`, the
+    run's start; staging folders are gone by now): "N files in folder"."""
+    out = []
+    for folder in outputs:
+        folder = Path(folder)
+        if not folder.is_dir():
+            continue
+        n = sum(1 for f in folder.rglob("*") if f.is_file() and f.stat().st_mtime >= since)
+        if n:
+            out.append(f"{n} file{'s' if n > 1 else ''} in {folder}")
+    return out
 
 
 def _missing(outputs: list[Path]) -> list[Path]:

@@ -70,12 +70,16 @@ class ResonanceVerdict:
     # the turning shaft's stability: each reason it fails (a mode that grows or is damped
     # less than required at a speed it runs through, a divergence in its running range)
     unstable: list[str] = field(default_factory=list)
+    # ... and each stability criterion it meets short while stable (a log decrement above
+    # zero but at or below the required one, a failed Level I screening)
+    underdamped: list[str] = field(default_factory=list)
     # what is printed beside the verdict and does not fail it (onsets beyond the range)
     warnings: list[str] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
-        return all(a.ok for a in self.approaches) and not self.unstable
+        return (all(a.ok for a in self.approaches) and not self.unstable
+                and not self.underdamped)
 
     @property
     def exit_status(self) -> int:
@@ -120,6 +124,7 @@ class ResonanceVerdict:
             "required_margin": self.required,
             "turning": self.turning,
             "unstable": list(self.unstable),
+            "stability_criteria_not_met": list(self.underdamped),
             "warnings": list(self.warnings),
             "approaches": [
                 {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,

@@ -42,9 +42,11 @@ if TYPE_CHECKING:
 
 
 def amplification(log_dec: float) -> float:
-    """A mode's amplification factor from its log decrement, pi / delta (infinite
-    undamped)."""
-    return math.pi / log_dec if log_dec > 0 else math.inf
+    """A mode's amplification factor from its log decrement (fem.whirl's
+    amplification_factor: pi / delta when light, never below 1/2)."""
+    from shaftfem.fem.whirl import amplification_factor
+
+    return amplification_factor(log_dec)
 
 
 def forward_only(scene: Scene, frame: str) -> bool:
@@ -70,8 +72,10 @@ def _span_text(lo: float, hi: float) -> str:
     return f"{lo:,.0f} r/min" if lo == hi else f"{lo:,.0f}-{hi:,.0f} r/min"
 
 
-def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
-    """What fails the turning shaft's stability, and what is only warned of. Judged
+def stability_findings(c: Campbell) -> tuple[list[str], list[str], list[str]]:
+    """What fails the turning shaft's stability (a mode that grows), what fails its
+    required damping (a mode that decays, but with a log decrement at or below
+    min_log_dec), and what is only warned of. Judged
     where API 684 judges it, where the shaft runs: a whirling mode that grows, or is
     damped less than required, at an operating speed or inside a running range fails,
     as does an onset of growth or a divergence band inside the running range. A band of
@@ -80,18 +84,19 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
     rotor = c.rotor_scene.rotor
     assert rotor is not None
     spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans]
-    top = max(hi for _, hi in spans)
-    fails, warns = [], []
+    fails, short, warns = [], [], []
     st = c.stability
     if st is not None and not st.ok:
-        what = ("grows" if st.growing else
-                f"is damped less than required (min_log_dec {st.required:g})")
-        fails.append(f"curve {st.curve} ({st.whirl} whirl, {st.frequency_hz:.2f} Hz) {what}: "
-                     f"log decrement {st.log_dec:.3g} at {st.speed_rpm:,.0f} r/min")
-        for n, speed, f, whirl, d in st.others:
-            what = "grows" if d < 0 else f"is damped less than required (min_log_dec {st.required:g})"
-            fails.append(f"curve {n} ({whirl} whirl, {f:.2f} Hz) {what}: log decrement "
-                         f"{d:.3g} at {speed:,.0f} r/min")
+        for n, speed, f, whirl, d in [(st.curve, st.speed_rpm, st.frequency_hz, st.whirl,
+                                       st.log_dec), *st.others]:
+            if d < 0:
+                fails.append(f"curve {n} ({whirl} whirl, {f:.2f} Hz) grows: log decrement "
+                             f"{d:.3g} at {speed:,.0f} r/min")
+            else:   # stable, but with less margin than required: no instability
+                short.append(f"curve {n} ({whirl} whirl, {f:.2f} Hz) is damped less than "
+                             f"required: log decrement {d:.3g} at {speed:,.0f} r/min, "
+                             f"{st.required:g} required of {st.applies_text} "
+                             "([rotor] min_log_dec, log_dec_modes)")
     elif st is not None and not st.judged:
         warns.append("stability not judged: no damping in the model (every log decrement is "
                      "zero); give the bearings' damping, or [rotor] min_log_dec")
@@ -108,38 +113,44 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str]]:
         warns.append(f"curve {n} ({whirl} whirl) grows from about {a:,.0f} to {b:,.0f} r/min, "
                      "below the running range: a run-up passes through it")
 
-    def inside(n: float) -> tuple[float, float] | None:
-        return next(((lo, hi) for lo, hi in spans
-                     if lo * (1 - 1e-9) <= n <= hi * (1 + 1e-9)), None)
-
-    for o in c.onsets:
-        text = (f"curve {o.curve_text} starts to grow at {o.speed_rpm:,.0f} r/min "
-                f"({o.frequency_hz:.2f} Hz)")
-        if o.speed_rpm < lift:
-            continue
-        span = inside(o.speed_rpm)
-        if span is not None:
-            fails.append(text + f", inside the running range {_span_text(*span)}")
-        elif o.speed_rpm <= top:
-            warns.append(text + ", below the highest operating speed "
-                         f"({top:,.0f} r/min), outside where the shaft runs")
+    opening = {o.speed_rpm: o for o in c.opening_onsets}
+    for z in c.zones:
+        if z.to_rpm < lift:
+            continue   # below the lift-off the films' coefficients are placeholders
+        o = next((o for n, o in opening.items()
+                  if abs(n - z.from_rpm) <= 1e-6 * max(n, 1.0)), None)
+        reach = ("to the diagram's end" if z.open else f"to {z.to_rpm:,.0f} r/min")
+        if o is not None:
+            text = (f"curve {o.curve_text} starts to grow at {o.speed_rpm:,.0f} r/min "
+                    f"({o.frequency_hz:.2f} Hz) and grows {reach}")
+            rest = [h for h in z.holds if h != f"curve {o.curve_text}"]
+            if rest:
+                text += " (the zone holds " + ", ".join(
+                    h if h.startswith("curve") else
+                    {"divergence": "a divergence", "parametric":
+                     "a parametric resonance"}[h] for h in rest) + ")"
         else:
-            warns.append(text + f": {100 * (o.speed_rpm - top) / top:.1f} % above the highest "
-                         f"operating speed ({top:,.0f} r/min)")
-    bands = [(lo, hi, f"divergence (a mode locks to the shaft and grows) from {lo:,.0f} to "
-              f"{hi:,.0f} r/min") for lo, hi in c.divergent]
-    bands += [(lo, hi, f"a zone of growth (the periodic rotor's forms meet and grow, up to "
-               f"{g:.3g} 1/s: a parametric or combination resonance) from {lo:,.0f} to "
-               f"{hi:,.0f} r/min")
-              for lo, hi, g in c.zones]
-    for lo, hi, text in bands:
-        hit = [s for s in spans if lo <= s[1] and hi >= s[0]]
+            kinds = {"divergence": "divergence (a mode locks to the shaft and grows)",
+                     "parametric": "the periodic rotor's forms meet and grow: a parametric "
+                                   "or combination resonance"}
+            text = ("a zone of growth (" + "; ".join(
+                kinds.get(h, f"{h} grows") for h in z.holds) + f") {z.span_text}")
+        text += f", up to {z.growth_per_s:.3g} 1/s"
+        hit = [sp for sp in spans if z.from_rpm <= sp[1] * (1 + 1e-9)
+               and z.to_rpm >= sp[0] * (1 - 1e-9)]
         if hit:
             fails.append(text + f", inside the running range {_span_text(*hit[0])}")
         else:
-            gap = min(min(abs(lo - b), abs(hi - a)) / (b if lo > b else a) for a, b in spans)
-            warns.append(text + f": {100 * gap:.1f} % from the nearest running speed")
-    return fails, warns
+            top = max(b for _, b in spans)
+            gap = min(min(abs(z.from_rpm - b), abs(z.to_rpm - a)) / (b if z.from_rpm > b else a)
+                      for a, b in spans)
+            where = (f"{100 * gap:.1f} % above the highest operating speed ({top:,.0f} r/min)"
+                     if z.from_rpm > top else
+                     f"{100 * gap:.1f} % from the nearest running speed"
+                     + (": a run-up passes through it" if z.to_rpm < min(a for a, _ in spans)
+                        else ""))
+            warns.append(text + ": " + where)
+    return fails, short, warns
 
 
 def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
@@ -190,7 +201,7 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
                                         source=e.name, order=k, excitation=fk,
                                         margin=abs(w.frequency_hz - fk) / fk, required=need))
     out.sort(key=lambda a: (a.exempt, a.margin - a.required))
-    fails, warns = stability_findings(c)
+    fails, short, warns = stability_findings(c)
     if c.coverage:
         warns.append(c.coverage)
     warns += [(f"journal bearing {f.bearing!r} at {f.speed_rpm:,.0f} r/min: " + (
@@ -221,7 +232,8 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
                 else ""))
     return ResonanceVerdict(approaches=out, required=flat, free_free=not scene.held,
                             free_free_intended=scene.free_free_intended or scene.hanging_free,
-                            turning=basis, unstable=fails, warnings=warns)
+                            turning=basis, unstable=fails, underdamped=short,
+                            warnings=warns)
 
 
 def with_level1(verdict: ResonanceVerdict, level1) -> ResonanceVerdict:
@@ -238,6 +250,6 @@ def with_level1(verdict: ResonanceVerdict, level1) -> ResonanceVerdict:
         return verdict
     ratio = "-" if level1.ratio is None else f"{level1.ratio:.2f}"
     dec = "-" if level1.log_dec_a is None else f"{level1.log_dec_a:.3f}"
-    return replace(verdict, unstable=[*verdict.unstable, (
+    return replace(verdict, underdamped=[*verdict.underdamped, (
         f"Level I screening fails API 617's criteria: Q_0 / Q_A = {ratio} (2 required), log "
         f"decrement at Q_A {dec} (0.1 required): a Level II analysis is required")])

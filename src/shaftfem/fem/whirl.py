@@ -7,7 +7,7 @@ and workflows.unbalance; read by the checks, the tables, the pictures and the fi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -255,8 +255,8 @@ class CriticalSpeed:
 
     @property
     def amplification(self) -> float:
-        """The amplification factor AF = pi / log dec (infinite undamped)."""
-        return math.pi / self.log_dec if self.log_dec > 0 else math.inf
+        """The amplification factor (amplification_factor)."""
+        return amplification_factor(self.log_dec)
 
     @property
     def critically_damped(self) -> bool:
@@ -318,6 +318,13 @@ class Stability:
     # the bands below the running range where a whirling curve grows (a run-up passes
     # them): (curve, whirl, from r/min, to r/min) sampled on the diagram's speeds
     passed: tuple[tuple[int, str, float, float], ...] = ()
+    # the modes the required log decrement applies to: "forward", "first_forward", "all"
+    modes: str = "forward"
+
+    @property
+    def applies_text(self) -> str:
+        return {"forward": "every forward mode", "first_forward": "the first forward mode",
+                "all": "every whirling mode"}[self.modes]
 
     @property
     def ok(self) -> bool:
@@ -330,6 +337,7 @@ class Stability:
                 "frequency_hz": self.frequency_hz, "whirl": self.whirl,
                 "log_dec": self.log_dec, "required_min_log_dec": self.required,
                 "judged": self.judged, "growing": self.growing, "ok": self.ok,
+                "required_of": self.modes,
                 "others_failing": [{"curve": n, "speed_rpm": sp, "frequency_hz": f,
                                     "whirl": w, "log_dec": d}
                                    for n, sp, f, w, d in self.others],
@@ -349,6 +357,11 @@ class Onset:
     whirl: str
     mode: int
     frequency_hz: float
+    # where it stops growing again (r/min; None: it grows to the diagram's end), and its
+    # fastest growth on the way (1/s) with the speed it is met at (r/min)
+    until_rpm: float | None = None
+    growth_per_s: float = 0.0
+    fastest_rpm: float = 0.0
 
     @property
     def curve_text(self) -> str:
@@ -356,7 +369,66 @@ class Onset:
 
     def as_dict(self) -> dict:
         return {"speed_rpm": self.speed_rpm, "whirl": self.whirl, "curve": self.mode,
-                "frequency_hz": self.frequency_hz}
+                "frequency_hz": self.frequency_hz, "until_rpm": self.until_rpm,
+                "growth_per_s": self.growth_per_s, "fastest_at_rpm": self.fastest_rpm}
+
+
+def amplification_factor(log_dec: float) -> float:
+    """A mode's amplification factor AF = 1 / (2 zeta) from its log decrement delta,
+    zeta = delta / sqrt(4 pi^2 + delta^2): pi / delta for light damping (API 684's
+    form), never below 1/2 (a critically damped root's); infinite undamped."""
+    if log_dec <= 0:
+        return math.inf
+    return math.sqrt(4 * math.pi**2 + log_dec**2) / (2 * log_dec)
+
+
+@dataclass(frozen=True)
+class GrowthZone:
+    """A band of speeds (r/min) where the rotor grows: the union of every overlapping
+    cause (an onset's span, a divergence, a periodic rotor's parametric zone), its
+    fastest growth (1/s) and where it is met, and what it holds. `open` where it runs to
+    the diagram's end (the rotor may grow beyond it too)."""
+
+    from_rpm: float
+    to_rpm: float
+    growth_per_s: float
+    fastest_rpm: float
+    holds: tuple[str, ...]
+    open: bool = False
+
+    @property
+    def span_text(self) -> str:
+        return (f"from {self.from_rpm:,.0f} r/min to the diagram's end ({self.to_rpm:,.0f})"
+                if self.open else f"from {self.from_rpm:,.0f} to {self.to_rpm:,.0f} r/min")
+
+    @property
+    def growth_text(self) -> str:
+        g = self.growth_per_s
+        return (f"fastest growth {g:.3g} 1/s at {self.fastest_rpm:,.0f} r/min (doubling in "
+                f"{math.log(2) / g:.3g} s)" if g > 0 else "growth too slow to rate")
+
+    def as_dict(self) -> dict:
+        return {"from_rpm": self.from_rpm, "to_rpm": self.to_rpm,
+                "to_diagram_end": self.open, "growth_per_s": self.growth_per_s,
+                "fastest_at_rpm": self.fastest_rpm, "holds": list(self.holds)}
+
+
+def growth_zones(parts: list[tuple[float, float, float, float, str]], top_rpm: float
+                 ) -> tuple[GrowthZone, ...]:
+    """The growth bands `parts` (from, to r/min, fastest growth 1/s, where, what) merged
+    where they overlap or touch: one zone of growth is one band, whatever found it."""
+    out: list[GrowthZone] = []
+    for lo, hi, g, at, what in sorted(parts):
+        last = out[-1] if out else None
+        if last is not None and lo <= last.to_rpm * (1 + 1e-6):
+            faster = g > last.growth_per_s
+            out[-1] = GrowthZone(
+                last.from_rpm, max(hi, last.to_rpm), max(g, last.growth_per_s),
+                at if faster else last.fastest_rpm,
+                last.holds + ((what,) if what not in last.holds else ()))
+        else:
+            out.append(GrowthZone(lo, hi, g, at, (what,)))
+    return tuple(replace(z, open=z.to_rpm >= top_rpm * (1 - 1e-9)) for z in out)
 
 
 @dataclass(frozen=True)
@@ -427,7 +499,10 @@ class Campbell:
     divergent_growth: tuple[float, ...] = ()   # each band's fastest growth rate, 1/s
     # a periodic rotor's zones where it grows while it oscillates (parametric and
     # combination resonances, bands above an onset): (from, to r/min, fastest growth 1/s)
-    zones: tuple[tuple[float, float, float], ...] = ()
+    parametric: tuple[tuple[float, float, float], ...] = ()
+    # where the rotor grows, whatever found it (onsets' spans, divergence, parametric
+    # zones), overlapping bands merged: what the reader is told and the check judges
+    zones: tuple[GrowthZone, ...] = ()
     # at each operating speed, the reported modes' complex shapes on the standstill modes
     # (N, count): u = Phi y, in the model's frame
     operating_shapes: tuple[np.ndarray, ...] = ()
@@ -459,6 +534,22 @@ class Campbell:
         return self.result.modes.shapes if self.basis is None else self.basis
 
     @property
+    def opening_onsets(self) -> tuple[Onset, ...]:
+        """The onsets where the rotor starts to grow: each that opens a zone of growth
+        (one inside a zone an earlier cause opened is part of that zone)."""
+        return tuple(o for o in self.onsets if any(
+            abs(o.speed_rpm - z.from_rpm) <= 1e-6 * max(z.from_rpm, 1.0) for z in self.zones))
+
+    @property
+    def stable_above_rpm(self) -> float | None:
+        """The speed (r/min) above which the diagram shows no growth (None: it grows to
+        the diagram's end; 0: it grows nowhere)."""
+        if not self.zones:
+            return 0.0
+        last = self.zones[-1]
+        return None if last.open else last.to_rpm
+
+    @property
     def rotor_scene(self) -> Scene:
         """The scene whose speeds, sources and criteria the diagram answers."""
         return self.scene if self.scene is not None else self.result.scene
@@ -473,11 +564,13 @@ class Campbell:
                 "whirl": [w.as_dict() for w in self.whirl],
                 "operating": [w.as_dict() for w in self.operating],
                 "critical_speeds": [c.as_dict() for c in self.critical_speeds],
-                "instability_onsets": [o.as_dict() for o in self.onsets],
+                "instability_onsets": [o.as_dict() for o in self.opening_onsets],
                 "divergent_rpm": [list(band) for band in self.divergent],
                 "divergent_growth_per_s": list(self.divergent_growth),
-                "zones": [{"from_rpm": lo, "to_rpm": hi, "growth_per_s": g}
-                          for lo, hi, g in self.zones],
+                "parametric_zones": [{"from_rpm": lo, "to_rpm": hi, "growth_per_s": g}
+                                     for lo, hi, g in self.parametric],
+                "zones": [z.as_dict() for z in self.zones],
+                "stable_above_rpm": self.stable_above_rpm,
                 "synchronous_check": self.synchronous_check,
                 "crossing_check": (None if self.crossing_check is None
                                    else self.crossing_check.as_dict()),

@@ -148,33 +148,25 @@ def campbell_figure(c: Campbell):
         end = min(top_rpm, fmax * 120.0)
         ax.annotate("0.5x", (end, 0.5 * end / 60.0), fontsize=8, textcoords="offset points",
                     xytext=(-18, 4))
-    for o in c.onsets:
+    opening = c.opening_onsets
+    for o in opening:
         ax.plot(o.speed_rpm, o.frequency_hz, "X", color="tab:red", ms=8,
-                label="onset of instability" if o is c.onsets[0] else None)
+                label="onset of instability" if o is opening[0] else None)
         ax.annotate(f"grows from {o.speed_rpm:,.0f}", (o.speed_rpm, o.frequency_hz), fontsize=7,
                     color="tab:red", textcoords="offset points", xytext=(6, 6))
         if damped:
             dec.axvline(o.speed_rpm, color="tab:red", lw=0.8, ls=":")
-    # the bands where a root locks to the shaft and grows (between a stiff and a soft
-    # diameter's critical speeds), and beyond every onset: unstable, hatched
-    # (a periodic rotor's zones end where its forms unlock: an onset inside one is drawn
-    # to the zone's end, not the diagram's)
-    ends = [min([hi for lo, hi, _ in c.zones if lo - 1e-6 * lo <= o.speed_rpm <= hi],
-                default=top_rpm) for o in c.onsets]
-    spans = [*c.divergent, *((lo, hi) for lo, hi, _ in c.zones),
-             *((o.speed_rpm, e) for o, e in zip(c.onsets, ends))]
-    for i, (lo, hi) in enumerate(spans):
+    # where the rotor grows (onsets to where their curves decay again, divergence,
+    # parametric zones), overlapping causes as one zone: hatched; above the last zone
+    # the rotor is stable, and drawn so
+    for i, z in enumerate(c.zones):
         for axis in ([ax, dec] if damped else [ax]):
-            axis.axvspan(lo, hi, facecolor="none", edgecolor="tab:red", hatch="//", lw=0,
-                         alpha=0.35, label="unstable" if i == 0 and axis is ax else None)
-        if len(c.divergent) <= i < len(c.divergent) + len(c.zones):
-            g = c.zones[i - len(c.divergent)][2]
-            ax.annotate(f"grows {lo:,.0f}-{hi:,.0f}\nup to {g:.3g} 1/s", (hi, 0.90 * fmax),
-                        fontsize=7, color="tab:red", ha="right", va="top")
-        if i < len(c.divergent):
-            g = c.divergent_growth[i] if i < len(c.divergent_growth) else 0.0
-            ax.annotate(f"diverges {lo:,.0f}-{hi:,.0f}"
-                        + (f"\nup to {g:.3g} 1/s" if g > 0 else ""), (hi, 0.97 * fmax),
+            axis.axvspan(z.from_rpm, z.to_rpm, facecolor="none", edgecolor="tab:red",
+                         hatch="//", lw=0, alpha=0.35,
+                         label="unstable" if i == 0 and axis is ax else None)
+        if z.holds != (z.holds[0],) or not z.holds[0].startswith("curve "):
+            ax.annotate(f"grows {z.from_rpm:,.0f}-{z.to_rpm:,.0f}\nup to "
+                        f"{z.growth_per_s:.3g} 1/s", (z.to_rpm, (0.97 - 0.07 * (i % 2)) * fmax),
                         fontsize=7, color="tab:red", ha="right", va="top")
     if thin_drawn:
         ax.plot([], [], "-", color="grey", lw=0.6,

@@ -40,6 +40,9 @@ class RotorStudy:
 STUDY_NOTE = ("The verdict at the top (and the exit status) takes the scene's flat "
               "separation margin unless [resonance] criterion = \"api684\"; this summary "
               "judges every item as API 684 (and API 617's Level I) do.")
+# what a Markdown image link can show
+IMAGES = (".png", ".jpg", ".jpeg", ".gif", ".svg", ".webp")
+
 def title_rows(scene, wall_seconds: float | None = None) -> tuple[list[str], list[list[str]]]:
     """The report's title block: the scene's machine, job, revision, date and engineer
     (where it gives them), what it describes, its file, and when and by what it was
@@ -145,7 +148,10 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
               else ["No [[excitation]] sources in the scene: nothing to check against."])
     lines.append("")
     if pictures:
-        lines += ["## Pictures", ""] + [f"![{Path(p).stem}]({Path(p).name})" for p in pictures]
+        # an image link for a picture, a plain link for anything else (campbell.csv)
+        lines += ["## Pictures", ""] + [
+            f"![{Path(p).stem}]({Path(p).name})" if Path(p).suffix.lower() in IMAGES
+            else f"- [{Path(p).name}]({Path(p).name})" for p in pictures]
         lines.append("")
     if files:
         lines += ["## Files", ""] + [f"- `{Path(f).name}`" for f in files] + [""]

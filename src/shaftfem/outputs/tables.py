@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from shaftfem.fem.modes import Modes
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult, ModelMoves
+    from shaftfem.fem.whirl import Campbell, GrowthZone
     from shaftfem.scene.model import Scene
 
 
@@ -348,6 +349,22 @@ FREE_FREE_MEANT = (
     "half as high for a shaft on two bearings).")
 
 
+def zone_causes(c: Campbell, z: GrowthZone) -> str:
+    """What a zone of growth holds, in words: the curves whose log decrement falls below
+    zero in it, a divergence, a periodic rotor's parametric resonance."""
+    words = []
+    curves = [h for h in z.holds if h.startswith("curve ")]
+    if curves:
+        words.append(f"{', '.join(curves)}: log decrement below zero")
+    if "divergence" in z.holds:
+        words.append("a mode locks to the shaft and grows (divergence; the shaft is stiffer "
+                     "across one diameter than across the other)")
+    if "parametric" in z.holds:
+        words.append("a form of the periodic rotor grows while it oscillates (a parametric "
+                     "or combination resonance, two forms meeting 2 k n)")
+    return "; ".join(words)
+
+
 def _spans_text(spans) -> str:
     """Where the shaft runs, r/min: '3,000 r/min' or '30 and 2,800-3,200 r/min'."""
     parts = [f"{lo:,.0f}" if lo == hi else f"{lo:,.0f}-{hi:,.0f}" for lo, hi in spans]
@@ -360,6 +377,7 @@ def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
     lines = [verdict_line(v)]
     if v is not None:
         lines += [f"UNSTABLE: {u}" for u in v.unstable]
+        lines += [f"STABLE, DAMPING BELOW REQUIRED: {u}" for u in v.underdamped]
         lines += [f"warning: {w}" for w in v.warnings]
     if v is not None and v.turning:
         lines.append(f"judged on {v.turning}")
@@ -377,6 +395,10 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
     if v.unstable:
         return (f"**VERDICT: FAIL{free}** - not stable where the shaft runs: {v.unstable[0]}"
                 + (f" (and {len(v.unstable) - 1} more)" if len(v.unstable) > 1 else ""))
+    if v.underdamped:
+        return (f"**VERDICT: FAIL{free}** - stable where the shaft runs, but a stability "
+                f"criterion is not met: {v.underdamped[0]}"
+                + (f" (and {len(v.underdamped) - 1} more)" if len(v.underdamped) > 1 else ""))
     if v.ok and not v.approaches:
         return (f"**VERDICT: PASS{free}** - stable, and no critical speed or whirl frequency "
                 "meets an excitation harmonic in the range checked")
@@ -583,20 +605,12 @@ def campbell_text(c) -> str:
                      + "): least log "
                      f"decrement {st.log_dec:.3g} (curve {st.curve}, {st.whirl} whirl, "
                      f"{st.frequency_hz:.2f} Hz, at {st.speed_rpm:,.0f} r/min)"
-                     + ("" if not st.judged else f", required above {st.required:g}"))
-    for (lo, hi), g in zip(c.divergent, c.divergent_growth or [0.0] * len(c.divergent)):
-        lines.append(f"UNSTABLE between {lo:,.0f} and {hi:,.0f} r/min: a mode locks to the "
-                     "shaft and grows (divergence; the shaft is stiffer across one diameter "
-                     "than across the other)" + (f", fastest growth {g:.3g} 1/s (doubling in "
-                                                 f"{math.log(2) / g:.3g} s)" if g > 0 else ""))
-    for lo, hi, g in c.zones:
-        lines.append(f"UNSTABLE between {lo:,.0f} and {hi:,.0f} r/min: a form of the periodic "
-                     "rotor grows while it oscillates (where no curve's log decrement says "
-                     "so alone: a parametric or combination resonance, two forms meeting "
-                     f"2 k n), fastest growth {g:.3g} 1/s (doubling in {math.log(2) / g:.3g} s)")
-    for o in c.onsets:
-        lines.append(f"UNSTABLE from {o.speed_rpm:,.0f} r/min: {o.whirl} whirl curve {o.mode} "
-                     f"({o.frequency_hz:.2f} Hz), its log decrement falls below zero")
+                     + ("" if not st.judged else f", required above {st.required:g} of "
+                        f"{st.applies_text}"))
+    lines += [f"UNSTABLE {z.span_text}: {zone_causes(c, z)}; {z.growth_text}"
+              for z in c.zones]
+    if c.zones and not c.zones[-1].open:
+        lines.append(f"stable above {c.zones[-1].to_rpm:,.0f} r/min to the diagram's end")
     if c.unbalance is not None:
         verdict = ("the verdict follows these margins" if c.result.scene.criterion == "api684"
                    else "for information: the verdict takes [resonance]'s flat margin")
@@ -872,10 +886,12 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
     top = c.rotor_scene.rotor.top_speed * 30 / math.pi if c.rotor_scene.rotor else 0.0
     spans = [(lo * 30 / math.pi, hi * 30 / math.pi)
              for lo, hi in (c.rotor_scene.rotor.spans if c.rotor_scene.rotor else ())]
-    inside = [o for o in c.onsets if any(lo * (1 - 1e-9) <= o.speed_rpm <= hi * (1 + 1e-9)
-                                         for lo, hi in spans)]
-    rows.append(["onset of instability", (f"from {c.onsets[0].speed_rpm:,.0f} r/min"
-                                          if c.onsets else "none in the diagram"),
+    lift = c.lift_rpm
+    inside = [z for z in c.zones if z.to_rpm >= lift and any(
+        z.from_rpm <= hi * (1 + 1e-9) and z.to_rpm >= lo * (1 - 1e-9) for lo, hi in spans)]
+    rows.append(["zones of growth (instability)",
+                 "; ".join(z.span_text.replace("from ", "", 1) for z in c.zones)
+                 or "none in the diagram",
                  f"outside {_spans_text(spans)}" if spans else f"above {top:,.0f} r/min",
                  "FAIL" if inside else "pass"])
     if c.unbalance is not None:

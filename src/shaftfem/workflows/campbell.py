@@ -31,6 +31,7 @@ from shaftfem.fem.whirl import (
     Stability,
     Truncation,
     Whirl,
+    growth_zones,
 )
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
@@ -221,11 +222,29 @@ def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, .
 
 
 def onsets(model: RotorModel, curves: list[Curve]) -> list[Onset]:
-    """Every speed where a whirling curve's decay rate changes from positive to
-    negative (the mode starts to grow), refined by root finding on the model."""
+    """Every speed where a whirling curve starts to grow (its decay rate falls through
+    zero, refined by root finding on the model; or from a neutral stretch, an undamped
+    rotor's, at the stretch's last speed; or at the curve's first speed if it grows
+    there), with where it stops growing again and its fastest growth in between."""
     from scipy.optimize import brentq
 
     from shaftfem.fem.tracking import REACH, _at
+
+    def through_zero(c: Curve, i: int) -> float:
+        """The speed (rad/s) between points i and i + 1 where the decay is zero."""
+        d = c.decay
+        lo, hi = c.speeds_rpm[i] * RPM, c.speeds_rpm[i + 1] * RPM
+        f0, f1 = float(c.signed_hz[i]), float(c.signed_hz[i + 1])
+        reach = REACH * (hi - lo) / (2 * math.pi) + 1e-3 * max(abs(f0), abs(f1))
+
+        def decay(om: float) -> float:
+            return _at(model, om, c.shapes[:, i], f0 + (f1 - f0) * (om - lo) / (hi - lo),
+                       reach)[1]
+
+        try:
+            return float(brentq(decay, lo, hi, xtol=1e-10 * hi))
+        except ValueError:
+            return float(lo + d[i] * (hi - lo) / (d[i] - d[i + 1]))
 
     out = []
     for c in curves:
@@ -233,22 +252,38 @@ def onsets(model: RotorModel, curves: list[Curve]) -> list[Onset]:
             continue
         scale = ROUND_OFF * 2 * math.pi * np.maximum(c.seen_hz, 1.0)
         d = c.decay
-        for i in np.flatnonzero((d[:-1] > scale[:-1]) & (d[1:] < -scale[1:])):
-            lo, hi = c.speeds_rpm[i] * RPM, c.speeds_rpm[i + 1] * RPM
-            f0, f1 = float(c.signed_hz[i]), float(c.signed_hz[i + 1])
-            reach = REACH * (hi - lo) / (2 * math.pi) + 1e-3 * max(abs(f0), abs(f1))
-
-            def decay(om: float, y=c.shapes[:, i], f0=f0, f1=f1, lo=lo, hi=hi,
-                      reach=reach) -> float:
-                return _at(model, om, y, f0 + (f1 - f0) * (om - lo) / (hi - lo), reach)[1]
-
-            try:
-                om = brentq(decay, lo, hi, xtol=1e-10 * hi)
-            except ValueError:
-                om = lo + d[i] * (hi - lo) / (d[i] - d[i + 1])
-            t = (om - lo) / (hi - lo)
-            out.append(Onset(om / RPM, c.whirl[i if t < 0.5 else i + 1], c.number,
-                             float((1 - t) * c.seen_hz[i] + t * c.seen_hz[i + 1])))
+        state = np.where(d < -scale, -1, np.where(d > scale, 1, 0))
+        last = len(d) - 1
+        i = 0
+        while i <= last:
+            if state[i] >= 0:
+                i += 1
+                continue
+            a = i
+            while i <= last and state[i] < 0:
+                i += 1
+            b = i - 1                                   # growing from a to b
+            if a == 0:
+                om = float(c.speeds_rpm[0]) * RPM
+            elif state[a - 1] > 0:
+                om = through_zero(c, a - 1)
+            else:                                       # neutral, then growing
+                om = float(c.speeds_rpm[a - 1]) * RPM
+            if b == last:
+                until = None
+            elif state[b + 1] > 0:
+                until = through_zero(c, b) / RPM
+            else:
+                until = float(c.speeds_rpm[b + 1])
+            k = a + int(np.argmin(d[a:b + 1]))
+            lo, hi = c.speeds_rpm[max(a - 1, 0)] * RPM, c.speeds_rpm[a] * RPM
+            t = 0.0 if hi <= lo else (om - lo) / (hi - lo)
+            j = a if a == 0 else (a - 1 if t < 0.5 else a)
+            f = float(c.seen_hz[a] if a == 0
+                      else (1 - t) * c.seen_hz[a - 1] + t * c.seen_hz[a])
+            out.append(Onset(om / RPM, c.whirl[j], c.number, f,
+                             until_rpm=until, growth_per_s=float(-d[k]),
+                             fastest_rpm=float(c.speeds_rpm[k])))
     return sorted(out, key=lambda o: o.speed_rpm)
 
 
@@ -304,33 +339,41 @@ def least_damped(scene: Scene, curves: list[Curve], lift: float) -> Stability | 
     if not worst:
         return None
     worst.sort()
-    d, number, speed, f, whirl = worst[0]
     required = (rotor.min_log_dec if rotor.min_log_dec is not None
                 else API684_LOG_DEC if scene.criterion == "api684" else 0.0)
+    # the required log decrement holds for the modes [rotor] log_dec_modes names (API
+    # 684: the forward modes, or the first of them); a mode that grows fails whatever it is
+    forward = sorted((f, n) for _, n, _, f, w in worst if w == "forward")
+    applies = {"all": {n for _, n, _, _, _ in worst}, "forward": {n for _, n in forward},
+               "first_forward": {n for _, n in forward[:1]}}[rotor.log_dec_modes]
+    held = [x for x in worst if x[1] in applies or x[0] < 0] or worst
+    d, number, speed, f, whirl = held[0]
     damped = any(abs(float(x)) > 1e-6 for c in curves if c.whirling for x in c.log_dec)
     judged = damped or rotor.min_log_dec is not None
-    failing = tuple((n, s, fr, w, x) for x, n, s, fr, w in worst[1:]
-                    if x < 0 or (judged and x <= required))
+    failing = tuple((n, s, fr, w, x) for x, n, s, fr, w in held[1:]
+                    if x < 0 or (judged and n in applies and x <= required))
     below = [n for n in sorted({lo / RPM for lo, _ in rotor.spans}) if n < lift]
     return Stability(curve=number, speed_rpm=speed, frequency_hz=f, whirl=whirl, log_dec=d,
-                     required=required, judged=judged, growing=d < 0, others=failing,
-                     unjudged_rpm=tuple(below), passed=tuple(passed))
+                     required=required, judged=judged and number in applies, growing=d < 0,
+                     others=failing, unjudged_rpm=tuple(below), passed=tuple(passed),
+                     modes=rotor.log_dec_modes)
 
 
 def divergent_bands(model: RotorModel, speeds: np.ndarray
-                    ) -> list[tuple[float, float, float]]:
+                    ) -> list[tuple[float, float, float, float]]:
     """The speed bands where a root grows without oscillating: their edges (r/min),
     found by bisection between the diagram's speeds (to 1e-9 of the speed), and the
     fastest growth met in the band (1/s, over the diagram's speeds in it and its
-    middle)."""
+    middle) with the speed it is met at (r/min)."""
     from shaftfem.fem.floquet import any_roots as roots
 
     def rate(omega: float) -> float:
         return roots(model, omega).divergence
 
-    def band(lo: float, hi: float) -> tuple[float, float, float]:
+    def band(lo: float, hi: float) -> tuple[float, float, float, float]:
         inside = [float(w) for w in speeds if lo <= w <= hi] + [0.5 * (lo + hi)]
-        return lo / RPM, hi / RPM, max(rate(w) for w in inside)
+        g, at = max((rate(w), w) for w in inside)
+        return lo / RPM, hi / RPM, g, at / RPM
 
     values = [rate(om) for om in speeds]
     # two diverging speeds in a row may hold two bands (the soft and the stiff diameter's
@@ -403,12 +446,12 @@ def _onset_s_own(start: float, unstable: list[Onset], curves: list[Curve]) -> bo
 
 
 def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
-                     divergent: list[tuple[float, float, float]]
-                     ) -> list[tuple[float, float, float, bool]]:
-    """The zones (r/min) where a periodic rotor grows, their fastest growth (1/s) and
+                     divergent: list[tuple[float, float, float, float]]
+                     ) -> list[tuple[float, float, float, bool, float]]:
+    """The zones (r/min) where a periodic rotor grows, their fastest growth (1/s),
     whether it grows there without oscillating (a divergence the diagram's speeds
     missed) or while it oscillates (parametric and combination resonances, bands above
-    an onset).
+    an onset), and where the fastest growth is met (r/min).
     Sought on the diagram's speeds and, whatever the grid, where two curves' turning-
     frame frequencies f_a + f_b or f_a - f_b (a = b too) meet 2 k n (n the speed, Hz,
     |k| up to PARAMETRIC_ORDER): Floquet exponents are one modulo i 2 Omega, and two
@@ -523,8 +566,8 @@ def parametric_zones(model: RotorModel, path: np.ndarray, curves: list[Curve],
     zones = []
     for lo, hi, first, last in growth_spans(rate, points, values):
         at = first + int(np.argmax(values[first:last + 1]))
-        zones.append((lo / RPM, hi / RPM, values[at], still(points[at])))
-    held = [(lo, hi) for lo, hi, _ in divergent]
+        zones.append((lo / RPM, hi / RPM, values[at], still(points[at]), points[at] / RPM))
+    held = [(b[0], b[1]) for b in divergent]
     return [z for z in zones
             if not any(lo <= 0.5 * (z[0] + z[1]) <= hi for lo, hi in held)]
 
@@ -854,8 +897,11 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
     if not any(s.bearing is not None and np.any(np.array(s.bearing.cxx + s.bearing.cyy
                                                          + s.bearing.cxy + s.bearing.cyx))
                for s in scene.held):
+        neutral = all(abs(float(x)) <= 1e-6 for c in curves if c.whirling for x in c.log_dec)
         notes.append("no bearing has damping (kind = \"bearing\" with cxx_n_s_per_mm ...): "
-                     "the log decrements are zero and no amplification factor can be given")
+                     + ("the log decrements are zero and no amplification factor can be given"
+                        if neutral else "the log decrements come from the cross-coupling and "
+                        "the parts' forces alone, and no amplification factor can be given"))
     top_rpm = float(grid.max()) / RPM
     searched = reach(every, within, top_rpm)
     coverage = None
@@ -869,16 +915,24 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
         notes.append(f"{check.direct_only} crossing(s) found only by the direct route were "
                      "added: the diagram's curves missed them")
     lift = lift_speed(scene) / RPM
+    # below the journals' lift-off the journal runs on its shell and the film's
+    # coefficients are placeholders: no crossing there is a critical speed
+    shell = [cs for cs in critical if cs.speed_rpm < lift]
+    if shell:
+        critical = [cs for cs in critical if cs.speed_rpm >= lift]
+        notes.append(f"{len(shell)} crossing(s) below the journals' lift-off ({lift:,.0f} "
+                     "r/min) left out: the journal runs on its shell there, and the film's "
+                     "coefficients are placeholders")
     stability = least_damped(scene, curves, lift)
     unstable = onsets(model, curves)
     bands = divergent_bands(model, path)
-    zones: list[tuple[float, float, float]] = []
+    zones: list[tuple[float, float, float, float]] = []
+    top = float(path.max()) / RPM
     if periodic_note:
         found = parametric_zones(model, path, curves, bands)
-        bands = sorted([*bands, *(z[:3] for z in found if z[3])])
+        bands = sorted([*bands, *((z[0], z[1], z[2], z[4]) for z in found if z[3])])
         # a zone that an onset opens and the diagram's end closes is the onset's own
-        top = float(path.max()) / RPM
-        zones = [z[:3] for z in found if not z[3] and not (
+        zones = [(z[0], z[1], z[2], z[4]) for z in found if not z[3] and not (
             z[1] >= top * (1 - 1e-9) and _onset_s_own(z[0], unstable, curves))]
         agree = zones_agree(model, [w * RPM for b in [*bands, *zones] for w in b[:2]]
                             + [o.speed_rpm * RPM for o in unstable],
@@ -903,7 +957,13 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                     result=result, notes=tuple(notes), unbalance=response,
                     onsets=tuple(unstable), divergent=tuple(b[:2] for b in bands),
                     divergent_growth=tuple(b[2] for b in bands),
-                    zones=tuple(zones),
+                    parametric=tuple(z[:3] for z in zones),
+                    zones=growth_zones(
+                        [(lo, hi, g, at, "divergence") for lo, hi, g, at in bands]
+                        + [(lo, hi, g, at, "parametric") for lo, hi, g, at in zones]
+                        + [(o.speed_rpm, top if o.until_rpm is None else o.until_rpm,
+                            o.growth_per_s, o.fastest_rpm, f"curve {o.curve_text}")
+                           for o in unstable], top),
                     operating_shapes=shapes,
                     synchronous_check=check.largest_difference, crossing_check=check,
                     curves=tuple(curves), stability=stability,

@@ -156,6 +156,7 @@ def combined(results: list[CaseResult]) -> ResonanceVerdict:
                   for r in results for a in r.verdict.approaches]
     approaches.sort(key=lambda a: (a.exempt, a.margin - a.required))
     unstable = [named(u, r) for r in results for u in r.verdict.unstable]
+    underdamped = [named(u, r) for r in results for u in r.verdict.underdamped]
     warnings = list(first.warnings)   # the nominal case's, then what the others add
     for r in results[1:]:
         warnings += [named(w, r) for w in r.verdict.warnings if w not in first.warnings]
@@ -164,4 +165,5 @@ def combined(results: list[CaseResult]) -> ResonanceVerdict:
     return ResonanceVerdict(approaches=approaches, required=first.required,
                             free_free=first.free_free,
                             free_free_intended=first.free_free_intended, turning=turning,
-                            unstable=unstable, warnings=warnings)
+                            unstable=unstable, underdamped=underdamped,
+                            warnings=warnings)
