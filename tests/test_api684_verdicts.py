@@ -10,7 +10,6 @@ running at 3,600 r/min.
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
@@ -95,10 +94,15 @@ def test_a_critically_damped_crossing_is_no_critical_speed(wheel):
     from shaftfem.outputs.tables import campbell_text, verdict_rows
 
     c = wheel[4]
-    damped = [cs for cs in c.critical_speeds if cs.critically_damped]
-    assert damped, "the rotor should have heavily damped crossings to test"
+    # the films' own crossings lie below their lift-off, where the journal runs on its
+    # shell: left out and said; a heavily damped crossing above it (log dec 5) is made
+    assert all(cs.speed_rpm >= c.lift_rpm for cs in c.critical_speeds)
+    assert any("below the journals' lift-off" in n for n in c.notes)
+    first = c.critical_speeds[0]
+    damped = [replace(first, log_dec=5.0)]
+    c = replace(c, critical_speeds=(*damped, *c.critical_speeds[1:]))
     for cs in damped:
-        assert math.pi / cs.log_dec < 2.5
+        assert cs.critically_damped and 0.5 <= cs.amplification < 2.5
     for flat in (None, 0.15):
         v = check_whirl(c, flat)
         exempt = [a for a in v.approaches if a.exempt]

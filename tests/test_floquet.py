@@ -543,7 +543,8 @@ def zones_on(points: int) -> tuple[list[float], list[float]]:
     grid = np.linspace(lo, hi, points)
     curves = track(model, grid, 4)
     bands = divergent_bands(model, grid)
-    found = sorted([*bands, *(z[:3] for z in parametric_zones(model, grid, curves, bands))])
+    found = sorted([*(b[:3] for b in bands),
+                    *(z[:3] for z in parametric_zones(model, grid, curves, bands))])
     assert all(g > 0 for _, _, g in found)
     return [w * RPM for z in found for w in z[:2]], scanned
 

@@ -377,7 +377,7 @@ def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
     lines = [verdict_line(v)]
     if v is not None:
         lines += [f"UNSTABLE: {u}" for u in v.unstable]
-        lines += [f"STABLE, DAMPING BELOW REQUIRED: {u}" for u in v.underdamped]
+        lines += [f"STABILITY CRITERION NOT MET: {u}" for u in v.underdamped]
         lines += [f"warning: {w}" for w in v.warnings]
     if v is not None and v.turning:
         lines.append(f"judged on {v.turning}")
