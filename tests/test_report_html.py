@@ -176,7 +176,8 @@ def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
                     "Bearing and seal coefficients against speed"):
         assert f"<h3>{heading}</h3>" in section, heading
     for item in ("separation margin of the critical speeds", "least log decrement",
-                 "onset of instability", "unbalance peak at impeller",
+                 "zones of growth (instability)", "unbalance peak at impeller",
+                 "nominal (the scene as given)", "the verdict (the worst case decides)",
                  "Level I screening (API 617 8th ed.)"):
         assert item in section, item
     assert section.count('<td class="text">pass</td>') + section.count(

@@ -89,6 +89,11 @@ def test_the_cases_bracket_the_tolerances_and_a_joint_left_to_the_default():
     scene = load_scene(wheel())
     assert [c.name for c in cases_of(scene)] == [
         "nominal", "min clearance, cold oil", "max clearance, hot oil"]
+    corners = wheel()
+    corners["rotor"]["tolerance_cases"] = "corners"
+    four = cases_of(load_scene(corners))
+    assert {(c.clearance, c.oil) for c in four[1:]} == {
+        ("min", "cold"), ("max", "hot"), ("min", "hot"), ("max", "cold")}
     scene = load_scene(wheel(clearance=(45.0, 45.0 + 1e-9), joint=None))
     names = [c.name for c in cases_of(scene)]
     assert names[0] == "nominal" and names[-1] == "distributing joints"
@@ -298,3 +303,21 @@ def test_a_case_turns_on_the_nominal_basis_as_on_a_basis_of_its_own():
     assert [c.order for c in shared.critical_speeds] == [c.order for c in own.critical_speeds]
     for a, b in zip(shared.critical_speeds, own.critical_speeds):
         assert a.speed_rpm == pytest.approx(b.speed_rpm, rel=1e-7)
+
+
+def test_a_hub_on_a_keyway_left_to_the_default_is_keyed_and_bracketed_by_rigid():
+    """A part whose joint the scene leaves out sits as a keyed fit where its hub
+    overlaps a keyway (distributing: its hub adds no stiffness, the conservative side)
+    and as a shrink fit elsewhere; the study runs the other joint as a case beside."""
+    import tomllib
+    from pathlib import Path
+
+    path = Path(__file__).parent.parent / "examples" / "keyed_pump_on_journals.toml"
+    data = tomllib.loads(path.read_text())
+    for a in data["attachment"]:
+        a.pop("joint", None)
+    scene = load_scene(data)
+    joints = {a.name: a.joint for a in scene.attachments}
+    assert joints == {"coupling hub": "rigid", "impeller": "distributing"}
+    names = [c.name for c in cases_of(scene)]
+    assert "rigid joints" in names and "distributing joints" in names

@@ -70,10 +70,10 @@ def study_cases(study: RotorStudy) -> list[tuple[str, Campbell]]:
 
 
 CASES_NOTE = ("Each case is solved and judged as the nominal one; the verdict takes the "
-              "worst. The summary above, the pictures and the tables below are the nominal "
-              "case's. Minimum clearance goes with cold oil (the stiffest films), maximum "
-              "clearance with hot oil (the softest); a part whose joint the scene does not "
-              "give is run on both joints.")
+              "worst. The summary above gives each case as itself; the pictures and the "
+              "tables below are the nominal case's. Minimum clearance goes with cold oil "
+              "(the stiffest films), maximum clearance with hot oil (the softest); a part "
+              "whose joint the scene does not give is run on both joints.")
 # the study's pictures, in the order the section shows them, with their headings
 STUDY_PICTURES = (("bearings.png", "Bearing and seal coefficients against speed"),
                   ("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),

@@ -80,8 +80,9 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
     by_name = {Path(p).name: Path(p) for p in pictures}
     head, rows = tables.api684_rows(study)
     parts = ['<section id="rotordynamics"><h2>Rotordynamics (API 684)</h2>',
-             "<h3>Summary against API 684</h3>", _table((head, rows), ("item", "the rotor",
-                                                                        "required", "result")),
+             "<h3>Summary against API 684</h3>", _table((head, rows), ("case", "item",
+                                                                        "the rotor", "required",
+                                                                        "result")),
              _paragraphs([STUDY_NOTE])]
     if study.cases:
         parts += ["<h3>The study's cases</h3>", _paragraphs([CASES_NOTE]),

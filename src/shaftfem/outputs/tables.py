@@ -863,9 +863,33 @@ def frf_text(r) -> str:
 
 def api684_rows(study) -> tuple[list[str], list[list[str]]]:
     """The rotordynamic study against API 684 (and API 617's Level I criteria): each
-    item, what the rotor does, what is required, and the result."""
-    c, verdict = study.campbell, study.verdict
+    item, what the rotor does, what is required, and the result; with several cases,
+    each case's items as that case has them (the nominal one marked), and the cases the
+    verdict fails in."""
     head = ["item", "the rotor", "required", "result"]
+    if not study.cases:
+        return head, _api684_case_rows(study.campbell, study.verdict, study.level1,
+                                       study.unscreened)
+    rows = []
+    for r in study.cases:
+        name = r.case.name + (" (the scene as given)" if r.case.name == "nominal" else "")
+        # the study's own Level I screening is the nominal case's
+        lv = r.level1 if r.level1 is not None or r.case.name != "nominal" else study.level1
+        # the case named once, on its first row: the rows under it are its own
+        rows += [[name if k == 0 else "", *row] for k, row in enumerate(
+            _api684_case_rows(r.campbell, r.verdict, lv, study.unscreened))]
+    failing = [r.case.name for r in study.cases if not r.verdict.ok]
+    rows.append(["all cases", "the verdict (the worst case decides)",
+                 "fails in: " + ", ".join(failing) if failing else "every case passes", "-",
+                 "FAIL" if failing else "pass"])
+    return ["case", *head], rows
+
+
+def _api684_case_rows(c, verdict, lv, unscreened) -> list[list[str]]:
+    """One case's rows of api684_rows: its Campbell run `c`, its verdict, its Level I
+    screening `lv` (None: not run) and why Level I was left out (unscreened)."""
+    import numpy as np
+
     rows = []
     crit = [a for a in verdict.approaches if "critical" in a.kind and not a.exempt]
     if crit:
@@ -909,10 +933,20 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
             worst = max(p.amplitude for p in c.unbalance.peaks)
             rows.append(["largest unbalance response", f"{worst * 1e6:,.3g} um",
                          f"{limit * 1e6:,.3g} um", "pass" if worst <= limit else "FAIL"])
-    lv = study.level1
-    if lv is None and study.unscreened:
+        # where the shaft runs: each probe's orbit at the operating speeds
+        for b in c.unbalance.bode:
+            at = [(float(np.interp(n, b.speeds_rpm, b.major)), n) for n in c.operating_rpm
+                  if b.speeds_rpm[0] <= n <= b.speeds_rpm[-1]]
+            if not at:
+                continue
+            amp, n = max(at)
+            rows.append([f"unbalance response at {b.name} where the shaft runs",
+                         f"{amp * 1e6:,.3g} um at {n:,.0f} r/min",
+                         "-" if limit is None else f"{limit * 1e6:,.3g} um",
+                         "-" if limit is None else ("pass" if amp <= limit else "FAIL")])
+    if lv is None and unscreened:
         rows.append(["Level I screening (API 617 8th ed.)", "not screened in this run",
-                     "Q_0 / Q_A >= 2, log dec at Q_A >= 0.1", study.unscreened])
+                     "Q_0 / Q_A >= 2, log dec at Q_A >= 0.1", unscreened])
     if lv is not None:
         if lv.qa is None:
             rows.append(["Level I screening (API 617 8th ed.)",
@@ -924,7 +958,7 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
                          if lv.ratio is not None and lv.log_dec_a is not None else "-",
                          "Q_0 / Q_A >= 2, log dec at Q_A >= 0.1",
                          "pass" if lv.passed else "Level II required"])
-    return head, rows
+    return rows
 
 
 def cases_rows(results) -> tuple[list[str], list[list[str]]]:

@@ -195,6 +195,7 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                         for i, e in enumerate(_array(source, data, "attachment")))
     attachments = tuple(_stage(source, i, e, a, rotor) for i, (e, a) in
                         enumerate(zip(_array(source, data, "attachment"), attachments)))
+    attachments = tuple(_keyed_default(a, shaft) for a in attachments)
     check_seats(source, shaft, grooves, supports, attachments, mesh)
     if (rotor is not None and rotor.level1 and rotor.level1_qa is None
             and not any(a.stage is not None for a in attachments)):
@@ -728,6 +729,7 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
                  probes=tuple(z * MM for z in t["probes_mm"]),
                  ranges=() if band is None else ((band[0] * RPM, band[1] * RPM),),
                  min_log_dec=t["min_log_dec"], log_dec_modes=t["log_dec_modes"],
+                 tolerance_cases=t["tolerance_cases"],
                  amplitude_limit=(None if t["amplitude_limit_um"] is None
                                   else t["amplitude_limit_um"] * 1e-6),
                  level1=t["level1"],
@@ -736,6 +738,17 @@ def _rotor(source: str, data: dict, shaft: Shaft) -> Rotor | None:
                  runup=(None if t["runup_rpm_per_s"] is None
                         else t["runup_rpm_per_s"] * RPM),
                  rated=(t["rated_speed_rpm"] or 0.0) * RPM)
+
+
+def _keyed_default(a: Attachment, shaft: Shaft) -> Attachment:
+    """A part whose joint the scene leaves to the default sits on its seat as a keyed fit
+    where its hub overlaps a keyway ("distributing": the conservative side, its hub adds
+    no stiffness), else as a shrink fit ("rigid"); the study brackets it with the other."""
+    if a.joint_given:
+        return a
+    lo, hi = a.position - a.width / 2, a.position + a.width / 2
+    keyed = any(k.start < hi and k.start + k.length > lo for k in shaft.keyways)
+    return replace(a, joint="distributing" if keyed else "rigid")
 
 
 def _needs_rated(source: str, table: str, key: str, rotor: Rotor) -> None:

@@ -320,6 +320,7 @@ class Rotor:
     probes: tuple[float, ...] = ()   # z (m) of points whose unbalance response is shown
     ranges: tuple[tuple[float, float], ...] = ()   # operating speed ranges (rad/s)
     min_log_dec: float | None = None   # None: 0, or API 684's 0.1 with criterion "api684"
+    tolerance_cases: str = "extremes"   # or "corners": all four of clearance and oil
     log_dec_modes: str = "forward"   # the modes min_log_dec holds for: "forward",
                                      # "first_forward" or "all" (a growing mode always fails)
     amplitude_limit: float | None = None   # m, 0-peak, at any probe

@@ -386,11 +386,13 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "driven by (a motor's rotor with its coupling half), kg m^2", *upto(1e6, "up to "
             "10^6 kg m^2"), required=False),
         "joint": coupling(
-            "how the part is joined to its seat: \"rigid\" (default: a shrink or press fit, "
-            "the hub much stiffer than the shaft: the shaft's slice under it moves with the "
-            "part as one rigid body) or \"distributing\" (a slip or keyed fit: the part's "
-            "mass and inertia act on the mean motion of the shaft's cross-section at the hub's "
-            "centre, as a beam model's disk, and add no stiffness)", "rigid"),
+            "how the part is joined to its seat: \"rigid\" (a shrink or press fit, the hub "
+            "much stiffer than the shaft: the shaft's slice under it moves with the part as "
+            "one rigid body) or \"distributing\" (a slip or keyed fit: the part's mass and "
+            "inertia act on the mean motion of the shaft's cross-section at the hub's centre, "
+            "as a beam model's disk, and add no stiffness). Left out: \"distributing\" where "
+            "the hub sits on a keyway, else \"rigid\", and the study runs the other as a "
+            "case beside", "rigid"),
     },
     "rotor": {  # the shaft turning: whirl, Campbell diagram, critical speeds (fem.rotor)
         "speed_rpm": Key(("list", float), "operating speed of the shaft, r/min: one number, "
@@ -438,6 +440,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
                            "its journals' lift-off (default 0, i.e. no mode may grow; 0.1 "
                            "with [resonance] criterion = \"api684\")",
                            *upto(10.0, "up to 10", closed_low=True), required=False),
+        "tolerance_cases": Key(str, "the cases the bearings' tolerance ranges run beside "
+                               "the nominal one: \"extremes\" (default: minimum clearance "
+                               "with cold oil, maximum clearance with hot oil) or \"corners\" "
+                               "(all four corners of clearance and oil temperature)",
+                               lambda v: v in ("extremes", "corners"), '"extremes", "corners"',
+                               default="extremes", required=False),
         "log_dec_modes": Key(str, "the whirling modes min_log_dec is required of: "
                              "\"forward\" (default: every forward mode; API 684 judges the "
                              "forward modes an unbalance or a stage drives), \"first_forward\" "

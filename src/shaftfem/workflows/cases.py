@@ -43,7 +43,8 @@ class Case:
 
 def cases_of(scene: Scene) -> tuple[Case, ...]:
     """The study's cases: the nominal one; minimum clearance with cold oil and maximum
-    clearance with hot oil where a journal or seal gives a range; the parts' other
+    clearance with hot oil where a journal or seal gives a range (all four corners of
+    clearance and oil with [rotor] tolerance_cases = "corners"); the parts' other
     joint where a part leaves its joint to the default. One case: nothing to bracket."""
     spans = [s.tolerance for s in scene.supports if s.tolerance is not None]
     clear = any(t.clearance is not None for t in spans)
@@ -51,7 +52,10 @@ def cases_of(scene: Scene) -> tuple[Case, ...]:
     out = [Case("nominal")]
     if clear or oil:
         words = [w for w, on in (("clearance", clear), ("oil", oil)) if on]
-        for c, o in (("min", "cold"), ("max", "hot")):
+        ends = [("min", "cold"), ("max", "hot")]
+        if clear and oil and scene.rotor is not None and scene.rotor.tolerance_cases == "corners":
+            ends += [("min", "hot"), ("max", "cold")]   # the other two corners, on request
+        for c, o in ends:
             name = ", ".join(f"{c} clearance" if w == "clearance" else f"{o} oil" for w in words)
             out.append(Case(name, clearance=c if clear else "nominal",
                             oil=o if oil else "nominal"))
