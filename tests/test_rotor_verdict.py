@@ -704,3 +704,23 @@ def test_overlapping_growth_is_one_zone_and_the_rotor_is_stable_above_it():
     assert two.open and two.holds == ("divergence",)
     (alone,) = growth_zones(parts[:3], 9000.0)
     assert not alone.open and alone.to_rpm == 5502.0
+
+
+def test_a_crossing_inside_a_zone_of_growth_is_judged_by_its_zone(pulley):
+    """A 1x crossing in a zone where the rotor grows has no steady resonance to keep a
+    margin from: the check judges the zone (it fails, inside the running range) and
+    measures no margin from that crossing; a crossing outside every zone is judged."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.fem.whirl import GrowthZone
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    c = campbell_of(scene, result, model, why)
+    cs = next(x for x in c.critical_speeds if x.order == 1 and x.whirl == "forward"
+              and not x.critically_damped)
+    n = cs.speed_rpm
+    before = check_whirl(c, 0.15)
+    assert any(f"critical at {n:,.0f} r/min" in a.kind for a in before.approaches)
+    zone = GrowthZone(0.9 * n, 1.1 * n, 2.0, n, ("parametric",))
+    after = check_whirl(replace(c, zones=(zone,)), 0.15)
+    assert not any(f"critical at {n:,.0f} r/min" in a.kind for a in after.approaches)

@@ -173,6 +173,10 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     out = []
     for lo, hi in spans:
         for cs in judged:
+            # inside a zone of growth the rotor has no steady response to resonate in: the
+            # zone is judged (stability_findings), not a margin from the crossing
+            if any(z.from_rpm < cs.speed_rpm < z.to_rpm for z in c.zones):
+                continue
             margin, above = span_margin(cs.speed_rpm, lo, hi)
             need = api684_margin(amplification(cs.log_dec), above=above) if api else flat
             curve = f"curve {cs.mode}" if cs.mode else "found directly"
