@@ -724,3 +724,25 @@ def test_a_crossing_inside_a_zone_of_growth_is_judged_by_its_zone(pulley):
     zone = GrowthZone(0.9 * n, 1.1 * n, 2.0, n, ("parametric",))
     after = check_whirl(replace(c, zones=(zone,)), 0.15)
     assert not any(f"critical at {n:,.0f} r/min" in a.kind for a in after.approaches)
+
+
+def test_the_shapes_picture_of_a_rotor_below_its_criticals_shows_the_nearest_modes(pulley):
+    """A diagram that ends below every 1x critical speed: critical_shapes.png draws the
+    lightly damped whirling modes nearest the range (at its top speed) instead of an
+    empty frame, over the whole shaft, end to end."""
+    from shaftfem.outputs.campbell_plot import critical_shapes_figure, deflected_lines
+    from shaftfem.workflows.campbell import campbell_of
+
+    scene, result, model, why = pulley
+    full = campbell_of(scene, result, model, why)
+    first = min(cs.speed_rpm for cs in full.critical_speeds if cs.order == 1)
+    top = 0.5 * first
+    c = campbell_of(at_speed(scene, 0.4 * first, max_speed=top * RPM), result, model, why,
+                    speeds_rpm=np.linspace(0.0, top, 5))
+    assert not [cs for cs in c.critical_speeds if cs.order == 1]
+    lines = deflected_lines(c)
+    assert lines and all(label.startswith("nearest: curve") for label, *_ in lines)
+    assert all(np.isclose(major.max(), 1.0) for _, _, major, _ in lines)
+    ax = critical_shapes_figure(c).axes[0]
+    z = result.system.nodes[:, 2] * 1e3
+    assert ax.get_xlim() == pytest.approx((z.min(), z.max()))

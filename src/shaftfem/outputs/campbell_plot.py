@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaftfem.fem.whirl import CRITICALLY_DAMPED_AF
+from shaftfem.fem.whirl import CRITICALLY_DAMPED_AF, WHIRLING
 from shaftfem.outputs.plots import _figure
 
 if TYPE_CHECKING:
@@ -341,6 +341,10 @@ def bode_figure(c: Campbell):
 SLICES = 60
 
 
+# the modes drawn where no 1x critical speed lies in the range
+NEAREST_SHAPES = 2
+
+
 def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray]]:
     """At each judged 1x critical speed, the shape of its curve along the shaft: (label,
     z of each slice mm, the orbit's major semi-axis there, scaled to a largest of 1, and
@@ -356,11 +360,29 @@ def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray, np.n
     z = 0.5 * (edges[1:] + edges[:-1]) * 1e3
     out = []
     curves = {cv.number: cv for cv in c.curves}
+    picked = []   # (label, curve, index of its speed)
     for cs in c.critical_speeds:
         cv = curves.get(cs.mode)
         if cs.order != 1 or cv is None or cs.critically_damped:
             continue
         i = int(np.argmin(np.abs(cv.speeds_rpm - cs.speed_rpm)))
+        picked.append((f"{cs.whirl} {cs.speed_rpm:,.0f} r/min (curve {cs.mode})", cv, i))
+    if not picked:
+        # no 1x critical speed in the range: the shapes of the lightly damped whirling
+        # modes nearest it from above, at the diagram's top speed, so the reader sees
+        # what the shaft would do first
+        top = []
+        for cv in c.curves:
+            if not cv.whirling or cv.kinds[-1] not in WHIRLING:
+                continue
+            if cv.log_dec[-1] >= DAMPED_LOG_DEC:
+                continue
+            top.append((float(cv.seen_hz[-1]), cv))
+        for f, cv in sorted(top, key=lambda t: t[0])[:NEAREST_SHAPES]:
+            picked.append((f"nearest: curve {cv.number}, {cv.whirl[-1]} {f:.1f} Hz at "
+                           f"{cv.speeds_rpm[-1]:,.0f} r/min (no 1x critical in the range)",
+                           cv, len(cv.speeds_rpm) - 1))
+    for label, cv, i in picked:
         u = c.basis_shapes @ cv.shapes[:, i]
         x = np.bincount(slot, mass * u[0::3].real, SLICES) + 1j * np.bincount(
             slot, mass * u[0::3].imag, SLICES)
@@ -373,8 +395,7 @@ def deflected_lines(c: Campbell) -> list[tuple[str, np.ndarray, np.ndarray, np.n
         a, b = 0.5 * (x + 1j * y), 0.5 * (x - 1j * y)
         circle = a if np.linalg.norm(a) >= np.linalg.norm(b) else b
         phase = np.degrees(np.angle(circle / circle[int(np.argmax(np.abs(circle)))]))
-        out.append((f"{cs.whirl} {cs.speed_rpm:,.0f} r/min (curve {cs.mode})", z,
-                    major / major.max(), phase))
+        out.append((label, z, major / major.max(), phase))
     return out
 
 
@@ -402,6 +423,9 @@ def critical_shapes_figure(c: Campbell):
     if not lines:
         ax.text(0.5, 0.5, "no 1x critical speed in the range", transform=ax.transAxes,
                 ha="center")
+    # the whole shaft, whatever the lines and marks reach
+    ends = c.result.system.nodes[:, 2]
+    ax.set_xlim(float(ends.min()) * 1e3, float(ends.max()) * 1e3)
     lower.set_xlabel("position along the shaft, mm")
     lower.set_ylabel("phase of the whirl, deg")
     lower.set_ylim(-185, 185)
