@@ -38,6 +38,12 @@ if TYPE_CHECKING:
 RATIO_MIN = 2.0
 LOG_DEC_MIN = 0.1
 POINTS = 20
+# where the log decrement changes by more than this share of its range between two
+# steps of Q, their middle is solved too: at most REFINE_MAX middles a round, REFINE_ROUNDS
+# rounds
+STEEP = 0.1
+REFINE_MAX = 12
+REFINE_ROUNDS = 3
 # the lowest forward modes screened; the least damped of them is the one judged
 FORWARD = 4
 
@@ -190,9 +196,14 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
         if hi < 1e13:
             q0 = float(scipy.optimize.brentq(least, hi / 4 if hi > 1e3 else 0.0, hi,
                                              xtol=1e-9 * hi, rtol=1e-10))
+    refine = q_values is None
     if q_values is None:
+        # the whole curve to past Q_0, and as many steps again up to twice Q_A: Q_A is
+        # resolved however far Q_0 lies beyond it
         top = max(1.5 * (q0 or 0.0), 2.0 * (qa or 0.0)) or 1e6
-        q_values = np.linspace(0.0, top, POINTS)
+        near = np.linspace(0.0, 2.0 * qa, POINTS // 2 + 1) if qa else np.zeros(0)
+        q_values = np.union1d(np.linspace(0.0, top, POINTS),
+                              np.union1d(near, [q0] if q0 is not None else []))
     # the mode Q turns unstable (the least damped at Q_0; without Q_0 the least damped
     # without Q), followed over Q by its frequency, from Q_0 outwards in small steps
     start = q0 if q0 is not None else 0.0
@@ -208,8 +219,21 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
         return out
 
     seen = {start: (f_start, min(modes(start), key=lambda m: m[1])[1])}
-    seen.update(follow([t for t in reversed(wanted) if t < start]))
-    seen.update(follow([t for t in wanted if t > start]))
+    for round_ in range(REFINE_ROUNDS if refine else 1):
+        seen.update(follow([t for t in reversed(wanted) if t < start]))
+        seen.update(follow([t for t in wanted if t > start]))
+        if round_ == REFINE_ROUNDS - 1 or not refine:
+            break
+        # where the log decrement turns sharply between two steps, their middle too (a
+        # turn of the curve, or the mode followed changing, is then seen, not jumped)
+        span = max(d for _, d in seen.values()) - min(d for _, d in seen.values())
+        steep = [0.5 * (a + b) for a, b in zip(wanted, wanted[1:])
+                 if abs(seen[b][1] - seen[a][1]) > max(STEEP * span, 1e-3)][:REFINE_MAX]
+        if not steep:
+            break
+        wanted = sorted({*wanted, *steep})
+        seen = {start: seen[start]}
+    q_values = np.array(wanted if refine else q_values, dtype=float)
     decs = np.array([seen[float(q)][1] for q in q_values])
     d0, f0 = seen[0.0][1], seen[0.0][0]
     da = seen[qa][1] if qa is not None else None
