@@ -746,3 +746,19 @@ def test_the_shapes_picture_of_a_rotor_below_its_criticals_shows_the_nearest_mod
     ax = critical_shapes_figure(c).axes[0]
     z = result.system.nodes[:, 2] * 1e3
     assert ax.get_xlim() == pytest.approx((z.min(), z.max()))
+
+
+def test_a_basis_that_will_not_settle_stops_with_a_message(monkeypatch):
+    """Where the whirl still moves on the largest basis allowed, the run stops with one
+    message saying by how much and what to check, instead of climbing on in silence."""
+    from shaftfem.errors import SolverError
+    from shaftfem.fem.whirl import Truncation
+    from shaftfem.workflows import campbell
+
+    monkeypatch.setattr(campbell, "_MODELS", {})
+    monkeypatch.setattr(campbell, "MAX_MODE_COUNT", campbell.basis_size(
+        load_scene(pulley_rotor())))
+    monkeypatch.setattr(campbell, "truncation", lambda model, speeds, count: Truncation(
+        size=model.size, smaller=model.size - 2, speeds_rpm=(0.0,), change=0.05))
+    with pytest.raises(SolverError, match=r"does not settle.*still moves by 5 %"):
+        campbell.turning(load_scene(pulley_rotor()))

@@ -814,11 +814,21 @@ def _turned(scene: Scene, options: RunOptions) -> tuple[ModalResult, RotorModel,
             options.say("periodic rotor: Floquet exponents by Hill's method at every speed "
                         "(a slow run: minutes on a rotor in journals)")
         # the basis is enlarged while the whirl still moves on it (from two thirds of it)
-        if (rotor.basis_modes or size >= MAX_MODE_COUNT
-                or truncation(model, speeds, scene.modes.count).change <= TRUNCATION):
+        if rotor.basis_modes:
             return result, model, why
+        change = truncation(model, speeds, scene.modes.count).change
+        if change <= TRUNCATION:
+            return result, model, why
+        if size >= MAX_MODE_COUNT:
+            raise SolverError(
+                f"{scene.source}: the whirl does not settle on the standstill modes: on "
+                f"{size} of them it still moves by {change * 100:.2g} % from two thirds of "
+                f"them (at most {TRUNCATION * 100:g} % allowed): check the bearings' and "
+                "parts' inputs (a stiffness or clearance off by a unit makes modes the "
+                "basis cannot hold), or fix [rotor] basis_modes to take the whirl as it is")
         size = min(2 * size, MAX_MODE_COUNT)
-        options.say(f"the whirl still moves on the basis: {size} standstill modes")
+        options.say(f"the whirl still moves on the basis by {change * 100:.2g} %: {size} "
+                    "standstill modes")
 
 
 def run_campbell(scene: Scene, options: RunOptions = RunOptions(),
