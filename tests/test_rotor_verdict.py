@@ -762,3 +762,21 @@ def test_a_basis_that_will_not_settle_stops_with_a_message(monkeypatch):
         size=model.size, smaller=model.size - 2, speeds_rpm=(0.0,), change=0.05))
     with pytest.raises(SolverError, match=r"does not settle.*still moves by 5 %"):
         campbell.turning(load_scene(pulley_rotor()))
+
+
+def test_each_crossing_is_listed_once_with_the_whirl_that_dominates_its_mode():
+    """A periodic rotor's pair locked to the speed meets the 1x line as two curves at
+    one speed: listed once, by the curve that carries more of its mode; a crossing met
+    by a component carrying 41 % of the motion whirls the other way; crossings of the
+    stationary frame are never merged."""
+    from shaftfem.fem.whirl import CriticalSpeed
+    from shaftfem.workflows.campbell import dominant, once
+
+    assert dominant("forward", "backward", 0.41) == "forward"
+    assert dominant("backward", "backward", 0.79) == "backward"
+    a = CriticalSpeed(1, "forward", 4854.0, 80.9, 3, 3.6, "forward", 0.7)
+    b = CriticalSpeed(1, "backward", 4854.2, 80.9, 4, -3.43, "backward", 0.3)
+    c = CriticalSpeed(1, "forward", 5502.0, 91.7, 3, 0.2, "forward", 0.8)
+    assert once([b, c, a]) == [a, c]
+    still = [replace(a, component=""), replace(b, component="")]
+    assert len(once(still)) == 2

@@ -171,6 +171,33 @@ def mode_shapes(model: RotorModel, omega: float, count: int) -> np.ndarray:
     return y / y[np.argmax(np.abs(y), axis=0), np.arange(y.shape[1])]
 
 
+def dominant(whirl: str, component: str, share: float) -> str:
+    """A crossing's whirl by the share that dominates its mode: a rotating-frame mode
+    meets an order line with one component, and where that carries under half of the
+    motion, the mode whirls the other way."""
+    other = {"forward": "backward", "backward": "forward"}
+    if component in other and share < 0.5:
+        return other[component]
+    return whirl
+
+
+def once(crossings: list[CriticalSpeed]) -> list[CriticalSpeed]:
+    """Each crossing once: where two rotating-frame curves meet an order line at one
+    speed (to 1e-3 of it; a periodic rotor's pair locked to the speed), the one that
+    carries more of its
+    mode's motion stands for both (the less damped where they carry alike)."""
+    kept: list[CriticalSpeed] = []
+    for cs in sorted(crossings, key=lambda c: (c.speed_rpm, c.order)):
+        i = next((i for i, k in enumerate(kept) if k.order == cs.order and k.component
+                  and cs.component and abs(k.speed_rpm - cs.speed_rpm) <= 1e-3 * cs.speed_rpm),
+                 None)
+        if i is None:
+            kept.append(cs)
+        elif (cs.share, -cs.log_dec) > (kept[i].share, -kept[i].log_dec):
+            kept[i] = cs
+    return kept
+
+
 def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, ...],
                     top: float) -> tuple[list[CriticalSpeed], CrossingCheck]:
     """Every crossing of the curves with the order lines up to the spin `top` (rad/s),
@@ -184,10 +211,11 @@ def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, .
     )
 
     found = curve_crossings(model, curves, orders)
-    out = [CriticalSpeed(order=x.order, whirl=x.whirl, speed_rpm=x.omega / RPM,
-                         frequency_hz=x.order * x.omega / (2 * math.pi), mode=x.curve,
-                         log_dec=x.log_dec if abs(x.log_dec) > ROUND_OFF else 0.0,
-                         component=x.component, share=x.share) for x in found]
+    out = once([CriticalSpeed(order=x.order, whirl=dominant(x.whirl, x.component, x.share),
+                              speed_rpm=x.omega / RPM,
+                              frequency_hz=x.order * x.omega / (2 * math.pi), mode=x.curve,
+                              log_dec=x.log_dec if abs(x.log_dec) > ROUND_OFF else 0.0,
+                              component=x.component, share=x.share) for x in found])
     why = direct_applies(model)
     if why is not None:
         return out, CrossingCheck(False, why, on_curves=len(out))
