@@ -165,9 +165,11 @@ def campbell_figure(c: Campbell):
                          hatch="//", lw=0, alpha=0.35,
                          label="unstable" if i == 0 and axis is ax else None)
         if z.holds != (z.holds[0],) or not z.holds[0].startswith("curve "):
+            # low beside the zone's right edge: clear of the legend at the top
             ax.annotate(f"grows {z.from_rpm:,.0f}-{z.to_rpm:,.0f}\nup to "
-                        f"{z.growth_per_s:.3g} 1/s", (z.to_rpm, (0.97 - 0.07 * (i % 2)) * fmax),
-                        fontsize=7, color="tab:red", ha="right", va="top")
+                        f"{z.growth_per_s:.3g} 1/s", (z.to_rpm, (0.03 + 0.09 * (i % 2)) * fmax),
+                        fontsize=7, color="tab:red", ha="left", va="bottom",
+                        textcoords="offset points", xytext=(3, 0))
     if thin_drawn:
         ax.plot([], [], "-", color="grey", lw=0.6,
                 label="thin: a mode's smaller whirl component (2 to 50 % of its motion)")
