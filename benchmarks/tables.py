@@ -30,6 +30,8 @@ TABLES = {
     "campbell": ("performance: Turning shafts", ["campbell.py", "3"]),
     "periodic-cost": ("performance: Periodic rotors", ["periodic_cost.py", "3"]),
     "crossing-grids": ("verification: Critical speeds whatever the grid", ["crossing_grids.py"]),
+    "floquet-1d": ("verification: A periodic rotor against an independent 1D Floquet model",
+                   ["floquet_1d.py"]),
     "ucs-examples": ("verification: The critical speed map on every example",
                      ["ucs_examples.py"]),
     "rotor-verification": ("verification: Turning shafts against ross",
