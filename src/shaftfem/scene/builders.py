@@ -239,8 +239,8 @@ class Rotor(_Table):
     speed_range_rpm: Numbers | None = None
     amplitude_limit_um: Number | None = None
     min_log_dec: Number | None = None
-    log_dec_modes: str | None = None
     tolerance_cases: str | None = None
+    log_dec_modes: str | None = None
     level1: bool | None = None
     level1_qa_n_per_mm: Number | None = None
     runup_rpm_per_s: Number | None = None
