@@ -184,8 +184,8 @@ def dominant(whirl: str, component: str, share: float) -> str:
 def once(crossings: list[CriticalSpeed]) -> list[CriticalSpeed]:
     """Each crossing once: where two rotating-frame curves meet an order line at one
     speed (to 1e-3 of it; a periodic rotor's pair locked to the speed), the one that
-    carries more of its
-    mode's motion stands for both (the less damped where they carry alike)."""
+    carries more of its mode's motion stands for both (the less damped where they carry
+    alike)."""
     kept: list[CriticalSpeed] = []
     for cs in sorted(crossings, key=lambda c: (c.speed_rpm, c.order)):
         i = next((i for i, k in enumerate(kept) if k.order == cs.order and k.component

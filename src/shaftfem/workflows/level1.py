@@ -210,8 +210,9 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
     f_start = min(modes(start), key=lambda m: m[1])[0]
     wanted = sorted({*map(float, q_values), *([qa] if qa is not None else []), 0.0})
 
-    def follow(targets: list[float]) -> dict[float, tuple[float, float]]:
-        out, q, f = {}, start, f_start
+    def follow(targets: list[float], q: float = start, f: float = f_start
+               ) -> dict[float, tuple[float, float]]:
+        out = {}
         for t in targets:
             for step in np.linspace(q, t, 6)[1:] if t != q else [t]:
                 f, d = min(modes(float(step)), key=lambda m: abs(m[0] - f))
@@ -219,20 +220,21 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
         return out
 
     seen = {start: (f_start, min(modes(start), key=lambda m: m[1])[1])}
-    for round_ in range(REFINE_ROUNDS if refine else 1):
-        seen.update(follow([t for t in reversed(wanted) if t < start]))
-        seen.update(follow([t for t in wanted if t > start]))
-        if round_ == REFINE_ROUNDS - 1 or not refine:
-            break
+    seen.update(follow([t for t in reversed(wanted) if t < start]))
+    seen.update(follow([t for t in wanted if t > start]))
+    for _ in range(REFINE_ROUNDS - 1 if refine else 0):
         # where the log decrement turns sharply between two steps, their middle too (a
-        # turn of the curve, or the mode followed changing, is then seen, not jumped)
+        # turn of the curve, or the mode followed changing, is then seen, not jumped),
+        # each followed from its neighbour on Q_0's side
         span = max(d for _, d in seen.values()) - min(d for _, d in seen.values())
-        steep = [0.5 * (a + b) for a, b in zip(wanted, wanted[1:])
-                 if abs(seen[b][1] - seen[a][1]) > max(STEEP * span, 1e-3)][:REFINE_MAX]
+        steep = [(lo, hi) for lo, hi in zip(wanted, wanted[1:])
+                 if abs(seen[hi][1] - seen[lo][1]) > max(STEEP * span, 1e-3)][:REFINE_MAX]
         if not steep:
             break
-        wanted = sorted({*wanted, *steep})
-        seen = {start: seen[start]}
+        for lo, hi in steep:
+            side = lo if lo >= start else hi
+            seen.update(follow([0.5 * (lo + hi)], side, seen[side][0]))
+        wanted = sorted({*wanted, *(0.5 * (lo + hi) for lo, hi in steep)})
     q_values = np.array(wanted if refine else q_values, dtype=float)
     decs = np.array([seen[float(q)][1] for q in q_values])
     d0, f0 = seen[0.0][1], seen[0.0][0]
