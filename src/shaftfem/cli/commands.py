@@ -301,6 +301,18 @@ def cmd_static(args) -> int:
     return 0
 
 
+def cmd_strength(args) -> int:
+    from shaftfem.errors import EXIT_CHECK_FAILED
+    from shaftfem.outputs.tables import strength_text
+    from shaftfem.workflows.strength import run_strength
+
+    result = run_strength(_scene(args), _options(args))
+    print(strength_text(result))
+    if args.json:
+        _write_json(args.json, {"scene": result.scene.name, **result.as_dict()})
+    return 0 if result.ok else EXIT_CHECK_FAILED
+
+
 def cmd_check(args) -> int:
     from shaftfem.checks.resonance import check_result
     from shaftfem.outputs.tables import verdict_text

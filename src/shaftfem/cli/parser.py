@@ -220,6 +220,10 @@ def build_parser() -> argparse.ArgumentParser:
     _modal_command(sub, "static", "the installed shaft under its static loads (its weight, "
                    "[[force]]): each support's reaction and the deflection line; static.png "
                    "in --out", cmd.cmd_static, out="optional")
+    _modal_command(sub, "strength", "will the shaft hold: its duty ([[force]], [[torque]], "
+                   "gravity) on the solid, the hot spots with their bounds, fatigue and yield "
+                   "by the FKM guideline, slopes and deflections at the seats ([strength]); "
+                   "exit 1 when a check fails", cmd.cmd_strength)
     _modal_command(sub, "paper", "the paper's Table 2 and stated sizing beside ours",
                    cmd.cmd_paper, json=False)
     sw = _dask_command(sub, "sweep", "run many variants of a scene on Dask (resumable)",

@@ -1082,3 +1082,59 @@ def bearing_rows(cases) -> tuple[list[str], list[list[str]]]:
                              *(f"{v / 1e3:.4g}" for v in (kxx, kxy, kyx, kyy)),
                              *(f"{v / 1e3:.4g}" for v in (cxx, cxy, cyx, cyy))])
     return head, rows
+
+
+def strength_text(result) -> str:
+    """What `shaftfem strength` prints: the material, each hot spot's stresses with
+    their bound and FKM's utilisations, the seats' slopes and deflections against their
+    limits, and the verdict (a workflows.strength.StrengthResult)."""
+    import math
+
+    scene, st = result.scene, result.scene.strength
+    turning = st.speed > 0
+    lines = [f"scene {scene.name}: strength under the duty"
+             + (f" at {st.speed * 60 / (2 * math.pi):,.0f} r/min" if turning else
+                " (standing: no fatigue cycle from the radial loads)"),
+             f"material R_m {st.tensile_strength / 1e6:,.0f} MPa, R_p0.2 "
+             f"{st.yield_strength / 1e6:,.0f} MPa at {st.strength_diameter * 1e3:g} mm "
+             f"({st.source}); R_z {st.roughness * 1e6:g} um; required safeties: fatigue "
+             f"{st.fatigue_safety:g}, yield {st.yield_safety:g} at {st.peak_factor:g} x the duty",
+             f"meshes solved: {', '.join(f'{d:,}' for d in result.dofs)} DOFs; bound wanted "
+             f"on each hot spot's stress: {result.target:.1%}", "",
+             "hot spots (worst first; stresses von Mises, MPa; a: amplitude over a turn, "
+             "m: mean, signed):",
+             f"{'#':>2s} {'where':34s} {'a':>7s} {'m':>7s} {'peak':>7s} {'bound':>8s} "
+             f"{'G 1/mm':>7s} {'n':>5s} {'K_WK':>5s} {'K_AK':>5s} {'S_fat':>6s} {'a_BK':>5s} "
+             f"{'S_yld':>6s} {'a_SK':>5s}"]
+    for k, s in enumerate(result.spots, 1):
+        where = (f"{s.feature[:16]} z {s.z * 1e3:.1f} mm {math.degrees(s.angle) % 360:.0f} deg")
+        bound = ("rising" if not s.converging else
+                 "?" if s.bound is None else f"+-{s.bound:.1%}")
+        f = s.fkm
+        lines.append(f"{k:2d} {where[:34]:34s} {s.amplitude / 1e6:7.1f} {s.mean / 1e6:7.1f} "
+                     f"{s.peak / 1e6:7.1f} {bound:>8s} {s.gradient * 1e-3:7.3f} "
+                     f"{f.support:5.3f} {f.design:5.3f} {f.mean_stress:5.3f} "
+                     f"{_safety(f.fatigue_safety):>6s} {f.fatigue_utilisation:5.2f} "
+                     f"{_safety(f.yield_safety):>6s} {f.yield_utilisation:5.2f}")
+    if not result.spots:
+        lines.append("   none: every surface point lies where a load or reaction enters")
+    lines += ["", "S_fat, S_yld: safety against fatigue (FKM, infinite life) and yield; a_BK, "
+              "a_SK: degree of utilisation with the required safety (<= 1 passes)", "",
+              f"{'seat or part':24s} {'at':>9s} {'slope':>10s} {'limit':>10s} "
+              f"{'deflection':>12s} {'limit':>10s}  source"]
+    for c in result.seats:
+        lim = "-" if c.slope_limit is None else f"{c.slope_limit * 1e3:.2f} mrad"
+        dlim = "-" if c.deflection_limit is None else f"{c.deflection_limit * 1e6:.1f} um"
+        lines.append(f"{c.name[:24]:24s} {c.position * 1e3:6.1f} mm {c.slope * 1e3:5.3f} mrad "
+                     f"{lim:>10s} {c.deflection * 1e6:9.2f} um {dlim:>10s}  {c.source}"
+                     + ("" if c.ok else "  EXCEEDED"))
+    verdict = [("fatigue", result.fatigue_ok), ("yield", result.yield_ok),
+               ("deflection", result.deflection_ok)]
+    lines += ["", "verdict: " + ", ".join(f"{w} {'ok' if ok else 'FAILS'}" for w, ok in verdict)
+              + ("" if result.bounded else
+                 f" (a hot spot's bound is above {result.target:.1%}: refine with --mesh-size)")]
+    return "\n".join(lines)
+
+
+def _safety(value: float) -> str:
+    return ">99" if value > 99 else f"{value:.2f}"

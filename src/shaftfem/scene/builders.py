@@ -201,6 +201,7 @@ class Support(_Table):
     fluid_density_kg_m3: Number | None = None
     inlet_loss: Number | None = None
     coupling: str | None = None
+    slope_limit_mrad: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -222,6 +223,8 @@ class Attachment(_Table):
     coupling_stiffness_nm_per_rad: Number | None = None
     coupled_inertia_kg_m2: Number | None = None
     joint: str | None = None
+    slope_limit_mrad: Number | None = None
+    deflection_limit_um: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -277,6 +280,7 @@ class Force(_Table):
     part: str | None = None
     fx_n: Number | None = None
     fy_n: Number | None = None
+    fz_n: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

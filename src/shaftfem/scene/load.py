@@ -34,8 +34,10 @@ from shaftfem.scene.model import (
     Scene,
     Shaft,
     Stage,
+    Strength,
     Support,
     Tolerance,
+    Torque,
     Unbalance,
 )
 from shaftfem.scene.profile import shaft_from_tables
@@ -209,6 +211,7 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                          "[[attachment]] tables")
     point = _response_point(source, t["response"], shaft)
     target = mesh_t["target_error_percent"]
+    strength = _strength(source, data, material, rotor, sizing)
     for message in implausible(source, shaft):
         warnings.warn(message, PlausibilityWarning, stacklevel=2)
     scene = Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,
@@ -225,6 +228,8 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                   rotor=rotor,
                   unbalances=_unbalances(source, data, shaft, attachments),
                   gravity=_static(source, data), forces=_forces(source, data, shaft, attachments),
+                  torques=_torques(source, data, shaft, attachments, strength),
+                  strength=strength,
                   title_block=tuple((k, top[k]) for k in TITLE_KEYS if top[k]),
                   description=top["description"] or "")
     return scene.with_tables(_tables(data, shaft))
@@ -634,7 +639,8 @@ def _support(source: str, i: int, t: dict) -> Support:
                    width=width, kind=t["kind"], radial=radial,
                    axial=(t["axial_stiffness_n_per_mm"] or 0.0) * 1e3,
                    tilting=(t["tilting_stiffness_nmm_per_rad"] or 0.0) * 1e-3,
-                   coupling=t["coupling"], bearing=bearing, rolling=rolling)
+                   coupling=t["coupling"], bearing=bearing, rolling=rolling,
+                   slope_limit=_si(t["slope_limit_mrad"], 1e-3))
 
 
 def _placed(source: str, table: str, t: dict, shaft: Shaft,
@@ -674,7 +680,92 @@ def _forces(source: str, data: dict, shaft: Shaft,
         t = validate_table(source, table, e, SCHEMA["force"])
         position = _placed(source, table, t, shaft, attachments)
         out.append(PointForce(name=t["name"] or t["part"] or f"force {i + 1}",
-                              position=position * MM, fx=t["fx_n"], fy=t["fy_n"]))
+                              position=position * MM, fx=t["fx_n"], fy=t["fy_n"], fz=t["fz_n"],
+                              width=_hub(t, attachments)))
+    return tuple(out)
+
+
+def _hub(t: dict, attachments: tuple[Attachment, ...]) -> float:
+    """The width of the hub a load comes through (m): its part's, 0 at a bare position."""
+    return next((a.width for a in attachments if a.name == t["part"]), 0.0)
+
+
+def _strength(source: str, data: dict, material: Material, rotor: Rotor | None,
+              sizing: dict | None) -> Strength | None:
+    """[strength] in SI with the material's strengths (given, or its name's row in
+    checks.materials), or None when the scene has none."""
+    if "strength" not in data:
+        return None
+    from shaftfem.checks.materials import shaft_steel
+
+    t = validate_table(source, "strength", data["strength"], SCHEMA["strength"])
+    speed = t["speed_rpm"]
+    if speed is None and rotor is not None and rotor.speeds:
+        speed = rotor.speeds[0] / RPM
+    if speed is None and sizing is not None:
+        speed = sizing["speed_rpm"]
+    row = shaft_steel(material.name)
+    given = {k: t[k] for k in ("tensile_strength_mpa", "yield_strength_mpa")}
+    for key, value in given.items():
+        if value is None and row is None:
+            raise SceneError(f"{where(source, 'strength', key)}: missing: [material] name = "
+                             f"{material.name!r} is not a steel shaftfem knows (docs/strength.md "
+                             "lists them); give the material's R_m and R_p0.2")
+    rm = given["tensile_strength_mpa"] or (row.tensile_strength_mpa if row else 0.0)
+    rp = given["yield_strength_mpa"] or (row.yield_strength_mpa if row else 0.0)
+    if rp >= rm:
+        raise SceneError(f"{where(source, 'strength', 'yield_strength_mpa')} = {rp:g}: must be "
+                         f"below the tensile strength, {rm:g} MPa")
+    blank = t["strength_diameter_mm"] or (row.diameter_mm if row is not None else 16.0)
+    by_row = row is not None and None in given.values()
+    return Strength(speed=(speed or 0.0) * RPM, tensile_strength=rm * MPA,
+                    yield_strength=rp * MPA, strength_diameter=blank * MM,
+                    roughness=t["roughness_rz_um"] * 1e-6,
+                    fatigue_safety=t["required_fatigue_safety"],
+                    yield_safety=t["required_yield_safety"], peak_factor=t["peak_factor"],
+                    target_error=t["target_error_percent"] / 100,
+                    source=row.source if by_row and row is not None else "given",
+                    fkm_group=row.fkm_group if row is not None else "Steel",
+                    size_exponents=(row.a_dm, row.a_dp) if row is not None else (0.3, 0.4))
+
+
+def _torques(source: str, data: dict, shaft: Shaft, attachments: tuple[Attachment, ...],
+             strength: Strength | None) -> tuple[Torque, ...]:
+    """[[torque]] in SI (m, N m), each at its position or over its part's hub; one left
+    without torque_nm and power_kw takes the balance; they must balance."""
+    out, open_ = [], []
+    for i, e in enumerate(_array(source, data, "torque")):
+        table = entry("torque", i, e)
+        t = validate_table(source, table, e, SCHEMA["torque"])
+        position = _placed(source, table, t, shaft, attachments)
+        if t["torque_nm"] is not None and t["power_kw"] is not None:
+            raise SceneError(f"{where(source, table, 'power_kw')}: give torque_nm or power_kw, "
+                             "not both")
+        torque = t["torque_nm"]
+        if t["power_kw"] is not None:
+            if strength is None or strength.speed <= 0:
+                raise SceneError(f"{where(source, table, 'power_kw')}: a power needs the speed "
+                                 "it is given at: [strength] speed_rpm (or [rotor] speed_rpm)")
+            torque = t["power_kw"] * 1e3 / strength.speed
+        if torque is None:
+            open_.append(table)
+        out.append(Torque(name=t["name"] or t["part"] or f"torque {i + 1}",
+                          position=position * MM, torque=torque or 0.0,
+                          width=_hub(t, attachments)))
+    if len(open_) > 1:
+        raise SceneError(f"{source}: {open_[1]}: only one torque may leave out torque_nm and "
+                         f"power_kw (it takes the balance; {open_[0]} does already)")
+    total = sum(q.torque for q in out)
+    if open_:
+        k = next(i for i, e in enumerate(_array(source, data, "torque"))
+                 if entry("torque", i, e) == open_[0])
+        out[k] = replace(out[k], torque=-total)
+    elif out and abs(total) > 1e-6 * max(abs(q.torque) for q in out):
+        entering = sum(q.torque for q in out if q.torque > 0)
+        raise SceneError(f"{source}: [[torque]]: {entering:g} N m enter the shaft and "
+                         f"{entering - total:g} N m leave it: a torque with nowhere to go; "
+                         "the torques must balance (leave out torque_nm and power_kw on one, "
+                         "and it takes the rest)")
     return tuple(out)
 
 
@@ -792,7 +883,14 @@ def _attachment(source: str, i: int, t: dict) -> Attachment:
                       diametral_inertia=t["diametral_inertia_kg_m2"], joint=t["joint"],
                       joint_given=joint_given,
                       coupling_stiffness=t["coupling_stiffness_nm_per_rad"] or 0.0,
-                      coupled_inertia=t["coupled_inertia_kg_m2"] or 0.0)
+                      coupled_inertia=t["coupled_inertia_kg_m2"] or 0.0,
+                      slope_limit=_si(t["slope_limit_mrad"], 1e-3),
+                      deflection_limit=_si(t["deflection_limit_um"], 1e-6))
+
+
+def _si(value: float | None, unit: float) -> float | None:
+    """A key's value in SI, or None when it is left out."""
+    return None if value is None else value * unit
 
 
 def _stage(source: str, i: int, raw: dict, a: Attachment, rotor: Rotor | None) -> Attachment:

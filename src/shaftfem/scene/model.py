@@ -356,12 +356,48 @@ class Unbalance:
 
 @dataclass(frozen=True)
 class PointForce:
-    """A static radial force (fx, fy; N) on the shaft's cross-section at z = position (m)."""
+    """A static force (fx, fy, fz; N) on the shaft's cross-section at z = position (m),
+    through a part's hub of `width` (m; 0: no part)."""
 
     name: str
     position: float
     fx: float
     fy: float
+    fz: float = 0.0
+    width: float = 0.0
+
+
+@dataclass(frozen=True)
+class Torque:
+    """A torque about the shaft axis (N m; positive where power enters) at z = position
+    (m), through a part's hub of `width` (m; 0: no part)."""
+
+    name: str
+    position: float
+    torque: float
+    width: float = 0.0
+
+
+@dataclass(frozen=True)
+class Strength:
+    """[strength] in SI: the duty's speed (rad/s), the material's R_m and R_p0.2 (Pa) at
+    the diameter they hold for (m), the surface's R_z (m), the required safeties, the
+    peak factor and the bound wanted on the hot spots' stresses (fraction)."""
+
+    speed: float
+    tensile_strength: float
+    yield_strength: float
+    strength_diameter: float
+    roughness: float
+    fatigue_safety: float
+    yield_safety: float
+    peak_factor: float
+    target_error: float
+    # where R_m and R_p0.2 come from (the material table's source, or "given"), the FKM
+    # material group and the size exponents a_d,m and a_d,p (checks.materials)
+    source: str = "given"
+    fkm_group: str = "Steel"
+    size_exponents: tuple[float, float] = (0.3, 0.4)
 
 
 # --------------------------------------------------------------------------
@@ -490,6 +526,8 @@ class Support:
     # the standstill modes hold the bearing's mean of kxx and kyy on both axes: the
     # basis of a rotor solved in the frame turning with it, which every angle sees alike
     mean_seat: bool = False
+    # the largest slope the bearing takes, rad (None: its kind's default, workflows.strength)
+    slope_limit: float | None = None
 
     @property
     def awaits_part(self) -> bool:
@@ -539,6 +577,9 @@ class Attachment:
     # stiffness (N m/rad) and that rotor's polar inertia (kg m^2); 0: none
     coupling_stiffness: float = 0.0
     coupled_inertia: float = 0.0
+    # the largest slope (rad) and deflection (m) the part takes (None: not judged)
+    slope_limit: float | None = None
+    deflection_limit: float | None = None
 
     @property
     def seat(self) -> tuple[float, float]:
@@ -590,6 +631,9 @@ class Scene:
     # the static loads: gravity's acceleration vector (m/s^2) and the [[force]] tables
     gravity: tuple[float, float, float] = (0.0, -STANDARD_GRAVITY, 0.0)
     forces: tuple[PointForce, ...] = ()
+    # the duty's torques and what strength is judged against (None: not checked)
+    torques: tuple[Torque, ...] = ()
+    strength: Strength | None = None
     # the report's title block: (label, text) pairs from the scene's machine, job,
     # revision, date and engineer keys; no bearing on any number
     title_block: tuple[tuple[str, str], ...] = field(default=(), compare=False)

@@ -345,6 +345,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "slip fit) or \"rigid\" (the band moves as a rigid ring, a shrunk-on inner "
             "ring; the springs or holds act on the ring, and its stiff limit is clamped)",
             "distributing"),
+        "slope_limit_mrad": Key(float, "the largest slope of the shaft at the seat its "
+                                "bearing takes, mrad (`shaftfem strength`; default by kind: "
+                                "docs/strength.md)", *upto(100, "up to 100 mrad"),
+                                required=False),
     },
     "attachment": {  # an array of tables: [[attachment]], a part fixed on a seat
         "name": Key(str, "name of the part, e.g. drive gear", required=False),
@@ -393,6 +397,12 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "as a beam model's disk, and add no stiffness). Left out: \"distributing\" where "
             "the hub sits on a keyway, else \"rigid\", and the study runs the other as a "
             "case beside", "rigid"),
+        "slope_limit_mrad": Key(float, "the largest slope of the shaft at the part, mrad "
+                                "(`shaftfem strength`; a gear's mesh: docs/strength.md)",
+                                *upto(100, "up to 100 mrad"), required=False),
+        "deflection_limit_um": Key(float, "the largest deflection of the shaft at the part, "
+                                   "um (`shaftfem strength`)",
+                                   *upto(100_000, "up to 100 mm"), required=False),
     },
     "rotor": {  # the shaft turning: whirl, Campbell diagram, critical speeds (fem.rotor)
         "speed_rpm": Key(("list", float), "operating speed of the shaft, r/min: one number, "
@@ -489,6 +499,55 @@ SCHEMA: dict[str, dict[str, Key]] = {
                     "in [-1e8, 1e8]", default=0.0, required=False),
         "fy_n": Key(float, "its component along y, N", lambda v: abs(v) <= 1e8,
                     "in [-1e8, 1e8]", default=0.0, required=False),
+        "fz_n": Key(float, "its component along the shaft axis, N (steady: a helical gear's "
+                    "thrust, a follower's push); a supports' axial stiffness takes it",
+                    lambda v: abs(v) <= 1e8, "in [-1e8, 1e8]", default=0.0, required=False),
+    },
+    "torque": {  # an array of tables: [[torque]], where power enters or leaves the shaft
+        "name": Key(str, "name of the torque, e.g. coupling", required=False),
+        "position_mm": Key(float, "axial position where it enters or leaves, mm from the "
+                           "shaft's left end (or `part`)",
+                           *upto(20_000, "up to 20 m", closed_low=True), required=False),
+        "part": Key(str, "the [[attachment]] it enters or leaves through, by name: over the "
+                    "part's hub (instead of position_mm)", required=False),
+        "torque_nm": Key(float, "the torque about the shaft axis, N m: positive where power "
+                         "enters (a coupling, a driven gear), negative where it leaves; leave "
+                         "out torque_nm and power_kw on one torque and it takes the balance",
+                         lambda v: abs(v) <= 1e8, "in [-1e8, 1e8]", required=False),
+        "power_kw": Key(float, "the power through it instead of torque_nm, kW: positive "
+                        "entering, negative leaving (T = P / omega at [strength] speed_rpm)",
+                        lambda v: abs(v) <= 1e6, "in [-1e6, 1e6]", required=False),
+    },
+    "strength": {  # will the shaft hold: workflows.strength, checks.fkm
+        "speed_rpm": Key(float, "the running speed the duty is given at, r/min (turns power "
+                         "into torque; default: [rotor]'s first speed_rpm, else [sizing]'s)",
+                         *upto(1e6, "up to 1e6 r/min"), required=False),
+        "tensile_strength_mpa": Key(float, "the material's tensile strength R_m, MPa "
+                                    "(default: the [material] name's row in docs/strength.md)",
+                                    *upto(5_000, "up to 5000 MPa"), required=False),
+        "yield_strength_mpa": Key(float, "its yield strength R_p0.2 (R_e), MPa (default: "
+                                  "the [material] name's row)", *upto(5_000, "up to 5000 MPa"),
+                                  required=False),
+        "strength_diameter_mm": Key(float, "the diameter R_m and R_p0.2 hold for (the test "
+                                    "blank's; default: the material row's, else 16 mm)",
+                                    *upto(2_000, "up to 2 m"), required=False),
+        "roughness_rz_um": Key(float, "the surface's roughness R_z, um (FKM: 1 to 200; "
+                               "turned 6.3 to 25, ground 1 to 6.3)",
+                               *upto(200, "FKM's roughness factor holds to 200 um", 1.0, True),
+                               default=6.3, required=False),
+        "required_fatigue_safety": Key(float, "the fatigue safety the shaft must have "
+                                       "(FKM's j_D: 1.5 for high consequences of failure, "
+                                       "no regular inspection)", *upto(10, "up to 10", 1.0, True),
+                                       default=1.5, required=False),
+        "required_yield_safety": Key(float, "the safety against yield at the peak load "
+                                     "(FKM's j_p: 1.5)", *upto(10, "up to 10", 1.0, True),
+                                     default=1.5, required=False),
+        "peak_factor": Key(float, "the peak (overload) load over the duty, for the yield "
+                           "check (a motor's starting torque: 2 to 3)",
+                           *upto(20, "up to 20", 1.0, True), default=1.0, required=False),
+        "target_error_percent": Key(float, "the bound wanted on each hot spot's stress, %: "
+                                    "the mesh is refined until it is met", *upto(50, "up to 50 %"),
+                                    default=2.0, required=False),
     },
     "unbalance": {  # an array of tables: [[unbalance]], a mass off the axis (workflows.unbalance)
         "name": Key(str, "name of the unbalance, e.g. wheel", required=False),
@@ -640,8 +699,17 @@ TABLES: dict[str, Table] = {
         "tables. `shaftfem static` gives the deflection line and each bearing's reaction; a "
         "journal bearing without load_n carries its reaction."),
     "force": Table(
-        "A static radial force on a cross-section of the shaft (a belt pull, a gear's "
-        "mesh force), N.", repeated=True),
+        "A static force on a cross-section of the shaft or a part (a belt pull, a gear's "
+        "mesh force), N: its radial part stands while the shaft turns, its axial part is "
+        "steady.", repeated=True),
+    "torque": Table(
+        "Where power enters or leaves the shaft (a coupling, a gear, a sprocket): a torque, "
+        "N m, or a power, kW; the torques balance.", repeated=True),
+    "strength": Table(
+        "Will the shaft hold: `shaftfem strength` solves the duty ([[force]], [[torque]], "
+        "gravity) on the solid, finds its hot spots and judges them for fatigue and yield by "
+        "the FKM guideline's local approach, and the slopes and deflections at the seats "
+        "and parts against their limits. Leave it out and strength is not checked."),
     "unbalance": Table(
         "A residual unbalance of the turning shaft (needs [rotor]): `shaftfem campbell` gives "
         "the response to it against speed (Bode plot), its peaks, their amplification "

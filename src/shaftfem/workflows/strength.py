@@ -1,0 +1,422 @@
+"""Will the shaft hold: its duty solved on the solid, its hot spots found, bounded and
+judged by the FKM guideline (checks.fkm), and its slopes and deflections at the seats
+and parts against their limits.
+
+The hot spots are the local maxima of the equivalent stress amplitude and of the peak
+equivalent stress on the surface, away from where loads and reactions enter (a bearing
+seat's or a hub's band, whose stresses depend on the fit, not on the shaft). Each one's
+stress is bounded as each frequency is: the same scene solved on a mesh COARSER times
+coarser, the bound the difference between the two at the spot; while a bound exceeds the
+target ([strength] target_error_percent), the mesh is refined by COARSER and solved
+again (the finer pair kept). A spot whose stress keeps growing as the mesh refines is a
+sharp corner of the geometry (a singular stress): it is reported as such, without a
+number to trust.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shaftfem.errors import SceneError
+from shaftfem.runtime import RunOptions
+from shaftfem.scene.model import Scene
+
+if TYPE_CHECKING:
+    from shaftfem.checks.fkm import PointAssessment
+
+COARSER = 1.5
+MAX_REFINEMENTS = 2
+# hot spots: at most this many, each the largest within SPACING local radii, and at least
+# this share of the largest
+MAX_SPOTS = 8
+SPACING = 0.25
+SHARE = 0.3
+# slope limits by bearing kind (rad), common practice: Budynas & Nisbett, Shigley's
+# Mechanical Engineering Design, 10th ed., table 7-2 (the low ends of the ranges:
+# deep-groove ball 0.001-0.003, cylindrical roller 0.0008-0.0012); springs and
+# coefficients are taken as a ball bearing's; a journal, a seal and a rigid seat are not
+# judged
+SLOPE_LIMITS = {"ball": 1.0e-3, "roller": 0.8e-3, "springs": 1.0e-3, "bearing": 1.0e-3}
+SLOPE_SOURCE = "Shigley, table 7-2"
+
+
+@dataclass(frozen=True)
+class HotSpot:
+    """A hot spot: where (m, rad), its stresses over a turn (Pa; the mean signed), the
+    bound on them (fraction; None when not known), whether they converge, the relative
+    stress gradient (1/m), the shaft's diameter there (m), what it is and FKM's verdict."""
+
+    z: float
+    angle: float
+    radius: float
+    feature: str
+    amplitude: float
+    mean: float
+    peak: float
+    bound: float | None
+    converging: bool
+    gradient: float
+    diameter: float
+    fkm: PointAssessment
+
+
+@dataclass(frozen=True)
+class SeatCheck:
+    """The shaft's slope (rad) and deflection (m) at a seat or part, and its limits
+    (None: not judged)."""
+
+    name: str
+    position: float
+    slope: float
+    deflection: float
+    slope_limit: float | None
+    deflection_limit: float | None
+    source: str
+
+    @property
+    def ok(self) -> bool:
+        return ((self.slope_limit is None or self.slope <= self.slope_limit)
+                and (self.deflection_limit is None or self.deflection <= self.deflection_limit))
+
+
+@dataclass(frozen=True)
+class StrengthResult:
+    """`shaftfem strength`: the hot spots (worst fatigue first), the seats' checks, the
+    meshes solved (DOFs) and the scene."""
+
+    scene: Scene
+    spots: tuple[HotSpot, ...]
+    seats: tuple[SeatCheck, ...]
+    dofs: tuple[int, ...]
+    target: float
+
+    @property
+    def fatigue_ok(self) -> bool:
+        return all(s.fkm.fatigue_utilisation <= 1 for s in self.spots)
+
+    @property
+    def yield_ok(self) -> bool:
+        return all(s.fkm.yield_utilisation <= 1 for s in self.spots)
+
+    @property
+    def deflection_ok(self) -> bool:
+        return all(s.ok for s in self.seats)
+
+    @property
+    def bounded(self) -> bool:
+        """Whether every hot spot's bound meets the target."""
+        return all(s.bound is not None and s.bound <= self.target and s.converging
+                   for s in self.spots)
+
+    @property
+    def ok(self) -> bool:
+        return self.fatigue_ok and self.yield_ok and self.deflection_ok
+
+    def as_dict(self) -> dict:
+        """The JSON of `shaftfem strength`."""
+        st = self.scene.strength
+        assert st is not None
+        return {
+            "passed": self.ok, "fatigue_ok": self.fatigue_ok, "yield_ok": self.yield_ok,
+            "deflection_ok": self.deflection_ok, "bounded": self.bounded,
+            "target_error_percent": self.target * 100, "dofs": list(self.dofs),
+            "material": {"tensile_strength_mpa": st.tensile_strength / 1e6,
+                         "yield_strength_mpa": st.yield_strength / 1e6,
+                         "source": st.source},
+            "hot_spots": [{
+                "z_mm": s.z * 1e3, "angle_deg": math.degrees(s.angle) % 360,
+                "radius_mm": s.radius * 1e3, "feature": s.feature,
+                "amplitude_mpa": s.amplitude / 1e6, "mean_mpa": s.mean / 1e6,
+                "peak_mpa": s.peak / 1e6,
+                "bound_percent": None if s.bound is None else s.bound * 100,
+                "converging": s.converging, "gradient_per_mm": s.gradient * 1e-3,
+                "diameter_mm": s.diameter * 1e3,
+                "fkm": {k: float(v) for k, v in vars(s.fkm).items()}} for s in self.spots],
+            "seats": [{"name": c.name, "position_mm": c.position * 1e3,
+                       "slope_mrad": c.slope * 1e3, "deflection_um": c.deflection * 1e6,
+                       "slope_limit_mrad": None if c.slope_limit is None
+                       else c.slope_limit * 1e3,
+                       "deflection_limit_um": None if c.deflection_limit is None
+                       else c.deflection_limit * 1e6,
+                       "source": c.source, "ok": c.ok} for c in self.seats]}
+
+
+@dataclass(frozen=True)
+class _Field:
+    """One mesh's solution: the surface's stress cycle and the deflection line."""
+
+    points: np.ndarray
+    normals: np.ndarray
+    edge: np.ndarray
+    stress: np.ndarray
+    amplitude: np.ndarray
+    mean: np.ndarray
+    peak: np.ndarray
+    all_stress: np.ndarray
+    p1_mesh: object
+    facets: np.ndarray
+    line: tuple[np.ndarray, np.ndarray, np.ndarray]
+    dofs: int
+
+
+def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthResult:
+    """The scene's strength: its hot spots bounded to [strength] target_error_percent
+    (or as near as MAX_REFINEMENTS refinements get), judged by FKM, and its seats."""
+    from shaftfem.workflows.pipeline import with_mesh
+
+    if scene.strength is None:
+        raise SceneError(f"{scene.source}: no [strength] table: strength is not checked "
+                         "(add [strength] with the duty in [[force]] and [[torque]])")
+    if not scene.held:
+        raise SceneError(f"{scene.source}: no [[support]] holds the shaft: its duty has "
+                         "nothing to react it")
+    target = scene.strength.target_error
+    size = scene.mesh.size * 1e3
+    coarse = _solve(with_mesh(scene, size * COARSER), options)
+    fine = _solve(scene, options)
+    dofs = [coarse.dofs, fine.dofs]
+    spots = _spots(scene, fine, coarse, None)
+    for _ in range(MAX_REFINEMENTS):
+        if all(s.bound is not None and s.bound <= target for s in spots[:3]):
+            break
+        size /= COARSER
+        finer = with_mesh(scene, size)
+        from shaftfem.cad.mesh import estimate_dofs
+
+        if estimate_dofs(finer.shaft, finer.grooves, finer.mesh, finer.hubs()) > scene.max_dofs:
+            options.say(f"the next mesh ({size:.3g} mm) would pass the DOF budget; stopping")
+            break
+        options.say(f"a hot spot's bound is above {target:.1%}: refining to {size:.3g} mm")
+        coarse, fine = fine, _solve(finer, options)
+        dofs.append(fine.dofs)
+        spots = _spots(scene, fine, coarse, spots)
+    return StrengthResult(scene=scene, spots=tuple(spots), seats=_seats(scene, fine),
+                          dofs=tuple(dofs), target=target)
+
+
+def _solve(scene: Scene, options: RunOptions) -> _Field:
+    """The duty's four cases on the scene's mesh: the surface's stress cycle and the
+    deflection line of the standing loads."""
+    from shaftfem.fem.assembly import _element, assemble
+    from shaftfem.fem.installation import install
+    from shaftfem.fem.static import line
+    from shaftfem.fem.stress import cycle, duty_loads, solve_cases, surface_stress
+    from shaftfem.workflows.equip import with_parts
+    from shaftfem.workflows.pipeline import built
+
+    held = replace(scene, supports=tuple(
+        replace(s, kind="rigid-radial", bearing=None, journal=None, tolerance=None)
+        if s.kind == "journal" else s for s in scene.supports))
+    placed, _, mesh = built(with_parts(held), options)
+    system = assemble(mesh, placed.material, threads=options.threads)
+    options.say(f"solving the duty on {system.n_dofs:,} DOFs")
+    skmesh = mesh.to_skfem()
+    inst = install(placed, system.K, system.M, system.nodes, skmesh, system.order)
+    element = _element(system.order)
+    F, resultants = duty_loads(placed, system, inst, skmesh, element)
+    U = solve_cases(placed, system, inst, F, resultants)
+    surface = surface_stress(skmesh, element, placed.material.lame, U)
+    turning = scene.strength is not None and scene.strength.speed > 0
+    amplitude, mean, peak = cycle(surface.stress, turning)
+    return _Field(points=surface.points, normals=surface.normals, edge=surface.edge,
+                  stress=surface.stress, amplitude=amplitude, mean=mean, peak=peak,
+                  all_stress=surface.all_stress, p1_mesh=surface.p1_mesh,
+                  facets=surface.facets,
+                  line=line(system, U[:, 0]), dofs=system.n_dofs)
+
+
+def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
+    """The surface points in a band where a load or a reaction enters (a seat, a hub, a
+    load's slice), widened by a quarter of the local radius: their stress is the fit's."""
+    from shaftfem.fem.stress import load_band
+
+    r = np.hypot(points[:, 0], points[:, 1])
+    bands = [s.seat for s in scene.held if s.kind != "seal"]
+    bands += [a.seat for a in scene.attachments]
+    for position, width in ([(f.position, f.width) for f in scene.forces]
+                            + [(q.position, q.width) for q in scene.torques]):
+        b = load_band(scene, position, width, points)
+        bands.append((b.z0, b.z1))
+    out = np.zeros(len(points), dtype=bool)
+    for z0, z1 in bands:
+        near = (points[:, 2] > z0 - 0.02) & (points[:, 2] < z1 + 0.02)
+        margin = 0.25 * (float(r[near].max()) if near.any() else 0.0)
+        out |= (points[:, 2] >= z0 - margin) & (points[:, 2] <= z1 + margin)
+    return out
+
+
+def _maxima(field: _Field, values: np.ndarray, allowed: np.ndarray,
+            round_: bool) -> list[int]:
+    """Local maxima of `values` on the surface, largest first: points with no larger
+    value within SPACING local radii (along the axis on a shaft of revolution, whose
+    turning cycle is the same all round), down to SHARE of the largest."""
+    from scipy.spatial import cKDTree
+
+    idx = np.flatnonzero(allowed)
+    if idx.size == 0:
+        return []
+    pts = field.points[idx]
+    where = np.column_stack([pts[:, 2], np.zeros(len(idx))]) if round_ else pts
+    tree = cKDTree(where)
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    v = values[idx]
+    top = float(v.max())
+    taken: list[int] = []
+    for k in np.argsort(-v):
+        if v[k] < SHARE * top or len(taken) >= MAX_SPOTS:
+            break
+        near = tree.query_ball_point(where[k], SPACING * max(float(r[k]), 1e-3))
+        if v[near].max() <= v[k] and all(_apart(field.points[idx[k]], field.points[j], round_)
+                                         > SPACING * r[k] for j in taken):
+            taken.append(int(idx[k]))
+    return taken
+
+
+def _apart(p: np.ndarray, q: np.ndarray, round_: bool) -> float:
+    """How far apart two surface points are (m): along the axis on a shaft of
+    revolution, else in space."""
+    return float(abs(p[2] - q[2])) if round_ else float(np.linalg.norm(p - q))
+
+
+def _spots(scene: Scene, fine: _Field, coarse: _Field,
+           before: list[HotSpot] | None) -> list[HotSpot]:
+    """The fine mesh's hot spots, each bounded against the coarse mesh and judged."""
+    from shaftfem.checks.fkm import assess
+
+    st = scene.strength
+    assert st is not None
+    allowed = ~_excluded(scene, fine.points)
+    turning = st.speed > 0
+    round_ = scene.axisymmetric
+    picks = _maxima(fine, fine.amplitude if turning else fine.peak, allowed, round_)
+    for i in _maxima(fine, fine.peak, allowed, round_):
+        if all(_apart(fine.points[i], fine.points[j], round_)
+               > SPACING * np.hypot(*fine.points[i, :2]) for j in picks):
+            picks.append(i)
+    spots = []
+    for i in picks:
+        p = fine.points[i]
+        value = fine.amplitude if turning else fine.peak
+        bound = _bound(scene, fine, coarse, i, value, coarse.amplitude if turning else coarse.peak)
+        converging = True
+        if before:
+            old = min(before, key=lambda s: float(np.linalg.norm(_xyz(s) - p)))
+            if np.linalg.norm(_xyz(old) - p) < 2 * fine.edge[i] and old.bound is not None:
+                # still rising by as much as before: a singular corner, not convergence
+                grew = value[i] > (old.amplitude if turning else old.peak)
+                converging = not (grew and bound is not None and bound > 0.7 * old.bound)
+        gradient = _gradient(fine, i, turning)
+        diameter = 2 * _outer_radius(fine, p[2])
+        fkm = assess(float(fine.amplitude[i]), float(fine.mean[i]), float(fine.peak[i]),
+                     gradient, diameter, st)
+        spots.append(HotSpot(z=float(p[2]), angle=float(math.atan2(p[1], p[0])),
+                             radius=float(np.hypot(p[0], p[1])),
+                             feature=_feature(scene, p, diameter / 2),
+                             amplitude=float(fine.amplitude[i]), mean=float(fine.mean[i]),
+                             peak=float(fine.peak[i]), bound=bound, converging=converging,
+                             gradient=gradient, diameter=diameter, fkm=fkm))
+    spots.sort(key=lambda s: -max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation))
+    return spots
+
+
+def _xyz(s: HotSpot) -> np.ndarray:
+    return np.array([s.radius * math.cos(s.angle), s.radius * math.sin(s.angle), s.z])
+
+
+def _bound(scene: Scene, fine: _Field, coarse: _Field, i: int, value: np.ndarray,
+           coarse_value: np.ndarray) -> float | None:
+    """|sigma_fine - sigma_coarse| / sigma_fine at hot spot i: each mesh's largest value
+    near the spot (within twice the larger of the two meshes' element sizes there, away
+    from the load bands), the hot spot as each mesh sees it."""
+    if value[i] <= 0:
+        return None
+    d_fine = np.linalg.norm(fine.points - fine.points[i], axis=1)
+    d_coarse = np.linalg.norm(coarse.points - fine.points[i], axis=1)
+    reach = 2 * max(float(fine.edge[i]), float(coarse.edge[np.argmin(d_coarse)]))
+    near_fine = (d_fine <= reach) & ~_excluded(scene, fine.points)
+    near_coarse = (d_coarse <= reach) & ~_excluded(scene, coarse.points)
+    if not near_coarse.any():
+        return None
+    here = max(float(value[near_fine].max()), float(value[i]))
+    return float(abs(here - coarse_value[near_coarse].max()) / here)
+
+
+def _gradient(field: _Field, i: int, turning: bool) -> float:
+    """FKM's relative stress gradient at surface point i (1/m): the drop of the
+    equivalent stress (amplitude; peak on a standing shaft) a quarter element inward,
+    over that depth and the surface value; 0 where it cannot be read (no support, on the
+    safe side)."""
+    from skfem import Basis, ElementTetP1
+
+    from shaftfem.fem.stress import cycle
+
+    depth = 0.25 * field.edge[i]
+    basis = Basis(field.p1_mesh, ElementTetP1())
+    points = np.array([field.points[i] - 1e-3 * depth * field.normals[i],
+                       field.points[i] - depth * field.normals[i]]).T
+    try:
+        P = basis.probes(points)
+    except (ValueError, IndexError):
+        return 0.0
+    tensors = np.einsum("pn,knij->kpij", P.toarray(), field.all_stress)
+    amplitude, _, peak = cycle(tensors, turning)
+    v = amplitude if turning else peak
+    if v[0] <= 0:
+        return 0.0
+    return max(float((v[0] - v[1]) / (depth * (1 - 1e-3) * v[0])), 0.0)
+
+
+def _outer_radius(field: _Field, z: float) -> float:
+    """The shaft's outer radius near z (m): the largest surface radius within 1 mm."""
+    near = np.abs(field.points[:, 2] - z) < 1e-3
+    return float(np.hypot(field.points[near, 0], field.points[near, 1]).max())
+
+
+def _feature(scene: Scene, p: np.ndarray, outer: float) -> str:
+    """What a hot spot sits on, in a designer's words."""
+    r = float(np.hypot(p[0], p[1]))
+    z = float(p[2])
+    below = outer - r
+    g = scene.grooves
+    if g is not None and g.start <= z <= g.start + g.length and below > 0.05 * g.depth:
+        return "groove root" if below > 0.5 * g.depth else "groove flank"
+    for k in scene.shaft.keyways:
+        if k.start - 1e-3 <= z <= k.start + k.length + 1e-3 and below > 0.05 * k.depth:
+            end = min(abs(z - k.start), abs(z - k.start - k.length)) < k.width
+            return "keyway end" if end else "keyway"
+    bounds = scene.shaft.section_bounds() if scene.shaft.profile else []
+    for _, z1 in bounds[:-1]:
+        if abs(z - z1) < 0.25 * outer:
+            return f"shoulder at {z1 * 1e3:g} mm"
+    return "plain surface"
+
+
+def _seats(scene: Scene, field: _Field) -> tuple[SeatCheck, ...]:
+    """The slope and deflection of the standing loads' deflection line at each bearing
+    seat and at each part with limits."""
+    z, x, y = field.line
+    sx, sy = np.gradient(x, z), np.gradient(y, z)
+    out = []
+    for s in scene.held:
+        limit = s.slope_limit if s.slope_limit is not None else SLOPE_LIMITS.get(s.kind)
+        source = "given" if s.slope_limit is not None else (
+            SLOPE_SOURCE if limit is not None else "not judged")
+        out.append(SeatCheck(s.name, s.position,
+                             float(np.hypot(np.interp(s.position, z, sx),
+                                            np.interp(s.position, z, sy))),
+                             float(np.hypot(np.interp(s.position, z, x),
+                                            np.interp(s.position, z, y))),
+                             limit, None, source))
+    for a in scene.attachments:
+        out.append(SeatCheck(a.name, a.position,
+                             float(np.hypot(np.interp(a.position, z, sx),
+                                            np.interp(a.position, z, sy))),
+                             float(np.hypot(np.interp(a.position, z, x),
+                                            np.interp(a.position, z, y))),
+                             a.slope_limit, a.deflection_limit,
+                             "given" if a.slope_limit or a.deflection_limit else "not judged"))
+    return tuple(out)
