@@ -13,7 +13,7 @@ roughness factor, K_f~ FKM's estimate of the notch factor (2 for steel), K_AK th
 stress factor of overload case F2 with the sensitivity M_sigma. Amplitudes and means are
 von Mises equivalents (ductile steel); the factors are pyLife's implementation of the
 guideline's formulas (`pylife.strength.fkm_linear`). R_m and R_p0.2 are carried from the
-test blank to the shaft's diameter by the size factor (checks.materials). The yield check
+test blank to the shaft's diameter by the size factor (scene.materials). The yield check
 is elastic (plastic support n_pl = 1, on the safe side): a_SK = sigma_peak j_p / R_p,d.
 """
 
@@ -24,7 +24,7 @@ from functools import cache
 
 import numpy as np
 
-from shaftfem.checks.materials import size_factor
+from shaftfem.scene.materials import size_factor
 from shaftfem.scene.model import Strength
 
 MPA = 1e6

@@ -693,10 +693,10 @@ def _hub(t: dict, attachments: tuple[Attachment, ...]) -> float:
 def _strength(source: str, data: dict, material: Material, rotor: Rotor | None,
               sizing: dict | None) -> Strength | None:
     """[strength] in SI with the material's strengths (given, or its name's row in
-    checks.materials), or None when the scene has none."""
+    scene.materials), or None when the scene has none."""
     if "strength" not in data:
         return None
-    from shaftfem.checks.materials import shaft_steel
+    from shaftfem.scene.materials import shaft_steel
 
     t = validate_table(source, "strength", data["strength"], SCHEMA["strength"])
     speed = t["speed_rpm"]

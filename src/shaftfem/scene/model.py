@@ -394,7 +394,7 @@ class Strength:
     peak_factor: float
     target_error: float
     # where R_m and R_p0.2 come from (the material table's source, or "given"), the FKM
-    # material group and the size exponents a_d,m and a_d,p (checks.materials)
+    # material group and the size exponents a_d,m and a_d,p (scene.materials)
     source: str = "given"
     fkm_group: str = "Steel"
     size_exponents: tuple[float, float] = (0.3, 0.4)
