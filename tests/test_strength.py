@@ -47,7 +47,7 @@ DUTY = dict(force=[{"name": "load", "position_mm": 200.0, "fy_n": -2000.0, "fz_n
 @pytest.fixture(scope="module")
 def field():
     scene = load_scene(fine(bar(**DUTY)))
-    return scene, ws._solve(scene, ws.RunOptions())
+    return scene, ws._solve(scene, ws.RunOptions())[0]
 
 
 def ring(field, z_mm: float):
@@ -80,7 +80,7 @@ def test_the_relative_stress_gradient_of_a_round_bar_is_two_over_d(field):
         assert ws._gradient(f, int(i), True) == pytest.approx(2 / D, rel=0.02)
     # torsion alone, standing: the peak is the torsion's, its gradient 2/d too
     standing = load_scene(fine(bar(torque=DUTY["torque"], strength={})))
-    g = ws._solve(standing, ws.RunOptions())
+    g = ws._solve(standing, ws.RunOptions())[0]
     for i in ring(g, 200.0)[:5]:
         assert g.peak[i] == pytest.approx(math.sqrt(3) * 100.0 * 16 / (math.pi * D**3),
                                           rel=5e-3)
@@ -180,7 +180,7 @@ def test_a_shoulder_fillets_stress_concentration_is_petersons():
             "force": [{"position_mm": 220.0, "fy_n": -2000.0}], "strength": {}}
     for s in data["support"]:
         s.pop("axial_stiffness_n_per_mm", None)
-    f = ws._solve(load_scene(data), ws.RunOptions())
+    f = ws._solve(load_scene(data), ws.RunOptions())[0]
     # the standing load's own stress (case A), largest principal, at the fillet
     near = (np.abs(f.points[:, 2] - 0.1485) < 2.5e-3)
     principal = np.linalg.eigvalsh(f.stress[0][near]).max(axis=1)
@@ -194,3 +194,28 @@ def test_a_shoulder_fillets_stress_concentration_is_petersons():
     c4 = -3.839 + 3.070 * math.sqrt(h_r) - 0.600 * h_r
     kt = c1 + c2 * two_h_D + c3 * two_h_D**2 + c4 * two_h_D**3
     assert principal[k] / nominal == pytest.approx(kt, rel=0.07)
+
+
+def sharp_shoulder(fillet_mm: float) -> dict:
+    """A 32/48 mm shoulder in bending, its fillet `fillet_mm` (0: a sharp corner)."""
+    data = {"name": "shoulder", "material": STEEL, "static": {"gravity_m_s2": 0.0},
+            "section": [{"length_mm": 150.0, "diameter_mm": 32.0, "fillet_mm": fillet_mm},
+                        {"length_mm": 150.0, "diameter_mm": 48.0}],
+            "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": 2.0,
+                     "edge_element_size_mm": 2.0},
+            "support": [dict(s, position_mm=z, kind="springs", radial_stiffness_n_per_mm=1e9)
+                        for s, z in zip(SEATS, (10.0, 290.0))],
+            "force": [{"position_mm": 220.0, "fy_n": -2000.0}],
+            "strength": {"speed_rpm": 1000.0}}
+    for s in data["support"]:
+        s.pop("axial_stiffness_n_per_mm", None)
+    return data
+
+
+def test_a_sharp_corner_is_reported_as_such_not_given_a_number():
+    """A shoulder without a fillet: its elastic stress has no limit, so refining around
+    it keeps raising it; the spot is a sharp edge, the check does not pass on it."""
+    result = ws.run_strength(load_scene(sharp_shoulder(0.0)))
+    worst = result.spots[0]
+    assert abs(worst.z - 0.150) < 3e-3 and not worst.converging
+    assert result.sharp and not result.ok and len(result.dofs) >= 3

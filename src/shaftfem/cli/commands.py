@@ -328,22 +328,47 @@ def cmd_check(args) -> int:
         if len(results) > 1:
             print(cases_text(results) + "\n")
         print(verdict_text(turning))
+        strength = _strength_of(scene, args)
         if args.json:
             _write_json(args.json, {"scene": scene.name, **turning.as_dict(),
                                     "campbell": nominal.campbell.as_dict(),
                                     "cases": [{"case": r.case.name, "ok": r.verdict.ok,
                                                **({} if r is nominal else
                                                   {"campbell": r.campbell.as_dict()})}
-                                              for r in results]})
-        return turning.exit_status
+                                              for r in results], **strength[1]})
+        return _with_strength(turning.exit_status, strength[0])
     result, _, adapted = _bounded(args)
     verdict = check_result(result, _margin(args))
     if verdict is None:
         raise SceneError(f"{result.scene.source}: no [[excitation]] sources to check against")
     print(verdict_text(verdict))
+    strength = _strength_of(scene, args)
     if args.json:
-        _write_json(args.json, {"scene": result.scene.name, **verdict.as_dict()})
-    return verdict.exit_status or _accuracy_status(args, adapted)
+        _write_json(args.json, {"scene": result.scene.name, **verdict.as_dict(), **strength[1]})
+    return _with_strength(verdict.exit_status or _accuracy_status(args, adapted), strength[0])
+
+
+def _strength_of(scene, args) -> tuple[bool | None, dict]:
+    """A scene with [strength]: its strength printed after the resonance verdict, whether
+    it passed and its JSON; else (None, {})."""
+    if scene.strength is None:
+        return None, {}
+    from shaftfem.outputs.tables import strength_text
+    from shaftfem.workflows.strength import run_strength
+
+    result = run_strength(scene, _options(args))
+    print("\n" + strength_text(result))
+    return result.ok, {"strength": result.as_dict()}
+
+
+def _with_strength(status: int, passed: bool | None) -> int:
+    """The check's exit status with the strength's: a failed strength check fails it (1)
+    whatever the resonance check said (a free-free pass, 4, included)."""
+    from shaftfem.errors import EXIT_CHECK_FAILED
+
+    if passed is False and status in (0, 4):
+        return EXIT_CHECK_FAILED
+    return status
 
 
 def cmd_export(args) -> int:
@@ -394,10 +419,15 @@ def cmd_design(args) -> int:
         print(participation_text(d.result, d.participation) + "\n")
     print(verdict_text(d.verdict) if d.verdict is not None
           else verdict_line(None).replace("**", ""))
+    if d.strength is not None:
+        from shaftfem.outputs.tables import strength_text
+
+        print("\n" + strength_text(d.strength))
     print(f"\nreport: {d.report}" + ("" if args.no_html else
                                        f" and {d.report.with_suffix('.html')}"))
     status = d.verdict.exit_status if d.verdict is not None else 0
-    return status or _accuracy_status(args, d.adapted)
+    return _with_strength(status or _accuracy_status(args, d.adapted),
+                          None if d.strength is None else d.strength.ok)
 
 
 def cmd_study(args) -> int:

@@ -340,3 +340,34 @@ def bearings_figure(cases):
     fig.suptitle("Bearing and seal coefficients against speed"
                  + (" (each case)" if len(cases) > 1 else ""), fontsize=10)
     return fig
+
+
+def hot_spots_figure(result):
+    """The shaft's surface unrolled (z in mm along, the angle about the axis in degrees
+    across), coloured by the equivalent stress amplitude over a turn (the peak on a
+    standing shaft), MPa, with each hot spot numbered as in the table and the bands where
+    loads enter shaded (a workflows.strength.StrengthResult)."""
+    import numpy as np
+
+    points, values = result.surface
+    scene = result.scene
+    fig, ax = _figure((9, 3.8))
+    r = np.hypot(points[:, 0], points[:, 1])
+    order = np.argsort(r)        # the outer surface drawn over the groove floors
+    angle = np.degrees(np.arctan2(points[:, 1], points[:, 0])) % 360
+    art = ax.scatter(points[order, 2] * 1e3, angle[order], c=values[order] / 1e6, s=2,
+                     cmap="inferno", rasterized=True)
+    fig.colorbar(art, ax=ax, label=("amplitude" if scene.strength.speed > 0 else "peak")
+                 + " (MPa, von Mises)")
+    for s in scene.held:
+        ax.axvspan(s.seat[0] * 1e3, s.seat[1] * 1e3, color="0.85", alpha=0.6, lw=0)
+    for k, s in enumerate(result.spots, 1):
+        z, a = s.z * 1e3, np.degrees(s.angle) % 360
+        ax.plot(z, a, "o", mfc="none", mec="C0", ms=9, mew=1.5)
+        ax.annotate(str(k), (z, a), textcoords="offset points", xytext=(5, 5), fontsize=9,
+                    color="C0", weight="bold")
+    ax.set_xlabel("z along the shaft (mm)")
+    ax.set_ylabel("angle about the axis (deg)")
+    ax.set_ylim(0, 360)
+    ax.set_title(f"{scene.name}: hot spots on the unrolled surface (bearing seats shaded)")
+    return fig

@@ -113,8 +113,10 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
                     files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                     free: Modes | HangingModes | None = None,
                     participation: Participation | None = None,
-                    rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> str:
-    """report.md's text; picture and file names are relative to the report's folder;
+                    rotor: RotorStudy | None = None, wall_seconds: float | None = None,
+                    strength=None) -> str:
+    """report.md's text; `strength`: the shaft under its duty (workflows.strength);
+    picture and file names are relative to the report's folder;
     `rotor`: the rotordynamic study, for a shaft with [rotor]; `free`: the same shaft's
     modes hanging free; `wall_seconds`: the whole run's time until the report (s)."""
     scene = result.scene
@@ -147,6 +149,12 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
     lines += (tables.verdict_markdown(verdict) if verdict is not None
               else ["No [[excitation]] sources in the scene: nothing to check against."])
     lines.append("")
+    if strength is not None:
+        lines += ["## Strength under the duty (FKM, local stresses)", ""]
+        lines += tables.strength_markdown(strength) + [""]
+        if any(Path(p).name == "hot_spots.png" for p in pictures):
+            lines += ["![hot spots](hot_spots.png)", ""]
+            pictures = [p for p in pictures if Path(p).name != "hot_spots.png"]
     if pictures:
         # an image link for a picture, a plain link for anything else (campbell.csv)
         lines += ["## Pictures", ""] + [
@@ -185,6 +193,7 @@ def write_report(path: str | Path, result: ModalResult, verdict: ResonanceVerdic
                  files: Sequence[Path] = (), estimate: ErrorEstimate | None = None,
                  free: Modes | HangingModes | None = None,
                  participation: Participation | None = None,
-                 rotor: RotorStudy | None = None, wall_seconds: float | None = None) -> Path:
+                 rotor: RotorStudy | None = None, wall_seconds: float | None = None,
+                 strength=None) -> Path:
     return write_text(path, report_markdown(result, verdict, sizing, pictures, files, estimate,
-                                            free, participation, rotor, wall_seconds))
+                                            free, participation, rotor, wall_seconds, strength))

@@ -1108,7 +1108,7 @@ def strength_text(result) -> str:
              f"{'S_yld':>6s} {'a_SK':>5s}"]
     for k, s in enumerate(result.spots, 1):
         where = (f"{s.feature[:16]} z {s.z * 1e3:.1f} mm {math.degrees(s.angle) % 360:.0f} deg")
-        bound = ("rising" if not s.converging else
+        bound = ("sharp" if not s.converging else
                  "?" if s.bound is None else f"+-{s.bound:.1%}")
         f = s.fkm
         lines.append(f"{k:2d} {where[:34]:34s} {s.amplitude / 1e6:7.1f} {s.mean / 1e6:7.1f} "
@@ -1128,13 +1128,56 @@ def strength_text(result) -> str:
         lines.append(f"{c.name[:24]:24s} {c.position * 1e3:6.1f} mm {c.slope * 1e3:5.3f} mrad "
                      f"{lim:>10s} {c.deflection * 1e6:9.2f} um {dlim:>10s}  {c.source}"
                      + ("" if c.ok else "  EXCEEDED"))
-    verdict = [("fatigue", result.fatigue_ok), ("yield", result.yield_ok),
-               ("deflection", result.deflection_ok)]
-    lines += ["", "verdict: " + ", ".join(f"{w} {'ok' if ok else 'FAILS'}" for w, ok in verdict)
-              + ("" if result.bounded else
-                 f" (a hot spot's bound is above {result.target:.1%}: refine with --mesh-size)")]
+    lines += ["", "verdict: " + _strength_verdict(result)]
     return "\n".join(lines)
+
+
+def _strength_verdict(result) -> str:
+    """The strength check's verdict in a line: each check, the sharp edges, the bounds."""
+    checks = [("fatigue", result.fatigue_ok), ("yield", result.yield_ok),
+              ("deflection", result.deflection_ok)]
+    line = ", ".join(f"{w} {'ok' if ok else 'FAILS'}" for w, ok in checks)
+    sharp = [k for k, s in enumerate(result.spots, 1) if not s.converging]
+    if sharp:
+        line += (f"; NOT JUDGED at hot spot(s) {', '.join(map(str, sharp))}: their stress rises "
+                 "as the mesh refines (a sharp edge of the geometry, whose elastic stress has "
+                 "no limit): round the edge in the geometry")
+    elif not result.bounded:
+        line += (f" (a hot spot's bound is above {result.target:.1%}: the DOF budget stopped "
+                 "the refinement; raise [mesh] max_dofs)")
+    return line
 
 
 def _safety(value: float) -> str:
     return ">99" if value > 99 else f"{value:.2f}"
+
+
+def strength_markdown(result) -> list[str]:
+    """The design report's strength section (a workflows.strength.StrengthResult): the
+    verdict, the hot spots and the seats as Markdown tables."""
+    import math
+
+    st = result.scene.strength
+    lines = ["**" + _strength_verdict(result) + "**", "",
+             f"Material R_m {st.tensile_strength / 1e6:,.0f} MPa, R_p0.2 "
+             f"{st.yield_strength / 1e6:,.0f} MPa ({st.source}), R_z {st.roughness * 1e6:g} um; "
+             f"required safeties {st.fatigue_safety:g} (fatigue, FKM j_D) and "
+             f"{st.yield_safety:g} (yield, at {st.peak_factor:g} x the duty). Meshes solved: "
+             + ", ".join(f"{d:,}" for d in result.dofs) + " DOFs.", ""]
+    rows = [[str(k), s.feature, f"{s.z * 1e3:.1f}", f"{math.degrees(s.angle) % 360:.0f}",
+             f"{s.amplitude / 1e6:.1f}", f"{s.mean / 1e6:.1f}", f"{s.peak / 1e6:.1f}",
+             "sharp edge" if not s.converging else "?" if s.bound is None else f"{s.bound:.1%}",
+             f"{s.gradient * 1e-3:.3f}", _safety(s.fkm.fatigue_safety),
+             f"{s.fkm.fatigue_utilisation:.2f}", _safety(s.fkm.yield_safety),
+             f"{s.fkm.yield_utilisation:.2f}"] for k, s in enumerate(result.spots, 1)]
+    lines += markdown(["#", "hot spot", "z (mm)", "angle (deg)", "amplitude (MPa)",
+                       "mean (MPa)", "peak (MPa)", "bound", "G (1/mm)", "fatigue safety",
+                       "a_BK", "yield safety", "a_SK"], rows) + [""]
+    rows = [[c.name, f"{c.position * 1e3:.1f}", f"{c.slope * 1e3:.3f}",
+             "-" if c.slope_limit is None else f"{c.slope_limit * 1e3:.2f}",
+             f"{c.deflection * 1e6:.2f}",
+             "-" if c.deflection_limit is None else f"{c.deflection_limit * 1e6:.1f}",
+             c.source, "ok" if c.ok else "EXCEEDED"] for c in result.seats]
+    lines += markdown(["seat or part", "at (mm)", "slope (mrad)", "limit (mrad)",
+                       "deflection (um)", "limit (um)", "limit's source", ""], rows)
+    return lines

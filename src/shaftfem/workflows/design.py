@@ -12,6 +12,7 @@ skips the sizing.
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -38,6 +39,7 @@ if TYPE_CHECKING:
     from shaftfem.fem.response import Participation
     from shaftfem.fem.result import ModalResult
     from shaftfem.workflows.adapt import Adapted
+    from shaftfem.workflows.strength import StrengthResult
 
 
 @dataclass(frozen=True)
@@ -56,11 +58,14 @@ class DesignResult:
     report: Path
     adapted: Adapted | None = None   # how the mesh was adapted, when it was
     participation: Participation | None = None   # installed shafts: effective masses
+    strength: StrengthResult | None = None   # a scene with [strength]: under its duty
 
     @property
     def ok(self) -> bool:
-        """No mode too close to an excitation harmonic (also when there was none)."""
-        return self.verdict is None or self.verdict.ok
+        """No mode too close to an excitation harmonic (also when there was none), and the
+        strength checks passed where the scene has them."""
+        return ((self.verdict is None or self.verdict.ok)
+                and (self.strength is None or self.strength.ok))
 
 
 def run_design(scene: Scene, out: str | Path, margin: float | None = None,
@@ -246,10 +251,22 @@ class _Run:
         for p in pictures:
             say(f"picture {p.name}")
         files = listed(shapes, tables, solid) + whirl_files
+        strength = None
+        if scene.strength is not None:
+            from shaftfem.outputs.plots import hot_spots_figure, save_png
+            from shaftfem.store import write_text
+            from shaftfem.workflows.strength import run_strength
+
+            say("strength under the duty: hot spots, FKM, seat slopes")
+            strength = run_strength(scene, options)
+            more.append(save_png(hot_spots_figure(strength), stage / "hot_spots.png"))
+            files.append(write_text(stage / "strength.json",
+                                    json.dumps(strength.as_dict(), indent=1)))
         pictures = pictures + more
         wall = time.perf_counter() - started
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
-                     free=free, participation=part, rotor=study, wall_seconds=wall)
+                     free=free, participation=part, rotor=study, wall_seconds=wall,
+                     strength=strength)
         if html:
             from shaftfem.outputs.report_html import write_report_html
 
@@ -262,7 +279,7 @@ class _Run:
         say(f"report written: {report}")
         return DesignResult(sizing=sizing, result=result, estimate=est, verdict=verdict,
                             files=files, pictures=pictures, report=report,
-                            adapted=bounded.adapted, participation=part)
+                            adapted=bounded.adapted, participation=part, strength=strength)
 
 
 def _shapes_and_pictures(result: ModalResult, folder: Path,

@@ -6,22 +6,24 @@ The hot spots are the local maxima of the equivalent stress amplitude and of the
 equivalent stress on the surface, away from where loads and reactions enter (a bearing
 seat's or a hub's band, whose stresses depend on the fit, not on the shaft). Each one's
 stress is bounded as each frequency is: the same scene solved on a mesh COARSER times
-coarser, the bound the difference between the two at the spot; while a bound exceeds the
-target ([strength] target_error_percent), the mesh is refined by COARSER and solved
-again (the finer pair kept). A spot whose stress keeps growing as the mesh refines is a
-sharp corner of the geometry (a singular stress): it is reported as such, without a
-number to trust.
+coarser, the bound the difference between the two meshes' peaks at the spot. While a
+bound exceeds the target ([strength] target_error_percent), the mesh is refined around
+those spots only (a gmsh size field: the elements within a few sizes of the spot shrink
+by at least COARSER, by as much as P2 stresses' h^2 convergence asks for AIM times the
+target), and the spots are bounded again against the mesh before. A spot whose stress
+keeps growing as the mesh refines is a sharp corner of the geometry (a singular stress):
+it is reported as such, without a number to trust.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaftfem.errors import SceneError
+from shaftfem.errors import BudgetError, SceneError
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
@@ -30,6 +32,14 @@ if TYPE_CHECKING:
 
 COARSER = 1.5
 MAX_REFINEMENTS = 2
+# a refinement aims each spot's bound at this share of the target, shrinking its
+# elements by at most SHRINK_MAX per round, over REACH spot sizes (graded over as many
+# again) or a tenth of the local radius, whichever is larger
+AIM = 0.5
+SHRINK_MAX = 4.0
+REACH = 2.0
+# each round refines around the worst few spots (by utilisation) still above the target
+REFINED = 3
 # hot spots: at most this many, each the largest within SPACING local radii, and at least
 # this share of the largest
 MAX_SPOTS = 8
@@ -93,14 +103,24 @@ class StrengthResult:
     seats: tuple[SeatCheck, ...]
     dofs: tuple[int, ...]
     target: float
+    # the finest mesh's surface points (n, 3) m and the equivalent amplitude (the peak on a
+    # standing shaft) there, Pa: the hot-spot picture's field
+    surface: tuple[np.ndarray, np.ndarray] | None = field(default=None, compare=False,
+                                                          repr=False)
+
+    @property
+    def sharp(self) -> tuple[HotSpot, ...]:
+        """The spots whose stress rises as the mesh refines: sharp edges, whose elastic
+        stress has no limit (no number to judge)."""
+        return tuple(s for s in self.spots if not s.converging)
 
     @property
     def fatigue_ok(self) -> bool:
-        return all(s.fkm.fatigue_utilisation <= 1 for s in self.spots)
+        return all(s.fkm.fatigue_utilisation <= 1 for s in self.spots if s.converging)
 
     @property
     def yield_ok(self) -> bool:
-        return all(s.fkm.yield_utilisation <= 1 for s in self.spots)
+        return all(s.fkm.yield_utilisation <= 1 for s in self.spots if s.converging)
 
     @property
     def deflection_ok(self) -> bool:
@@ -114,7 +134,8 @@ class StrengthResult:
 
     @property
     def ok(self) -> bool:
-        return self.fatigue_ok and self.yield_ok and self.deflection_ok
+        """Every check passed, and no hot spot is a sharp edge (which none can pass)."""
+        return self.fatigue_ok and self.yield_ok and self.deflection_ok and not self.sharp
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem strength`."""
@@ -123,6 +144,7 @@ class StrengthResult:
         return {
             "passed": self.ok, "fatigue_ok": self.fatigue_ok, "yield_ok": self.yield_ok,
             "deflection_ok": self.deflection_ok, "bounded": self.bounded,
+            "sharp_edges": len(self.sharp),
             "target_error_percent": self.target * 100, "dofs": list(self.dofs),
             "material": {"tensile_strength_mpa": st.tensile_strength / 1e6,
                          "yield_strength_mpa": st.yield_strength / 1e6,
@@ -175,32 +197,97 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
         raise SceneError(f"{scene.source}: no [[support]] holds the shaft: its duty has "
                          "nothing to react it")
     target = scene.strength.target_error
-    size = scene.mesh.size * 1e3
-    coarse = _solve(with_mesh(scene, size * COARSER), options)
-    fine = _solve(scene, options)
+    coarse = _solve(with_mesh(scene, scene.mesh.size * 1e3 * COARSER), options)[0]
+    fine, mesh, built = _solve(scene, options)
     dofs = [coarse.dofs, fine.dofs]
     spots = _spots(scene, fine, coarse, None)
     for _ in range(MAX_REFINEMENTS):
-        if all(s.bound is not None and s.bound <= target for s in spots[:3]):
+        open_ = [s for s in spots if s.converging
+                 and (s.bound is None or s.bound > target)][:REFINED]
+        if not open_:
             break
-        size /= COARSER
-        finer = with_mesh(scene, size)
-        from shaftfem.cad.mesh import estimate_dofs
-
-        if estimate_dofs(finer.shaft, finer.grooves, finer.mesh, finer.hubs()) > scene.max_dofs:
-            options.say(f"the next mesh ({size:.3g} mm) would pass the DOF budget; stopping")
+        options.say(f"hot spot(s) {', '.join(str(spots.index(s) + 1) for s in open_)} bounded "
+                    f"above {target:.1%}: refining around them")
+        sizes = _refined_sizes(mesh, open_, target)
+        try:
+            refined = _remeshed(built, mesh, sizes)
+            coarse, (fine, mesh, built) = fine, _solve(scene, options, (built, refined))
+        except BudgetError as e:
+            options.say(f"refining stops: {e}")
             break
-        options.say(f"a hot spot's bound is above {target:.1%}: refining to {size:.3g} mm")
-        coarse, fine = fine, _solve(finer, options)
         dofs.append(fine.dofs)
         spots = _spots(scene, fine, coarse, spots)
+    turning = scene.strength.speed > 0
     return StrengthResult(scene=scene, spots=tuple(spots), seats=_seats(scene, fine),
-                          dofs=tuple(dofs), target=target)
+                          dofs=tuple(dofs), target=target,
+                          surface=(fine.points, fine.amplitude if turning else fine.peak))
 
 
-def _solve(scene: Scene, options: RunOptions) -> _Field:
-    """The duty's four cases on the scene's mesh: the surface's stress cycle and the
-    deflection line of the standing loads."""
+def _refined_sizes(mesh, spots: list[HotSpot], target: float) -> np.ndarray:
+    """Element sizes at the mesh's points for the next mesh: around each spot whose bound
+    is above the target, shrunk by (bound / (AIM target))^(1/2) (P2 stresses converge
+    as h^2), at least COARSER and at most SHRINK_MAX, within REACH local sizes (or a
+    tenth of the local radius) and graded back to the mesh's own over as many again;
+    elsewhere the mesh's own sizes. On a shaft of revolution too, only around the spot
+    (not all round its circle): the spot there is as good as any on the circle, and its
+    neighbours, coarser, come out lower."""
+    from shaftfem.workflows.adapt import element_sizes
+
+    h_el = element_sizes(mesh)
+    vertices = mesh.cells[:, :4]
+    h = np.full(mesh.points.shape[0], np.inf)
+    np.minimum.at(h, vertices.ravel(), np.repeat(h_el, 4))
+    h[~np.isfinite(h)] = float(h_el.max())
+    new = h.copy()
+    for s in spots:
+        d = np.linalg.norm(mesh.points - _xyz(s), axis=1)
+        local = float(h[np.argmin(d)])
+        shrink = SHRINK_MAX if s.bound is None or not s.converging else float(np.clip(
+            math.sqrt(s.bound / (AIM * target)), COARSER, SHRINK_MAX))
+        reach = max(REACH * local, 0.1 * s.radius)
+        # 1 within reach, falling linearly to 0 at twice the reach
+        weight = np.clip(2.0 - d / reach, 0.0, 1.0)
+        new = np.minimum(new, h / (1.0 + (shrink - 1.0) * weight))
+    return new
+
+
+def _remeshed(built, mesh, sizes: np.ndarray):
+    """The placed scene's solid meshed to `sizes` (at the mesh's points), from the cache
+    where it holds that mesh; checked against the DOF budget."""
+    import hashlib
+
+    from shaftfem.cad.mesh import (
+        MESH_ARRAYS,
+        check_mesh_budget,
+        generate_mesh,
+        mesh_arrays,
+        mesh_from_arrays,
+    )
+    from shaftfem.store import cache_dir, content_key, load_arrays, save_arrays
+    from shaftfem.workflows.stages import mesh_key
+
+    placed, shape = built
+    digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
+                            + np.round(sizes, 12).tobytes()).hexdigest()
+    key = content_key({"version": 1, "mesh": mesh_key(shape, placed.shaft, placed.grooves,
+                                                      placed.mesh, placed.seat_cuts()),
+                       "sizes": digest})
+    path = cache_dir() / "strength" / f"{key}.npz"
+    fields, _ = load_arrays(path, MESH_ARRAYS) if path.exists() else (None, "")
+    if fields is not None:
+        made = replace(mesh_from_arrays(fields), order=placed.mesh.order)
+    else:
+        made = generate_mesh(shape, placed.shaft, placed.grooves, placed.mesh,
+                             (mesh.points, mesh.cells[:, :4], sizes), placed.seat_cuts())
+        save_arrays(path, mesh_arrays(made))
+    check_mesh_budget(made, placed.mesh, placed.max_dofs)
+    return made
+
+
+def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, object, tuple]:
+    """The duty's four cases on the scene's mesh (or on `given`: (placed scene and its
+    solid, a mesh of it)): the surface's stress cycle and the deflection line of the
+    standing loads; the mesh, and the placed scene with its solid."""
     from shaftfem.fem.assembly import _element, assemble
     from shaftfem.fem.installation import install
     from shaftfem.fem.static import line
@@ -208,10 +295,13 @@ def _solve(scene: Scene, options: RunOptions) -> _Field:
     from shaftfem.workflows.equip import with_parts
     from shaftfem.workflows.pipeline import built
 
-    held = replace(scene, supports=tuple(
-        replace(s, kind="rigid-radial", bearing=None, journal=None, tolerance=None)
-        if s.kind == "journal" else s for s in scene.supports))
-    placed, _, mesh = built(with_parts(held), options)
+    if given is None:
+        held = replace(scene, supports=tuple(
+            replace(s, kind="rigid-radial", bearing=None, journal=None, tolerance=None)
+            if s.kind == "journal" else s for s in scene.supports))
+        placed, shape, mesh = built(with_parts(held), options)
+    else:
+        (placed, shape), mesh = given
     system = assemble(mesh, placed.material, threads=options.threads)
     options.say(f"solving the duty on {system.n_dofs:,} DOFs")
     skmesh = mesh.to_skfem()
@@ -226,7 +316,7 @@ def _solve(scene: Scene, options: RunOptions) -> _Field:
                   stress=surface.stress, amplitude=amplitude, mean=mean, peak=peak,
                   all_stress=surface.all_stress, p1_mesh=surface.p1_mesh,
                   facets=surface.facets,
-                  line=line(system, U[:, 0]), dofs=system.n_dofs)
+                  line=line(system, U[:, 0]), dofs=system.n_dofs), mesh, (placed, shape)
 
 
 def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
@@ -305,10 +395,15 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         converging = True
         if before:
             old = min(before, key=lambda s: float(np.linalg.norm(_xyz(s) - p)))
-            if np.linalg.norm(_xyz(old) - p) < 2 * fine.edge[i] and old.bound is not None:
-                # still rising by as much as before: a singular corner, not convergence
-                grew = value[i] > (old.amplitude if turning else old.peak)
-                converging = not (grew and bound is not None and bound > 0.7 * old.bound)
+            near = max(2 * float(fine.edge[i]), 0.05 * float(np.hypot(p[0], p[1])))
+            if np.linalg.norm(_xyz(old) - p) < near and old.bound is not None:
+                # P2 stresses at a smooth notch converge as h^2: a refinement by COARSER
+                # or more shrinks the change at least 2.25 times; still rising by half
+                # as much as before is a sharp edge's singular stress
+                was = old.amplitude if turning else old.peak
+                change, before_change = value[i] - was, old.bound * was
+                converging = old.converging and not (
+                    change > 0 and bound is not None and change > 0.5 * before_change)
         gradient = _gradient(fine, i, turning)
         diameter = 2 * _outer_radius(fine, p[2])
         fkm = assess(float(fine.amplitude[i]), float(fine.mean[i]), float(fine.peak[i]),
