@@ -1140,8 +1140,9 @@ def _strength_verdict(result) -> str:
     sharp = [k for k, s in enumerate(result.spots, 1) if not s.converging]
     if sharp:
         line += (f"; NOT JUDGED at hot spot(s) {', '.join(map(str, sharp))}: their stress rises "
-                 "as the mesh refines (a sharp edge of the geometry, whose elastic stress has "
-                 "no limit): round the edge in the geometry")
+                 "as the mesh refines, faster than a smooth notch's: a sharp edge of the "
+                 "geometry, whose elastic stress has no limit (round it), or a notch far "
+                 "finer than the mesh (give it finer [mesh] sizes)")
     elif not result.bounded:
         line += (f" (a hot spot's bound is above {result.target:.1%}: the DOF budget stopped "
                  "the refinement; raise [mesh] max_dofs)")

@@ -72,6 +72,7 @@ class HotSpot:
     gradient: float
     diameter: float
     fkm: PointAssessment
+    size: float = 0.0     # the mesh's element size at the spot, m
 
 
 @dataclass(frozen=True)
@@ -395,15 +396,18 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         converging = True
         if before:
             old = min(before, key=lambda s: float(np.linalg.norm(_xyz(s) - p)))
-            near = max(2 * float(fine.edge[i]), 0.05 * float(np.hypot(p[0], p[1])))
+            # a spot moves as the mesh refines: the same one within two of its old sizes
+            near = max(2 * old.size, 0.05 * float(np.hypot(p[0], p[1])))
             if np.linalg.norm(_xyz(old) - p) < near and old.bound is not None:
-                # P2 stresses at a smooth notch converge as h^2: a refinement by COARSER
-                # or more shrinks the change at least 2.25 times; still rising by half
-                # as much as before is a sharp edge's singular stress
+                # P2 stresses at a smooth notch converge as h^2: refined s times, the
+                # change shrinks s^2 times; at a sharp edge the stress grows as h^-0.46
+                # (a right-angled re-entrant corner, Williams), the change shrinking by
+                # less than s: rising with an apparent order below 1 is a sharp edge
                 was = old.amplitude if turning else old.peak
                 change, before_change = value[i] - was, old.bound * was
+                s_ = max(old.size / max(float(fine.edge[i]), 1e-12), 1.0)
                 converging = old.converging and not (
-                    change > 0 and bound is not None and change > 0.5 * before_change)
+                    change > 0 and bound is not None and change > before_change / s_)
         gradient = _gradient(fine, i, turning)
         diameter = 2 * _outer_radius(fine, p[2])
         fkm = assess(float(fine.amplitude[i]), float(fine.mean[i]), float(fine.peak[i]),
@@ -413,7 +417,8 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                              feature=_feature(scene, p, diameter / 2),
                              amplitude=float(fine.amplitude[i]), mean=float(fine.mean[i]),
                              peak=float(fine.peak[i]), bound=bound, converging=converging,
-                             gradient=gradient, diameter=diameter, fkm=fkm))
+                             gradient=gradient, diameter=diameter, fkm=fkm,
+                             size=float(fine.edge[i])))
     spots.sort(key=lambda s: -max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation))
     return spots
 
