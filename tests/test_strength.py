@@ -230,3 +230,28 @@ def test_a_filleted_shoulder_is_refined_around_its_hot_spot_until_bounded():
     assert abs(worst.z - 0.1485) < 2e-3 and worst.converging and result.ok
     assert worst.bound is not None and worst.bound <= 0.02 and result.bounded
     assert len(result.dofs) >= 3 and result.dofs[-1] < 3.4 * result.dofs[1]
+
+
+def test_the_gear_shaft_example_holds_with_its_worst_spot_at_a_shoulder(tmp_path):
+    """examples/gear_shaft.toml as a user runs it: 15 kW through a helical gear between
+    two ball bearings. Its worst spots are the shoulders' fillets, bounded; the gear's
+    slope is the beam's order of magnitude (F L^3-ish microns, far within the limits)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    scene = Path(__file__).parents[1] / "examples" / "gear_shaft.toml"
+    out = tmp_path / "gear.json"
+    run = subprocess.run([sys.executable, "-m", "shaftfem", "strength", str(scene),
+                          "--json", str(out), "-q"], capture_output=True, text=True,
+                         timeout=900)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-2000:]
+    data = json.loads(out.read_text())
+    worst = data["hot_spots"][0]
+    assert worst["feature"].startswith("shoulder") and worst["converging"]
+    assert worst["bound_percent"] <= 2.0
+    # a steady torque: the mean at the worst spot is at least the torsion's sqrt(3) tau
+    tau = 15e3 / (1450 * math.pi / 30) * 16 / (math.pi * 0.030**3) / 1e6
+    assert worst["mean_mpa"] >= math.sqrt(3) * tau * 0.99
+    gear = next(s for s in data["seats"] if s["name"] == "gear")
+    assert gear["ok"] and gear["slope_limit_mrad"] == 0.5

@@ -263,6 +263,8 @@ def cycle(stress: np.ndarray, turning: bool) -> tuple[np.ndarray, np.ndarray, np
         peak = np.maximum(peak, np.maximum(von_mises(mean + alt), von_mises(mean - alt)))
     trace = np.trace(mean, axis1=-2, axis2=-1)
     vm = von_mises(mean)
-    # a trace within round-off of zero (pure shear) counts as positive
-    signed = np.where(trace < -1e-2 * vm, -vm, vm)
+    # a trace small beside the equivalent stress (shear, as a steady torque gives, whose
+    # trace the discretisation leaves a few percent off zero) counts as positive: the
+    # mean stress factor then takes it as tension, on the safe side
+    signed = np.where(trace < -0.1 * vm, -vm, vm)
     return amplitude, signed, peak

@@ -1108,7 +1108,7 @@ def strength_text(result) -> str:
              f"{'S_yld':>6s} {'a_SK':>5s}"]
     for k, s in enumerate(result.spots, 1):
         where = (f"{s.feature[:16]} z {s.z * 1e3:.1f} mm {math.degrees(s.angle) % 360:.0f} deg")
-        bound = ("sharp" if not s.converging else
+        bound = ("sharp" if not s.converging else "unresolv" if not s.resolved else
                  "?" if s.bound is None else f"+-{s.bound:.1%}")
         f = s.fkm
         lines.append(f"{k:2d} {where[:34]:34s} {s.amplitude / 1e6:7.1f} {s.mean / 1e6:7.1f} "
@@ -1144,8 +1144,9 @@ def _strength_verdict(result) -> str:
                  "geometry, whose elastic stress has no limit (round it), or a notch far "
                  "finer than the mesh (give it finer [mesh] sizes)")
     elif not result.bounded:
-        line += (f" (a hot spot's bound is above {result.target:.1%}: the DOF budget stopped "
-                 "the refinement; raise [mesh] max_dofs)")
+        line += (f" (a hot spot's bound is above {result.target:.1%}, or its notch finer than "
+                 "the mesh there ('unresolved'): the refinement stopped at its rounds or the "
+                 "DOF budget; give finer [mesh] sizes or raise [mesh] max_dofs)")
     return line
 
 
@@ -1167,7 +1168,8 @@ def strength_markdown(result) -> list[str]:
              + ", ".join(f"{d:,}" for d in result.dofs) + " DOFs.", ""]
     rows = [[str(k), s.feature, f"{s.z * 1e3:.1f}", f"{math.degrees(s.angle) % 360:.0f}",
              f"{s.amplitude / 1e6:.1f}", f"{s.mean / 1e6:.1f}", f"{s.peak / 1e6:.1f}",
-             "sharp edge" if not s.converging else "?" if s.bound is None else f"{s.bound:.1%}",
+             "sharp edge" if not s.converging else "unresolved" if not s.resolved
+             else "?" if s.bound is None else f"{s.bound:.1%}",
              f"{s.gradient * 1e-3:.3f}", _safety(s.fkm.fatigue_safety),
              f"{s.fkm.fatigue_utilisation:.2f}", _safety(s.fkm.yield_safety),
              f"{s.fkm.yield_utilisation:.2f}"] for k, s in enumerate(result.spots, 1)]

@@ -31,15 +31,22 @@ if TYPE_CHECKING:
     from shaftfem.checks.fkm import PointAssessment
 
 COARSER = 1.5
-MAX_REFINEMENTS = 2
+MAX_REFINEMENTS = 3
 # a refinement aims each spot's bound at this share of the target, shrinking its
 # elements by at most SHRINK_MAX per round, over REACH spot sizes (graded over as many
 # again) or a tenth of the local radius, whichever is larger
 AIM = 0.5
 SHRINK_MAX = 4.0
 REACH = 2.0
-# each round refines around the worst few spots (by utilisation) still above the target
+# each round refines around the worst few spots still above the target, among those
+# utilised at least half as much as the worst (the others do not decide the verdict)
 REFINED = 3
+# a spot rising as refined where the surface's normal turns by more than this within an
+# element (rad) is a sharp edge
+SHARP = math.radians(30.0)
+# ... and a mesh whose normal turns by more than this within an element at a spot does
+# not resolve the notch there: both meshes of a bound miss its peak alike
+RESOLVED = math.radians(20.0)
 # hot spots: at most this many, each the largest within SPACING local radii, and at least
 # this share of the largest
 MAX_SPOTS = 8
@@ -73,6 +80,9 @@ class HotSpot:
     diameter: float
     fkm: PointAssessment
     size: float = 0.0     # the mesh's element size at the spot, m
+    # whether the mesh follows the surface's curvature at the spot (its normal turns by
+    # less than RESOLVED within an element): a two-mesh bound means nothing before
+    resolved: bool = True
 
 
 @dataclass(frozen=True)
@@ -131,7 +141,7 @@ class StrengthResult:
     def bounded(self) -> bool:
         """Whether every hot spot's bound meets the target."""
         return all(s.bound is not None and s.bound <= self.target and s.converging
-                   for s in self.spots)
+                   and s.resolved for s in self.spots)
 
     @property
     def ok(self) -> bool:
@@ -156,7 +166,8 @@ class StrengthResult:
                 "amplitude_mpa": s.amplitude / 1e6, "mean_mpa": s.mean / 1e6,
                 "peak_mpa": s.peak / 1e6,
                 "bound_percent": None if s.bound is None else s.bound * 100,
-                "converging": s.converging, "gradient_per_mm": s.gradient * 1e-3,
+                "converging": s.converging, "resolved": s.resolved,
+                "gradient_per_mm": s.gradient * 1e-3,
                 "diameter_mm": s.diameter * 1e3,
                 "fkm": {k: float(v) for k, v in vars(s.fkm).items()}} for s in self.spots],
             "seats": [{"name": c.name, "position_mm": c.position * 1e3,
@@ -203,8 +214,9 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
     dofs = [coarse.dofs, fine.dofs]
     spots = _spots(scene, fine, coarse, None)
     for _ in range(MAX_REFINEMENTS):
-        open_ = [s for s in spots if s.converging
-                 and (s.bound is None or s.bound > target)][:REFINED]
+        worst = max((_utilisation(s) for s in spots), default=0.0)
+        open_ = [s for s in spots if s.converging and _utilisation(s) >= 0.5 * worst
+                 and (s.bound is None or s.bound > target or not s.resolved)][:REFINED]
         if not open_:
             break
         options.say(f"hot spot(s) {', '.join(str(spots.index(s) + 1) for s in open_)} bounded "
@@ -222,6 +234,11 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
     return StrengthResult(scene=scene, spots=tuple(spots), seats=_seats(scene, fine),
                           dofs=tuple(dofs), target=target,
                           surface=(fine.points, fine.amplitude if turning else fine.peak))
+
+
+def _utilisation(s: HotSpot) -> float:
+    """A spot's larger degree of utilisation, fatigue or yield."""
+    return max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation)
 
 
 def _refined_sizes(mesh, spots: list[HotSpot], target: float) -> np.ndarray:
@@ -243,7 +260,7 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float) -> np.ndarray:
     for s in spots:
         d = np.linalg.norm(mesh.points - _xyz(s), axis=1)
         local = float(h[np.argmin(d)])
-        shrink = SHRINK_MAX if s.bound is None or not s.converging else float(np.clip(
+        shrink = SHRINK_MAX if s.bound is None or not s.resolved else float(np.clip(
             math.sqrt(s.bound / (AIM * target)), COARSER, SHRINK_MAX))
         reach = max(REACH * local, 0.1 * s.radius)
         # 1 within reach, falling linearly to 0 at twice the reach
@@ -391,8 +408,11 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
     spots = []
     for i in picks:
         p = fine.points[i]
-        value = fine.amplitude if turning else fine.peak
-        bound = _bound(scene, fine, coarse, i, value, coarse.amplitude if turning else coarse.peak)
+        # the stress that governs the spot: its amplitude on a turning shaft, unless the
+        # steady stress dwarfs it (a torsion-only span), then its peak
+        cyclic = turning and fine.amplitude[i] >= 0.1 * fine.peak[i]
+        value = fine.amplitude if cyclic else fine.peak
+        bound = _bound(scene, fine, coarse, i, value, coarse.amplitude if cyclic else coarse.peak)
         converging = True
         if before:
             old = min(before, key=lambda s: float(np.linalg.norm(_xyz(s) - p)))
@@ -403,11 +423,13 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                 # change shrinks s^2 times; at a sharp edge the stress grows as h^-0.46
                 # (a right-angled re-entrant corner, Williams), the change shrinking by
                 # less than s: rising with an apparent order below 1 is a sharp edge
-                was = old.amplitude if turning else old.peak
+                was = old.amplitude if cyclic else old.peak
                 change, before_change = value[i] - was, old.bound * was
                 s_ = max(old.size / max(float(fine.edge[i]), 1e-12), 1.0)
-                converging = old.converging and not (
-                    change > 0 and bound is not None and change > before_change / s_)
+                rising = change > 0 and bound is not None and change > before_change / s_
+                # ... where the surface turns sharply within an element of the spot (a
+                # notch not yet resolved turns as much, but refines on into a smooth one)
+                converging = old.converging and not (rising and _edge_turn(fine, i) > SHARP)
         gradient = _gradient(fine, i, turning)
         diameter = 2 * _outer_radius(fine, p[2])
         fkm = assess(float(fine.amplitude[i]), float(fine.mean[i]), float(fine.peak[i]),
@@ -418,9 +440,23 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                              amplitude=float(fine.amplitude[i]), mean=float(fine.mean[i]),
                              peak=float(fine.peak[i]), bound=bound, converging=converging,
                              gradient=gradient, diameter=diameter, fkm=fkm,
-                             size=float(fine.edge[i])))
-    spots.sort(key=lambda s: -max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation))
+                             size=float(fine.edge[i]),
+                             resolved=_edge_turn(fine, i) <= RESOLVED))
+    spots.sort(key=lambda s: -_utilisation(s))
     return spots
+
+
+def _edge_turn(field: _Field, i: int) -> float:
+    """How far the surface's normal turns (rad) from surface point i to the points within
+    1.5 of its element sizes, less what the shaft's own mantle turns over that distance:
+    about 1.5 h (1 / rho - 1 / R) on a notch of radius rho in a shaft of radius R, half a
+    right angle at a sharp edge however fine the mesh, nothing on the plain mantle."""
+    d = np.linalg.norm(field.points - field.points[i], axis=1)
+    reach = 1.5 * field.edge[i]
+    near = d <= reach
+    cos = np.clip(field.normals[near] @ field.normals[i], -1.0, 1.0)
+    mantle = reach / max(_outer_radius(field, float(field.points[i, 2])), 1e-9)
+    return max(float(np.arccos(cos).max()) - mantle, 0.0)
 
 
 def _xyz(s: HotSpot) -> np.ndarray:
