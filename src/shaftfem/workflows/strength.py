@@ -31,6 +31,8 @@ if TYPE_CHECKING:
     from shaftfem.checks.fkm import PointAssessment
 
 COARSER = 1.5
+# a bound needs its coarse mesh this many times coarser at the spot than its fine one
+MIN_RATIO = 1.3
 MAX_REFINEMENTS = 3
 # a refinement aims each spot's bound at this share of the target, shrinking its
 # elements by at most SHRINK_MAX per round, over REACH spot sizes (graded over as many
@@ -252,15 +254,18 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float) -> np.ndarray:
     from shaftfem.workflows.adapt import element_sizes
 
     h_el = element_sizes(mesh)
-    vertices = mesh.cells[:, :4]
-    h = np.full(mesh.points.shape[0], np.inf)
-    np.minimum.at(h, vertices.ravel(), np.repeat(h_el, 4))
-    h[~np.isfinite(h)] = float(h_el.max())
+    vertices = mesh.cells[:, :4].ravel()
+    n = mesh.points.shape[0]
+    # the mean of the elements at a vertex (their smallest would shrink the whole mesh a
+    # little at every round, away from the spots too)
+    count = np.bincount(vertices, minlength=n)
+    h = np.bincount(vertices, np.repeat(h_el, 4), n) / np.maximum(count, 1)
+    h[count == 0] = float(h_el.max())
     new = h.copy()
     for s in spots:
         d = np.linalg.norm(mesh.points - _xyz(s), axis=1)
         local = float(h[np.argmin(d)])
-        shrink = SHRINK_MAX if s.bound is None or not s.resolved else float(np.clip(
+        shrink = SHRINK_MAX if not s.resolved else COARSER if s.bound is None else float(np.clip(
             math.sqrt(s.bound / (AIM * target)), COARSER, SHRINK_MAX))
         reach = max(REACH * local, 0.1 * s.radius)
         # 1 within reach, falling linearly to 0 at twice the reach
@@ -467,12 +472,18 @@ def _bound(scene: Scene, fine: _Field, coarse: _Field, i: int, value: np.ndarray
            coarse_value: np.ndarray) -> float | None:
     """|sigma_fine - sigma_coarse| / sigma_fine at hot spot i: each mesh's largest value
     near the spot (within twice the larger of the two meshes' element sizes there, away
-    from the load bands), the hot spot as each mesh sees it."""
+    from the load bands), the hot spot as each mesh sees it; None where the coarse mesh
+    is not MIN_RATIO times coarser there."""
     if value[i] <= 0:
         return None
     d_fine = np.linalg.norm(fine.points - fine.points[i], axis=1)
     d_coarse = np.linalg.norm(coarse.points - fine.points[i], axis=1)
-    reach = 2 * max(float(fine.edge[i]), float(coarse.edge[np.argmin(d_coarse)]))
+    h_coarse = float(coarse.edge[np.argmin(d_coarse)])
+    if h_coarse < MIN_RATIO * float(fine.edge[i]):
+        # the two meshes are alike here (the spot moved to where the last round did not
+        # refine): their agreement says nothing
+        return None
+    reach = 2 * max(float(fine.edge[i]), h_coarse)
     near_fine = (d_fine <= reach) & ~_excluded(scene, fine.points)
     near_coarse = (d_coarse <= reach) & ~_excluded(scene, coarse.points)
     if not near_coarse.any():
