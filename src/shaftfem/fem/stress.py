@@ -19,7 +19,7 @@ elements that share a vertex (the nodal recovery of any FE post-processor).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -48,20 +48,20 @@ class Band:
 class SurfaceStress:
     """The four cases' stress tensors at the surface vertices: points (n, 3) m, outward
     normals (n, 3), stresses (4, n, 3, 3) Pa in CASES' order; and the nodal-averaged
-    stresses of every vertex of the mesh (4, N, 3, 3), with the vertex-only mesh, to
-    read the field inside (the stress gradient)."""
+    stresses of every vertex of the mesh (4, N, 3, 3), with the P1 basis on its vertices,
+    to read the field inside (the stress gradient)."""
 
     vertices: np.ndarray      # indices of the surface vertices among the mesh's points
     points: np.ndarray
     normals: np.ndarray
     stress: np.ndarray
     all_stress: np.ndarray
-    p1_mesh: object
+    p1_basis: Any   # scikit-fem CellBasis
     edge: np.ndarray          # the longest surface edge at each surface vertex, m
     facets: np.ndarray        # the surface's triangles (m, 3), indices into `points`
 
 
-def load_band(scene: Scene, z: float, width: float, nodes: np.ndarray) -> Band:
+def load_band(z: float, width: float, nodes: np.ndarray) -> Band:
     """The band a load at z (m) enters through: its hub's width, or a slice a quarter of
     the local diameter to either side of a bare position."""
     if width > 0:
@@ -113,7 +113,7 @@ def duty_loads(scene: Scene, system: System, inst: Installed, skmesh, element
         f_q, resultant = loads(replace(scene, gravity=tuple(gravity), forces=()), system, inst)
         nodal = np.zeros(n)
         for f in scene.forces:
-            band = load_band(scene, f.position, f.width, system.nodes)
+            band = load_band(f.position, f.width, system.nodes)
             vector = {"A": np.array([f.fx, f.fy, 0.0]), "B": np.array([-f.fy, f.fx, 0.0]),
                       "T": np.zeros(3), "Z": np.array([0.0, 0.0, f.fz])}[case]
             if vector.any():
@@ -121,7 +121,7 @@ def duty_loads(scene: Scene, system: System, inst: Installed, skmesh, element
                 resultant = resultant + vector
         if case == "T":
             for q in scene.torques:
-                band = load_band(scene, q.position, q.width, system.nodes)
+                band = load_band(q.position, q.width, system.nodes)
                 nodal += band_loads(skmesh, element, band, np.zeros(3), q.torque, n)
         cols.append(f_q + inst.T.T @ nodal)
         resultants.append(resultant)
@@ -162,7 +162,7 @@ def surface_stress(skmesh, element, lame: tuple[float, float], U: np.ndarray
     """Each case's stress (Hooke's law on the displacement gradient) at every element's
     vertices, averaged over the elements that share the vertex; the surface's vertices,
     their outward normals and their longest edges."""
-    from skfem import Basis, MeshTet
+    from skfem import Basis, ElementTetP1, MeshTet
 
     lam, mu = lame
     corners = np.array([[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
@@ -204,7 +204,8 @@ def surface_stress(skmesh, element, lame: tuple[float, float], U: np.ndarray
     local = np.full(nv, -1)
     local[verts] = np.arange(verts.size)
     return SurfaceStress(vertices=verts, points=p[verts], normals=vn,
-                         stress=out[:, verts], all_stress=out, p1_mesh=MeshTet(np.ascontiguousarray(p.T), t),
+                         stress=out[:, verts], all_stress=out,
+                         p1_basis=Basis(MeshTet(np.ascontiguousarray(p.T), t), ElementTetP1()),
                          edge=edge[verts], facets=local[facets].T)
 
 

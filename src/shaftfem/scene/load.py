@@ -733,7 +733,8 @@ def _torques(source: str, data: dict, shaft: Shaft, attachments: tuple[Attachmen
              strength: Strength | None) -> tuple[Torque, ...]:
     """[[torque]] in SI (m, N m), each at its position or over its part's hub; one left
     without torque_nm and power_kw takes the balance; they must balance."""
-    out, open_ = [], []
+    out: list[Torque] = []
+    open_: list[tuple[int, str]] = []   # the torques without a value: (index, table)
     for i, e in enumerate(_array(source, data, "torque")):
         table = entry("torque", i, e)
         t = validate_table(source, table, e, SCHEMA["torque"])
@@ -748,17 +749,16 @@ def _torques(source: str, data: dict, shaft: Shaft, attachments: tuple[Attachmen
                                  "it is given at: [strength] speed_rpm (or [rotor] speed_rpm)")
             torque = t["power_kw"] * 1e3 / strength.speed
         if torque is None:
-            open_.append(table)
+            open_.append((i, table))
         out.append(Torque(name=t["name"] or t["part"] or f"torque {i + 1}",
                           position=position * MM, torque=torque or 0.0,
                           width=_hub(t, attachments)))
     if len(open_) > 1:
-        raise SceneError(f"{source}: {open_[1]}: only one torque may leave out torque_nm and "
-                         f"power_kw (it takes the balance; {open_[0]} does already)")
+        raise SceneError(f"{source}: {open_[1][1]}: only one torque may leave out torque_nm "
+                         f"and power_kw (it takes the balance; {open_[0][1]} does already)")
     total = sum(q.torque for q in out)
     if open_:
-        k = next(i for i, e in enumerate(_array(source, data, "torque"))
-                 if entry("torque", i, e) == open_[0])
+        k = open_[0][0]
         out[k] = replace(out[k], torque=-total)
     elif out and abs(total) > 1e-6 * max(abs(q.torque) for q in out):
         entering = sum(q.torque for q in out if q.torque > 0)

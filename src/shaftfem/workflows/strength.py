@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -193,8 +193,9 @@ class _Field:
     mean: np.ndarray
     peak: np.ndarray
     all_stress: np.ndarray
-    p1_mesh: object
+    p1_basis: Any   # scikit-fem CellBasis
     facets: np.ndarray
+    allowed: np.ndarray   # the surface points outside the load and seat bands
     line: tuple[np.ndarray, np.ndarray, np.ndarray]
     dofs: int
 
@@ -337,8 +338,8 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
     amplitude, mean, peak = cycle(surface.stress, turning)
     return _Field(points=surface.points, normals=surface.normals, edge=surface.edge,
                   stress=surface.stress, amplitude=amplitude, mean=mean, peak=peak,
-                  all_stress=surface.all_stress, p1_mesh=surface.p1_mesh,
-                  facets=surface.facets,
+                  all_stress=surface.all_stress, p1_basis=surface.p1_basis,
+                  facets=surface.facets, allowed=~_excluded(scene, surface.points),
                   line=line(system, U[:, 0]), dofs=system.n_dofs), mesh, (placed, shape)
 
 
@@ -352,7 +353,7 @@ def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
     bands += [a.seat for a in scene.attachments]
     for position, width in ([(f.position, f.width) for f in scene.forces]
                             + [(q.position, q.width) for q in scene.torques]):
-        b = load_band(scene, position, width, points)
+        b = load_band(position, width, points)
         bands.append((b.z0, b.z1))
     out = np.zeros(len(points), dtype=bool)
     for z0, z1 in bands:
@@ -402,7 +403,7 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
 
     st = scene.strength
     assert st is not None
-    allowed = ~_excluded(scene, fine.points)
+    allowed = fine.allowed
     turning = st.speed > 0
     round_ = scene.axisymmetric
     picks = _maxima(fine, fine.amplitude if turning else fine.peak, allowed, round_)
@@ -417,7 +418,7 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         # steady stress dwarfs it (a torsion-only span), then its peak
         cyclic = turning and fine.amplitude[i] >= 0.1 * fine.peak[i]
         value = fine.amplitude if cyclic else fine.peak
-        bound = _bound(scene, fine, coarse, i, value, coarse.amplitude if cyclic else coarse.peak)
+        bound = _bound(fine, coarse, i, value, coarse.amplitude if cyclic else coarse.peak)
         converging = True
         if before:
             old = min(before, key=lambda s: float(np.linalg.norm(_xyz(s) - p)))
@@ -468,7 +469,7 @@ def _xyz(s: HotSpot) -> np.ndarray:
     return np.array([s.radius * math.cos(s.angle), s.radius * math.sin(s.angle), s.z])
 
 
-def _bound(scene: Scene, fine: _Field, coarse: _Field, i: int, value: np.ndarray,
+def _bound(fine: _Field, coarse: _Field, i: int, value: np.ndarray,
            coarse_value: np.ndarray) -> float | None:
     """|sigma_fine - sigma_coarse| / sigma_fine at hot spot i: each mesh's largest value
     near the spot (within twice the larger of the two meshes' element sizes there, away
@@ -484,8 +485,8 @@ def _bound(scene: Scene, fine: _Field, coarse: _Field, i: int, value: np.ndarray
         # refine): their agreement says nothing
         return None
     reach = 2 * max(float(fine.edge[i]), h_coarse)
-    near_fine = (d_fine <= reach) & ~_excluded(scene, fine.points)
-    near_coarse = (d_coarse <= reach) & ~_excluded(scene, coarse.points)
+    near_fine = (d_fine <= reach) & fine.allowed
+    near_coarse = (d_coarse <= reach) & coarse.allowed
     if not near_coarse.any():
         return None
     here = max(float(value[near_fine].max()), float(value[i]))
@@ -497,16 +498,13 @@ def _gradient(field: _Field, i: int, turning: bool) -> float:
     equivalent stress (amplitude; peak on a standing shaft) a quarter element inward,
     over that depth and the surface value; 0 where it cannot be read (no support, on the
     safe side)."""
-    from skfem import Basis, ElementTetP1
-
     from shaftfem.fem.stress import cycle
 
     depth = 0.25 * field.edge[i]
-    basis = Basis(field.p1_mesh, ElementTetP1())
     points = np.array([field.points[i] - 1e-3 * depth * field.normals[i],
                        field.points[i] - depth * field.normals[i]]).T
     try:
-        P = basis.probes(points)
+        P = field.p1_basis.probes(points)
     except (ValueError, IndexError):
         return 0.0
     tensors = np.einsum("pn,knij->kpij", P.toarray(), field.all_stress)
