@@ -63,6 +63,7 @@ TABLES = {
                         ["cubic_functions.py", "4,3,4/2", "0.5,0.8,0.95,1"]),
     "stability": ("verification: the stability checks", ["stability.py"]),
     "paper-unknowns": ("case study: the paper's unknowns", ["paper_unknowns.py"]),
+    "notch-factors": ("verification: Notch stresses against NGSolve", ["notch_factors.py"]),
 }
 
 

@@ -6,8 +6,10 @@ The hot spots are the local maxima of the equivalent stress amplitude and of the
 equivalent stress on the surface, away from where loads and reactions enter (a bearing
 seat's or a hub's band, whose stresses depend on the fit, not on the shaft). Each one's
 stress is bounded as each frequency is: the same scene solved on a mesh COARSER times
-coarser, the bound the difference between the two meshes' peaks at the spot. While a
-bound exceeds the target ([strength] target_error_percent), the mesh is refined around
+coarser, the bound the difference between the two meshes' peaks at the spot, and at
+least CURVATURE_ERROR (h / rho)^2 in a notch of radius rho (two meshes can agree by
+chance; P2's surface stress there is low by about half that). While a bound exceeds the
+target ([strength] target_error_percent), the mesh is refined around
 those spots only (a gmsh size field: the elements within a few sizes of the spot shrink
 by at least COARSER, by as much as P2 stresses' h^2 convergence asks for AIM times the
 target), and the spots are bounded again against the mesh before. A spot whose stress
@@ -40,6 +42,7 @@ MAX_REFINEMENTS = 3
 AIM = 0.5
 SHRINK_MAX = 4.0
 REACH = 2.0
+HOOP_REACH = 4.0
 # each round refines around the worst few spots still above the target, among those
 # utilised at least half as much as the worst (the others do not decide the verdict)
 REFINED = 3
@@ -49,6 +52,10 @@ SHARP = math.radians(30.0)
 # ... and a mesh whose normal turns by more than this within an element at a spot does
 # not resolve the notch there: both meshes of a bound miss its peak alike
 RESOLVED = math.radians(20.0)
+# a P2 mesh's surface stress at a notch of radius rho is low by about 0.45 (h / rho)^2
+# (h its element size there: measured on fillets against NGSolve at order 4); a bound is
+# at least this times (h / rho)^2
+CURVATURE_ERROR = 1.0
 # hot spots: at most this many, each the largest within SPACING local radii, and at least
 # this share of the largest
 MAX_SPOTS = 8
@@ -85,6 +92,9 @@ class HotSpot:
     # whether the mesh follows the surface's curvature at the spot (its normal turns by
     # less than RESOLVED within an element): a two-mesh bound means nothing before
     resolved: bool = True
+    # the two meshes' difference alone (fraction; None when not known): the bound is it
+    # or the notch's curvature term, whichever is larger
+    difference: float | None = None
 
 
 @dataclass(frozen=True)
@@ -224,7 +234,7 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
             break
         options.say(f"hot spot(s) {', '.join(str(spots.index(s) + 1) for s in open_)} bounded "
                     f"above {target:.1%}: refining around them")
-        sizes = _refined_sizes(mesh, open_, target)
+        sizes = _refined_sizes(mesh, open_, target, scene.axisymmetric)
         try:
             refined = _remeshed(built, mesh, sizes)
             coarse, (fine, mesh, built) = fine, _solve(scene, options, (built, refined))
@@ -244,14 +254,15 @@ def _utilisation(s: HotSpot) -> float:
     return max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation)
 
 
-def _refined_sizes(mesh, spots: list[HotSpot], target: float) -> np.ndarray:
+def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool) -> np.ndarray:
     """Element sizes at the mesh's points for the next mesh: around each spot whose bound
     is above the target, shrunk by (bound / (AIM target))^(1/2) (P2 stresses converge
     as h^2), at least COARSER and at most SHRINK_MAX, within REACH local sizes (or a
     tenth of the local radius) and graded back to the mesh's own over as many again;
     elsewhere the mesh's own sizes. On a shaft of revolution too, only around the spot
-    (not all round its circle): the spot there is as good as any on the circle, and its
-    neighbours, coarser, come out lower."""
+    (not all round its circle), but HOOP_REACH times as far round the circle as along
+    the axis: the spot found on a coarse mesh sits where a vertex happened to be, some
+    degrees off the load's plane, where the finer mesh finds the peak."""
     from shaftfem.workflows.adapt import element_sizes
 
     h_el = element_sizes(mesh)
@@ -264,7 +275,7 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float) -> np.ndarray:
     h[count == 0] = float(h_el.max())
     new = h.copy()
     for s in spots:
-        d = np.linalg.norm(mesh.points - _xyz(s), axis=1)
+        d = _distance(mesh.points, s, round_)
         local = float(h[np.argmin(d)])
         shrink = SHRINK_MAX if not s.resolved else COARSER if s.bound is None else float(np.clip(
             math.sqrt(s.bound / (AIM * target)), COARSER, SHRINK_MAX))
@@ -273,6 +284,17 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float) -> np.ndarray:
         weight = np.clip(2.0 - d / reach, 0.0, 1.0)
         new = np.minimum(new, h / (1.0 + (shrink - 1.0) * weight))
     return new
+
+
+def _distance(points: np.ndarray, s: HotSpot, round_: bool) -> np.ndarray:
+    """How far points (n, 3) lie from a hot spot (m); on a shaft of revolution their
+    distance round the circle counts HOOP_REACH times less."""
+    if not round_:
+        return np.linalg.norm(points - _xyz(s), axis=1)
+    r = np.hypot(points[:, 0], points[:, 1])
+    turn = np.angle(np.exp(1j * (np.arctan2(points[:, 1], points[:, 0]) - s.angle)))
+    return np.sqrt((points[:, 2] - s.z) ** 2 + (r - s.radius) ** 2
+                   + (s.radius * turn / HOOP_REACH) ** 2)
 
 
 def _remeshed(built, mesh, sizes: np.ndarray):
@@ -411,6 +433,8 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         if all(_apart(fine.points[i], fine.points[j], round_)
                > SPACING * np.hypot(*fine.points[i, :2]) for j in picks):
             picks.append(i)
+    if round_ and turning and before:
+        picks = [_round_the_circle(before, fine, i) for i in picks]
     spots = []
     for i in picks:
         p = fine.points[i]
@@ -418,24 +442,33 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         # steady stress dwarfs it (a torsion-only span), then its peak
         cyclic = turning and fine.amplitude[i] >= 0.1 * fine.peak[i]
         value = fine.amplitude if cyclic else fine.peak
-        bound = _bound(fine, coarse, i, value, coarse.amplitude if cyclic else coarse.peak)
+        difference = _bound(fine, coarse, i, value,
+                            coarse.amplitude if cyclic else coarse.peak)
+        # two meshes can agree by chance (the peak falls between vertices differently on
+        # each): P2's surface stress in a notch of radius rho is low by about 0.45 (h /
+        # rho)^2 (measured against NGSolve at order 4, benchmarks/notch_factors.py), so
+        # the bound is at least CURVATURE_ERROR (h / rho)^2
+        bound = None if difference is None else max(
+            difference, CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2)
         converging = True
-        if before:
-            old = min(before, key=lambda s: float(np.linalg.norm(_xyz(s) - p)))
-            # a spot moves as the mesh refines: the same one within two of its old sizes
-            near = max(2 * old.size, 0.05 * float(np.hypot(p[0], p[1])))
-            if np.linalg.norm(_xyz(old) - p) < near and old.bound is not None:
-                # P2 stresses at a smooth notch converge as h^2: refined s times, the
-                # change shrinks s^2 times; at a sharp edge the stress grows as h^-0.46
-                # (a right-angled re-entrant corner, Williams), the change shrinking by
-                # less than s: rising with an apparent order below 1 is a sharp edge
-                was = old.amplitude if cyclic else old.peak
-                change, before_change = value[i] - was, old.bound * was
-                s_ = max(old.size / max(float(fine.edge[i]), 1e-12), 1.0)
-                rising = change > 0 and bound is not None and change > before_change / s_
-                # ... where the surface turns sharply within an element of the spot (a
-                # notch not yet resolved turns as much, but refines on into a smooth one)
-                converging = old.converging and not (rising and _edge_turn(fine, i) > SHARP)
+        old = _same_spot(before or [], fine, i, round_)
+        if old is not None and old.difference is not None:
+            # P2 stresses at a smooth notch converge as h^2: refined s times, the change
+            # shrinks s^2 times; at a sharp edge the stress grows as h^-0.46 (a
+            # right-angled re-entrant corner, Williams), the change shrinking by less
+            # than s: rising with an apparent order below 1 is a sharp edge ...
+            was = old.amplitude if cyclic else old.peak
+            change, before_change = value[i] - was, old.difference * was
+            s_ = max(old.size / max(float(fine.edge[i]), 1e-12), 1.0)
+            rising = change > 0 and difference is not None and change > before_change / s_
+            # ... where the surface turns sharply within an element of the spot (a notch
+            # not yet resolved turns as much, but refines on into a smooth one)
+            converging = old.converging and not (rising and _edge_turn(fine, i) > SHARP)
+        if old is not None and bound is None and old.bound is not None and value[i] > 0:
+            # the mesh here is as before (this round refined elsewhere): the truth lies
+            # within the old bound of the old value, so within this of the new one
+            was = old.amplitude if cyclic else old.peak
+            bound = float((abs(value[i] - was) + old.bound * was) / value[i])
         gradient = _gradient(fine, i, turning)
         diameter = 2 * _outer_radius(fine, p[2])
         fkm = assess(float(fine.amplitude[i]), float(fine.mean[i]), float(fine.peak[i]),
@@ -444,12 +477,42 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                              radius=float(np.hypot(p[0], p[1])),
                              feature=_feature(scene, p, diameter / 2),
                              amplitude=float(fine.amplitude[i]), mean=float(fine.mean[i]),
-                             peak=float(fine.peak[i]), bound=bound, converging=converging,
+                             peak=float(fine.peak[i]), bound=bound, difference=difference,
+                             converging=converging,
                              gradient=gradient, diameter=diameter, fkm=fkm,
                              size=float(fine.edge[i]),
                              resolved=_edge_turn(fine, i) <= RESOLVED))
     spots.sort(key=lambda s: -_utilisation(s))
     return spots
+
+
+def _round_the_circle(before: list[HotSpot], fine: _Field, i: int) -> int:
+    """On a turning shaft of revolution the cycle is the same all round a circle, and
+    its largest value falls where a vertex happens to be: point i taken back round its
+    circle to where the last round's spot at its z was (and refined), the largest there."""
+    p = fine.points[i]
+    r = float(np.hypot(p[0], p[1]))
+    old = min(before, key=lambda s: abs(s.z - p[2]) + abs(s.radius - r))
+    if abs(old.z - p[2]) + abs(old.radius - r) > max(2 * old.size, 0.05 * r):
+        return i
+    there = np.array([r * math.cos(old.angle), r * math.sin(old.angle), p[2]])
+    d = np.linalg.norm(fine.points - there, axis=1)
+    near = np.flatnonzero((d <= 2 * max(old.size, float(fine.edge[i]))) & fine.allowed)
+    return int(near[np.argmax(fine.amplitude[near])]) if near.size else i
+
+
+def _same_spot(before: list[HotSpot], fine: _Field, i: int, round_: bool
+               ) -> HotSpot | None:
+    """The last round's hot spot that surface point i is (a spot moves as the mesh
+    refines: the same one within two of its old sizes, or a twentieth of the radius;
+    on a shaft of revolution, HOOP_REACH times that round the circle), or None."""
+    if not before:
+        return None
+    p = fine.points[i]
+    far = [float(_distance(p[None, :], s, round_)[0]) for s in before]
+    k = int(np.argmin(far))
+    near = max(2 * before[k].size, 0.05 * float(np.hypot(p[0], p[1])))
+    return before[k] if far[k] < near else None
 
 
 def _edge_turn(field: _Field, i: int) -> float:
@@ -463,6 +526,20 @@ def _edge_turn(field: _Field, i: int) -> float:
     cos = np.clip(field.normals[near] @ field.normals[i], -1.0, 1.0)
     mantle = reach / max(_outer_radius(field, float(field.points[i, 2])), 1e-9)
     return max(float(np.arccos(cos).max()) - mantle, 0.0)
+
+
+def _concave(field: _Field, i: int) -> float:
+    """The surface's largest concave curvature at surface point i (1/m): a notch's 1 /
+    rho, 0 on a plain mantle (convex) and at a convex edge. From the normals' turn
+    towards the points within 1.5 element sizes: -(n_j - n_i).(p_j - p_i) / |p_j - p_i|^2
+    is the normal curvature along p_j - p_i, positive where the surface is concave."""
+    d = field.points - field.points[i]
+    dist2 = np.einsum("ij,ij->i", d, d)
+    near = (dist2 > 0) & (dist2 <= (1.5 * field.edge[i]) ** 2)
+    if not near.any():
+        return 0.0
+    k = -np.einsum("ij,ij->i", field.normals[near] - field.normals[i], d[near]) / dist2[near]
+    return max(float(k.max()), 0.0)
 
 
 def _xyz(s: HotSpot) -> np.ndarray:

@@ -1,0 +1,237 @@
+"""Notch stresses you can trust: on notched shafts (shoulder fillets, a relief groove,
+keyways, a radial hole) in bending, torsion and tension, `shaftfem strength`'s worst hot
+spot, with its bound, against an independent reference on the same solid: NGSolve at
+orders 3 and 4 on netgen's own curved mesh (benchmarks/notch_reference.py, clamped at
+one end and loaded by the pure traction at the other, so only the notch's K_t is
+shared). Prints, per shape, K_t as shaftfem gives it (von Mises peak over the nominal
+von Mises stress of the notch's section), its bound, the reference's K_t at both orders,
+the difference, whether the reference lies inside the bound's interval, and the chart's
+K_t (largest principal or largest shear over nominal) beside Peterson's where Pilkey's
+fits cover the shape.
+
+    .venv/bin/python benchmarks/notch_factors.py [--target 2] [--only NAME,NAME]
+
+Needs .venv-ngsolve (see benchmarks/notch_reference.py). About 30 minutes on 2 cores.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+import _common  # noqa: E402, F401  (one BLAS thread, as the CLI)
+
+HERE = Path(__file__).parent
+NGSOLVE = HERE.parent / ".venv-ngsolve" / "bin" / "python"
+E, NU = 210e9, 0.3
+STEEL = {"name": "42CrMo4", "youngs_modulus_mpa": E / 1e6, "poisson_ratio": NU,
+         "density_kg_m3": 7850.0}
+L = 300.0         # mm: every shape is 300 mm long, its notch about the middle
+F, T, N = 2000.0, 200.0, 20000.0     # N, N m, N
+
+
+def seats(axial: bool) -> list[dict]:
+    """Seats at 10 and 290 mm, stiff enough to hold (1e9 N/mm); the right one locates."""
+    right = {"name": "right", "position_mm": L - 10, "width_mm": 16.0, "kind": "springs",
+             "radial_stiffness_n_per_mm": 1e9}
+    if axial:
+        right["axial_stiffness_n_per_mm"] = 1e9
+    return [{"name": "left", "position_mm": 10.0, "width_mm": 16.0, "kind": "springs",
+             "radial_stiffness_n_per_mm": 1e9}, right]
+
+
+def duty(load: str) -> dict:
+    """Four-point bending (F at 60 and 240 mm: M = F 50 mm between), a torque T from 40
+    to 260 mm, or a tension N from 40 mm to the right seat."""
+    if load == "bending":
+        return {"force": [{"name": "a", "position_mm": 60.0, "fy_n": -F},
+                          {"name": "b", "position_mm": L - 60, "fy_n": -F}]}
+    if load == "torsion":
+        return {"torque": [{"name": "in", "position_mm": 40.0, "torque_nm": T},
+                           {"name": "out", "position_mm": L - 40}]}
+    return {"force": [{"name": "pull", "position_mm": 40.0, "fz_n": -N}]}
+
+
+def nominal_vm(load: str, d: float) -> float:
+    """The nominal von Mises stress of the notch's section (diameter d, m), Pa."""
+    if load == "bending":
+        return F * 0.050 * 32 / (math.pi * d**3)
+    if load == "torsion":
+        return math.sqrt(3) * T * 16 / (math.pi * d**3)
+    return N / (math.pi * d**2 / 4)
+
+
+def shoulder(D: float, d: float, r: float) -> dict:
+    """d on the left half, D on the right, a fillet r in the step's corner (mm)."""
+    return {"section": [{"length_mm": L / 2, "diameter_mm": d, "fillet_mm": r},
+                        {"length_mm": L / 2, "diameter_mm": D}],
+            "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": max(r / 2, 0.4),
+                     "edge_element_size_mm": max(r / 2, 0.4)}}
+
+
+def relief(D: float, d: float, r: float) -> dict:
+    """A relief groove: diameter d over 2 r between two D sections, fillets r."""
+    return {"section": [{"length_mm": L / 2 - r, "diameter_mm": D, "fillet_mm": r},
+                        {"length_mm": 2 * r, "diameter_mm": d, "fillet_mm": r},
+                        {"length_mm": L / 2 - r, "diameter_mm": D}],
+            "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": max(r / 2, 0.4),
+                     "edge_element_size_mm": max(r / 2, 0.4)}}
+
+
+def keyed(d: float, length: float, width: float, depth: float, corner: float) -> dict:
+    """A rounded (end-milled) keyway in a round bar, its centre at the top (+y), where
+    bending about x stresses most."""
+    return {"shaft": {"length_mm": L, "diameter_mm": d},
+            "keyway": [{"position_mm": L / 2, "length_mm": length, "width_mm": width,
+                        "depth_mm": depth, "angle_deg": 90.0, "corner_radius_mm": corner}],
+            "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": max(corner, 0.5),
+                     "edge_element_size_mm": max(corner, 0.5)}}
+
+
+def pilkey_shoulder_bending(D: float, d: float, r: float) -> float:
+    """Peterson's chart 3.10 (shoulder fillet, bending) as Pilkey fits it, 2 <= h/r <= 20
+    (0.1 <= h/r < 2: the other fit)."""
+    h = (D - d) / 2
+    q = h / r
+    if q < 2:
+        c = (0.947 + 1.206 * math.sqrt(q) - 0.131 * q, 0.022 - 3.405 * math.sqrt(q) + 0.915 * q,
+             0.869 + 1.777 * math.sqrt(q) - 0.555 * q, -0.810 + 0.422 * math.sqrt(q) - 0.260 * q)
+    else:
+        c = (1.232 + 0.832 * math.sqrt(q) - 0.008 * q, -3.813 + 0.968 * math.sqrt(q) - 0.260 * q,
+             7.423 - 4.868 * math.sqrt(q) + 0.869 * q, -3.839 + 3.070 * math.sqrt(q) - 0.600 * q)
+    t = 2 * h / D
+    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+
+
+def pilkey_shoulder_tension(D: float, d: float, r: float) -> float:
+    """Peterson's chart 3.4 (shoulder fillet, tension), Pilkey's fits."""
+    h = (D - d) / 2
+    q = h / r
+    if q < 2:
+        c = (0.926 + 1.157 * math.sqrt(q) - 0.099 * q, 0.012 - 3.036 * math.sqrt(q) + 0.961 * q,
+             -0.302 + 3.977 * math.sqrt(q) - 1.744 * q, 0.365 - 2.098 * math.sqrt(q) + 0.878 * q)
+    else:
+        c = (1.200 + 0.860 * math.sqrt(q) - 0.022 * q, -1.805 - 0.346 * math.sqrt(q) - 0.038 * q,
+             2.198 - 0.486 * math.sqrt(q) + 0.165 * q, -0.593 - 0.028 * math.sqrt(q) - 0.106 * q)
+    t = 2 * h / D
+    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+
+
+def pilkey_shoulder_torsion(D: float, d: float, r: float) -> float:
+    """Peterson's chart 3.12 (shoulder fillet, torsion), Pilkey's fit (0.25 <= h/r <= 4)."""
+    h = (D - d) / 2
+    q = h / r
+    c = (0.905 + 0.783 * math.sqrt(q) - 0.075 * q, -0.437 - 1.969 * math.sqrt(q) + 0.553 * q,
+         1.557 + 1.073 * math.sqrt(q) - 0.578 * q, -1.061 + 0.171 * math.sqrt(q) + 0.086 * q)
+    t = 2 * h / D
+    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+
+
+# name: (the scene's geometry, load, the notch's section diameter (mm), the notch window
+# (mm), Peterson's K_t by Pilkey's fit or None)
+SHAPES = {
+    "shoulder 48/32 r3, bending": (shoulder(48, 32, 3), "bending", 32, (140, 160),
+                                   pilkey_shoulder_bending(48, 32, 3)),
+    "shoulder 48/32 r3, tension": (shoulder(48, 32, 3), "tension", 32, (140, 160),
+                                   pilkey_shoulder_tension(48, 32, 3)),
+    "shoulder 48/32 r3, torsion": (shoulder(48, 32, 3), "torsion", 32, (140, 160),
+                                   pilkey_shoulder_torsion(48, 32, 3)),
+    "shoulder 40/32 r1.6, bending": (shoulder(40, 32, 1.6), "bending", 32, (140, 160),
+                                     pilkey_shoulder_bending(40, 32, 1.6)),
+    "shoulder 40/32 r1.6, torsion": (shoulder(40, 32, 1.6), "torsion", 32, (140, 160),
+                                     pilkey_shoulder_torsion(40, 32, 1.6)),
+    "shoulder 64/32 r5, bending": (shoulder(64, 32, 5), "bending", 32, (140, 160),
+                                   pilkey_shoulder_bending(64, 32, 5)),
+    "shoulder 64/32 r5, tension": (shoulder(64, 32, 5), "tension", 32, (140, 160),
+                                   pilkey_shoulder_tension(64, 32, 5)),
+    "relief groove 40/32 r4, bending": (relief(40, 32, 4), "bending", 32, (140, 160), None),
+    "keyway 10x5 r1, bending": (keyed(32, 40, 10, 5, 1.0), "bending", 32, (125, 175), None),
+    "keyway 10x5 r1, torsion": (keyed(32, 40, 10, 5, 1.0), "torsion", 32, (125, 175), None),
+    "radial hole 8 deep 8 r1, torsion": (keyed(32, 8, 8, 8, 1.0), "torsion", 32, (140, 160),
+                                         None),
+}
+
+
+def ours(name: str, target: float, folder: Path) -> dict:
+    """shaftfem strength on the shape: its hot spot inside the notch window with the
+    largest peak, as K_t with its bound; and the solid as a BREP (m) for the reference."""
+    from shaftfem.cad.build import build_solid, write_solid
+    from shaftfem.runtime import RunOptions
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.strength import run_strength
+
+    geometry, load, d, window, _ = SHAPES[name]
+    scene = load_scene({"name": "notch", "material": STEEL, "static": {"gravity_m_s2": 0.0},
+                        "support": seats(load == "tension"), **geometry, **duty(load),
+                        "strength": {"target_error_percent": target}})
+    brep = folder / "solid.brep"
+    build_solid(scene.shaft, scene.grooves, brep)
+    step = folder / "solid.step"
+    write_solid(brep, scene.shaft, [step])
+    t = time.perf_counter()
+    result = run_strength(scene, RunOptions())
+    wall = time.perf_counter() - t
+    inside = [s for s in result.spots if window[0] <= s.z * 1e3 <= window[1]]
+    if not inside:
+        return {"error": "no hot spot in the notch window", "wall": wall}
+    s = max(inside, key=lambda s: s.peak)
+    return {"kt": s.peak / nominal_vm(load, d * 1e-3), "bound": s.bound,
+            "converging": s.converging, "feature": s.feature, "z_mm": s.z * 1e3,
+            "dofs": list(result.dofs), "wall": wall, "step": str(step)}
+
+
+def reference(name: str, step: str, notch_h: float) -> list[dict]:
+    _, load, d, window, _ = SHAPES[name]
+    cfg = {"step": step, "load": load, "window_mm": list(window), "d_nom_mm": d,
+           "h_mm": 16.0, "notch_h_mm": notch_h, "orders": [3, 4], "E_pa": E, "nu": NU}
+    run = subprocess.run([str(NGSOLVE), str(HERE / "notch_reference.py"), json.dumps(cfg)],
+                         capture_output=True, text=True, timeout=3600)
+    if run.returncode != 0:
+        raise RuntimeError(run.stderr[-2000:])
+    return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+
+
+def main(argv: list[str]) -> int:
+    from _common import options
+
+    opts, _ = options(argv, {"--target": "2", "--only": ""})
+    names = [n for n in SHAPES if not opts["--only"] or n in opts["--only"].split(",")]
+    if not NGSOLVE.exists():
+        print(f"notch_factors.py: {NGSOLVE} is missing (see benchmarks/notch_reference.py)",
+              file=sys.stderr)
+        return 2
+    print(f"target {opts['--target']} %; K_t = sigma_vM,max / sigma_vM,nom; reference: "
+          "NGSolve order 3 / 4 on netgen's curved mesh\n")
+    print("| shape | shaftfem K_t | its bound | NGSolve p3 | NGSolve p4 | shaftfem - p4 "
+          "| inside the bound | chart K_t (p4) | Peterson (Pilkey) | DOFs | s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    held = 0
+    for name in names:
+        with tempfile.TemporaryDirectory() as d:
+            o = ours(name, float(opts["--target"]), Path(d))
+            if "error" in o:
+                print(f"| {name} | {o['error']} |")
+                continue
+            ref = reference(name, o["step"], SHAPES[name][0]["mesh"]["groove_element_size_mm"])
+        p3, p4 = ref[0], ref[-1]
+        diff = o["kt"] / p4["kt_vm"] - 1
+        ok = o["bound"] is not None and o["converging"] and abs(diff) <= o["bound"]
+        held += ok
+        peterson = SHAPES[name][4]
+        bound = "unknown" if o["bound"] is None else f"{o['bound']:.2%}"
+        print(f"| {name} | {o['kt']:.4f} | {bound} | {p3['kt_vm']:.4f} | {p4['kt_vm']:.4f} "
+              f"| {diff:+.2%} | {'yes' if ok else 'NO'} | {p4['kt_chart']:.3f} | "
+              f"{'' if peterson is None else f'{peterson:.3f}'} | "
+              f"{o['dofs'][-1]:,} | {o['wall']:.0f} |", flush=True)
+    print(f"\nthe reference inside shaftfem's bound on {held} of {len(names)} shapes")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
