@@ -94,62 +94,59 @@ def keyed(d: float, length: float, width: float, depth: float, corner: float) ->
                      "edge_element_size_mm": max(corner, 0.5)}}
 
 
-def pilkey_shoulder_bending(D: float, d: float, r: float) -> float:
-    """Peterson's chart 3.10 (shoulder fillet, bending) as Pilkey fits it, 2 <= h/r <= 20
-    (0.1 <= h/r < 2: the other fit)."""
+def _pilkey(D: float, d: float, r: float, coefficients) -> float:
+    """K_t = C1 + C2 x + C3 x^2 + C4 x^3, x = 2 h / D, each C_i = a + b sqrt(h/r) + c h/r
+    (Pilkey's fits of Peterson's shoulder-fillet charts); `coefficients(q)` gives the
+    (a, b, c) rows for h/r = q."""
     h = (D - d) / 2
     q = h / r
-    if q < 2:
-        c = (0.947 + 1.206 * math.sqrt(q) - 0.131 * q, 0.022 - 3.405 * math.sqrt(q) + 0.915 * q,
-             0.869 + 1.777 * math.sqrt(q) - 0.555 * q, -0.810 + 0.422 * math.sqrt(q) - 0.260 * q)
-    else:
-        c = (1.232 + 0.832 * math.sqrt(q) - 0.008 * q, -3.813 + 0.968 * math.sqrt(q) - 0.260 * q,
-             7.423 - 4.868 * math.sqrt(q) + 0.869 * q, -3.839 + 3.070 * math.sqrt(q) - 0.600 * q)
-    t = 2 * h / D
-    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+    c = [a + b * math.sqrt(q) + e * q for a, b, e in coefficients(q)]
+    x = 2 * h / D
+    return c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3
+
+
+def pilkey_shoulder_bending(D: float, d: float, r: float) -> float:
+    """Peterson's chart 3.10 (shoulder fillet, bending), 0.1 <= h/r < 2 and 2 <= h/r <= 20."""
+    return _pilkey(D, d, r, lambda q: (
+        ((0.947, 1.206, -0.131), (0.022, -3.405, 0.915), (0.869, 1.777, -0.555),
+         (-0.810, 0.422, -0.260)) if q < 2 else
+        ((1.232, 0.832, -0.008), (-3.813, 0.968, -0.260), (7.423, -4.868, 0.869),
+         (-3.839, 3.070, -0.600))))
 
 
 def pilkey_shoulder_tension(D: float, d: float, r: float) -> float:
-    """Peterson's chart 3.4 (shoulder fillet, tension), Pilkey's fits."""
-    h = (D - d) / 2
-    q = h / r
-    if q < 2:
-        c = (0.926 + 1.157 * math.sqrt(q) - 0.099 * q, 0.012 - 3.036 * math.sqrt(q) + 0.961 * q,
-             -0.302 + 3.977 * math.sqrt(q) - 1.744 * q, 0.365 - 2.098 * math.sqrt(q) + 0.878 * q)
-    else:
-        c = (1.200 + 0.860 * math.sqrt(q) - 0.022 * q, -1.805 - 0.346 * math.sqrt(q) - 0.038 * q,
-             2.198 - 0.486 * math.sqrt(q) + 0.165 * q, -0.593 - 0.028 * math.sqrt(q) - 0.106 * q)
-    t = 2 * h / D
-    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+    """Peterson's chart 3.4 (shoulder fillet, tension), 0.1 <= h/r < 2 and 2 <= h/r <= 20."""
+    return _pilkey(D, d, r, lambda q: (
+        ((0.926, 1.157, -0.099), (0.012, -3.036, 0.961), (-0.302, 3.977, -1.744),
+         (0.365, -2.098, 0.878)) if q < 2 else
+        ((1.200, 0.860, -0.022), (-1.805, -0.346, -0.038), (2.198, -0.486, 0.165),
+         (-0.593, -0.028, -0.106))))
 
 
 def pilkey_shoulder_torsion(D: float, d: float, r: float) -> float:
-    """Peterson's chart 3.12 (shoulder fillet, torsion), Pilkey's fit (0.25 <= h/r <= 4)."""
-    h = (D - d) / 2
-    q = h / r
-    c = (0.905 + 0.783 * math.sqrt(q) - 0.075 * q, -0.437 - 1.969 * math.sqrt(q) + 0.553 * q,
-         1.557 + 1.073 * math.sqrt(q) - 0.578 * q, -1.061 + 0.171 * math.sqrt(q) + 0.086 * q)
-    t = 2 * h / D
-    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+    """Peterson's chart 3.12 (shoulder fillet, torsion), 0.25 <= h/r <= 4."""
+    return _pilkey(D, d, r, lambda q: (
+        (0.905, 0.783, -0.075), (-0.437, -1.969, 0.553), (1.557, 1.073, -0.578),
+        (-1.061, 0.171, 0.086)))
+
+
+def _shoulder_case(D: float, d: float, r: float, load: str, chart) -> tuple:
+    """A shoulder's row of SHAPES: its geometry, load, notch diameter, window, K_t chart."""
+    return shoulder(D, d, r), load, d, (140, 160), chart(D, d, r)
 
 
 # name: (the scene's geometry, load, the notch's section diameter (mm), the notch window
 # (mm), Peterson's K_t by Pilkey's fit or None)
 SHAPES = {
-    "shoulder 48/32 r3, bending": (shoulder(48, 32, 3), "bending", 32, (140, 160),
-                                   pilkey_shoulder_bending(48, 32, 3)),
-    "shoulder 48/32 r3, tension": (shoulder(48, 32, 3), "tension", 32, (140, 160),
-                                   pilkey_shoulder_tension(48, 32, 3)),
-    "shoulder 48/32 r3, torsion": (shoulder(48, 32, 3), "torsion", 32, (140, 160),
-                                   pilkey_shoulder_torsion(48, 32, 3)),
-    "shoulder 40/32 r1.6, bending": (shoulder(40, 32, 1.6), "bending", 32, (140, 160),
-                                     pilkey_shoulder_bending(40, 32, 1.6)),
-    "shoulder 40/32 r1.6, torsion": (shoulder(40, 32, 1.6), "torsion", 32, (140, 160),
-                                     pilkey_shoulder_torsion(40, 32, 1.6)),
-    "shoulder 64/32 r5, bending": (shoulder(64, 32, 5), "bending", 32, (140, 160),
-                                   pilkey_shoulder_bending(64, 32, 5)),
-    "shoulder 64/32 r5, tension": (shoulder(64, 32, 5), "tension", 32, (140, 160),
-                                   pilkey_shoulder_tension(64, 32, 5)),
+    "shoulder 48/32 r3, bending": _shoulder_case(48, 32, 3, "bending", pilkey_shoulder_bending),
+    "shoulder 48/32 r3, tension": _shoulder_case(48, 32, 3, "tension", pilkey_shoulder_tension),
+    "shoulder 48/32 r3, torsion": _shoulder_case(48, 32, 3, "torsion", pilkey_shoulder_torsion),
+    "shoulder 40/32 r1.6, bending": _shoulder_case(40, 32, 1.6, "bending",
+                                                   pilkey_shoulder_bending),
+    "shoulder 40/32 r1.6, torsion": _shoulder_case(40, 32, 1.6, "torsion",
+                                                   pilkey_shoulder_torsion),
+    "shoulder 64/32 r5, bending": _shoulder_case(64, 32, 5, "bending", pilkey_shoulder_bending),
+    "shoulder 64/32 r5, tension": _shoulder_case(64, 32, 5, "tension", pilkey_shoulder_tension),
     "relief groove 40/32 r4, bending": (relief(40, 32, 4), "bending", 32, (140, 160), None),
     "keyway 10x5 r1, bending": (keyed(32, 40, 10, 5, 1.0), "bending", 32, (125, 175), None),
     "keyway 10x5 r1, torsion": (keyed(32, 40, 10, 5, 1.0), "torsion", 32, (125, 175), None),

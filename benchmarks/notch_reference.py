@@ -30,7 +30,6 @@ import math
 import sys
 
 import numpy as np
-import scipy.sparse as sp
 from netgen.occ import OCCGeometry
 from ngsolve import (
     CF,
@@ -53,12 +52,9 @@ from ngsolve import (
 )
 from ngsolve import Grad as grad
 
+from ngsolve_reference import csr  # NGSolve's matrix as SciPy's
+
 POINTS_PER_SIDE = 10   # a triangle's sample grid: (n + 1)(n + 2) / 2 points
-
-
-def csr(mat) -> sp.csr_matrix:
-    r, c, v = mat.COO()
-    return sp.csr_matrix((np.array(v), (np.array(r), np.array(c))), shape=(mat.height, mat.width))
 
 
 def solid(step: str, window: tuple[float, float], notch_h: float, h: float):

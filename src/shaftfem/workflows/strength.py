@@ -451,23 +451,23 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         bound = None if difference is None else max(
             difference, CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2)
         converging = True
+        turn = _edge_turn(fine, i)
         old = _same_spot(before or [], fine, i, round_)
+        was = 0.0 if old is None else (old.amplitude if cyclic else old.peak)
         if old is not None and old.difference is not None:
             # P2 stresses at a smooth notch converge as h^2: refined s times, the change
             # shrinks s^2 times; at a sharp edge the stress grows as h^-0.46 (a
             # right-angled re-entrant corner, Williams), the change shrinking by less
             # than s: rising with an apparent order below 1 is a sharp edge ...
-            was = old.amplitude if cyclic else old.peak
             change, before_change = value[i] - was, old.difference * was
             s_ = max(old.size / max(float(fine.edge[i]), 1e-12), 1.0)
             rising = change > 0 and difference is not None and change > before_change / s_
             # ... where the surface turns sharply within an element of the spot (a notch
             # not yet resolved turns as much, but refines on into a smooth one)
-            converging = old.converging and not (rising and _edge_turn(fine, i) > SHARP)
+            converging = old.converging and not (rising and turn > SHARP)
         if old is not None and bound is None and old.bound is not None and value[i] > 0:
             # the mesh here is as before (this round refined elsewhere): the truth lies
             # within the old bound of the old value, so within this of the new one
-            was = old.amplitude if cyclic else old.peak
             bound = float((abs(value[i] - was) + old.bound * was) / value[i])
         gradient = _gradient(fine, i, turning)
         diameter = 2 * _outer_radius(fine, p[2])
@@ -481,7 +481,7 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                              converging=converging,
                              gradient=gradient, diameter=diameter, fkm=fkm,
                              size=float(fine.edge[i]),
-                             resolved=_edge_turn(fine, i) <= RESOLVED))
+                             resolved=turn <= RESOLVED))
     spots.sort(key=lambda s: -_utilisation(s))
     return spots
 
