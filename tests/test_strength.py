@@ -136,6 +136,29 @@ def test_fkm_factors_are_the_guidelines_formulas():
     assert a.yield_utilisation == pytest.approx(200 * 2.0 * 1.5 / rp, rel=1e-9)
 
 
+def test_fkm_reproduces_a_published_worked_example():
+    """IMA Dresden's FKM guideline training example (chapter 4, local stresses): a
+    150 mm steel shaft, R_m 473 MPa, R_z 25 um, G = 0.172 / mm (Stieler), sigma_a
+    94.7 MPa, sigma_m 5.2 MPa. Its published results, as transcribed in pyLife's test
+    data (boschresearch/pylife, tests/strength/fkm_linear/, example_IMA_FKM_training):
+    sigma_W,zd 213, K_R 0.885, n 1.088, K_WK 0.979, sigma_WK 218 (rounded), K_AK 0.996,
+    sigma_AK 216 MPa."""
+    from shaftfem.checks.fkm import assess
+    from shaftfem.scene.model import Strength
+
+    # R_m is the component's own (the blank is the shaft: no size factor)
+    st = Strength(speed=10.0, tensile_strength=473e6, yield_strength=300e6,
+                  strength_diameter=0.150, roughness=25e-6, fatigue_safety=1.0,
+                  yield_safety=1.0, peak_factor=1.0, target_error=0.02)
+    a = assess(94.7e6, 5.2e6, 99.9e6, 0.172e3, 0.150, st)
+    assert round(a.reversed_strength) == 213
+    assert round(a.roughness, 3) == 0.885 and round(a.support, 3) == 1.088
+    assert round(a.design, 3) == 0.979 and round(a.mean_stress, 3) == 0.996
+    assert abs(a.reversed_strength / a.design - 218) < 1.0     # 217.4 unrounded
+    assert abs(a.amplitude_strength - 216) < 1.0      # 216.6 unrounded
+    assert a.fatigue_utilisation == pytest.approx(94.7 / 216.6, rel=1e-3)
+
+
 @pytest.mark.parametrize("tables, says", [
     (dict(torque=[{"position_mm": 60.0, "torque_nm": 100.0},
                   {"position_mm": 340.0, "torque_nm": -90.0}], strength={}),
