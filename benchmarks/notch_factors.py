@@ -26,6 +26,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 import _common  # noqa: E402, F401  (one BLAS thread, as the CLI)
+from shaftfem.checks.notch_tables import shoulder_fillet  # noqa: E402
 
 HERE = Path(__file__).parent
 NGSOLVE = HERE.parent / ".venv-ngsolve" / "bin" / "python"
@@ -94,40 +95,14 @@ def keyed(d: float, length: float, width: float, depth: float, corner: float) ->
                      "edge_element_size_mm": max(corner, 0.5)}}
 
 
-def _pilkey(D: float, d: float, r: float, coefficients) -> float:
-    """K_t = C1 + C2 x + C3 x^2 + C4 x^3, x = 2 h / D, each C_i = a + b sqrt(h/r) + c h/r
-    (Pilkey's fits of Peterson's shoulder-fillet charts); `coefficients(q)` gives the
-    (a, b, c) rows for h/r = q."""
-    h = (D - d) / 2
-    q = h / r
-    c = [a + b * math.sqrt(q) + e * q for a, b, e in coefficients(q)]
-    x = 2 * h / D
-    return c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3
+def _chart(load: str):
+    """Peterson's shoulder-fillet K_t under `load` (shaftfem.checks.notch_tables)."""
+    return lambda D, d, r: shoulder_fillet(D, d, r, load)
 
 
-def pilkey_shoulder_bending(D: float, d: float, r: float) -> float:
-    """Peterson's chart 3.10 (shoulder fillet, bending), 0.1 <= h/r < 2 and 2 <= h/r <= 20."""
-    return _pilkey(D, d, r, lambda q: (
-        ((0.947, 1.206, -0.131), (0.022, -3.405, 0.915), (0.869, 1.777, -0.555),
-         (-0.810, 0.422, -0.260)) if q < 2 else
-        ((1.232, 0.832, -0.008), (-3.813, 0.968, -0.260), (7.423, -4.868, 0.869),
-         (-3.839, 3.070, -0.600))))
-
-
-def pilkey_shoulder_tension(D: float, d: float, r: float) -> float:
-    """Peterson's chart 3.4 (shoulder fillet, tension), 0.1 <= h/r < 2 and 2 <= h/r <= 20."""
-    return _pilkey(D, d, r, lambda q: (
-        ((0.926, 1.157, -0.099), (0.012, -3.036, 0.961), (-0.302, 3.977, -1.744),
-         (0.365, -2.098, 0.878)) if q < 2 else
-        ((1.200, 0.860, -0.022), (-1.805, -0.346, -0.038), (2.198, -0.486, 0.165),
-         (-0.593, -0.028, -0.106))))
-
-
-def pilkey_shoulder_torsion(D: float, d: float, r: float) -> float:
-    """Peterson's chart 3.12 (shoulder fillet, torsion), 0.25 <= h/r <= 4."""
-    return _pilkey(D, d, r, lambda q: (
-        (0.905, 0.783, -0.075), (-0.437, -1.969, 0.553), (1.557, 1.073, -0.578),
-        (-1.061, 0.171, 0.086)))
+pilkey_shoulder_bending = _chart("bending")
+pilkey_shoulder_tension = _chart("tension")
+pilkey_shoulder_torsion = _chart("torsion")
 
 
 def _shoulder_case(D: float, d: float, r: float, load: str, chart) -> tuple:

@@ -1118,6 +1118,9 @@ def strength_text(result) -> str:
                      f"{_safety(f.yield_safety):>6s} {f.yield_utilisation:5.2f}")
     if not result.spots:
         lines.append("   none: every surface point lies where a load or reaction enters")
+    notched = _notch_factor_lines(result)
+    if notched:
+        lines += ["", *notched]
     lines += ["", "S_fat, S_yld: safety against fatigue (FKM, infinite life) and yield; a_BK, "
               "a_SK: degree of utilisation with the required safety (<= 1 passes)", "",
               f"{'seat or part':24s} {'at':>9s} {'slope':>10s} {'limit':>10s} "
@@ -1150,6 +1153,24 @@ def _strength_verdict(result) -> str:
     return line
 
 
+def _notch_factor_lines(result) -> list[str]:
+    """The hot spots on shoulder fillets with their K_t beside the table's, a line each."""
+    from shaftfem.checks.notch_tables import SOURCE
+
+    rows = [f"{k:2d} {s.feature}, {f[0].large * 1e3:g}/{f[0].small * 1e3:g} mm, r "
+            f"{f[0].radius * 1e3:g} mm: " + ", ".join(
+                f"{n.load} {n.computed:.2f} ("
+                + ("outside the chart" if n.table is None else f"chart {n.table:.2f}") + ")"
+                for n in f)
+            for k, s in enumerate(result.spots, 1) if (f := s.factors)]
+    if not rows:
+        return []
+    return [f"stress concentration at shoulder fillets: K_t from the solid (largest principal "
+            f"stress, in torsion largest shear, over the nominal stress of the smaller "
+            f"diameter from what the section carries) beside {SOURCE}, which holds "
+            "for each load alone, far from seats and loads:", *rows]
+
+
 def _safety(value: float) -> str:
     return ">99" if value > 99 else f"{value:.2f}"
 
@@ -1176,6 +1197,9 @@ def strength_markdown(result) -> list[str]:
     lines += markdown(["#", "hot spot", "z (mm)", "angle (deg)", "amplitude (MPa)",
                        "mean (MPa)", "peak (MPa)", "bound", "G (1/mm)", "fatigue safety",
                        "a_BK", "yield safety", "a_SK"], rows) + [""]
+    notched = _notch_factor_lines(result)
+    if notched:
+        lines += [notched[0], "", *(f"- {r.strip()}" for r in notched[1:]), ""]
     rows = [[c.name, f"{c.position * 1e3:.1f}", f"{c.slope * 1e3:.3f}",
              "-" if c.slope_limit is None else f"{c.slope_limit * 1e3:.2f}",
              f"{c.deflection * 1e6:.2f}",

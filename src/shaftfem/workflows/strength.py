@@ -68,6 +68,25 @@ SHARE = 0.3
 # judged
 SLOPE_LIMITS = {"ball": 1.0e-3, "roller": 0.8e-3, "springs": 1.0e-3, "bearing": 1.0e-3}
 SLOPE_SOURCE = "Shigley, table 7-2"
+# a notch's K_t under a load is given where that load's nominal stress is at least this
+# share of the spot's peak (below it the ratio says little), beside the table's
+NOMINAL = 0.05
+_TURN = np.linspace(0.0, 2 * np.pi, 72, endpoint=False)
+
+
+@dataclass(frozen=True)
+class NotchFactor:
+    """A notch's stress concentration under one load ("bending", "torsion", "tension"):
+    K_t from the solid (largest principal stress, or largest shear in torsion, at the
+    spot over the nominal stress of the notch's smaller section, from what that section
+    carries) beside the table's (None outside its range), and the notch's size (m)."""
+
+    load: str
+    computed: float
+    table: float | None
+    large: float
+    small: float
+    radius: float
 
 
 @dataclass(frozen=True)
@@ -95,6 +114,8 @@ class HotSpot:
     # the two meshes' difference alone (fraction; None when not known): the bound is it
     # or the notch's curvature term, whichever is larger
     difference: float | None = None
+    # at a shoulder fillet the tables cover: its K_t under each load it carries
+    factors: tuple[NotchFactor, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -162,6 +183,8 @@ class StrengthResult:
 
     def as_dict(self) -> dict:
         """The JSON of `shaftfem strength`."""
+        from shaftfem.checks.notch_tables import SOURCE
+
         st = self.scene.strength
         assert st is not None
         return {
@@ -181,6 +204,11 @@ class StrengthResult:
                 "converging": s.converging, "resolved": s.resolved,
                 "gradient_per_mm": s.gradient * 1e-3,
                 "diameter_mm": s.diameter * 1e3,
+                "stress_concentration": [{
+                    "load": k.load, "kt": k.computed, "kt_table": k.table,
+                    "table": SOURCE, "large_diameter_mm": k.large * 1e3,
+                    "small_diameter_mm": k.small * 1e3, "fillet_radius_mm": k.radius * 1e3}
+                    for k in s.factors],
                 "fkm": {k: float(v) for k, v in vars(s.fkm).items()}} for s in self.spots],
             "seats": [{"name": c.name, "position_mm": c.position * 1e3,
                        "slope_mrad": c.slope * 1e3, "deflection_um": c.deflection * 1e6,
@@ -481,7 +509,8 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                              converging=converging,
                              gradient=gradient, diameter=diameter, fkm=fkm,
                              size=float(fine.edge[i]),
-                             resolved=turn <= RESOLVED))
+                             resolved=turn <= RESOLVED,
+                             factors=_notch_factors(scene, fine, i, diameter / 2)))
     spots.sort(key=lambda s: -_utilisation(s))
     return spots
 
@@ -610,11 +639,66 @@ def _feature(scene: Scene, p: np.ndarray, outer: float) -> str:
         if k.start - 1e-3 <= z <= k.start + k.length + 1e-3 and below > 0.05 * k.depth:
             end = min(abs(z - k.start), abs(z - k.start - k.length)) < k.width
             return "keyway end" if end else "keyway"
-    bounds = scene.shaft.section_bounds() if scene.shaft.profile else []
-    for _, z1 in bounds[:-1]:
-        if abs(z - z1) < 0.25 * outer:
-            return f"shoulder at {z1 * 1e3:g} mm"
+    step = _shoulder(scene, z, outer)
+    if step is not None:
+        return f"shoulder at {scene.shaft.section_bounds()[step][1] * 1e3:g} mm"
     return "plain surface"
+
+
+def _shoulder(scene: Scene, z: float, outer: float) -> int | None:
+    """The step (the index of the section it ends) within a quarter of the local radius
+    of z, or None."""
+    bounds = scene.shaft.section_bounds() if scene.shaft.profile else []
+    for k, (_, z1) in enumerate(bounds[:-1]):
+        if abs(z - z1) < 0.25 * outer:
+            return k
+    return None
+
+
+def _notch_factors(scene: Scene, field: _Field, i: int, outer: float
+                   ) -> tuple[NotchFactor, ...]:
+    """At a hot spot on a shoulder fillet of a solid shaft (no bore, no keyway or groove
+    there), K_t under each load its section carries (a nominal stress at least NOMINAL of
+    the spot's peak), beside Peterson's: bending from the rotating cases' largest
+    principal stress over the turn, torsion from the torque's largest shear, tension from
+    the axial case's largest principal; each over the nominal stress of the smaller
+    diameter d from what the section through the spot carries."""
+    from shaftfem.checks.notch_tables import shoulder_fillet
+    from shaftfem.fem.section import resultants
+
+    p = field.points[i]
+    k = _shoulder(scene, float(p[2]), outer)
+    prof = scene.shaft.profile
+    if k is None or _feature(scene, p, outer) != (
+            f"shoulder at {scene.shaft.section_bounds()[k][1] * 1e3:g} mm"):
+        return ()
+    a, b = prof[k], prof[k + 1]
+    if a.bore or b.bore or a.conical or b.conical or a.diameter_end == b.diameter_start:
+        return ()
+    D, d = max(a.diameter_end, b.diameter_start), min(a.diameter_end, b.diameter_start)
+    r = a.fillet
+    if r <= 0:
+        return ()
+    carried = resultants(field.p1_basis, field.all_stress, float(p[2]),
+                         float(np.hypot(p[0], p[1])))
+    if carried is None:
+        return ()
+    A, B, T, Z = field.stress[:, i]
+    c, s = np.cos(_TURN), np.sin(_TURN)
+    moment = np.hypot(c * carried[0, 1] - s * carried[1, 1], c * carried[0, 2] - s * carried[1, 2])
+    out = []
+    nominal = {"bending": 32 * float(moment.max()) / (math.pi * d**3),
+               "torsion": 16 * abs(float(carried[2, 3])) / (math.pi * d**3),
+               "tension": 4 * abs(float(carried[3, 0])) / (math.pi * d**2)}
+    local = {"bending": max(float(np.linalg.eigvalsh(ci * A - si * B)[-1])
+                            for ci, si in zip(c, s)),
+             "torsion": float(np.ptp(np.linalg.eigvalsh(T))) / 2,
+             "tension": float(np.abs(np.linalg.eigvalsh(Z)).max())}
+    for load in ("bending", "torsion", "tension"):
+        if nominal[load] >= NOMINAL * float(field.peak[i]) and nominal[load] > 0:
+            out.append(NotchFactor(load, local[load] / nominal[load],
+                                   shoulder_fillet(D, d, r, load), D, d, r))
+    return tuple(out)
 
 
 def _seats(scene: Scene, field: _Field) -> tuple[SeatCheck, ...]:
