@@ -96,7 +96,7 @@ def test_what_a_section_carries_is_the_beams_moment_torque_and_axial_force(field
 
     scene, f = field
     for z in (0.100, 0.280):
-        c = resultants(f.p1_basis, f.all_stress, z, D / 2)
+        c = resultants(f.read, f.all_stress, z, D / 2)
         moment = 1000.0 * (z - 0.010 if z < 0.2 else 0.390 - z)
         # case A is the standing load (fy -2000 N), case B the same turned a right angle
         assert math.hypot(c[0, 1], c[0, 2]) == pytest.approx(moment, rel=5e-3)
@@ -112,7 +112,8 @@ def test_strength_finds_the_bending_peak_beside_the_load_and_the_seat_slope(tmp_
     out, path = tmp_path / "s.json", tmp_path / "bar.toml"
     load_scene(bar(**DUTY)).to_toml(path)
     run = subprocess.run([sys.executable, "-m", "shaftfem", "strength", str(path), "--json",
-                          str(out), "-q"], capture_output=True, text=True, timeout=600)
+                          str(out), "-q", "--out", str(tmp_path / "files")],
+                         capture_output=True, text=True, timeout=600)
     data = json.loads(out.read_text())
     # the right seat turns by F L^2 / (16 E I) = 1.67 mrad, over the 1 mrad a ball takes:
     # the check fails, exit 1
@@ -125,6 +126,55 @@ def test_strength_finds_the_bending_peak_beside_the_load_and_the_seat_slope(tmp_
     worst = data["hot_spots"][0]
     assert abs(worst["z_mm"] - 200.0) < 20.0, worst
     assert worst["feature"] == "plain surface" and worst["converging"], worst
+    # strength.vtp for ParaView: the surface's amplitude against the beam's M / W, the
+    # utilisation NaN in the seats' and the load's bands, the worst spot's as judged
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(str(tmp_path / "files" / "strength.vtp"))
+    reader.Update()
+    surface = reader.GetOutput()
+    points = vtk_to_numpy(surface.GetPoints().GetData())
+    arrays = {name: vtk_to_numpy(surface.GetPointData().GetArray(name)) for name in (
+        "amplitude_MPa", "fatigue_utilisation_a_BK", "yield_utilisation_a_SK")}
+    r = np.hypot(points[:, 0], points[:, 1])
+    ring = (np.abs(points[:, 2] - 0.100) < 1e-3) & (r > 0.999 * D / 2)
+    moment = 1000.0 * (points[ring, 2] - 0.010)
+    assert np.allclose(arrays["amplitude_MPa"][ring], moment / (math.pi * D**3 / 32) / 1e6,
+                       rtol=0.02)
+    assert np.isnan(arrays["fatigue_utilisation_a_BK"][np.abs(points[:, 2] - 0.010) < 5e-3]).all()
+    spot = np.argmin(np.linalg.norm(points - [worst["radius_mm"] * 1e-3 * math.cos(
+        math.radians(worst["angle_deg"])), worst["radius_mm"] * 1e-3 * math.sin(
+        math.radians(worst["angle_deg"])), worst["z_mm"] * 1e-3], axis=1))
+    assert arrays["fatigue_utilisation_a_BK"][spot] == pytest.approx(
+        worst["fkm"]["fatigue_utilisation"], rel=1e-6)
+    assert surface.GetNumberOfCells() > 1000
+
+
+def test_design_reports_the_strength_beside_the_modes(tmp_path):
+    """`design` of a scene with a duty: the strength verdict at the top of both reports
+    (the bar's seat slope fails: exit 1), the section with its tables, strength.vtp and
+    strength.json among the published files."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "bar.toml"
+    load_scene(bar(**DUTY)).to_toml(path)
+    out = tmp_path / "design"
+    run = subprocess.run([sys.executable, "-m", "shaftfem", "design", str(path), "--out",
+                          str(out), "-q", "--no-estimate"], capture_output=True, text=True,
+                         timeout=900)
+    assert run.returncode == 1, run.stdout[-2000:] + run.stderr[-2000:]
+    md, page = (out / "report.md").read_text(), (out / "report.html").read_text()
+    top = md.split("## Shaft")[0]
+    assert "**STRENGTH: FAIL** - fatigue ok, yield ok, deflection FAILS" in top
+    assert "STRENGTH: FAIL - fatigue ok, yield ok, deflection FAILS" in page.split(
+        "Mode shapes")[0]
+    assert '<section id="strength">' in page and "EXCEEDED" in page
+    manifest = json.loads((out / "design.manifest.json").read_text())
+    assert {"strength.vtp", "strength.json", "hot_spots.png"} <= set(manifest["files"])
+    json.loads((out / "strength.json").read_text())      # valid JSON, no Infinity
 
 
 def test_fkm_factors_are_the_guidelines_formulas():

@@ -66,35 +66,55 @@ def assess(amplitude: float, mean: float, peak: float, gradient: float, diameter
            strength: Strength) -> PointAssessment:
     """FKM at a point with the equivalent stress amplitude, signed mean and peak (Pa),
     the relative stress gradient G (1/m) and the shaft's diameter there (m)."""
+    def one(v: float) -> np.ndarray:
+        return np.array([v], dtype=float)
+
+    many = assess_many(one(amplitude), one(mean), one(peak), one(gradient), one(diameter),
+                       strength)
+    return PointAssessment(**{k: float(v[0]) for k, v in many.items()})
+
+
+def assess_many(amplitude: np.ndarray, mean: np.ndarray, peak: np.ndarray,
+                gradient: np.ndarray, diameter: np.ndarray,
+                strength: Strength) -> dict[str, np.ndarray]:
+    """FKM at many points at once (arrays as `assess` takes them, one value a point):
+    PointAssessment's fields by name, an array each."""
     F, c = _pylife(strength.fkm_group)
-    d_mm = diameter * 1e3
+    n_points = len(amplitude)
     blank = strength.strength_diameter * 1e3
     a_dm, a_dp = strength.size_exponents
-    rm = strength.tensile_strength / MPA * size_factor(d_mm, blank, a_dm)
-    rp = strength.yield_strength / MPA * size_factor(d_mm, blank, a_dp)
+    d_mm = np.asarray(diameter, dtype=float) * 1e3
+    rm = strength.tensile_strength / MPA * np.array([size_factor(d, blank, a_dm) for d in d_mm])
+    rp = strength.yield_strength / MPA * np.array([size_factor(d, blank, a_dp) for d in d_mm])
 
-    def one(f, *args):
-        return float(f(*(np.array([a], dtype=object if isinstance(a, str) else float)
-                         for a in args))[0])
+    def each(value) -> np.ndarray:
+        return np.full(n_points, value, dtype=object if isinstance(value, str) else float)
 
-    sw = one(F.reversed_mat_strength_chap4, rm, 1.0, c["fw_s"])
-    n = one(F.stieler_support, 1.0, c["aG"], c["bG"], gradient * 1e-3, rm)
-    kr = one(F.rough_factor, rm, strength.roughness * 1e6, 1.0, c["aR_s"], c["RmNmin"], "None")
-    kf = one(F.kf_constant, strength.fkm_group)
-    kwk = one(F.design_factor, n, kf, kr, 1.0, 1.0, 1.0)
-    m = one(F.sm_sensitivity_chap4, rm, c["a_M"], c["b_M"], 1.0)
-    sa, sm = amplitude / MPA, mean / MPA
-    if sa > 0:
-        r = (sm - sa) / (sm + sa) if sm + sa != 0 else -np.inf
-        kak = one(F.sm_factor, r if np.isfinite(r) else 2.0, m, sm / sa)
-    else:
-        kak = 1.0
+    sw = F.reversed_mat_strength_chap4(rm, each(1.0), each(c["fw_s"]))
+    n = F.stieler_support(each(1.0), each(c["aG"]), each(c["bG"]),
+                          np.asarray(gradient, dtype=float) * 1e-3, rm)
+    kr = F.rough_factor(rm, each(strength.roughness * 1e6), each(1.0), each(c["aR_s"]),
+                        each(c["RmNmin"]), each("None"))
+    kf = F.kf_constant(each(strength.fkm_group))
+    kwk = F.design_factor(n, kf, kr, each(1.0), each(1.0), each(1.0))
+    m = F.sm_sensitivity_chap4(rm, each(c["a_M"]), each(c["b_M"]), each(1.0))
+    sa, sm = np.asarray(amplitude, float) / MPA, np.asarray(mean, float) / MPA
+    cycling = sa > 0
+    kak = np.ones(n_points)
+    if cycling.any():
+        sa_, sm_ = sa[cycling], sm[cycling]
+        total = sm_ + sa_
+        r = np.where(total != 0, (sm_ - sa_) / np.where(total != 0, total, 1.0), 2.0)
+        kak[cycling] = F.sm_factor(r, np.asarray(m, float)[cycling], sm_ / sa_)
+    sw, n, kr, kf, kwk, m = (np.asarray(v, dtype=float) for v in (sw, n, kr, kf, kwk, m))
     sak = kak * sw / kwk
-    a_bk = sa * strength.fatigue_safety / sak
-    a_sk = peak / MPA * strength.peak_factor * strength.yield_safety / rp
-    return PointAssessment(
-        tensile_strength=rm, yield_strength=rp, reversed_strength=sw, support=n,
-        roughness=kr, notch_estimate=kf, design=kwk, mean_sensitivity=m, mean_stress=kak,
-        amplitude_strength=sak, fatigue_utilisation=a_bk,
-        fatigue_safety=sak / sa if sa > 0 else np.inf, yield_utilisation=a_sk,
-        yield_safety=rp / (peak / MPA * strength.peak_factor) if peak > 0 else np.inf)
+    sp = np.asarray(peak, float) / MPA * strength.peak_factor
+    with np.errstate(divide="ignore"):
+        return dict(
+            tensile_strength=rm, yield_strength=rp, reversed_strength=sw, support=n,
+            roughness=kr, notch_estimate=kf, design=kwk, mean_sensitivity=m,
+            mean_stress=kak, amplitude_strength=sak,
+            fatigue_utilisation=sa * strength.fatigue_safety / sak,
+            fatigue_safety=np.where(cycling, sak / np.where(cycling, sa, 1.0), np.inf),
+            yield_utilisation=sp * strength.yield_safety / rp,
+            yield_safety=np.where(sp > 0, rp / np.where(sp > 0, sp, 1.0), np.inf))

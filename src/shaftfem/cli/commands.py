@@ -308,6 +308,15 @@ def cmd_strength(args) -> int:
 
     result = run_strength(_scene(args), _options(args))
     print(strength_text(result))
+    if args.out:
+        from shaftfem.outputs.export import write_strength_files
+        from shaftfem.outputs.plots import hot_spots_figure, save_png
+        from shaftfem.store import staged_directory
+
+        with staged_directory(args.out, "strength.manifest.json") as stage:
+            names = [p.name for p in write_strength_files(result, stage)]
+            names.append(save_png(hot_spots_figure(result), stage / "hot_spots.png").name)
+        print(f"wrote {', '.join(names)} in {args.out}")
     if args.json:
         _write_json(args.json, {"scene": result.scene.name, **result.as_dict()})
     return 0 if result.ok else EXIT_CHECK_FAILED

@@ -223,7 +223,9 @@ def build_parser() -> argparse.ArgumentParser:
     _modal_command(sub, "strength", "will the shaft hold: its duty ([[force]], [[torque]], "
                    "gravity) on the solid, the hot spots with their bounds, fatigue and yield "
                    "by the FKM guideline, slopes and deflections at the seats ([strength]); "
-                   "exit 1 when a check fails", cmd.cmd_strength)
+                   "exit 1 when a check fails; strength.vtp (the stresses and FKM's "
+                   "utilisation on the surface, for ParaView), hot_spots.png and "
+                   "strength.json in --out", cmd.cmd_strength, out="optional")
     _modal_command(sub, "paper", "the paper's Table 2 and stated sizing beside ours",
                    cmd.cmd_paper, json=False)
     sw = _dask_command(sub, "sweep", "run many variants of a scene on Dask (resumable)",

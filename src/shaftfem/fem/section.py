@@ -8,9 +8,11 @@ a notch's too), for the nominal stresses a notch factor is measured against.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
 
 import numpy as np
+
+from shaftfem.fem.probe import Probe
 
 # Gauss-Legendre points across the radius (never on the surface, where a point may lie
 # a hair outside the straight-sided mesh) and even steps round the circle (exact for
@@ -19,21 +21,21 @@ RINGS = 12
 SPOKES = 72
 
 
-def resultants(basis: Any, stress: np.ndarray, z: float, radius: float) -> np.ndarray | None:
+def resultants(read: Callable[[np.ndarray], Probe], stress: np.ndarray, z: float,
+               radius: float) -> np.ndarray | None:
     """(cases, 4): N (N), M_x, M_y, T (N m) of each case's stress field (cases, N, 3, 3)
-    at the vertices of `basis` (a scikit-fem P1 basis), through the disc of `radius`
-    (m) at z; None where the disc leaves the solid."""
+    at the mesh's vertices, read at points (k, 3) by `read` (shaftfem.fem.probe), through
+    the disc of `radius` (m) at z; None where the disc leaves the solid."""
     t, w = np.polynomial.legendre.leggauss(RINGS)
     r = 0.5 * radius * (t + 1)
     theta = np.linspace(0.0, 2 * np.pi, SPOKES, endpoint=False)
     R, TH = np.meshgrid(r, theta, indexing="ij")
     weight = (0.5 * radius * w)[:, None] * R * (2 * np.pi / SPOKES)     # r dr dtheta
     x, y = (R * np.cos(TH)).ravel(), (R * np.sin(TH)).ravel()
-    points = np.vstack([x, y, np.full(x.size, z)])
-    try:
-        P = basis.probes(points)
-    except (ValueError, IndexError):
+    at = read(np.column_stack([x, y, np.full(x.size, z)]))
+    if not at.found.all():
         return None
+    P = at.matrix
     cases = stress.shape[0]
     flat = np.moveaxis(stress, 0, 1).reshape(stress.shape[1], cases * 9)
     s = np.asarray(P @ flat).reshape(-1, cases, 3, 3)

@@ -215,3 +215,21 @@ def msh_cells(mesh) -> np.ndarray:
 
         return in_node_order(mesh.points, mesh.cells, GMSH_NODES)
     return mesh.cells
+
+
+def write_strength_files(result, folder: Path) -> list[Path]:
+    """strength.vtp (the shaft's surface under its duty: the equivalent stress amplitude,
+    signed mean and peak in MPa, the relative stress gradient in 1/mm, FKM's degrees of
+    utilisation a_BK and a_SK, NaN where a load or reaction enters) and strength.json,
+    for a workflows.strength.StrengthResult."""
+    from shaftfem.outputs.vtk import write_vtp
+    from shaftfem.store import write_text
+
+    s = result.surface
+    files = [write_vtp(folder / "strength.vtp", s.points, s.facets, {
+        "amplitude_MPa": s.amplitude / 1e6, "mean_MPa": s.mean / 1e6, "peak_MPa": s.peak / 1e6,
+        "stress_gradient_per_mm": s.gradient * 1e-3,
+        "fatigue_utilisation_a_BK": s.fatigue_utilisation,
+        "yield_utilisation_a_SK": s.yield_utilisation})]
+    files.append(write_text(folder / "strength.json", json_text(result.as_dict())))
+    return files

@@ -349,8 +349,9 @@ def hot_spots_figure(result):
     loads enter shaded (a workflows.strength.StrengthResult)."""
     import numpy as np
 
-    points, values = result.surface
     scene = result.scene
+    points = result.surface.points
+    values = result.surface.amplitude if scene.strength.speed > 0 else result.surface.peak
     fig, ax = _figure((9, 3.8))
     r = np.hypot(points[:, 0], points[:, 1])
     order = np.argsort(r)        # the outer surface drawn over the groove floors

@@ -104,6 +104,28 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
     return "\n".join(parts)
 
 
+def _strength(result, pictures: Sequence[Path]) -> str:
+    """The strength section: its verdict, the hot spots (their K_t beside the tables'),
+    the picture that numbers them, the seats."""
+    by_name = {Path(p).name: Path(p) for p in pictures}
+    notched = tables.notch_factor_lines(result)
+    parts = ['<section id="strength"><h2>Strength under the duty (FKM, local stresses)</h2>',
+             f'<p class="verdict {"pass" if result.ok else "fail"}">'
+             f"{html.escape(tables.strength_verdict(result))}</p>",
+             _paragraphs([tables.strength_intro(result)]),
+             _table(tables.strength_spot_rows(result), ("hot spot",))]
+    if notched:
+        parts += [_paragraphs(notched[:1]), "<ul>" + "".join(
+            f"<li>{html.escape(r.strip())}</li>" for r in notched[1:]) + "</ul>"]
+    if "hot_spots.png" in by_name:
+        parts.append(_picture(by_name["hot_spots.png"]))
+    parts += ["<h3>Slopes and deflections</h3>",
+              _table(tables.strength_seat_rows(result), ("seat or part", "limit's source", "")),
+              _paragraphs(["The stresses and FKM's utilisation on the whole surface: "
+                           "strength.vtp (ParaView)."]), "</section>"]
+    return "\n".join(parts)
+
+
 def _verdict(verdict: ResonanceVerdict | None) -> str:
     lines = tables.verdict_lines(verdict)
     cls = "none" if verdict is None else "pass" if verdict.ok else "fail"
@@ -139,16 +161,23 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
                 sizing: SizingResult | None = None, pictures: Sequence[Path] = (),
                 estimate: ErrorEstimate | None = None, free: Modes | HangingModes | None = None,
                 participation: Participation | None = None, rotor: RotorStudy | None = None,
-                drawing: Drawing | None = None, wall_seconds: float | None = None) -> str:
+                drawing: Drawing | None = None, wall_seconds: float | None = None,
+                strength=None) -> str:
     """report.html's text: the vtk.js viewer page with the report around its view
     (`rotor`: the rotordynamic study, for a shaft with [rotor]; `drawing`: the modes'
-    drawing the pictures were made from, where there is one)."""
+    drawing the pictures were made from, where there is one; `strength`: the shaft under
+    its duty, for a scene with [strength])."""
     from shaftfem.outputs.report import STUDY_PICTURES, shaft_facts, title_rows
     from shaftfem.outputs.web_scene import viewer_html
 
     scene = result.scene
     parts = [f"<h1>Modal design report: {html.escape(scene.name)}</h1>",
              _table(title_rows(scene, wall_seconds), ("title block", "")), _verdict(verdict),
+             "" if strength is None else
+             f'<p class="verdict {"pass" if strength.ok else "fail"}">STRENGTH: '
+             f'{"PASS" if strength.ok else "FAIL"} - '
+             f"{html.escape(tables.strength_verdict(strength))} "
+             '(<a href="#strength">Strength</a> below)</p>',
              "<h2>Mode shapes</h2>", _view(result, drawing),
              "<h2>Shaft</h2><ul>" + "".join(f"<li>{html.escape(x)}</li>"
                                             for x in shaft_facts(result)) + "</ul>"]
@@ -179,6 +208,9 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     parts.append(_table(tables.verdict_rows(verdict), ("source", "kind", "")) if verdict
                  is not None else _paragraphs(["No [[excitation]] sources in the scene: "
                                                "nothing to check against."]))
+    if strength is not None:
+        parts.append(_strength(strength, pictures))
+        pictures = [p for p in pictures if Path(p).name != "hot_spots.png"]
     pngs = [p for p in pictures if Path(p).suffix == ".png"]
     if pngs:
         parts += ["<h2>Pictures</h2>"] + [_picture(Path(p)) for p in pngs]
@@ -204,6 +236,7 @@ def write_report_html(path: str | Path, result: ModalResult,
                       free: Modes | HangingModes | None = None,
                       participation: Participation | None = None,
                       rotor: RotorStudy | None = None, drawing: Drawing | None = None,
-                      wall_seconds: float | None = None) -> Path:
+                      wall_seconds: float | None = None,
+                      strength=None) -> Path:
     return write_text(path, report_html(result, verdict, sizing, pictures, estimate, free,
-                                        participation, rotor, drawing, wall_seconds))
+                                        participation, rotor, drawing, wall_seconds, strength))

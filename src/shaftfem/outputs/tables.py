@@ -1118,7 +1118,7 @@ def strength_text(result) -> str:
                      f"{_safety(f.yield_safety):>6s} {f.yield_utilisation:5.2f}")
     if not result.spots:
         lines.append("   none: every surface point lies where a load or reaction enters")
-    notched = _notch_factor_lines(result)
+    notched = notch_factor_lines(result)
     if notched:
         lines += ["", *notched]
     lines += ["", "S_fat, S_yld: safety against fatigue (FKM, infinite life) and yield; a_BK, "
@@ -1131,11 +1131,11 @@ def strength_text(result) -> str:
         lines.append(f"{c.name[:24]:24s} {c.position * 1e3:6.1f} mm {c.slope * 1e3:5.3f} mrad "
                      f"{lim:>10s} {c.deflection * 1e6:9.2f} um {dlim:>10s}  {c.source}"
                      + ("" if c.ok else "  EXCEEDED"))
-    lines += ["", "verdict: " + _strength_verdict(result)]
+    lines += ["", "verdict: " + strength_verdict(result)]
     return "\n".join(lines)
 
 
-def _strength_verdict(result) -> str:
+def strength_verdict(result) -> str:
     """The strength check's verdict in a line: each check, the sharp edges, the bounds."""
     checks = [("fatigue", result.fatigue_ok), ("yield", result.yield_ok),
               ("deflection", result.deflection_ok)]
@@ -1153,7 +1153,7 @@ def _strength_verdict(result) -> str:
     return line
 
 
-def _notch_factor_lines(result) -> list[str]:
+def notch_factor_lines(result) -> list[str]:
     """The hot spots on shoulder fillets with their K_t beside the table's, a line each."""
     from shaftfem.checks.notch_tables import SOURCE
 
@@ -1175,18 +1175,20 @@ def _safety(value: float) -> str:
     return ">99" if value > 99 else f"{value:.2f}"
 
 
-def strength_markdown(result) -> list[str]:
-    """The design report's strength section (a workflows.strength.StrengthResult): the
-    verdict, the hot spots and the seats as Markdown tables."""
+def strength_intro(result) -> str:
+    """The strength section's line on the material, the safeties and the meshes."""
+    st = result.scene.strength
+    return (f"Material R_m {st.tensile_strength / 1e6:,.0f} MPa, R_p0.2 "
+            f"{st.yield_strength / 1e6:,.0f} MPa ({st.source}), R_z {st.roughness * 1e6:g} um; "
+            f"required safeties {st.fatigue_safety:g} (fatigue, FKM j_D) and "
+            f"{st.yield_safety:g} (yield, at {st.peak_factor:g} x the duty). Meshes solved: "
+            + ", ".join(f"{d:,}" for d in result.dofs) + " DOFs.")
+
+
+def strength_spot_rows(result) -> tuple[list[str], list[list[str]]]:
+    """The hot spots' table: where, the stresses with their bound, FKM's safeties."""
     import math
 
-    st = result.scene.strength
-    lines = ["**" + _strength_verdict(result) + "**", "",
-             f"Material R_m {st.tensile_strength / 1e6:,.0f} MPa, R_p0.2 "
-             f"{st.yield_strength / 1e6:,.0f} MPa ({st.source}), R_z {st.roughness * 1e6:g} um; "
-             f"required safeties {st.fatigue_safety:g} (fatigue, FKM j_D) and "
-             f"{st.yield_safety:g} (yield, at {st.peak_factor:g} x the duty). Meshes solved: "
-             + ", ".join(f"{d:,}" for d in result.dofs) + " DOFs.", ""]
     rows = [[str(k), s.feature, f"{s.z * 1e3:.1f}", f"{math.degrees(s.angle) % 360:.0f}",
              f"{s.amplitude / 1e6:.1f}", f"{s.mean / 1e6:.1f}", f"{s.peak / 1e6:.1f}",
              "sharp edge" if not s.converging else "unresolved" if not s.resolved
@@ -1194,17 +1196,29 @@ def strength_markdown(result) -> list[str]:
              f"{s.gradient * 1e-3:.3f}", _safety(s.fkm.fatigue_safety),
              f"{s.fkm.fatigue_utilisation:.2f}", _safety(s.fkm.yield_safety),
              f"{s.fkm.yield_utilisation:.2f}"] for k, s in enumerate(result.spots, 1)]
-    lines += markdown(["#", "hot spot", "z (mm)", "angle (deg)", "amplitude (MPa)",
-                       "mean (MPa)", "peak (MPa)", "bound", "G (1/mm)", "fatigue safety",
-                       "a_BK", "yield safety", "a_SK"], rows) + [""]
-    notched = _notch_factor_lines(result)
-    if notched:
-        lines += [notched[0], "", *(f"- {r.strip()}" for r in notched[1:]), ""]
+    return (["#", "hot spot", "z (mm)", "angle (deg)", "amplitude (MPa)", "mean (MPa)",
+             "peak (MPa)", "bound", "G (1/mm)", "fatigue safety", "a_BK", "yield safety",
+             "a_SK"], rows)
+
+
+def strength_seat_rows(result) -> tuple[list[str], list[list[str]]]:
+    """The seats' and parts' slopes and deflections against their limits."""
     rows = [[c.name, f"{c.position * 1e3:.1f}", f"{c.slope * 1e3:.3f}",
              "-" if c.slope_limit is None else f"{c.slope_limit * 1e3:.2f}",
              f"{c.deflection * 1e6:.2f}",
              "-" if c.deflection_limit is None else f"{c.deflection_limit * 1e6:.1f}",
              c.source, "ok" if c.ok else "EXCEEDED"] for c in result.seats]
-    lines += markdown(["seat or part", "at (mm)", "slope (mrad)", "limit (mrad)",
-                       "deflection (um)", "limit (um)", "limit's source", ""], rows)
+    return (["seat or part", "at (mm)", "slope (mrad)", "limit (mrad)", "deflection (um)",
+             "limit (um)", "limit's source", ""], rows)
+
+
+def strength_markdown(result) -> list[str]:
+    """The design report's strength section (a workflows.strength.StrengthResult): the
+    verdict, the hot spots and the seats as Markdown tables."""
+    lines = ["**" + strength_verdict(result) + "**", "", strength_intro(result), ""]
+    lines += markdown(*strength_spot_rows(result)) + [""]
+    notched = notch_factor_lines(result)
+    if notched:
+        lines += [notched[0], "", *(f"- {r.strip()}" for r in notched[1:]), ""]
+    lines += markdown(*strength_seat_rows(result))
     return lines

@@ -73,3 +73,32 @@ def write_vtu(path: str | Path, mesh: ShaftMesh, point_data: dict[str, np.ndarra
     if not w.Write():
         raise OSError(f"VTK could not write {path}")
     return Path(path)
+
+
+def write_vtp(path: str | Path, points: np.ndarray, triangles: np.ndarray,
+              point_data: dict[str, np.ndarray]) -> Path:
+    """A triangulated surface (points (n, 3), triangles (m, 3)) with point arrays, as a
+    binary VTP file (VTK's polygonal data: ParaView opens it)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+    pts = vtkPoints()
+    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=float), deep=True))
+    n = len(triangles)
+    cells = vtkCellArray()
+    cells.SetData(numpy_to_vtkIdTypeArray(np.arange(0, 3 * (n + 1), 3), deep=True),
+                  numpy_to_vtkIdTypeArray(np.ascontiguousarray(triangles.ravel()), deep=True))
+    g = vtkPolyData()
+    g.SetPoints(pts)
+    g.SetPolys(cells)
+    for name, values in point_data.items():
+        g.GetPointData().AddArray(_array(name, np.asarray(values, dtype=float)))
+    w = vtkXMLPolyDataWriter()
+    w.SetFileName(str(path))
+    w.SetInputData(g)
+    w.SetDataModeToBinary()
+    if not w.Write():
+        raise OSError(f"VTK could not write {path}")
+    return Path(path)

@@ -12,7 +12,6 @@ skips the sizing.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -253,15 +252,14 @@ class _Run:
         files = listed(shapes, tables, solid) + whirl_files
         strength = None
         if scene.strength is not None:
+            from shaftfem.outputs.export import write_strength_files
             from shaftfem.outputs.plots import hot_spots_figure, save_png
-            from shaftfem.store import write_text
             from shaftfem.workflows.strength import run_strength
 
             say("strength under the duty: hot spots, FKM, seat slopes")
             strength = run_strength(scene, options)
             more.append(save_png(hot_spots_figure(strength), stage / "hot_spots.png"))
-            files.append(write_text(stage / "strength.json",
-                                    json.dumps(strength.as_dict(), indent=1)))
+            files += write_strength_files(strength, stage)
         pictures = pictures + more
         wall = time.perf_counter() - started
         write_report(stage / "report.md", result, verdict, sizing, pictures, files, est,
@@ -273,7 +271,7 @@ class _Run:
             say("report.html: the report with a 3D view of every mode")
             write_report_html(stage / "report.html", result, verdict, sizing, pictures, est,
                               free=free, participation=part, rotor=study,
-                              wall_seconds=wall)
+                              wall_seconds=wall, strength=strength)
         files, pictures = [out / p.name for p in files], [out / p.name for p in pictures]
         report = out / "report.md"
         say(f"report written: {report}")

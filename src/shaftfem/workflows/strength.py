@@ -138,6 +138,23 @@ class SeatCheck:
 
 
 @dataclass(frozen=True)
+class StressSurface:
+    """The finest mesh's surface: points (n, 3) m and triangles (m, 3), and at each point
+    the equivalent stress amplitude over a turn, the signed mean and the peak (Pa), the
+    relative stress gradient (1/m) and FKM's degrees of utilisation, fatigue a_BK and
+    yield a_SK (NaN where a load or a reaction enters: the fit's stress, not judged)."""
+
+    points: np.ndarray
+    facets: np.ndarray
+    amplitude: np.ndarray
+    mean: np.ndarray
+    peak: np.ndarray
+    gradient: np.ndarray
+    fatigue_utilisation: np.ndarray
+    yield_utilisation: np.ndarray
+
+
+@dataclass(frozen=True)
 class StrengthResult:
     """`shaftfem strength`: the hot spots (worst fatigue first), the seats' checks, the
     meshes solved (DOFs) and the scene."""
@@ -147,10 +164,9 @@ class StrengthResult:
     seats: tuple[SeatCheck, ...]
     dofs: tuple[int, ...]
     target: float
-    # the finest mesh's surface points (n, 3) m and the equivalent amplitude (the peak on a
-    # standing shaft) there, Pa: the hot-spot picture's field
-    surface: tuple[np.ndarray, np.ndarray] | None = field(default=None, compare=False,
-                                                          repr=False)
+    # the finest mesh's surface with its stresses and utilisations: the hot-spot picture's
+    # field and the VTK file's
+    surface: StressSurface | None = field(default=None, compare=False, repr=False)
 
     @property
     def sharp(self) -> tuple[HotSpot, ...]:
@@ -236,6 +252,14 @@ class _Field:
     allowed: np.ndarray   # the surface points outside the load and seat bands
     line: tuple[np.ndarray, np.ndarray, np.ndarray]
     dofs: int
+    tree: Any = None   # a cKDTree of the tetrahedra's centroids, to read the field inside
+
+    def read(self, points: np.ndarray):
+        """The vertex fields' reading at points (k, 3) inside the solid (fem.probe)."""
+        from shaftfem.fem.probe import probe
+
+        mesh = self.p1_basis.mesh
+        return probe(mesh.p.T, mesh.t.T, points, self.tree)
 
 
 def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthResult:
@@ -271,10 +295,24 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
             break
         dofs.append(fine.dofs)
         spots = _spots(scene, fine, coarse, spots)
-    turning = scene.strength.speed > 0
     return StrengthResult(scene=scene, spots=tuple(spots), seats=_seats(scene, fine),
-                          dofs=tuple(dofs), target=target,
-                          surface=(fine.points, fine.amplitude if turning else fine.peak))
+                          dofs=tuple(dofs), target=target, surface=_surface(scene, fine))
+
+
+def _surface(scene: Scene, field: _Field) -> StressSurface:
+    """The field's surface with FKM judged at every point (outside the load bands)."""
+    from shaftfem.checks.fkm import assess_many
+
+    st = scene.strength
+    assert st is not None
+    gradient = _gradients(field, np.arange(len(field.points)), st.speed > 0)
+    fkm = assess_many(field.amplitude, field.mean, field.peak, gradient,
+                      2 * _outer_radii(field), st)
+    return StressSurface(
+        points=field.points, facets=field.facets, amplitude=field.amplitude,
+        mean=field.mean, peak=field.peak, gradient=gradient,
+        fatigue_utilisation=np.where(field.allowed, fkm["fatigue_utilisation"], np.nan),
+        yield_utilisation=np.where(field.allowed, fkm["yield_utilisation"], np.nan))
 
 
 def _utilisation(s: HotSpot) -> float:
@@ -362,6 +400,8 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
     """The duty's four cases on the scene's mesh (or on `given`: (placed scene and its
     solid, a mesh of it)): the surface's stress cycle and the deflection line of the
     standing loads; the mesh, and the placed scene with its solid."""
+    from scipy.spatial import cKDTree
+
     from shaftfem.fem.assembly import _element, assemble
     from shaftfem.fem.installation import install
     from shaftfem.fem.static import line
@@ -390,7 +430,9 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
                   stress=surface.stress, amplitude=amplitude, mean=mean, peak=peak,
                   all_stress=surface.all_stress, p1_basis=surface.p1_basis,
                   facets=surface.facets, allowed=~_excluded(scene, surface.points),
-                  line=line(system, U[:, 0]), dofs=system.n_dofs), mesh, (placed, shape)
+                  line=line(system, U[:, 0]), dofs=system.n_dofs,
+                  tree=cKDTree(surface.p1_basis.mesh.p.T[surface.p1_basis.mesh.t.T].mean(1))
+                  ), mesh, (placed, shape)
 
 
 def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
@@ -600,25 +642,42 @@ def _bound(fine: _Field, coarse: _Field, i: int, value: np.ndarray,
 
 
 def _gradient(field: _Field, i: int, turning: bool) -> float:
-    """FKM's relative stress gradient at surface point i (1/m): the drop of the
+    """FKM's relative stress gradient at surface point i (1/m) (_gradients)."""
+    return float(_gradients(field, np.array([i]), turning)[0])
+
+
+def _gradients(field: _Field, idx: np.ndarray, turning: bool) -> np.ndarray:
+    """FKM's relative stress gradient at surface points idx (1/m): the drop of the
     equivalent stress (amplitude; peak on a standing shaft) a quarter element inward,
     over that depth and the surface value; 0 where it cannot be read (no support, on the
     safe side)."""
     from shaftfem.fem.stress import cycle
 
-    depth = 0.25 * field.edge[i]
-    points = np.array([field.points[i] - 1e-3 * depth * field.normals[i],
-                       field.points[i] - depth * field.normals[i]]).T
-    try:
-        P = field.p1_basis.probes(points)
-    except (ValueError, IndexError):
-        return 0.0
-    tensors = np.einsum("pn,knij->kpij", P.toarray(), field.all_stress)
+    k = len(idx)
+    depth = 0.25 * field.edge[idx]
+    inward = depth[:, None] * field.normals[idx]
+    at = field.read(np.vstack([field.points[idx] - 1e-3 * inward, field.points[idx] - inward]))
+    cases = field.all_stress.shape[0]
+    flat = np.moveaxis(field.all_stress, 0, 1).reshape(-1, cases * 9)
+    tensors = np.moveaxis(np.asarray(at.matrix @ flat).reshape(2 * k, cases, 3, 3), 1, 0)
     amplitude, _, peak = cycle(tensors, turning)
     v = amplitude if turning else peak
-    if v[0] <= 0:
-        return 0.0
-    return max(float((v[0] - v[1]) / (depth * (1 - 1e-3) * v[0])), 0.0)
+    v0, v1 = v[:k], v[k:]
+    ok = at.found[:k] & at.found[k:] & (v0 > 0)
+    g = (v0 - v1) / (depth * (1 - 1e-3) * np.where(ok, v0, 1.0))
+    return np.where(ok, np.maximum(g, 0.0), 0.0)
+
+
+def _outer_radii(field: _Field) -> np.ndarray:
+    """_outer_radius at every surface point (m), read from the largest radius in 0.5 mm
+    slices of the axis (within 1 mm, as _outer_radius)."""
+    z, r = field.points[:, 2], np.hypot(field.points[:, 0], field.points[:, 1])
+    slices = np.floor((z - z.min()) / 0.5e-3).astype(int)
+    top = np.zeros(slices.max() + 1)
+    np.maximum.at(top, slices, r)
+    padded = np.pad(top, 2)
+    near = np.max([padded[2 + k: 2 + k + top.size] for k in range(-2, 3)], axis=0)
+    return near[slices]
 
 
 def _outer_radius(field: _Field, z: float) -> float:
@@ -679,7 +738,7 @@ def _notch_factors(scene: Scene, field: _Field, i: int, outer: float
     r = a.fillet
     if r <= 0:
         return ()
-    carried = resultants(field.p1_basis, field.all_stress, float(p[2]),
+    carried = resultants(field.read, field.all_stress, float(p[2]),
                          float(np.hypot(p[0], p[1])))
     if carried is None:
         return ()
