@@ -29,6 +29,7 @@ TABLES = {
     "installed": ("performance: Installed shafts", ["installed.py", "3"]),
     "campbell": ("performance: Turning shafts", ["campbell.py", "3"]),
     "periodic-cost": ("performance: Periodic rotors", ["periodic_cost.py", "3"]),
+    "strength-cost": ("performance: The strength check", ["strength_cost.py", "3"]),
     "crossing-grids": ("verification: Critical speeds whatever the grid", ["crossing_grids.py"]),
     "floquet-1d": ("verification: A periodic rotor against an independent 1D Floquet model",
                    ["floquet_1d.py"]),

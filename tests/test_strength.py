@@ -26,6 +26,10 @@ SEATS = [{"name": "left", "position_mm": 10.0, "width_mm": 16.0, "kind": "rigid-
           "radial_stiffness_n_per_mm": 1e9, "axial_stiffness_n_per_mm": 1e9}]
 
 
+GEAR = {"name": "gear", "position_mm": 200.0, "width_mm": 40.0, "mass_kg": 0.0,
+        "polar_inertia_kg_m2": 0.0, "diametral_inertia_kg_m2": 0.0}
+
+
 def bar(**tables) -> dict:
     """A 32 mm bar 400 mm long on seats centred at 10 and 390 mm, without weight."""
     return {"name": "bar", "shaft": {"length_mm": 400.0, "diameter_mm": D * 1e3},
@@ -105,6 +109,45 @@ def test_what_a_section_carries_is_the_beams_moment_torque_and_axial_force(field
         assert abs(c[3, 0]) == pytest.approx(5000.0 if z > 0.2 else 0.0, abs=25.0)
 
 
+def test_a_helical_gears_force_comes_from_its_geometry_and_its_torque():
+    """A helical gear (d 100 mm, alpha_n 20 deg, beta 15 deg, meshing above, +y) passing
+    100 N m out of the shaft: F_t = 2 T / d = 2000 N, F_r = F_t tan(alpha_n) / cos(beta)
+    = 753.6 N, F_a = F_t tan(beta) = 535.9 N, and the thrust at the pitch radius bends
+    the shaft by F_a d / 2 = 26.8 N m: the moment the solid's sections carry jumps by
+    that across the gear (the beam's lines either side, extrapolated to it), the x
+    plane's does not, and the locating seat takes the thrust."""
+    from shaftfem.fem.section import resultants
+
+    data = bar(attachment=[GEAR],
+               force=[{"part": "gear", "gear_pitch_diameter_mm": 100.0,
+                       "gear_helix_angle_deg": 15.0}],
+               torque=[{"name": "coupling", "position_mm": 60.0, "torque_nm": 100.0},
+                       {"part": "gear"}], strength={"speed_rpm": 1000.0})
+    scene = load_scene(data)
+    (f,) = scene.forces
+    ft, fr, fa = 2000.0, 2000.0 * math.tan(math.radians(20)) / math.cos(math.radians(15)), \
+        2000.0 * math.tan(math.radians(15))
+    # power leaves through the gear: the teeth push it along +x (against its turning);
+    # the radial force points to the axis; the thrust to -z (beta > 0, power leaving)
+    assert (f.fx, f.fy, f.fz) == pytest.approx((ft, -fr, -fa))
+    assert (f.mx, f.my) == pytest.approx((0.05 * -fa, 0.0), abs=1e-9)
+    field = ws._solve(scene, ws.RunOptions())[0]
+
+    def carried(z):
+        return resultants(field.read, field.all_stress, z, D / 2)[0]     # case A
+
+    def at_gear(z1, z2, k):
+        m1, m2 = carried(z1)[k], carried(z2)[k]
+        return m1 + (m2 - m1) * (0.200 - z1) / (z2 - z1)
+
+    jump_x = at_gear(0.120, 0.150, 1) - at_gear(0.280, 0.250, 1)
+    jump_y = at_gear(0.120, 0.150, 2) - at_gear(0.280, 0.250, 2)
+    assert abs(jump_x) == pytest.approx(0.05 * fa, rel=0.02)
+    assert abs(jump_y) < 0.02 * 0.05 * fa
+    axial = resultants(field.read, field.all_stress, 0.300, D / 2)[3, 0]     # case Z
+    assert abs(axial) == pytest.approx(fa, rel=0.01)
+
+
 def test_strength_finds_the_bending_peak_beside_the_load_and_the_seat_slope(tmp_path):
     import subprocess
     import sys
@@ -177,6 +220,22 @@ def test_design_reports_the_strength_beside_the_modes(tmp_path):
     json.loads((out / "strength.json").read_text())      # valid JSON, no Infinity
 
 
+def test_a_warm_run_reads_its_solved_meshes_from_the_cache(monkeypatch):
+    """Each mesh's solved duty is kept: the same scene again solves nothing, and gives
+    the same hot spots."""
+    scene = load_scene(bar(**DUTY))
+    first = ws.run_strength(scene)
+
+    def solve_again(*args, **kwargs):
+        raise AssertionError("a warm run solved a mesh again")
+
+    monkeypatch.setattr(ws, "_solved", solve_again)
+    again = ws.run_strength(scene)
+    assert [(s.z, s.amplitude, s.bound) for s in again.spots] == [
+        (s.z, s.amplitude, s.bound) for s in first.spots]
+    assert again.dofs == first.dofs
+
+
 def test_fkm_factors_are_the_guidelines_formulas():
     from shaftfem.checks.fkm import assess
     from shaftfem.scene.model import Strength
@@ -240,6 +299,14 @@ def test_fkm_reproduces_a_published_worked_example():
     (dict(strength={"tensile_strength_mpa": 500.0, "yield_strength_mpa": 600.0}),
      "must be below the tensile strength"),
     (dict(strength={"roughness_rz_um": 500.0}), "roughness_rz_um"),
+    (dict(attachment=[GEAR], force=[{"part": "gear", "gear_pitch_diameter_mm": 100.0,
+                                     "fy_n": 10.0}]), "force 1: fy_n: a gear's force comes from"),
+    (dict(force=[{"position_mm": 200.0, "gear_pitch_diameter_mm": 100.0}]),
+     "a gear is a part: give `part`"),
+    (dict(attachment=[GEAR], force=[{"part": "gear", "gear_pitch_diameter_mm": 100.0}]),
+     "needs one \\[\\[torque\\]\\] on the same part"),
+    (dict(attachment=[GEAR], force=[{"part": "gear", "gear_pitch_diameter_mm": 100.0,
+                                     "gear_helix_angle_deg": 50.0}]), "gear_helix_angle_deg"),
 ])
 def test_a_duty_that_cannot_stand_is_refused_by_key(tables, says):
     with pytest.raises(SceneError, match=says):

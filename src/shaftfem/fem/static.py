@@ -115,14 +115,16 @@ def loads(scene: Scene, system: System, inst: Installed) -> tuple[np.ndarray, np
 
 
 def forces_on_nodes(scene: Scene, system: System) -> np.ndarray:
-    """The [[force]] tables on the shaft's nodes (3 n,), N: each on its cross-section's
-    mean motion, q = C u, as C^T F."""
+    """The [[force]] tables on the shaft's nodes (3 n,), N: each (its radial force and
+    its bending moment) on its cross-section's mean motion, q = C u, as C^T F."""
     from shaftfem.fem.supports import section_means
 
     nodal = np.zeros(system.n_dofs)
     for force in scene.forces:
         c = section_means(system.nodes, system.mass_scalar.diagonal(), force.position)
         nodal[c.dofs] += c.C[:2].T @ np.array([force.fx, force.fy])
+        if force.mx or force.my:
+            nodal[c.dofs] += c.C[3:5].T @ np.array([force.mx, force.my])
     return nodal
 
 

@@ -72,10 +72,11 @@ def load_band(z: float, width: float, nodes: np.ndarray) -> Band:
 
 
 def band_loads(skmesh, element, band: Band, force: np.ndarray, torque: float,
-               n_dofs: int) -> np.ndarray:
-    """The nodal loads (3 n,) of a force (3,) N and a torque about the axis (N m) spread
-    as a body force over the elements whose centroids lie in the band: b = F / V and
-    b = T (-y, x) / J with V and J the band's volume and polar moment, so that the
+               n_dofs: int, moment: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
+    """The nodal loads (3 n,) of a force (3,) N, a torque about the axis (N m) and a
+    bending moment (m_x, m_y; N m) spread as a body force over the elements whose
+    centroids lie in the band: b = F / V, b = T (-y, x) / J and b_z = m_x y / I_y -
+    m_y x / I_x with V, J, I_y = int y^2 and I_x = int x^2 over the band, so that the
     resultants are exact on the mesh."""
     from skfem import Basis, Functional, LinearForm
 
@@ -94,6 +95,12 @@ def band_loads(skmesh, element, band: Band, force: np.ndarray, torque: float,
     if torque:
         out[0::3] += LinearForm(lambda v, w: -w.x[1] * v).assemble(basis) * torque / polar
         out[1::3] += LinearForm(lambda v, w: w.x[0] * v).assemble(basis) * torque / polar
+    mx, my = moment
+    if mx or my:
+        ix = Functional(lambda w: w.x[0] ** 2).assemble(basis)
+        iy = Functional(lambda w: w.x[1] ** 2).assemble(basis)
+        out[2::3] += (LinearForm(lambda v, w: w.x[1] * v).assemble(basis) * mx / iy
+                      - LinearForm(lambda v, w: w.x[0] * v).assemble(basis) * my / ix)
     return out
 
 
@@ -116,8 +123,10 @@ def duty_loads(scene: Scene, system: System, inst: Installed, skmesh, element
             band = load_band(f.position, f.width, system.nodes)
             vector = {"A": np.array([f.fx, f.fy, 0.0]), "B": np.array([-f.fy, f.fx, 0.0]),
                       "T": np.zeros(3), "Z": np.array([0.0, 0.0, f.fz])}[case]
-            if vector.any():
-                nodal += band_loads(skmesh, element, band, vector, 0.0, n)
+            # a standing moment (a gear's thrust off the axis) bends as the radial loads
+            moment = {"A": (f.mx, f.my), "B": (-f.my, f.mx)}.get(case, (0.0, 0.0))
+            if vector.any() or any(moment):
+                nodal += band_loads(skmesh, element, band, vector, 0.0, n, moment)
                 resultant = resultant + vector
         if case == "T":
             for q in scene.torques:

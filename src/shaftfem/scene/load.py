@@ -212,6 +212,7 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
     point = _response_point(source, t["response"], shaft)
     target = mesh_t["target_error_percent"]
     strength = _strength(source, data, material, rotor, sizing)
+    torques = _torques(source, data, shaft, attachments, strength)
     for message in implausible(source, shaft):
         warnings.warn(message, PlausibilityWarning, stacklevel=2)
     scene = Scene(name=top["name"] or Path(source).stem, source=source, shaft=shaft,
@@ -227,8 +228,9 @@ def scene_from_dict(data: dict, source: str = "<scene>", folder: Path | None = N
                   criterion=res_t["criterion"], free_free_intended=res_t["free_free"],
                   rotor=rotor,
                   unbalances=_unbalances(source, data, shaft, attachments),
-                  gravity=_static(source, data), forces=_forces(source, data, shaft, attachments),
-                  torques=_torques(source, data, shaft, attachments, strength),
+                  gravity=_static(source, data), forces=_forces(source, data, shaft, attachments,
+                                                                torques),
+                  torques=torques,
                   strength=strength,
                   title_block=tuple((k, top[k]) for k in TITLE_KEYS if top[k]),
                   description=top["description"] or "")
@@ -671,18 +673,56 @@ def _static(source: str, data: dict) -> tuple[float, float, float]:
     return tuple(t["gravity_m_s2"] * x / norm for x in d)
 
 
-def _forces(source: str, data: dict, shaft: Shaft,
-            attachments: tuple[Attachment, ...]) -> tuple[PointForce, ...]:
-    """[[force]] in SI (m, N), each at its position or its part's centre."""
+def _forces(source: str, data: dict, shaft: Shaft, attachments: tuple[Attachment, ...],
+            torques: tuple[Torque, ...]) -> tuple[PointForce, ...]:
+    """[[force]] in SI (m, N), each at its position or its part's centre; a gear's from
+    its geometry and the torque through its part (_gear_force)."""
     out = []
     for i, e in enumerate(_array(source, data, "force")):
         table = entry("force", i, e)
         t = validate_table(source, table, e, SCHEMA["force"])
         position = _placed(source, table, t, shaft, attachments)
-        out.append(PointForce(name=t["name"] or t["part"] or f"force {i + 1}",
-                              position=position * MM, fx=t["fx_n"], fy=t["fy_n"], fz=t["fz_n"],
-                              width=_hub(t, attachments)))
+        force = PointForce(name=t["name"] or t["part"] or f"force {i + 1}",
+                           position=position * MM, fx=t["fx_n"], fy=t["fy_n"], fz=t["fz_n"],
+                           width=_hub(t, attachments))
+        if t["gear_pitch_diameter_mm"] is not None:
+            force = _gear_force(source, table, e, t, force, torques)
+        out.append(force)
     return tuple(out)
+
+
+def _gear_force(source: str, table: str, given: dict, t: dict, force: PointForce,
+                torques: tuple[Torque, ...]) -> PointForce:
+    """A gear's tooth force on the shaft, from its pitch diameter d, normal pressure
+    angle alpha_n and helix angle beta and the torque T through its part (positive
+    entering): tangential T / r at the mesh point (its moment about the axis is T),
+    radial F_t tan(alpha_n) / cos(beta) towards the axis, axial F_t tan(beta) (its sign
+    the helix angle's, for power entering), and the thrust's moment about the gear's
+    centre, r e_r x F_a e_z, standing where the teeth meet."""
+    mixed = [k for k in ("fx_n", "fy_n", "fz_n") if k in given]
+    if mixed:
+        raise SceneError(f"{where(source, table, mixed[0])}: a gear's force comes from "
+                         "gear_pitch_diameter_mm and its torque; leave out fx_n, fy_n, fz_n")
+    if t["part"] is None:
+        raise SceneError(f"{where(source, table, 'gear_pitch_diameter_mm')}: a gear is a "
+                         "part: give `part` (its [[attachment]]), and a [[torque]] on it")
+    through = [q for q in torques
+               if abs(q.position - force.position) < 1e-9 and q.width == force.width]
+    if len(through) != 1:
+        raise SceneError(f"{where(source, table, 'gear_pitch_diameter_mm')}: gear "
+                         f"{t['part']!r} needs one [[torque]] on the same part (the power it "
+                         f"passes); found {len(through)}")
+    r = 0.5 * t["gear_pitch_diameter_mm"] * MM
+    T = through[0].torque
+    tangential = T / r
+    alpha, beta = math.radians(t["gear_pressure_angle_deg"]), math.radians(
+        t["gear_helix_angle_deg"])
+    radial = abs(tangential) * math.tan(alpha) / math.cos(beta)
+    axial = math.copysign(abs(tangential) * math.tan(abs(beta)), beta * T) if beta else 0.0
+    phi = math.radians(t["gear_mesh_angle_deg"])
+    c, s = math.cos(phi), math.sin(phi)
+    return replace(force, fx=-tangential * s - radial * c, fy=tangential * c - radial * s,
+                   fz=axial, mx=r * axial * s, my=-r * axial * c)
 
 
 def _hub(t: dict, attachments: tuple[Attachment, ...]) -> float:

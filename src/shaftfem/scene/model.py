@@ -357,7 +357,8 @@ class Unbalance:
 @dataclass(frozen=True)
 class PointForce:
     """A static force (fx, fy, fz; N) on the shaft's cross-section at z = position (m),
-    through a part's hub of `width` (m; 0: no part)."""
+    through a part's hub of `width` (m; 0: no part), and a bending moment there (mx, my;
+    N m, standing: a helical gear's thrust at its pitch radius)."""
 
     name: str
     position: float
@@ -365,6 +366,8 @@ class PointForce:
     fy: float
     fz: float = 0.0
     width: float = 0.0
+    mx: float = 0.0
+    my: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -502,6 +502,22 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "fz_n": Key(float, "its component along the shaft axis, N (steady: a helical gear's "
                     "thrust, a follower's push); a supports' axial stiffness takes it",
                     lambda v: abs(v) <= 1e8, "in [-1e8, 1e8]", default=0.0, required=False),
+        "gear_pitch_diameter_mm": Key(
+            float, "a gear's pitch diameter d, mm: its tooth force from the torque through "
+            "the [[torque]] on the same part, F_t = 2 T / d, F_r = F_t tan(alpha_n) / "
+            "cos(beta), F_a = F_t tan(beta), with the thrust's moment F_a d / 2 (instead of "
+            "fx_n, fy_n, fz_n; needs `part`)", *upto(20_000, "up to 20 m"), required=False),
+        "gear_pressure_angle_deg": Key(float, "its normal pressure angle alpha_n, degrees "
+                                       "(default 20)", lambda v: 0 < v < 45,
+                                       "in (0, 45)", default=20.0, required=False),
+        "gear_helix_angle_deg": Key(
+            float, "its helix angle beta, degrees (default 0: spur): positive pushes the "
+            "shaft towards +z while power enters through the gear, negative towards -z",
+            lambda v: abs(v) < 45, "in (-45, 45)", default=0.0, required=False),
+        "gear_mesh_angle_deg": Key(
+            float, "where its teeth meet the mating gear's, degrees about the axis from +x "
+            "towards +y (default 90: the mating gear above)", lambda v: abs(v) <= 360,
+            "in [-360, 360]", default=90.0, required=False),
     },
     "torque": {  # an array of tables: [[torque]], where power enters or leaves the shaft
         "name": Key(str, "name of the torque, e.g. coupling", required=False),

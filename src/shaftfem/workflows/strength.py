@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -247,7 +248,8 @@ class _Field:
     mean: np.ndarray
     peak: np.ndarray
     all_stress: np.ndarray
-    p1_basis: Any   # scikit-fem CellBasis
+    vertices: np.ndarray   # the mesh's vertices (N, 3) and tetrahedra (m, 4), to read
+    tets: np.ndarray       # all_stress inside the solid
     facets: np.ndarray
     allowed: np.ndarray   # the surface points outside the load and seat bands
     line: tuple[np.ndarray, np.ndarray, np.ndarray]
@@ -258,8 +260,7 @@ class _Field:
         """The vertex fields' reading at points (k, 3) inside the solid (fem.probe)."""
         from shaftfem.fem.probe import probe
 
-        mesh = self.p1_basis.mesh
-        return probe(mesh.p.T, mesh.t.T, points, self.tree)
+        return probe(self.vertices, self.tets, points, self.tree)
 
 
 def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthResult:
@@ -402,10 +403,8 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
     standing loads; the mesh, and the placed scene with its solid."""
     from scipy.spatial import cKDTree
 
-    from shaftfem.fem.assembly import _element, assemble
-    from shaftfem.fem.installation import install
-    from shaftfem.fem.static import line
-    from shaftfem.fem.stress import cycle, duty_loads, solve_cases, surface_stress
+    from shaftfem.fem.stress import cycle
+    from shaftfem.store import load_arrays, save_arrays
     from shaftfem.workflows.equip import with_parts
     from shaftfem.workflows.pipeline import built
 
@@ -416,6 +415,58 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
         placed, shape, mesh = built(with_parts(held), options)
     else:
         (placed, shape), mesh = given
+    path = _field_path(placed, mesh)
+    fields, _ = load_arrays(path, FIELD_ARRAYS) if path.exists() else (None, "")
+    if fields is None:
+        fields = _solved(placed, mesh, options)
+        save_arrays(path, fields)
+    turning = scene.strength is not None and scene.strength.speed > 0
+    amplitude, mean, peak = cycle(fields["stress"], turning)
+    vertices, tets = fields["vertices"], fields["tets"]
+    return _Field(points=fields["points"], normals=fields["normals"], edge=fields["edge"],
+                  stress=fields["stress"], amplitude=amplitude, mean=mean, peak=peak,
+                  all_stress=fields["all_stress"], vertices=vertices, tets=tets,
+                  facets=fields["facets"], allowed=~_excluded(scene, fields["points"]),
+                  line=(fields["line_z"], fields["line_x"], fields["line_y"]),
+                  dofs=int(fields["dofs"]), tree=cKDTree(vertices[tets].mean(axis=1))
+                  ), mesh, (placed, shape)
+
+
+# a mesh's solved duty, kept in the cache: warm runs (the same scene again, or its
+# refinement rounds) read it instead of solving again
+FIELD_ARRAYS = ("points", "normals", "edge", "stress", "all_stress", "vertices", "tets",
+                "facets", "line_z", "line_x", "line_y", "dofs")
+
+
+def _field_path(placed: Scene, mesh) -> Path:
+    """Where a mesh's solved duty is kept: keyed by the mesh itself (its nodes and
+    cells) and everything the four cases' solution depends on (material, seats, parts,
+    loads, gravity)."""
+    import hashlib
+    from dataclasses import asdict
+
+    from shaftfem.store import cache_dir, content_key
+
+    digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
+                            + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
+    key = content_key({"version": 1, "nodes": digest, "order": placed.mesh.order,
+                       "material": asdict(placed.material),
+                       "supports": [asdict(s) for s in placed.supports],
+                       "attachments": [asdict(a) for a in placed.attachments],
+                       "forces": [asdict(f) for f in placed.forces],
+                       "torques": [asdict(t) for t in placed.torques],
+                       "gravity": list(placed.gravity)})
+    return cache_dir() / "strength" / "fields" / f"{key}.npz"
+
+
+def _solved(placed: Scene, mesh, options: RunOptions) -> dict[str, np.ndarray]:
+    """The four cases solved on the mesh: the surface's and the vertices' stresses, the
+    surface's geometry and the standing loads' deflection line, as FIELD_ARRAYS."""
+    from shaftfem.fem.assembly import _element, assemble
+    from shaftfem.fem.installation import install
+    from shaftfem.fem.static import line
+    from shaftfem.fem.stress import duty_loads, solve_cases, surface_stress
+
     system = assemble(mesh, placed.material, threads=options.threads)
     options.say(f"solving the duty on {system.n_dofs:,} DOFs")
     skmesh = mesh.to_skfem()
@@ -424,15 +475,13 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
     F, resultants = duty_loads(placed, system, inst, skmesh, element)
     U = solve_cases(placed, system, inst, F, resultants)
     surface = surface_stress(skmesh, element, placed.material.lame, U)
-    turning = scene.strength is not None and scene.strength.speed > 0
-    amplitude, mean, peak = cycle(surface.stress, turning)
-    return _Field(points=surface.points, normals=surface.normals, edge=surface.edge,
-                  stress=surface.stress, amplitude=amplitude, mean=mean, peak=peak,
-                  all_stress=surface.all_stress, p1_basis=surface.p1_basis,
-                  facets=surface.facets, allowed=~_excluded(scene, surface.points),
-                  line=line(system, U[:, 0]), dofs=system.n_dofs,
-                  tree=cKDTree(surface.p1_basis.mesh.p.T[surface.p1_basis.mesh.t.T].mean(1))
-                  ), mesh, (placed, shape)
+    z, x, y = line(system, U[:, 0])
+    p1 = surface.p1_basis.mesh
+    return {"points": surface.points, "normals": surface.normals, "edge": surface.edge,
+            "stress": surface.stress, "all_stress": surface.all_stress,
+            "vertices": np.ascontiguousarray(p1.p.T), "tets": np.ascontiguousarray(p1.t.T),
+            "facets": surface.facets, "line_z": z, "line_x": x, "line_y": y,
+            "dofs": np.array(system.n_dofs)}
 
 
 def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
