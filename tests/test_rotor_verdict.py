@@ -608,6 +608,28 @@ def test_the_keyed_rotor_s_forward_critical_is_found_near_its_bode_peak():
     assert forward[0] * 0.99 <= peak.speed_rpm <= forward[1] * 1.01
 
 
+def test_a_shaft_not_of_revolution_diverges_between_its_two_critical_speeds():
+    """The keyed shaft in undamped isotropic bearings: between the critical speeds of its
+    soft and its stiff diameter (the forward 1x crossings, 340 r/min apart: no grid
+    speed inside on 31 speeds to 30,000 r/min) its pair's roots stand at zero frequency
+    in the turning frame and one of them grows (the asymmetric shaft's classical band):
+    one zone of divergence, its edges those two crossings, stable above it."""
+    from shaftfem.workflows.campbell import campbell_of, turning
+
+    data = keyed_rotor()
+    for s in data["support"]:
+        s["cxx_n_s_per_mm"] = 0.0
+    scene = load_scene(data)
+    result, model, why = turning(scene)
+    c = campbell_of(scene, result, model, why)
+    forward = sorted(cs.speed_rpm for cs in c.critical_speeds
+                     if cs.order == 1 and cs.whirl == "forward")
+    assert len(forward) == 2 and not any(forward[0] < w < forward[1] for w in c.speeds_rpm)
+    (zone,) = c.zones
+    assert "divergence" in zone.holds and zone.growth_per_s > 0
+    assert (zone.from_rpm, zone.to_rpm) == pytest.approx(forward, rel=1e-4)
+
+
 def test_an_undamped_model_says_so_and_design_draws_no_base_motion_for_a_rotor(pulley):
     from shaftfem.workflows.campbell import campbell_of
     from shaftfem.workflows.design import base_motion_drawn

@@ -963,7 +963,13 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
                      "coefficients are placeholders")
     stability = least_damped(scene, curves, lift)
     unstable = onsets(model, curves)
-    bands = divergent_bands(model, path)
+    # a root stands at zero frequency in the turning frame where the 1x line crosses it:
+    # between two such crossings (the soft and the stiff diameter's critical speeds of a
+    # shaft not of revolution) it may diverge, in a band narrower than the grid's step
+    ones = sorted(cs.speed_rpm * RPM for cs in critical if cs.order == 1)
+    between = [0.5 * (a + b) for a, b in zip(ones, ones[1:])
+               if float(path.min()) < a and b < float(path.max())]
+    bands = divergent_bands(model, np.union1d(path, between) if between else path)
     zones: list[tuple[float, float, float, float]] = []
     top = float(path.max()) / RPM
     if periodic_note:
