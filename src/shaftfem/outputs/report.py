@@ -126,7 +126,7 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
     lines += [x for line in tables.verdict_lines(verdict) for x in (line, "")]
     if strength is not None:
         lines += [f"**STRENGTH: {'PASS' if strength.ok else 'FAIL'}** - "
-                  f"{tables.strength_verdict(strength)} (section Strength below)", ""]
+                  f"{tables.strength_verdict(strength, short=True)} (section Strength below)", ""]
     lines += ["## Shaft", ""] + [f"- {line}" for line in shaft_facts(result)] + [""]
     if sizing is not None:
         lines += ["## Sizing (paper equations 1-9)", ""] + tables.sizing_markdown(sizing) + [""]

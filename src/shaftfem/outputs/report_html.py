@@ -176,7 +176,7 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
              "" if strength is None else
              f'<p class="verdict {"pass" if strength.ok else "fail"}">STRENGTH: '
              f'{"PASS" if strength.ok else "FAIL"} - '
-             f"{html.escape(tables.strength_verdict(strength))} "
+             f"{html.escape(tables.strength_verdict(strength, short=True))} "
              '(<a href="#strength">Strength</a> below)</p>',
              "<h2>Mode shapes</h2>", _view(result, drawing),
              "<h2>Shaft</h2><ul>" + "".join(f"<li>{html.escape(x)}</li>"

@@ -1135,21 +1135,27 @@ def strength_text(result) -> str:
     return "\n".join(lines)
 
 
-def strength_verdict(result) -> str:
-    """The strength check's verdict in a line: each check, the sharp edges, the bounds."""
+def strength_verdict(result, short: bool = False) -> str:
+    """The strength check's verdict in a line: each check, the sharp edges, the bounds
+    (`short`: what and where only, for a report's opening banner)."""
     checks = [("fatigue", result.fatigue_ok), ("yield", result.yield_ok),
               ("deflection", result.deflection_ok)]
     line = ", ".join(f"{w} {'ok' if ok else 'FAILS'}" for w, ok in checks)
     sharp = [k for k, s in enumerate(result.spots, 1) if not s.converging]
+    loose = [k for k, s in enumerate(result.spots, 1) if s.converging and not (
+        s.resolved and s.bound is not None and s.bound <= result.target)]
     if sharp:
-        line += (f"; NOT JUDGED at hot spot(s) {', '.join(map(str, sharp))}: their stress rises "
-                 "as the mesh refines, faster than a smooth notch's: a sharp edge of the "
-                 "geometry, whose elastic stress has no limit (round it), or a notch far "
-                 "finer than the mesh (give it finer [mesh] sizes)")
-    elif not result.bounded:
-        line += (f" (a hot spot's bound is above {result.target:.1%}, or its notch finer than "
-                 "the mesh there ('unresolved'): the refinement stopped at its rounds or the "
-                 "DOF budget; give finer [mesh] sizes or raise [mesh] max_dofs)")
+        line += f"; NOT JUDGED at hot spot(s) {', '.join(map(str, sharp))}: " + (
+            "sharp edges (their stress rises as the mesh refines)" if short else
+            "their stress rises as the mesh refines, faster than a smooth notch's: a sharp "
+            "edge of the geometry, whose elastic stress has no limit (round it), or a notch "
+            "far finer than the mesh (give it finer [mesh] sizes)")
+    elif loose:
+        line += (f"; hot spot(s) {', '.join(map(str, loose))} not bounded to "
+                 f"{result.target:.1%}" + ("" if short else
+                 " (a bound above it, unknown ('?'), or a notch finer than the mesh there "
+                 "('unresolved'): the refinement stopped at its rounds or the DOF budget; give "
+                 "finer [mesh] sizes or raise [mesh] max_dofs)"))
     return line
 
 

@@ -553,7 +553,13 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                > SPACING * np.hypot(*fine.points[i, :2]) for j in picks):
             picks.append(i)
     if round_ and turning and before:
-        picks = [_round_the_circle(before, fine, i) for i in picks]
+        # taken round their circles, two picks may land on one spot: each spot once
+        moved: list[int] = []
+        for i in (_round_the_circle(before, fine, i) for i in picks):
+            if all(_apart(fine.points[i], fine.points[j], round_)
+                   > SPACING * np.hypot(*fine.points[i, :2]) for j in moved):
+                moved.append(i)
+        picks = moved
     spots = []
     for i in picks:
         p = fine.points[i]
