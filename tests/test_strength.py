@@ -379,6 +379,24 @@ def test_a_sharp_corner_is_reported_as_such_not_given_a_number():
     assert result.sharp and not result.ok and len(result.dofs) >= 3
 
 
+def test_a_keyed_shaft_lists_one_spot_on_a_shoulders_circle_away_from_its_keyway():
+    """A keyed shaft is not of revolution, but about its shoulder, far from the keyway,
+    it is: the rotating bending's cycle is the same all round the fillet's circle, one
+    hot spot there (not one at every vertex round it)."""
+    from shaftfem.workflows.pipeline import with_mesh
+
+    data = sharp_shoulder(3.0)
+    data["keyway"] = [{"position_mm": 60.0, "length_mm": 30.0, "width_mm": 8.0,
+                       "depth_mm": 4.0}]
+    scene = load_scene(data)
+    fine = ws._solve(scene, ws.RunOptions())[0]
+    coarse = ws._solve(with_mesh(scene, scene.mesh.size * 1e3 * ws.COARSER), ws.RunOptions())[0]
+    spots = ws._spots(scene, fine, coarse, None)
+    assert not scene.axisymmetric and spots[0].feature.startswith("shoulder")
+    assert len([s for s in spots if abs(s.z - 0.1485) < 4e-3]) == 1, [
+        (round(s.z * 1e3, 1), round(math.degrees(s.angle))) for s in spots]
+
+
 def test_a_filleted_shoulder_is_refined_around_its_hot_spot_until_bounded():
     """The same shoulder with a 3 mm fillet: a smooth notch, refined around the spot
     until its bound meets the 2 % wanted: the spot's elements at least 2.5 times smaller

@@ -505,17 +505,20 @@ def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
 
 
 def _maxima(field: _Field, values: np.ndarray, allowed: np.ndarray,
-            round_: bool) -> list[int]:
+            round_: np.ndarray) -> list[int]:
     """Local maxima of `values` on the surface, largest first: points with no larger
-    value within SPACING local radii (along the axis on a shaft of revolution, whose
-    turning cycle is the same all round), down to SHARE of the largest."""
+    value within SPACING local radii (along the axis where the shaft is of revolution
+    about them, `round_`: there the turning cycle is the same all round), down to SHARE
+    of the largest."""
     from scipy.spatial import cKDTree
 
     idx = np.flatnonzero(allowed)
     if idx.size == 0:
         return []
     pts = field.points[idx]
-    where = np.column_stack([pts[:, 2], np.zeros(len(idx))]) if round_ else pts
+    # along the axis alone where round: (z, 0, 0); elsewhere in space
+    off = (~round_[idx]).astype(float)
+    where = np.column_stack([pts[:, 2], pts[:, 0] * off, pts[:, 1] * off])
     tree = cKDTree(where)
     r = np.hypot(pts[:, 0], pts[:, 1])
     v = values[idx]
@@ -525,15 +528,36 @@ def _maxima(field: _Field, values: np.ndarray, allowed: np.ndarray,
         if v[k] < SHARE * top or len(taken) >= MAX_SPOTS:
             break
         near = tree.query_ball_point(where[k], SPACING * max(float(r[k]), 1e-3))
-        if v[near].max() <= v[k] and all(_apart(field.points[idx[k]], field.points[j], round_)
-                                         > SPACING * r[k] for j in taken):
-            taken.append(int(idx[k]))
+        i = int(idx[k])
+        if v[near].max() <= v[k] and all(
+                _apart(field.points[i], field.points[j], bool(round_[i] and round_[j]))
+                > SPACING * r[k] for j in taken):
+            taken.append(i)
     return taken
 
 
+def _locally_round(scene: Scene, points: np.ndarray) -> np.ndarray:
+    """Whether the shaft is of revolution about each surface point: everywhere on a
+    shaft of revolution; on a keyed or grooved one, farther along the axis than a
+    keyway's or groove's width from it; nowhere on a STEP solid."""
+    if scene.axisymmetric:
+        return np.ones(len(points), dtype=bool)
+    if scene.shaft.step is not None:
+        return np.zeros(len(points), dtype=bool)
+    z = points[:, 2]
+    spans = [(k.start - k.width, k.end + k.width) for k in scene.shaft.keyways]
+    g = scene.grooves
+    if g is not None:
+        spans.append((g.start - g.width, g.start + g.length + g.width))
+    out = np.ones(len(points), dtype=bool)
+    for z0, z1 in spans:
+        out &= (z < z0) | (z > z1)
+    return out
+
+
 def _apart(p: np.ndarray, q: np.ndarray, round_: bool) -> float:
-    """How far apart two surface points are (m): along the axis on a shaft of
-    revolution, else in space."""
+    """How far apart two surface points are (m): along the axis where the shaft is of
+    revolution about both, else in space."""
     return float(abs(p[2] - q[2])) if round_ else float(np.linalg.norm(p - q))
 
 
@@ -547,9 +571,10 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
     allowed = fine.allowed
     turning = st.speed > 0
     round_ = scene.axisymmetric
-    picks = _maxima(fine, fine.amplitude if turning else fine.peak, allowed, round_)
-    for i in _maxima(fine, fine.peak, allowed, round_):
-        if all(_apart(fine.points[i], fine.points[j], round_)
+    local = _locally_round(scene, fine.points)
+    picks = _maxima(fine, fine.amplitude if turning else fine.peak, allowed, local)
+    for i in _maxima(fine, fine.peak, allowed, local):
+        if all(_apart(fine.points[i], fine.points[j], bool(local[i] and local[j]))
                > SPACING * np.hypot(*fine.points[i, :2]) for j in picks):
             picks.append(i)
     if round_ and turning and before:
