@@ -236,6 +236,26 @@ def test_a_warm_run_reads_its_solved_meshes_from_the_cache(monkeypatch):
     assert again.dofs == first.dofs
 
 
+def test_a_refined_mesh_the_mesher_spoils_stops_the_refinement_and_says_so(monkeypatch):
+    """A refinement round whose mesh fails the Jacobian guard (it happens with gmsh's
+    size fields) ends the refinement: the spots keep the last mesh's values and bounds,
+    the reader is told why, and nothing is half done."""
+    from shaftfem.errors import MeshError
+    from shaftfem.outputs.tables import strength_text
+
+    scene = load_scene(bar(**{**DUTY, "strength": {"speed_rpm": 1000.0,
+                                                   "target_error_percent": 0.1}}))
+
+    def spoiled(*args, **kwargs):
+        raise MeshError("the mesh has an inverted or degenerate element")
+
+    monkeypatch.setattr(ws, "_remeshed", spoiled)
+    result = ws.run_strength(scene)
+    assert len(result.dofs) == 2 and result.spots and not result.bounded
+    assert result.notes and "inverted" in result.notes[0]
+    assert result.notes[0] in strength_text(result)
+
+
 def test_fkm_factors_are_the_guidelines_formulas():
     from shaftfem.checks.fkm import assess
     from shaftfem.scene.model import Strength

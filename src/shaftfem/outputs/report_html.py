@@ -113,6 +113,7 @@ def _strength(result, pictures: Sequence[Path]) -> str:
              f'<p class="verdict {"pass" if result.ok else "fail"}">'
              f"{html.escape(tables.strength_verdict(result))}</p>",
              _paragraphs([tables.strength_intro(result)]),
+             _paragraphs(list(result.notes), "caveat"),
              _table(tables.strength_spot_rows(result), ("hot spot",))]
     if notched:
         parts += [_paragraphs(notched[:1]), "<ul>" + "".join(

@@ -1100,7 +1100,7 @@ def strength_text(result) -> str:
              f"({st.source}); R_z {st.roughness * 1e6:g} um; required safeties: fatigue "
              f"{st.fatigue_safety:g}, yield {st.yield_safety:g} at {st.peak_factor:g} x the duty",
              f"meshes solved: {', '.join(f'{d:,}' for d in result.dofs)} DOFs; bound wanted "
-             f"on each hot spot's stress: {result.target:.1%}", "",
+             f"on each hot spot's stress: {result.target:.1%}", *result.notes, "",
              "hot spots (worst first; stresses von Mises, MPa; a: amplitude over a turn, "
              "m: mean, signed):",
              f"{'#':>2s} {'where':34s} {'a':>7s} {'m':>7s} {'peak':>7s} {'bound':>8s} "
@@ -1221,7 +1221,8 @@ def strength_seat_rows(result) -> tuple[list[str], list[list[str]]]:
 def strength_markdown(result) -> list[str]:
     """The design report's strength section (a workflows.strength.StrengthResult): the
     verdict, the hot spots and the seats as Markdown tables."""
-    lines = ["**" + strength_verdict(result) + "**", "", strength_intro(result), ""]
+    lines = ["**" + strength_verdict(result) + "**", "", strength_intro(result), "",
+             *(x for n in result.notes for x in (n, ""))]
     lines += markdown(*strength_spot_rows(result)) + [""]
     notched = notch_factor_lines(result)
     if notched:

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from shaftfem.errors import BudgetError, SceneError
+from shaftfem.errors import BudgetError, MeshError, SceneError
 from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import Scene
 
@@ -168,6 +168,7 @@ class StrengthResult:
     # the finest mesh's surface with its stresses and utilisations: the hot-spot picture's
     # field and the VTK file's
     surface: StressSurface | None = field(default=None, compare=False, repr=False)
+    notes: tuple[str, ...] = ()   # why the refinement stopped short, where it did
 
     @property
     def sharp(self) -> tuple[HotSpot, ...]:
@@ -209,6 +210,7 @@ class StrengthResult:
             "deflection_ok": self.deflection_ok, "bounded": self.bounded,
             "sharp_edges": len(self.sharp),
             "target_error_percent": self.target * 100, "dofs": list(self.dofs),
+            "notes": list(self.notes),
             "material": {"tensile_strength_mpa": st.tensile_strength / 1e6,
                          "yield_strength_mpa": st.yield_strength / 1e6,
                          "source": st.source},
@@ -279,6 +281,7 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
     fine, mesh, built = _solve(scene, options)
     dofs = [coarse.dofs, fine.dofs]
     spots = _spots(scene, fine, coarse, None)
+    notes: list[str] = []
     for _ in range(MAX_REFINEMENTS):
         worst = max((_utilisation(s) for s in spots), default=0.0)
         open_ = [s for s in spots if s.converging and _utilisation(s) >= 0.5 * worst
@@ -291,13 +294,18 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
         try:
             refined = _remeshed(built, mesh, sizes)
             coarse, (fine, mesh, built) = fine, _solve(scene, options, (built, refined))
-        except BudgetError as e:
-            options.say(f"refining stops: {e}")
+        except (BudgetError, MeshError) as e:
+            # the DOF budget, or a refined mesh the mesher left with a bad element: the
+            # spots keep the last mesh's values and bounds, and the reader is told why
+            stopped = f"refining stopped after {len(dofs) - 2} round(s): {e}"
+            options.say(stopped)
+            notes.append(stopped)
             break
         dofs.append(fine.dofs)
         spots = _spots(scene, fine, coarse, spots)
     return StrengthResult(scene=scene, spots=tuple(spots), seats=_seats(scene, fine),
-                          dofs=tuple(dofs), target=target, surface=_surface(scene, fine))
+                          dofs=tuple(dofs), target=target, surface=_surface(scene, fine),
+                          notes=tuple(notes))
 
 
 def _surface(scene: Scene, field: _Field) -> StressSurface:
