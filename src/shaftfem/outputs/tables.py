@@ -1167,7 +1167,8 @@ def notch_factor_lines(result) -> list[str]:
             f"{f[0].radius * 1e3:g} mm: " + ", ".join(
                 f"{n.load} {n.computed:.2f} ("
                 + ("outside the chart" if n.table is None else f"chart {n.table:.2f}") + ")"
-                for n in f)
+                for n in f) + ("" if s.resolved else
+                               " - the mesh does not follow the fillet there: these are low")
             for k, s in enumerate(result.spots, 1) if (f := s.factors)]
     if not rows:
         return []

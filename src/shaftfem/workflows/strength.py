@@ -297,7 +297,9 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
         except (BudgetError, MeshError) as e:
             # the DOF budget, or a refined mesh the mesher left with a bad element: the
             # spots keep the last mesh's values and bounds, and the reader is told why
-            stopped = f"refining stopped after {len(dofs) - 2} round(s): {e}"
+            done = len(dofs) - 2
+            when = f"after {done} round(s)" if done else "at its first round"
+            stopped = f"refining stopped {when}: {e}"
             options.say(stopped)
             notes.append(stopped)
             break
