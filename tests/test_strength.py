@@ -493,5 +493,36 @@ def test_the_pump_shaft_example_runs_with_its_torque_and_rotating_bending(tmp_pa
     assert data["sharp_edges"] == 0 and data["hot_spots"]
     tau = 15e3 / (2950 * math.pi / 30) * 16 / (math.pi * 0.028**3) / 1e6
     coupling = [s for s in data["hot_spots"] if s["z_mm"] < 60.0]
-    assert coupling and all(s["mean_mpa"] >= math.sqrt(3) * tau * 0.99 for s in coupling)
+    # the mean von Mises stress is signed by the hydrostatic stress, which pure torsion
+    # leaves near zero: either sign
+    assert coupling and all(abs(s["mean_mpa"]) >= math.sqrt(3) * tau * 0.99
+                            for s in coupling)
     assert (run.returncode == 0) == data["passed"]
+
+
+def _edge_field(concave: bool):
+    """Points 0.1 mm apart on two faces meeting at a right-angled edge along y: the face
+    z = 0 (x > 0, material below it) and the face x = 0, above it with the material at
+    x < 0 (a re-entrant edge: the material fills three quadrants) or below it with the
+    material at x > 0 (a convex edge: one quadrant)."""
+    from types import SimpleNamespace
+
+    t = np.linspace(0.0, 1e-3, 11)
+    y = np.linspace(-5e-4, 5e-4, 11)
+    a = np.array([[u, v, 0.0] for u in t for v in y])
+    side = 1.0 if concave else -1.0
+    b = np.array([[0.0, v, side * w] for w in t[1:] for v in y])
+    nb = (1.0, 0.0, 0.0) if concave else (-1.0, 0.0, 0.0)
+    normals = np.vstack([np.tile((0.0, 0.0, 1.0), (len(a), 1)), np.tile(nb, (len(b), 1))])
+    points = np.vstack([a, b])
+    return SimpleNamespace(points=points, normals=normals, edge=np.full(len(points), 1e-4))
+
+
+def test_only_a_re_entrant_edge_turns_the_surface_concavely():
+    """A re-entrant edge turns the normal by a right angle within an element however
+    fine the mesh (its stress is singular); across a convex edge (where two grooves' root
+    fillets meet at a land's corner) the concave turn is nil: its stress is bounded, and
+    its spot is not to be called sharp."""
+    i = 5  # on the face z = 0, at the edge
+    assert math.degrees(ws._edge_turn(_edge_field(True), i)) == pytest.approx(90.0, abs=1e-6)
+    assert ws._edge_turn(_edge_field(False), i) == pytest.approx(0.0, abs=1e-9)

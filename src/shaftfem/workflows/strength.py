@@ -13,8 +13,10 @@ target ([strength] target_error_percent), the mesh is refined around
 those spots only (a gmsh size field: the elements within a few sizes of the spot shrink
 by at least COARSER, by as much as P2 stresses' h^2 convergence asks for AIM times the
 target), and the spots are bounded again against the mesh before. A spot whose stress
-keeps growing as the mesh refines is a sharp corner of the geometry (a singular stress):
-it is reported as such, without a number to trust.
+keeps growing as the mesh refines where the surface turns concavely within an element is a
+sharp re-entrant corner of the geometry (a singular stress): it is reported as such,
+without a number to trust. A convex edge (a land's corner where two grooves' root fillets
+meet) has a bounded stress, and is bounded as any notch is.
 """
 
 from __future__ import annotations
@@ -47,11 +49,11 @@ HOOP_REACH = 4.0
 # each round refines around the worst few spots still above the target, among those
 # utilised at least half as much as the worst (the others do not decide the verdict)
 REFINED = 3
-# a spot rising as refined where the surface's normal turns by more than this within an
-# element (rad) is a sharp edge
+# a spot rising as refined where the surface's normal turns concavely by more than this
+# within an element (rad) is a sharp (re-entrant) edge
 SHARP = math.radians(30.0)
-# ... and a mesh whose normal turns by more than this within an element at a spot does
-# not resolve the notch there: both meshes of a bound miss its peak alike
+# ... and a mesh whose normal turns concavely by more than this within an element at a
+# spot does not resolve the notch there: both meshes of a bound miss its peak alike
 RESOLVED = math.radians(20.0)
 # a P2 mesh's surface stress at a notch of radius rho is low by about 0.45 (h / rho)^2
 # (h its element size there: measured on fillets against NGSolve at order 4); a bound is
@@ -109,9 +111,17 @@ class HotSpot:
     diameter: float
     fkm: PointAssessment
     size: float = 0.0     # the mesh's element size at the spot, m
-    # whether the mesh follows the surface's curvature at the spot (its normal turns by
-    # less than RESOLVED within an element): a two-mesh bound means nothing before
+    # whether the mesh follows the notch's curvature at the spot (its normal turns
+    # concavely by less than RESOLVED within an element): a two-mesh bound means
+    # nothing before
     resolved: bool = True
+    # whether the spot rose as a sharp edge's would at this round (a sharp edge once more
+    # and it is one: a notch not yet resolved rises so once, then refines into a smooth one)
+    rising: bool = False
+    # the error the next refinement aims from (fraction): the bound, or where the coarser
+    # mesh did not resolve the notch (its difference overstates the finer mesh's error)
+    # the notch's curvature term alone
+    aim: float | None = None
     # the two meshes' difference alone (fraction; None when not known): the bound is it
     # or the notch's curvature term, whichever is larger
     difference: float | None = None
@@ -354,8 +364,9 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool) -> n
     for s in spots:
         d = _distance(mesh.points, s, round_)
         local = float(h[np.argmin(d)])
-        shrink = SHRINK_MAX if not s.resolved else COARSER if s.bound is None else float(np.clip(
-            math.sqrt(s.bound / (AIM * target)), COARSER, SHRINK_MAX))
+        error = s.bound if s.aim is None else s.aim
+        shrink = SHRINK_MAX if not s.resolved else COARSER if error is None else float(np.clip(
+            math.sqrt(error / (AIM * target)), COARSER, SHRINK_MAX))
         reach = max(REACH * local, 0.1 * s.radius)
         # 1 within reach, falling linearly to 0 at twice the reach
         weight = np.clip(2.0 - d / reach, 0.0, 1.0)
@@ -608,9 +619,11 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         # each): P2's surface stress in a notch of radius rho is low by about 0.45 (h /
         # rho)^2 (measured against NGSolve at order 4, benchmarks/notch_factors.py), so
         # the bound is at least CURVATURE_ERROR (h / rho)^2
-        bound = None if difference is None else max(
-            difference, CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2)
-        converging = True
+        curvature = CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2
+        bound = None if difference is None else max(difference, curvature)
+        j = int(np.argmin(np.linalg.norm(coarse.points - fine.points[i], axis=1)))
+        aim = curvature if _edge_turn(coarse, j) > RESOLVED else None
+        converging, rising = True, False
         turn = _edge_turn(fine, i)
         old = _same_spot(before or [], fine, i, round_)
         was = 0.0 if old is None else (old.amplitude if cyclic else old.peak)
@@ -618,13 +631,15 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
             # P2 stresses at a smooth notch converge as h^2: refined s times, the change
             # shrinks s^2 times; at a sharp edge the stress grows as h^-0.46 (a
             # right-angled re-entrant corner, Williams), the change shrinking by less
-            # than s: rising with an apparent order below 1 is a sharp edge ...
+            # than s: rising with an apparent order below 1 where the surface turns
+            # concavely by more than SHARP within an element ...
             change, before_change = value[i] - was, old.difference * was
             s_ = max(old.size / max(float(fine.edge[i]), 1e-12), 1.0)
-            rising = change > 0 and difference is not None and change > before_change / s_
-            # ... where the surface turns sharply within an element of the spot (a notch
-            # not yet resolved turns as much, but refines on into a smooth one)
-            converging = old.converging and not (rising and turn > SHARP)
+            rising = (change > 0 and difference is not None
+                      and change > before_change / s_ and turn > SHARP)
+            # ... at two rounds running: a notch the last mesh did not resolve turns and
+            # rises so too, once, and then refines into a smooth one
+            converging = old.converging and not (rising and old.rising)
         if old is not None and bound is None and old.bound is not None and value[i] > 0:
             # the mesh here is as before (this round refined elsewhere): the truth lies
             # within the old bound of the old value, so within this of the new one
@@ -641,7 +656,7 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
                              converging=converging,
                              gradient=gradient, diameter=diameter, fkm=fkm,
                              size=float(fine.edge[i]),
-                             resolved=turn <= RESOLVED,
+                             resolved=turn <= RESOLVED, rising=rising, aim=aim,
                              factors=_notch_factors(scene, fine, i, diameter / 2)))
     spots.sort(key=lambda s: -_utilisation(s))
     return spots
@@ -678,15 +693,19 @@ def _same_spot(before: list[HotSpot], fine: _Field, i: int, round_: bool
 
 def _edge_turn(field: _Field, i: int) -> float:
     """How far the surface's normal turns (rad) from surface point i to the points within
-    1.5 of its element sizes, less what the shaft's own mantle turns over that distance:
-    about 1.5 h (1 / rho - 1 / R) on a notch of radius rho in a shaft of radius R, half a
-    right angle at a sharp edge however fine the mesh, nothing on the plain mantle."""
-    d = np.linalg.norm(field.points - field.points[i], axis=1)
-    reach = 1.5 * field.edge[i]
-    near = d <= reach
-    cos = np.clip(field.normals[near] @ field.normals[i], -1.0, 1.0)
-    mantle = reach / max(_outer_radius(field, float(field.points[i, 2])), 1e-9)
-    return max(float(np.arccos(cos).max()) - mantle, 0.0)
+    1.5 of its element sizes where the surface bends concavely towards them: about 1.5 h /
+    rho on a notch of radius rho, half a right angle at a re-entrant edge however fine the
+    mesh; nothing on the plain mantle or across a convex edge (two grooves' root fillets
+    meeting at a land's corner), whose stress is bounded."""
+    d = field.points - field.points[i]
+    dist2 = np.einsum("ij,ij->i", d, d)
+    near = (dist2 > 0) & (dist2 <= (1.5 * field.edge[i]) ** 2)
+    if not near.any():
+        return 0.0
+    # -(n_j - n_i).(p_j - p_i) > 0 where the surface bends concavely from i towards j
+    concave = np.einsum("ij,ij->i", field.normals[near] - field.normals[i], d[near]) < 0
+    cos = np.clip(field.normals[near][concave] @ field.normals[i], -1.0, 1.0)
+    return float(np.arccos(cos).max()) if concave.any() else 0.0
 
 
 def _concave(field: _Field, i: int) -> float:
