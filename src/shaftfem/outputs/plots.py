@@ -344,31 +344,52 @@ def bearings_figure(cases):
 
 def hot_spots_figure(result):
     """The shaft's surface unrolled (z in mm along, the angle about the axis in degrees
-    across), coloured by the equivalent stress amplitude over a turn (the peak on a
-    standing shaft), MPa, with each hot spot numbered as in the table and the bands where
-    loads enter shaded (a workflows.strength.StrengthResult)."""
+    across), coloured by the degree of utilisation (the larger of FKM's fatigue a_BK and
+    yield a_SK: 1 uses up the required safety), with each hot spot numbered as in the
+    table and the bands where loads enter shaded (a workflows.strength.StrengthResult)."""
     import numpy as np
+    from matplotlib import patheffects
 
     scene = result.scene
-    points = result.surface.points
-    values = result.surface.amplitude if scene.strength.speed > 0 else result.surface.peak
+    surface = result.surface
+    points = surface.points
+    values = np.fmax(surface.fatigue_utilisation, surface.yield_utilisation)
     fig, ax = _figure((9, 3.8))
     r = np.hypot(points[:, 0], points[:, 1])
     order = np.argsort(r)        # the outer surface drawn over the groove floors
     angle = np.degrees(np.arctan2(points[:, 1], points[:, 0])) % 360
-    art = ax.scatter(points[order, 2] * 1e3, angle[order], c=values[order] / 1e6, s=2,
-                     cmap="inferno", rasterized=True)
-    fig.colorbar(art, ax=ax, label=("amplitude" if scene.strength.speed > 0 else "peak")
-                 + " (MPa, von Mises)")
+    judged = order[np.isfinite(values[order])]
+    bands = order[~np.isfinite(values[order])]
+    ax.scatter(points[bands, 2] * 1e3, angle[bands], c="0.75", s=2, rasterized=True)
+    art = ax.scatter(points[judged, 2] * 1e3, angle[judged], c=values[judged], s=2,
+                     cmap="inferno", vmin=0.0, rasterized=True)
+    fig.colorbar(art, ax=ax, label="utilisation max(a_BK, a_SK)")
     for s in scene.held:
         ax.axvspan(s.seat[0] * 1e3, s.seat[1] * 1e3, color="0.85", alpha=0.6, lw=0)
+    outline = [patheffects.withStroke(linewidth=2.5, foreground="white")]
+    # spots closer than a label's size share one label ("4,5")
+    span = float(np.ptp(points[:, 2])) * 1e3
+    groups: list[list[int]] = []
     for k, s in enumerate(result.spots, 1):
         z, a = s.z * 1e3, np.degrees(s.angle) % 360
         ax.plot(z, a, "o", mfc="none", mec="C0", ms=9, mew=1.5)
-        ax.annotate(str(k), (z, a), textcoords="offset points", xytext=(5, 5), fontsize=9,
-                    color="C0", weight="bold")
+        for g in groups:
+            s0 = result.spots[g[0] - 1]
+            if (abs(s0.z * 1e3 - z) < 0.03 * span
+                    and abs((np.degrees(s0.angle) - a + 180) % 360 - 180) < 20):
+                g.append(k)
+                break
+        else:
+            groups.append([k])
+    for g in groups:
+        s = result.spots[g[0] - 1]
+        z, a = s.z * 1e3, np.degrees(s.angle) % 360
+        # a spot at the top edge is labelled below it, inside the axes
+        ax.annotate(",".join(map(str, g)), (z, a), textcoords="offset points",
+                    xytext=(5, -13 if a > 330 else 5), fontsize=9, color="C0",
+                    weight="bold", path_effects=outline)
     ax.set_xlabel("z along the shaft (mm)")
     ax.set_ylabel("angle about the axis (deg)")
     ax.set_ylim(0, 360)
-    ax.set_title(f"{scene.name}: hot spots on the unrolled surface (bearing seats shaded)")
+    ax.set_title(f"{scene.name}: hot spots on the unrolled surface (load bands grey)")
     return fig
