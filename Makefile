@@ -1,5 +1,7 @@
 # The two commands of the README:
-#   make run    set up .venv from the lock (what the run needs) and run `shaftfem design`
+#   make run    set up .venv from the lock (what the run needs) and run `shaftfem design`:
+#               the paper's shaft hanging free (its Table 2), then in its bearings under
+#               its duty (modes, whirl and strength)
 #   make test   set up .venv from the lock (plus test tools and the cross-check programs)
 #               and run the tests, one worker per core (.ci/run calls this)
 # And for developers:
@@ -13,6 +15,7 @@
 run:
 	bash scripts/setup.sh run
 	.venv/bin/shaftfem design
+	.venv/bin/shaftfem design paper2018_installed
 test:
 	bash scripts/setup.sh test
 	.venv/bin/python -m pytest -q -n auto --dist worksteal
