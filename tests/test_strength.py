@@ -236,6 +236,25 @@ def test_a_warm_run_reads_its_solved_meshes_from_the_cache(monkeypatch):
     assert again.dofs == first.dofs
 
 
+def test_a_damaged_solved_mesh_in_the_cache_is_discarded_and_solved_again(monkeypatch,
+                                                                         tmp_path):
+    """A kept solved duty whose file is damaged is said to be so, removed and solved
+    again: the hot spots come out as from a cold run."""
+    from shaftfem.store import CacheWarning, cache_dir
+
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))   # no other test's entries
+    monkeypatch.setattr(ws, "MAX_REFINEMENTS", 0)           # two meshes are enough here
+    scene = load_scene(bar(**DUTY))
+    first = ws.run_strength(scene)
+    kept = sorted((cache_dir() / "strength" / "fields").glob("*.npz"),
+                  key=lambda p: p.stat().st_mtime)[-1]
+    kept.write_bytes(kept.read_bytes()[:1000])
+    with pytest.warns(CacheWarning, match="damaged"):
+        again = ws.run_strength(scene)
+    assert [(s.z, s.amplitude) for s in again.spots] == [(s.z, s.amplitude)
+                                                          for s in first.spots]
+
+
 def test_a_refined_mesh_the_mesher_spoils_stops_the_refinement_and_says_so(monkeypatch):
     """A refinement round whose mesh fails the Jacobian guard (it happens with gmsh's
     size fields) ends the refinement: the spots keep the last mesh's values and bounds,

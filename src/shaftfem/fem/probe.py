@@ -27,6 +27,13 @@ class Probe:
     matrix: sparse.csr_matrix
     found: np.ndarray
 
+    def tensors(self, stress: np.ndarray) -> np.ndarray:
+        """Each case's tensor (k, cases, 3, 3) at the points read, of fields (cases, n,
+        3, 3) at the mesh's vertices."""
+        cases, n = stress.shape[:2]
+        flat = np.moveaxis(stress, 0, 1).reshape(n, cases * 9)
+        return np.asarray(self.matrix @ flat).reshape(-1, cases, 3, 3)
+
 
 def probe(vertices: np.ndarray, tets: np.ndarray, points: np.ndarray, tree=None) -> Probe:
     """The linear interpolation of a field at the mesh's `vertices` (n, 3) over `tets`

@@ -35,10 +35,7 @@ def resultants(read: Callable[[np.ndarray], Probe], stress: np.ndarray, z: float
     at = read(np.column_stack([x, y, np.full(x.size, z)]))
     if not at.found.all():
         return None
-    P = at.matrix
-    cases = stress.shape[0]
-    flat = np.moveaxis(stress, 0, 1).reshape(stress.shape[1], cases * 9)
-    s = np.asarray(P @ flat).reshape(-1, cases, 3, 3)
+    s = at.tensors(stress)
     wt = weight.ravel()[:, None]
     szz, txz, tyz = s[..., 2, 2], s[..., 0, 2], s[..., 1, 2]
     return np.column_stack([

@@ -1084,6 +1084,11 @@ def bearing_rows(cases) -> tuple[list[str], list[list[str]]]:
     return head, rows
 
 
+def _degrees(angle: float) -> str:
+    """An angle about the axis (rad) in whole degrees, 0 to 359 (359.7 deg is 0)."""
+    return f"{round(math.degrees(angle)) % 360:d}"
+
+
 def strength_text(result) -> str:
     """What `shaftfem strength` prints: the material, each hot spot's stresses with
     their bound and FKM's utilisations, the seats' slopes and deflections against their
@@ -1107,7 +1112,7 @@ def strength_text(result) -> str:
              f"{'G 1/mm':>7s} {'n':>5s} {'K_WK':>5s} {'K_AK':>5s} {'S_fat':>6s} {'a_BK':>5s} "
              f"{'S_yld':>6s} {'a_SK':>5s}"]
     for k, s in enumerate(result.spots, 1):
-        where = (f"{s.feature[:16]} z {s.z * 1e3:.1f} mm {math.degrees(s.angle) % 360:.0f} deg")
+        where = (f"{s.feature[:16]} z {s.z * 1e3:.1f} mm {_degrees(s.angle)} deg")
         bound = ("sharp" if not s.converging else "unresolv" if not s.resolved else
                  "?" if s.bound is None else f"+-{s.bound:.1%}")
         f = s.fkm
@@ -1156,6 +1161,13 @@ def strength_verdict(result, short: bool = False) -> str:
                  " (a bound above it, unknown ('?'), or a notch finer than the mesh there "
                  "('unresolved'): the refinement stopped at its rounds or the DOF budget; give "
                  "finer [mesh] sizes or raise [mesh] max_dofs)"))
+        known = [(max(sp.fkm.fatigue_utilisation, sp.fkm.yield_utilisation)
+                  * (1 + sp.bound), k) for k, sp in enumerate(result.spots, 1)
+                 if sp.converging and sp.resolved and sp.bound is not None]
+        if known and not short:
+            worst, k = max(known)
+            line += (f"; with each known bound taken against it, the largest degree of "
+                     f"utilisation is {worst:.2f} (hot spot {k})")
     return line
 
 
@@ -1194,9 +1206,8 @@ def strength_intro(result) -> str:
 
 def strength_spot_rows(result) -> tuple[list[str], list[list[str]]]:
     """The hot spots' table: where, the stresses with their bound, FKM's safeties."""
-    import math
 
-    rows = [[str(k), s.feature, f"{s.z * 1e3:.1f}", f"{math.degrees(s.angle) % 360:.0f}",
+    rows = [[str(k), s.feature, f"{s.z * 1e3:.1f}", _degrees(s.angle),
              f"{s.amplitude / 1e6:.1f}", f"{s.mean / 1e6:.1f}", f"{s.peak / 1e6:.1f}",
              "sharp edge" if not s.converging else "unresolved" if not s.resolved
              else "?" if s.bound is None else f"{s.bound:.1%}",

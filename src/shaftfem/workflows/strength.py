@@ -64,6 +64,9 @@ CURVATURE_ERROR = 1.0
 MAX_SPOTS = 8
 SPACING = 0.25
 SHARE = 0.3
+# on a standing shaft of revolution, a stress this close to the same all round a circle
+# is taken as round (a torque's, an axial force's): its spot follows the refined place
+ROUND = 0.05
 # slope limits by bearing kind (rad), common practice: Budynas & Nisbett, Shigley's
 # Mechanical Engineering Design, 10th ed., table 7-2 (the low ends of the ranges:
 # deep-groove ball 0.001-0.003, cylindrical roller 0.0008-0.0012); springs and
@@ -300,7 +303,7 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
             break
         options.say(f"hot spot(s) {', '.join(str(spots.index(s) + 1) for s in open_)} bounded "
                     f"above {target:.1%}: refining around them")
-        sizes = _refined_sizes(mesh, open_, target, scene.axisymmetric)
+        sizes = _refined_sizes(mesh, open_, target, scene.axisymmetric, spots)
         try:
             refined = _remeshed(built, mesh, sizes)
             coarse, (fine, mesh, built) = fine, _solve(scene, options, (built, refined))
@@ -341,15 +344,18 @@ def _utilisation(s: HotSpot) -> float:
     return max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation)
 
 
-def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool) -> np.ndarray:
+def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool,
+                   kept: list[HotSpot] | None = None) -> np.ndarray:
     """Element sizes at the mesh's points for the next mesh: around each spot whose bound
     is above the target, shrunk by (bound / (AIM target))^(1/2) (P2 stresses converge
     as h^2), at least COARSER and at most SHRINK_MAX, within REACH local sizes (or a
     tenth of the local radius) and graded back to the mesh's own over as many again;
-    elsewhere the mesh's own sizes. On a shaft of revolution too, only around the spot
-    (not all round its circle), but HOOP_REACH times as far round the circle as along
-    the axis: the spot found on a coarse mesh sits where a vertex happened to be, some
-    degrees off the load's plane, where the finer mesh finds the peak."""
+    around the `kept` spots (the others listed) their own sizes, so that a round never
+    coarsens where an earlier one refined; elsewhere the mesh's own sizes. On a shaft of
+    revolution too, only around the spot (not all round its circle), but HOOP_REACH times
+    as far round the circle as along the axis: the spot found on a coarse mesh sits
+    where a vertex happened to be, some degrees off the load's plane, where the finer
+    mesh finds the peak."""
     from shaftfem.workflows.adapt import element_sizes
 
     h_el = element_sizes(mesh)
@@ -361,6 +367,11 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool) -> n
     h = np.bincount(vertices, np.repeat(h_el, 4), n) / np.maximum(count, 1)
     h[count == 0] = float(h_el.max())
     new = h.copy()
+    for s in kept or []:
+        # the mean at a vertex lies above the smallest element's size where the mesh is
+        # graded steeply (around a refined spot): gmsh would coarsen there
+        d = _distance(mesh.points, s, round_)
+        new = np.where(d <= max(REACH * s.size, 0.1 * s.radius), np.minimum(new, s.size), new)
     for s in spots:
         d = _distance(mesh.points, s, round_)
         local = float(h[np.argmin(d)])
@@ -397,7 +408,7 @@ def _remeshed(built, mesh, sizes: np.ndarray):
         mesh_arrays,
         mesh_from_arrays,
     )
-    from shaftfem.store import cache_dir, content_key, load_arrays, save_arrays
+    from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
     from shaftfem.workflows.stages import mesh_key
 
     placed, shape = built
@@ -407,7 +418,9 @@ def _remeshed(built, mesh, sizes: np.ndarray):
                                                       placed.mesh, placed.seat_cuts()),
                        "sizes": digest})
     path = cache_dir() / "strength" / f"{key}.npz"
-    fields, _ = load_arrays(path, MESH_ARRAYS) if path.exists() else (None, "")
+    fields, why = load_arrays(path, MESH_ARRAYS) if path.exists() else (None, "")
+    if fields is None and why:
+        discard(f"refined mesh {path.stem}", why, path)
     if fields is not None:
         made = replace(mesh_from_arrays(fields), order=placed.mesh.order)
     else:
@@ -425,7 +438,7 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
     from scipy.spatial import cKDTree
 
     from shaftfem.fem.stress import cycle
-    from shaftfem.store import load_arrays, save_arrays
+    from shaftfem.store import discard, load_arrays, save_arrays
     from shaftfem.workflows.equip import with_parts
     from shaftfem.workflows.pipeline import built
 
@@ -437,7 +450,9 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
     else:
         (placed, shape), mesh = given
     path = _field_path(placed, mesh)
-    fields, _ = load_arrays(path, FIELD_ARRAYS) if path.exists() else (None, "")
+    fields, why = load_arrays(path, FIELD_ARRAYS) if path.exists() else (None, "")
+    if fields is None and why:
+        discard(f"solved duty {path.stem}", why, path)
     if fields is None:
         fields = _solved(placed, mesh, options)
         save_arrays(path, fields)
@@ -550,9 +565,7 @@ def _maxima(field: _Field, values: np.ndarray, allowed: np.ndarray,
             break
         near = tree.query_ball_point(where[k], SPACING * max(float(r[k]), 1e-3))
         i = int(idx[k])
-        if v[near].max() <= v[k] and all(
-                _apart(field.points[i], field.points[j], bool(round_[i] and round_[j]))
-                > SPACING * r[k] for j in taken):
+        if v[near].max() <= v[k] and _clear_of(field, i, taken, round_):
             taken.append(i)
     return taken
 
@@ -582,6 +595,15 @@ def _apart(p: np.ndarray, q: np.ndarray, round_: bool) -> float:
     return float(abs(p[2] - q[2])) if round_ else float(np.linalg.norm(p - q))
 
 
+def _clear_of(field: _Field, i: int, taken: list[int], round_: np.ndarray) -> bool:
+    """Whether surface point i lies more than SPACING local radii from every point
+    taken (along the axis where the shaft is of revolution about both)."""
+    p = field.points[i]
+    gap = SPACING * float(np.hypot(p[0], p[1]))
+    return all(_apart(p, field.points[j], bool(round_[i] and round_[j])) > gap
+               for j in taken)
+
+
 def _spots(scene: Scene, fine: _Field, coarse: _Field,
            before: list[HotSpot] | None) -> list[HotSpot]:
     """The fine mesh's hot spots, each bounded against the coarse mesh and judged."""
@@ -595,15 +617,15 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
     local = _locally_round(scene, fine.points)
     picks = _maxima(fine, fine.amplitude if turning else fine.peak, allowed, local)
     for i in _maxima(fine, fine.peak, allowed, local):
-        if all(_apart(fine.points[i], fine.points[j], bool(local[i] and local[j]))
-               > SPACING * np.hypot(*fine.points[i, :2]) for j in picks):
+        if _clear_of(fine, i, picks, local):
             picks.append(i)
-    if round_ and turning and before:
+    if round_ and before:
         # taken round their circles, two picks may land on one spot: each spot once
         moved: list[int] = []
-        for i in (_round_the_circle(before, fine, i) for i in picks):
-            if all(_apart(fine.points[i], fine.points[j], round_)
-                   > SPACING * np.hypot(*fine.points[i, :2]) for j in moved):
+        governing = fine.amplitude if turning else fine.peak
+        everywhere = np.ones(len(fine.points), dtype=bool)
+        for i in (_round_the_circle(before, fine, i, governing, turning) for i in picks):
+            if _clear_of(fine, i, moved, everywhere):
                 moved.append(i)
         picks = moved
     spots = []
@@ -646,26 +668,31 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
             bound = float((abs(value[i] - was) + old.bound * was) / value[i])
         gradient = _gradient(fine, i, turning)
         diameter = 2 * _outer_radius(fine, p[2])
+        feature, step = _feature(scene, p, diameter / 2)
         fkm = assess(float(fine.amplitude[i]), float(fine.mean[i]), float(fine.peak[i]),
                      gradient, diameter, st)
         spots.append(HotSpot(z=float(p[2]), angle=float(math.atan2(p[1], p[0])),
                              radius=float(np.hypot(p[0], p[1])),
-                             feature=_feature(scene, p, diameter / 2),
+                             feature=feature,
                              amplitude=float(fine.amplitude[i]), mean=float(fine.mean[i]),
                              peak=float(fine.peak[i]), bound=bound, difference=difference,
                              converging=converging,
                              gradient=gradient, diameter=diameter, fkm=fkm,
                              size=float(fine.edge[i]),
                              resolved=turn <= RESOLVED, rising=rising, aim=aim,
-                             factors=_notch_factors(scene, fine, i, diameter / 2)))
+                             factors=_notch_factors(scene, fine, i, step)))
     spots.sort(key=lambda s: -_utilisation(s))
     return spots
 
 
-def _round_the_circle(before: list[HotSpot], fine: _Field, i: int) -> int:
+def _round_the_circle(before: list[HotSpot], fine: _Field, i: int, value: np.ndarray,
+                      turning: bool) -> int:
     """On a turning shaft of revolution the cycle is the same all round a circle, and
     its largest value falls where a vertex happens to be: point i taken back round its
-    circle to where the last round's spot at its z was (and refined), the largest there."""
+    circle to where the last round's spot at its z was (and refined), the largest there.
+    So too on a standing one where the stress is the same all round (a torque, an axial
+    force: the value there within ROUND of point i's); not where it is not (a standing
+    bending load's peak is in its plane)."""
     p = fine.points[i]
     r = float(np.hypot(p[0], p[1]))
     old = min(before, key=lambda s: abs(s.z - p[2]) + abs(s.radius - r))
@@ -674,7 +701,10 @@ def _round_the_circle(before: list[HotSpot], fine: _Field, i: int) -> int:
     there = np.array([r * math.cos(old.angle), r * math.sin(old.angle), p[2]])
     d = np.linalg.norm(fine.points - there, axis=1)
     near = np.flatnonzero((d <= 2 * max(old.size, float(fine.edge[i]))) & fine.allowed)
-    return int(near[np.argmax(fine.amplitude[near])]) if near.size else i
+    if not near.size:
+        return i
+    j = int(near[np.argmax(value[near])])
+    return j if turning or value[j] >= (1 - ROUND) * value[i] else i
 
 
 def _same_spot(before: list[HotSpot], fine: _Field, i: int, round_: bool
@@ -766,9 +796,7 @@ def _gradients(field: _Field, idx: np.ndarray, turning: bool) -> np.ndarray:
     depth = 0.25 * field.edge[idx]
     inward = depth[:, None] * field.normals[idx]
     at = field.read(np.vstack([field.points[idx] - 1e-3 * inward, field.points[idx] - inward]))
-    cases = field.all_stress.shape[0]
-    flat = np.moveaxis(field.all_stress, 0, 1).reshape(-1, cases * 9)
-    tensors = np.moveaxis(np.asarray(at.matrix @ flat).reshape(2 * k, cases, 3, 3), 1, 0)
+    tensors = np.moveaxis(at.tensors(field.all_stress), 1, 0)
     amplitude, _, peak = cycle(tensors, turning)
     v = amplitude if turning else peak
     v0, v1 = v[:k], v[k:]
@@ -795,22 +823,23 @@ def _outer_radius(field: _Field, z: float) -> float:
     return float(np.hypot(field.points[near, 0], field.points[near, 1]).max())
 
 
-def _feature(scene: Scene, p: np.ndarray, outer: float) -> str:
-    """What a hot spot sits on, in a designer's words."""
+def _feature(scene: Scene, p: np.ndarray, outer: float) -> tuple[str, int | None]:
+    """What a hot spot sits on, in a designer's words; and the step it is at (the index
+    of the section the step ends), if it sits on a shoulder."""
     r = float(np.hypot(p[0], p[1]))
     z = float(p[2])
     below = outer - r
     g = scene.grooves
     if g is not None and g.start <= z <= g.start + g.length and below > 0.05 * g.depth:
-        return "groove root" if below > 0.5 * g.depth else "groove flank"
+        return ("groove root" if below > 0.5 * g.depth else "groove flank"), None
     for k in scene.shaft.keyways:
         if k.start - 1e-3 <= z <= k.start + k.length + 1e-3 and below > 0.05 * k.depth:
             end = min(abs(z - k.start), abs(z - k.start - k.length)) < k.width
-            return "keyway end" if end else "keyway"
+            return ("keyway end" if end else "keyway"), None
     step = _shoulder(scene, z, outer)
     if step is not None:
-        return f"shoulder at {scene.shaft.section_bounds()[step][1] * 1e3:g} mm"
-    return "plain surface"
+        return f"shoulder at {scene.shaft.section_bounds()[step][1] * 1e3:g} mm", step
+    return "plain surface", None
 
 
 def _shoulder(scene: Scene, z: float, outer: float) -> int | None:
@@ -823,23 +852,22 @@ def _shoulder(scene: Scene, z: float, outer: float) -> int | None:
     return None
 
 
-def _notch_factors(scene: Scene, field: _Field, i: int, outer: float
+def _notch_factors(scene: Scene, field: _Field, i: int, k: int | None
                    ) -> tuple[NotchFactor, ...]:
     """At a hot spot on a shoulder fillet of a solid shaft (no bore, no keyway or groove
     there), K_t under each load its section carries (a nominal stress at least NOMINAL of
-    the spot's peak), beside Peterson's: bending from the rotating cases' largest
+    the spot's peak), beside Peterson's (k: the step's index, None off a shoulder):
+    bending from the rotating cases' largest
     principal stress over the turn, torsion from the torque's largest shear, tension from
     the axial case's largest principal; each over the nominal stress of the smaller
     diameter d from what the section through the spot carries."""
     from shaftfem.checks.notch_tables import shoulder_fillet
     from shaftfem.fem.section import resultants
 
-    p = field.points[i]
-    k = _shoulder(scene, float(p[2]), outer)
-    prof = scene.shaft.profile
-    if k is None or _feature(scene, p, outer) != (
-            f"shoulder at {scene.shaft.section_bounds()[k][1] * 1e3:g} mm"):
+    if k is None:
         return ()
+    p = field.points[i]
+    prof = scene.shaft.profile
     a, b = prof[k], prof[k + 1]
     if a.bore or b.bore or a.conical or b.conical or a.diameter_end == b.diameter_start:
         return ()
