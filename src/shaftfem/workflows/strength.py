@@ -303,7 +303,7 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
             break
         options.say(f"hot spot(s) {', '.join(str(spots.index(s) + 1) for s in open_)} bounded "
                     f"above {target:.1%}: refining around them")
-        sizes = _refined_sizes(mesh, open_, target, scene.axisymmetric, spots)
+        sizes = _refined_sizes(mesh, open_, target, scene.axisymmetric)
         try:
             refined = _remeshed(built, mesh, sizes)
             coarse, (fine, mesh, built) = fine, _solve(scene, options, (built, refined))
@@ -344,14 +344,12 @@ def _utilisation(s: HotSpot) -> float:
     return max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation)
 
 
-def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool,
-                   kept: list[HotSpot] | None = None) -> np.ndarray:
+def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool) -> np.ndarray:
     """Element sizes at the mesh's points for the next mesh: around each spot whose bound
     is above the target, shrunk by (bound / (AIM target))^(1/2) (P2 stresses converge
     as h^2), at least COARSER and at most SHRINK_MAX, within REACH local sizes (or a
     tenth of the local radius) and graded back to the mesh's own over as many again;
-    around the `kept` spots (the others listed) their own sizes, so that a round never
-    coarsens where an earlier one refined; elsewhere the mesh's own sizes. On a shaft of
+    elsewhere the mesh's own sizes. On a shaft of
     revolution too, only around the spot (not all round its circle), but HOOP_REACH times
     as far round the circle as along the axis: the spot found on a coarse mesh sits
     where a vertex happened to be, some degrees off the load's plane, where the finer
@@ -367,11 +365,6 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool,
     h = np.bincount(vertices, np.repeat(h_el, 4), n) / np.maximum(count, 1)
     h[count == 0] = float(h_el.max())
     new = h.copy()
-    for s in kept or []:
-        # the mean at a vertex lies above the smallest element's size where the mesh is
-        # graded steeply (around a refined spot): gmsh would coarsen there
-        d = _distance(mesh.points, s, round_)
-        new = np.where(d <= max(REACH * s.size, 0.1 * s.radius), np.minimum(new, s.size), new)
     for s in spots:
         d = _distance(mesh.points, s, round_)
         local = float(h[np.argmin(d)])
