@@ -369,21 +369,19 @@ def hot_spots_figure(result):
     outline = [patheffects.withStroke(linewidth=2.5, foreground="white")]
     # spots closer than a label's size share one label ("4,5")
     span = float(np.ptp(points[:, 2])) * 1e3
+    where = [(s.z * 1e3, np.degrees(s.angle) % 360) for s in result.spots]
     groups: list[list[int]] = []
-    for k, s in enumerate(result.spots, 1):
-        z, a = s.z * 1e3, np.degrees(s.angle) % 360
+    for k, (z, a) in enumerate(where, 1):
         ax.plot(z, a, "o", mfc="none", mec="C0", ms=9, mew=1.5)
         for g in groups:
-            s0 = result.spots[g[0] - 1]
-            if (abs(s0.z * 1e3 - z) < 0.03 * span
-                    and abs((np.degrees(s0.angle) - a + 180) % 360 - 180) < 20):
+            z0, a0 = where[g[0] - 1]
+            if abs(z0 - z) < 0.03 * span and abs((a0 - a + 180) % 360 - 180) < 20:
                 g.append(k)
                 break
         else:
             groups.append([k])
     for g in groups:
-        s = result.spots[g[0] - 1]
-        z, a = s.z * 1e3, np.degrees(s.angle) % 360
+        z, a = where[g[0] - 1]
         # a spot at the top edge is labelled below it, inside the axes
         ax.annotate(",".join(map(str, g)), (z, a), textcoords="offset points",
                     xytext=(5, -13 if a > 330 else 5), fontsize=9, color="C0",

@@ -1161,10 +1161,11 @@ def strength_verdict(result, short: bool = False) -> str:
                  " (a bound above it, unknown ('?'), or a notch finer than the mesh there "
                  "('unresolved'): the refinement stopped at its rounds or the DOF budget; give "
                  "finer [mesh] sizes or raise [mesh] max_dofs)"))
-        known = [(max(sp.fkm.fatigue_utilisation, sp.fkm.yield_utilisation)
-                  * (1 + sp.bound), k) for k, sp in enumerate(result.spots, 1)
-                 if sp.converging and sp.resolved and sp.bound is not None]
-        if known and not short:
+        known = [] if short else [
+            (max(sp.fkm.fatigue_utilisation, sp.fkm.yield_utilisation) * (1 + sp.bound), k)
+            for k, sp in enumerate(result.spots, 1)
+            if sp.converging and sp.resolved and sp.bound is not None]
+        if known:
             worst, k = max(known)
             line += (f"; with each known bound taken against it, the largest degree of "
                      f"utilisation is {worst:.2f} (hot spot {k})")

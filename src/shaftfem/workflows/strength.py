@@ -349,11 +349,10 @@ def _refined_sizes(mesh, spots: list[HotSpot], target: float, round_: bool) -> n
     is above the target, shrunk by (bound / (AIM target))^(1/2) (P2 stresses converge
     as h^2), at least COARSER and at most SHRINK_MAX, within REACH local sizes (or a
     tenth of the local radius) and graded back to the mesh's own over as many again;
-    elsewhere the mesh's own sizes. On a shaft of
-    revolution too, only around the spot (not all round its circle), but HOOP_REACH times
-    as far round the circle as along the axis: the spot found on a coarse mesh sits
-    where a vertex happened to be, some degrees off the load's plane, where the finer
-    mesh finds the peak."""
+    elsewhere the mesh's own sizes. On a shaft of revolution too, only around the spot
+    (not all round its circle), but HOOP_REACH times as far round the circle as along
+    the axis: the spot found on a coarse mesh sits where a vertex happened to be, some
+    degrees off the load's plane, where the finer mesh finds the peak."""
     from shaftfem.workflows.adapt import element_sizes
 
     h_el = element_sizes(mesh)
@@ -616,9 +615,9 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         # taken round their circles, two picks may land on one spot: each spot once
         moved: list[int] = []
         governing = fine.amplitude if turning else fine.peak
-        everywhere = np.ones(len(fine.points), dtype=bool)
+        # (a shaft of revolution is round about every point: `local` is all True)
         for i in (_round_the_circle(before, fine, i, governing, turning) for i in picks):
-            if _clear_of(fine, i, moved, everywhere):
+            if _clear_of(fine, i, moved, local):
                 moved.append(i)
         picks = moved
     spots = []
@@ -628,16 +627,17 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         # steady stress dwarfs it (a torsion-only span), then its peak
         cyclic = turning and fine.amplitude[i] >= 0.1 * fine.peak[i]
         value = fine.amplitude if cyclic else fine.peak
+        # how far each of the coarser mesh's surface points lies from the spot (m)
+        d_coarse = np.linalg.norm(coarse.points - p, axis=1)
         difference = _bound(fine, coarse, i, value,
-                            coarse.amplitude if cyclic else coarse.peak)
+                            coarse.amplitude if cyclic else coarse.peak, d_coarse)
         # two meshes can agree by chance (the peak falls between vertices differently on
         # each): P2's surface stress in a notch of radius rho is low by about 0.45 (h /
         # rho)^2 (measured against NGSolve at order 4, benchmarks/notch_factors.py), so
         # the bound is at least CURVATURE_ERROR (h / rho)^2
         curvature = CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2
         bound = None if difference is None else max(difference, curvature)
-        j = int(np.argmin(np.linalg.norm(coarse.points - fine.points[i], axis=1)))
-        aim = curvature if _edge_turn(coarse, j) > RESOLVED else None
+        aim = curvature if _edge_turn(coarse, int(np.argmin(d_coarse))) > RESOLVED else None
         converging, rising = True, False
         turn = _edge_turn(fine, i)
         old = _same_spot(before or [], fine, i, round_)
@@ -750,15 +750,15 @@ def _xyz(s: HotSpot) -> np.ndarray:
 
 
 def _bound(fine: _Field, coarse: _Field, i: int, value: np.ndarray,
-           coarse_value: np.ndarray) -> float | None:
+           coarse_value: np.ndarray, d_coarse: np.ndarray) -> float | None:
     """|sigma_fine - sigma_coarse| / sigma_fine at hot spot i: each mesh's largest value
     near the spot (within twice the larger of the two meshes' element sizes there, away
     from the load bands), the hot spot as each mesh sees it; None where the coarse mesh
-    is not MIN_RATIO times coarser there."""
+    is not MIN_RATIO times coarser there. d_coarse: the coarse mesh's points' distances
+    from the spot (m)."""
     if value[i] <= 0:
         return None
     d_fine = np.linalg.norm(fine.points - fine.points[i], axis=1)
-    d_coarse = np.linalg.norm(coarse.points - fine.points[i], axis=1)
     h_coarse = float(coarse.edge[np.argmin(d_coarse)])
     if h_coarse < MIN_RATIO * float(fine.edge[i]):
         # the two meshes are alike here (the spot moved to where the last round did not
@@ -850,10 +850,10 @@ def _notch_factors(scene: Scene, field: _Field, i: int, k: int | None
     """At a hot spot on a shoulder fillet of a solid shaft (no bore, no keyway or groove
     there), K_t under each load its section carries (a nominal stress at least NOMINAL of
     the spot's peak), beside Peterson's (k: the step's index, None off a shoulder):
-    bending from the rotating cases' largest
-    principal stress over the turn, torsion from the torque's largest shear, tension from
-    the axial case's largest principal; each over the nominal stress of the smaller
-    diameter d from what the section through the spot carries."""
+    bending from the rotating cases' largest principal stress over the turn, torsion
+    from the torque's largest shear, tension from the axial case's largest principal;
+    each over the nominal stress of the smaller diameter d from what the section through
+    the spot carries."""
     from shaftfem.checks.notch_tables import shoulder_fillet
     from shaftfem.fem.section import resultants
 
