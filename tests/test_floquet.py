@@ -203,6 +203,40 @@ def either_frame(element_mm: float, first_pair: float) -> None:
     y = sorted(cs.speed_rpm for cs in turning.critical_speeds if cs.order == 1)
     assert x and len(x) == len(y)
     np.testing.assert_allclose(y, x, rtol=1e-4)
+    seen_alike(still, turning)
+
+
+def seen_alike(still, turning) -> None:
+    """The housing sees one whirl whichever frame solved it: each mode's whirl and
+    index (within 0.01), and its orbit at the wheel (its own whirl index, the forward
+    less the backward circle's square over their sum, within 0.01; the direction of its
+    major axis within 1 deg). The stationary frame's ellipse
+    is its constant mode's own; the turning frame's is what its Floquet form's harmonics
+    show the housing (fem.rotor.seen_shape)."""
+    from shaftfem.outputs.whirl_files import complex_shapes
+
+    a, b = still.operating, turning.operating
+    assert [w.whirl for w in b] == [w.whirl for w in a]
+    np.testing.assert_allclose([w.whirl_index for w in b], [w.whirl_index for w in a],
+                               atol=0.01)
+    pts = still.result.mesh.points
+    at = (np.abs(pts[:, 2] - 0.160) < 0.004) & (np.hypot(pts[:, 0], pts[:, 1]) < 0.008)
+    assert at.sum() >= 3
+
+    def ellipse(u):
+        x, y = u[at, 0].mean(), u[at, 1].mean()
+        f, g = 0.5 * (x + 1j * y), 0.5 * np.conj(x - 1j * y)     # z = f e^it + g e^-it
+        return ((abs(f) ** 2 - abs(g) ** 2) / (abs(f) ** 2 + abs(g) ** 2),
+                (0.5 * (np.angle(f) + np.angle(g))) % math.pi)
+
+    for k, w in enumerate(a):
+        if w.kind != "bending":
+            continue
+        (ra, ta), (rb, tb) = ellipse(complex_shapes(still, 0)[k]), ellipse(
+            complex_shapes(turning, 0)[k])
+        assert rb == pytest.approx(ra, abs=0.01), (w, ra, rb)
+        gap = abs(ta - tb) % math.pi
+        assert min(gap, math.pi - gap) < math.radians(1.0), (w, ta, tb)
 
 
 @pytest.mark.slow

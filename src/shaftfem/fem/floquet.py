@@ -653,14 +653,17 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     share = np.where(inside, energy[np.clip(at, 0, energy.shape[0] - 1), cols[None, :]], 0.0)
     share = share / np.maximum(total, 1e-300)
     index = np.zeros_like(share)
+    side_forms = np.zeros((d.size, forms.shape[1], cols.size), dtype=complex)
     for r in range(d.size):
         ys = forms[np.clip(at[r], 0, energy.shape[0] - 1), :, cols].T   # (N, forms)
         index[r] = whirl_index(model, ys)
-    share, index = share[:, keep], index[:, keep]
+        side_forms[r] = np.where(inside[r][None, :], ys, 0.0)
+    share, index, side_forms = share[:, keep], index[:, keep], side_forms[:, :, keep]
     order = np.argsort(lam.imag)
     out = Roots(lam=lam[order], y=y[:, order],
                 divergence=divergence if divergence > 1e-9 * scale else 0.0,
-                sides=share[:, order], side_index=index[:, order])
+                sides=share[:, order], side_index=index[:, order],
+                side_forms=side_forms[:, :, order])
     if len(kept) >= 512:
         kept.pop(next(iter(kept)))
     kept[float(omega)] = out

@@ -231,6 +231,8 @@ class Roots:
     # indices, (2 SIDES + 1, m); None for a constant rotor
     sides: np.ndarray | None = None
     side_index: np.ndarray | None = None
+    # ... and those harmonics' coefficients (2 SIDES + 1, N, m), zero outside Hill's range
+    side_forms: np.ndarray | None = None
 
 
 def roots(model: RotorModel, omega: float) -> Roots:
@@ -281,6 +283,59 @@ def whirl_index(model: RotorModel, y: np.ndarray) -> np.ndarray:
     num = np.einsum("im,ij,jm->m", y.conj(), model.turning, y).real
     den = np.einsum("im,ij,jm->m", y.conj(), model.lateral, y).real
     return np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
+
+
+def seen_lines(shift: float, w_r: np.ndarray, S: int) -> tuple[np.ndarray, np.ndarray]:
+    """The frequencies (rad/s, signed: + turning with the shaft) at which the housing sees
+    a mode's harmonics d = -S..S: a form exp(i w_r t) sum_d q_d exp(i 2 d Omega t) in the
+    frame turning at `shift` (Omega; 0 for the stationary frame) shows the housing each
+    q_d's forward part (x + i y) at w_r + (2 d + 1) Omega and its backward part at
+    -(w_r + (2 d - 1) Omega); each (2 S + 1, m) for w_r (m,)."""
+    d = np.arange(-S, S + 1)[:, None]
+    w = np.atleast_1d(w_r)[None, :]
+    return w + (2 * d + 1) * shift, -(w + (2 * d - 1) * shift)
+
+
+def seen_whirl_index(model: RotorModel, shift: float, w_r: np.ndarray,
+                     forms: np.ndarray) -> np.ndarray:
+    """Each mode's whirl index as the housing sees it (m,): the kinetic energy of the
+    parts that turn with the shaft there less that of those turning against it, over
+    the whole, summed over the harmonics forms (2 S + 1, N, m) at seen_lines. In the
+    stationary frame (shift 0, S = 0) this is whirl_index."""
+    L = np.einsum("dim,ij,djm->dm", forms.conj(), model.lateral, forms).real
+    T = np.einsum("dim,ij,djm->dm", forms.conj(), model.turning, forms).real
+    forward, backward = 0.5 * (L + T), 0.5 * (L - T)
+    nu_f, nu_b = seen_lines(shift, w_r, (forms.shape[0] - 1) // 2)
+    num = np.sum(np.sign(nu_f) * forward + np.sign(nu_b) * backward, axis=0)
+    den = np.sum(L, axis=0)
+    return np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
+
+
+def seen_orbit(shift: float, w_r: float, X: np.ndarray, Y: np.ndarray, t: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """The path (x, y), each (len(t), P), that P points trace as the housing sees them,
+    undamped, whose harmonics' displacements along the frame's x and y are X and Y
+    (2 S + 1, P), complex: z = x + i y = 1/2 sum_d [(X_d + i Y_d) exp(i nu_f t)
+    + conj(X_d - i Y_d) exp(i nu_b t)], nu from seen_lines (the frames agree at t = 0)."""
+    nu_f, nu_b = seen_lines(shift, np.array([w_r]), (X.shape[0] - 1) // 2)
+    ef = np.exp(1j * np.outer(t, nu_f[:, 0]))                 # (T, 2 S + 1)
+    eb = np.exp(1j * np.outer(t, nu_b[:, 0]))
+    z = 0.5 * (ef @ (X + 1j * Y) + eb @ np.conj(X - 1j * Y))
+    return z.real, z.imag
+
+
+def seen_shape(shift: float, w_r: float, f: float, X: np.ndarray, Y: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """The complex shape (x, y), each (P,), that the housing sees at the frequency f
+    (rad/s, > 0) of a mode whose harmonics' displacements are X and Y (2 S + 1, P): its
+    motion there is Re(x exp(i f t)), Re(y exp(i f t)), from every part at +f (a_f) and
+    at -f (a_b): x = a_f + conj(a_b), y = -i (a_f - conj(a_b)) (the filtered orbit)."""
+    nu_f, nu_b = seen_lines(shift, np.array([w_r]), (X.shape[0] - 1) // 2)
+    tol = 1e-6 * (abs(f) + abs(shift))
+    parts = [(nu_f[:, 0], 0.5 * (X + 1j * Y)), (nu_b[:, 0], 0.5 * np.conj(X - 1j * Y))]
+    a_f = sum(np.sum(c[np.abs(nu - f) <= tol], axis=0) for nu, c in parts)
+    a_b = sum(np.sum(c[np.abs(nu + f) <= tol], axis=0) for nu, c in parts)
+    return a_f + np.conj(a_b), -1j * (a_f - np.conj(a_b))
 
 
 def dominant_kinds(model: RotorModel, y: np.ndarray) -> list[str]:

@@ -73,6 +73,9 @@ class Spectrum:
     kinds: tuple[str, ...]
     y: np.ndarray
     divergence: float
+    # a periodic rotor's: each form's harmonics beside its dominant one, scaled as y
+    # (fem.rotor.Roots.side_forms); None for a constant rotor
+    side_forms: np.ndarray | None = None
 
 
 def spectrum(model: RotorModel, omega: float) -> Spectrum:
@@ -83,32 +86,38 @@ def spectrum(model: RotorModel, omega: float) -> Spectrum:
     from shaftfem.fem.rotor import dominant_kinds
 
     r = any_roots(model, omega)
-    y = r.y / np.linalg.norm(r.y, axis=0)
+    norm = np.linalg.norm(r.y, axis=0)
+    y = r.y / norm
+    sides = None if r.side_forms is None else r.side_forms / norm
     f, decay = r.lam.imag / (2 * math.pi), -r.lam.real
     kinds = dominant_kinds(model, y)
     for j in range(f.size - 1):
         if (abs(f[j + 1] - f[j]) <= PAIR * abs(f[j + 1]) and kinds[j] in WHIRLING
                 and kinds[j + 1] in WHIRLING):
-            y[:, j:j + 2] = circular(model, y[:, j:j + 2])
-    return Spectrum(omega, f, decay, whirl_index(model, y), tuple(kinds), y, r.divergence)
+            c = circular(model, y[:, j:j + 2])
+            y[:, j:j + 2] = y[:, j:j + 2] @ c
+            if sides is not None:
+                sides[:, :, j:j + 2] = sides[:, :, j:j + 2] @ c
+    return Spectrum(omega, f, decay, whirl_index(model, y), tuple(kinds), y, r.divergence,
+                    sides)
 
 
 def circular(model: RotorModel, y: np.ndarray) -> np.ndarray:
-    """The combinations of the shapes y (N, 2) whose whirl indices are extreme: the
-    forward and the backward orbit of their plane (unit norm)."""
+    """The combination (2, 2) of the shapes y (N, 2) whose whirl indices are extreme:
+    y @ it are the forward and the backward orbit of their plane (unit norm)."""
     import scipy.linalg
 
     T = y.conj().T @ model.turning @ y
     L = y.conj().T @ model.lateral @ y
     if np.linalg.eigvalsh(0.5 * (L + L.conj().T)).min() <= 1e-12 * max(np.abs(L).max(), 1e-300):
-        return y
+        return np.eye(2, dtype=complex)
     _, c = scipy.linalg.eigh(0.5 * (T + T.conj().T), 0.5 * (L + L.conj().T))
+    c = c / np.linalg.norm(y @ c, axis=0)
     z = y @ c
-    z = z / np.linalg.norm(z, axis=0)
     # each orbit to the root it is most of (a pair split by the gyroscopic moments is
     # circular already: its roots keep their own)
     fit = np.abs(y.conj().T @ z) ** 2
-    return z[:, ::-1] if fit[0, 1] + fit[1, 0] > fit[0, 0] + fit[1, 1] else z
+    return c[:, ::-1] if fit[0, 1] + fit[1, 0] > fit[0, 0] + fit[1, 1] else c
 
 
 @dataclass(eq=False)

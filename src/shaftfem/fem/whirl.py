@@ -138,13 +138,15 @@ class Whirl:
     kind: str
     rotating_frame_hz: float
     companion_hz: float | None = None
+    companion_share: float = 0.0     # the other component's share of the motion
 
     def as_dict(self) -> dict:
         return {"speed_rpm": self.speed_rpm, "mode": self.mode,
                 "frequency_hz": self.frequency_hz, "whirl": self.whirl,
                 "whirl_index": self.whirl_index, "log_dec": self.log_dec,
                 "damping_ratio": self.damping_ratio, "kind": self.kind,
-                "rotating_frame_hz": self.rotating_frame_hz, "companion_hz": self.companion_hz}
+                "rotating_frame_hz": self.rotating_frame_hz, "companion_hz": self.companion_hz,
+                "companion_share": self.companion_share}
 
 
 def seen(f_s: np.ndarray, index: np.ndarray, n: np.ndarray | float, frame: str) -> np.ndarray:

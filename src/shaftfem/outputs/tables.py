@@ -527,7 +527,7 @@ def whirl_text(rows, title: str) -> str:
     for w in rows:
         # a rotating-frame mode's other component, where it carries 5 % or more
         other = (f"  (also seen at {w.companion_hz:.2f} Hz)"
-                 if w.companion_hz is not None and abs(w.whirl_index) < 0.9 else "")
+                 if w.companion_hz is not None and w.companion_share >= 0.05 else "")
         lines.append(f"{w.mode:4d} {w.frequency_hz:9.2f} Hz  {w.whirl:8s} {w.whirl_index:+.2f} "
                      f"{w.log_dec:8.3f}  {w.kind}{other}")
     return "\n".join(lines)

@@ -20,13 +20,38 @@ STATIONS = 9
 NEAR_AXIS = 0.35
 
 
-def complex_shapes(c: Campbell, i: int) -> np.ndarray:
-    """Operating speed i's mode shapes at the mesh's points, complex, (m, n_points, 3),
-    scaled to a largest displacement of 1."""
+def _harmonic_points(c: Campbell, i: int) -> np.ndarray:
+    """Operating speed i's modes at the mesh's points, each harmonic's (the rotor's own
+    frame; one but on a periodic rotor), complex, (2 S + 1, m, n_points, 3)."""
     r = c.result
-    Y = c.operating_shapes[i]
-    U = c.basis_shapes @ Y                                      # (3 n, m) complex
-    pts = r.system.at_points(U.real) + 1j * r.system.at_points(U.imag)
+    forms = c.operating_shapes[i]                               # (2 S + 1, N, m)
+    out = []
+    for Y in forms:
+        U = c.basis_shapes @ Y                                  # (3 n, m) complex
+        out.append(r.system.at_points(U.real) + 1j * r.system.at_points(U.imag))
+    return np.array(out)
+
+
+def _shift(c: Campbell, i: int) -> float:
+    """The spin (rad/s) of the frame the modes at operating speed i are solved in."""
+    return c.operating_rpm[i] * math.pi / 30 if c.frame == "rotating" else 0.0
+
+
+def complex_shapes(c: Campbell, i: int) -> np.ndarray:
+    """Operating speed i's mode shapes at the mesh's points as the housing sees them at
+    each mode's frequency, complex, (m, n_points, 3), scaled to a largest displacement
+    of 1 (fem.rotor.seen_shape; the axial motion is the dominant harmonic's)."""
+    from shaftfem.fem.rotor import seen_shape
+
+    n = c.operating_rpm[i]
+    rows = [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n]
+    H = _harmonic_points(c, i)
+    S = (H.shape[0] - 1) // 2
+    pts = H[S].copy()
+    for k, w in enumerate(rows[:pts.shape[0]]):
+        pts[k, :, 0], pts[k, :, 1] = seen_shape(
+            _shift(c, i), 2 * math.pi * w.rotating_frame_hz, 2 * math.pi * w.frequency_hz,
+            H[:, k, :, 0], H[:, k, :, 1])
     scale = np.abs(pts).reshape(pts.shape[0], -1).max(axis=1)
     return pts / scale[:, None, None]
 
@@ -59,15 +84,19 @@ def write_whirl_files(c: Campbell, folder: Path) -> list[Path]:
 
 def orbits_figure(c: Campbell, i: int = 0, count: int = 4):
     """The orbits of the axis at STATIONS stations for the first `count` whirling modes at
-    operating speed i: ellipses traced over one period, a dot where t = 0 and an arrow the
-    way the orbit runs (forward: as the shaft turns)."""
+    operating speed i as the housing sees them: the path each traces over one period of
+    its frequency (an ellipse but where a rotating-frame mode shows the housing parts at
+    other frequencies: fem.rotor.seen_orbit), a dot where t = 0 and an arrow the way it
+    runs (forward: as the shaft turns)."""
     from matplotlib.figure import Figure
+
+    from shaftfem.fem.rotor import seen_orbit
 
     r = c.result
     n = c.operating_rpm[i]
     rows = [w for w in c.operating if abs(w.speed_rpm - n) <= 1e-9 * n]
     keep = [k for k, w in enumerate(rows) if w.kind in ("bending", "mixed")][:count]
-    shapes = complex_shapes(c, i)
+    H = _harmonic_points(c, i)
     pts = r.mesh.points
     radius = np.hypot(pts[:, 0], pts[:, 1])
     z = pts[:, 2]
@@ -76,22 +105,27 @@ def orbits_figure(c: Campbell, i: int = 0, count: int = 4):
     near = radius <= NEAR_AXIS * radius.max()
     fig = Figure(figsize=(9.0, 1.2 + 1.5 * max(len(keep), 1)))
     axes = fig.subplots(max(len(keep), 1), 1, squeeze=False)[:, 0]
-    t = np.linspace(0.0, 2 * math.pi, 73)
     gap = 2.4
     for ax, k in zip(axes, keep):
-        w, u = rows[k], shapes[k]
-        for j, zj in enumerate(zs):
-            at = near & (np.abs(z - zj) <= slab)
-            if not at.any():
+        w = rows[k]
+        t = np.linspace(0.0, 1.0 / w.frequency_hz, 73)
+        at = [near & (np.abs(z - zj) <= slab) for zj in zs]
+        X = np.array([[H[d, k, a, 0].mean() if a.any() else 0.0 for a in at]
+                      for d in range(H.shape[0])])
+        Y = np.array([[H[d, k, a, 1].mean() if a.any() else 0.0 for a in at]
+                      for d in range(H.shape[0])])
+        ox, oy = seen_orbit(_shift(c, i), 2 * math.pi * w.rotating_frame_hz, X, Y, t)
+        scale = max(float(np.abs(ox + 1j * oy).max()), 1e-300)
+        ox, oy = ox / scale, oy / scale
+        colour = "tab:red" if w.whirl == "forward" else (
+            "tab:blue" if w.whirl == "backward" else "tab:purple")
+        for j in range(STATIONS):
+            if not at[j].any():
                 continue
-            x, y = u[at, 0].mean(), u[at, 1].mean()
-            ox, oy = (x * np.exp(1j * t)).real, (y * np.exp(1j * t)).real
-            colour = "tab:red" if w.whirl == "forward" else (
-                "tab:blue" if w.whirl == "backward" else "tab:purple")
-            ax.plot(gap * j + ox, oy, color=colour, lw=1.2)
-            ax.plot(gap * j + ox[0], oy[0], "o", color=colour, ms=3)
-            if max(abs(x), abs(y)) > 0.15:     # the way it runs, where it can be seen
-                ax.annotate("", (gap * j + ox[8], oy[8]), (gap * j + ox[4], oy[4]),
+            ax.plot(gap * j + ox[:, j], oy[:, j], color=colour, lw=1.2)
+            ax.plot(gap * j + ox[0, j], oy[0, j], "o", color=colour, ms=3)
+            if np.abs(ox[:, j] + 1j * oy[:, j]).max() > 0.15:   # where it can be seen
+                ax.annotate("", (gap * j + ox[8, j], oy[8, j]), (gap * j + ox[4, j], oy[4, j]),
                             arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.2})
         ax.set_aspect("equal")
         ax.set_xlim(-1.3, gap * (STATIONS - 1) + 1.3)
@@ -99,10 +133,10 @@ def orbits_figure(c: Campbell, i: int = 0, count: int = 4):
         ax.set_xticks([gap * j for j in range(STATIONS)])
         ax.set_xticklabels([f"{zj * 1e3:.0f}" for zj in zs], fontsize=7)
         ax.set_yticks([])
-        ax.set_ylabel(f"mode {w.mode}\n{w.frequency_hz:.1f} Hz\n{w.whirl}", fontsize=8,
-                      rotation=0, ha="right", va="center")
+        ax.set_ylabel(f"mode {w.mode}\n{w.frequency_hz:.1f} Hz\n{w.whirl} "
+                      f"{w.whirl_index:+.2f}", fontsize=8, rotation=0, ha="right", va="center")
     axes[-1].set_xlabel("station along the shaft, z in mm (the orbits to one scale per mode)",
                         fontsize=8)
-    fig.suptitle(f"{r.scene.name}: orbits of the axis at {n:,.0f} r/min "
-                 f"(the shaft turns anticlockwise)", fontsize=9)
+    fig.suptitle(f"{r.scene.name}: orbits of the axis at {n:,.0f} r/min as the housing sees "
+                 f"them (the shaft turns anticlockwise)", fontsize=9)
     return fig

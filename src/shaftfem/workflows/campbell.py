@@ -128,47 +128,62 @@ def whirl_at(model: RotorModel, omega: float, count: int) -> list[Whirl]:
     double pair (a shaft of revolution's, at standstill) is taken as its forward and
     its backward orbit (fem.tracking.spectrum)."""
     out = []
-    for k, (f, direction, index, kind, f_r, other, decay, _) in enumerate(
+    for k, (f, direction, index, kind, f_r, other, share, decay, _) in enumerate(
             _seen(model, omega)[1][:count]):
         wd = 2 * math.pi * f
         decay = decay if abs(decay) > ROUND_OFF * wd else 0.0
         out.append(Whirl(speed_rpm=omega / RPM, mode=k + 1, frequency_hz=f, whirl=direction,
                          whirl_index=index, log_dec=2 * math.pi * decay / wd if wd > 0 else 0.0,
                          damping_ratio=decay / math.hypot(decay, wd), kind=kind,
-                         rotating_frame_hz=f_r, companion_hz=other))
+                         rotating_frame_hz=f_r, companion_hz=other, companion_share=share))
     return out
+
+
+def _harmonics(s: Spectrum) -> np.ndarray:
+    """Each root's harmonics (2 S + 1, N, m) beside its dominant one (S = 0: a rotor
+    of constant coefficients has one)."""
+    return s.side_forms if s.side_forms is not None else s.y[None]
 
 
 def _seen(model: RotorModel, omega: float) -> tuple[Spectrum, list[tuple]]:
     """The roots at the spin omega and each as the stationary frame sees it, lowest
     first: (frequency Hz, whirl, whirl index, kind, rotating-frame Hz, other component's
-    Hz or None, decay rate 1/s, its column among the roots)."""
+    Hz or None, its share of the motion, decay rate 1/s, its column among the roots).
+    The whirl and its index are the whole mode's as the housing sees it: a rotating
+    frame's mode shows it its forward and backward parts at f_r + n and f_r - n, a
+    periodic rotor's each harmonic's at its own (fem.rotor.seen_lines)."""
+    from shaftfem.fem.rotor import seen_whirl_index
     from shaftfem.fem.tracking import spectrum
 
     s = spectrum(model, omega)
     n = omega / (2 * math.pi)
+    turning = model.frame == "rotating" and omega > 0
+    seen = (seen_whirl_index(model, omega, 2 * math.pi * s.f, _harmonics(s)) if turning
+            else s.index)
     rows = []
     for j, (f_r, w, kind, decay) in enumerate(zip(s.f, s.index, s.kinds, s.decay)):
-        f, index, other = float(f_r), float(w), None
-        if model.frame == "rotating" and kind in WHIRLING and omega > 0:
+        f, index, other, share = float(f_r), float(w), None, 0.0
+        if turning and kind in WHIRLING:
             forward, backward = f_r + n, f_r - n
-            if w >= 0:
-                f, other = forward, abs(backward)
-            else:   # the backward component: seen backward above n, forward below it
-                f, other, index = abs(backward), forward, (w if backward > 0 else -w)
+            index, share = float(seen[j]), 0.5 * (1 - abs(float(w)))
+            # the component that carries more of the rotating-frame form gives the row
+            f, other = (forward, abs(backward)) if w >= 0 else (abs(backward), forward)
         direction = ("forward" if index > FORWARD else "backward" if index < -FORWARD
                      else "mixed")
-        rows.append((f, direction, index, kind, float(f_r), other, float(decay), j))
+        rows.append((f, direction, index, kind, float(f_r), other, share, float(decay), j))
     rows.sort(key=lambda row: row[0])
     return s, rows
 
 
 def mode_shapes(model: RotorModel, omega: float, count: int) -> np.ndarray:
-    """The complex modal coordinates (N, count) of whirl_at's rows at the spin omega
-    (rad/s), in the same order, each scaled to a largest entry of 1."""
+    """The complex modal coordinates of whirl_at's rows at the spin omega (rad/s), in
+    the same order, with their harmonics (2 S + 1, N, count; S = 0 but on a periodic
+    rotor), each scaled to a largest entry of 1 in its dominant harmonic."""
     s, rows = _seen(model, omega)
-    y = s.y[:, [row[-1] for row in rows[:count]]]
-    return y / y[np.argmax(np.abs(y), axis=0), np.arange(y.shape[1])]
+    forms = _harmonics(s)[:, :, [row[-1] for row in rows[:count]]]
+    S = (forms.shape[0] - 1) // 2
+    y = forms[S]
+    return forms / y[np.argmax(np.abs(y), axis=0), np.arange(y.shape[1])]
 
 
 def dominant(whirl: str, component: str, share: float) -> str:
