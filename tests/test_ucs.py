@@ -176,3 +176,27 @@ def test_the_map_is_solved_on_the_rotor_s_own_mesh():
     assert not any(s.kind == "seal" for s in alike.supports) and not alike.unbalances
     assert alike.seat_cuts() == scene.seat_cuts()
     assert alike.hubs() == scene.hubs()
+
+
+def test_a_keyed_shaft_s_branches_are_continuous(tmp_path):
+    """examples/keyed_pump_on_journals.toml's map, as a user runs `ucs --json`: a mode of
+    one principal plane takes on torsion as the bearings stiffen, and a list by speed
+    jumped to the next root there (branch 8 rose 2.4 times in one step, then fell). Each
+    branch followed by its shape rises with the bearings' stiffness (Rayleigh: stiffer
+    bearings, no lower critical) and by at most the step's square root in one step (a
+    branch at most as stiff as the bearings: 10^(4/39/2) = 1.126)."""
+    import subprocess
+    import sys
+
+    example = Path(__file__).parent.parent / "examples" / "keyed_pump_on_journals.toml"
+    run = subprocess.run([sys.executable, "-m", "shaftfem", "ucs", str(example), "--mesh-size",
+                          "25", "-q", "--json", str(tmp_path / "u.json"), "--out",
+                          str(tmp_path / "out")], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    c = json.loads((tmp_path / "u.json").read_text())
+    k = np.array(c["stiffness_n_per_mm"])
+    step = math.sqrt(float(np.max(k[1:] / k[:-1])))
+    f = np.array([b["critical_speed_rpm"] for b in c["branches"]], dtype=float)
+    assert f.shape == (8, k.size) and np.isfinite(f).all()
+    rise = f[:, 1:] / f[:, :-1]
+    assert rise.min() >= 1 - 1e-6 and rise.max() <= step * (1 + 1e-3), (rise.min(), rise.max())

@@ -586,14 +586,15 @@ class Direct:
     index: float
 
 
-def order_roots(model: RotorModel, m: int, top: float = math.inf
+def order_roots(model: RotorModel, m: int, top: float = math.inf, every: bool = False
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The undamped whirling roots that meet the line f = m n (n the spin) up to the spin
     `top` (rad/s): the speeds Omega (rad/s, ascending), their whirl indices and modal
     shapes (N, found), from the linear eigenproblem in Omega^2 of the module's
     docstring (constant, undamped bearings; torsion and axial modes meet the lines as
     at standstill and are left out). m = 1 in the stationary frame: the synchronous
-    critical speeds, gyroscopic moments at Omega = omega."""
+    critical speeds, gyroscopic moments at Omega = omega. `every`: torsion and axial
+    roots kept too (a mode followed as it takes on their motion)."""
     import scipy.linalg
 
     from shaftfem.fem.rotor import dominant_kinds
@@ -605,7 +606,8 @@ def order_roots(model: RotorModel, m: int, top: float = math.inf
     lam, A = scipy.linalg.eig(K0, m * m * model.mass(0.0) - 1j * m * model.G - model.K2)
     ok = (np.isfinite(lam) & (np.abs(lam.imag) <= 1e-8 * np.abs(lam)) & (lam.real > 0)
           & (lam.real <= top**2 * (1 + 1e-9)))
-    ok[ok] = [k in WHIRLING for k in dominant_kinds(model, A[:, ok])]
+    if not every:
+        ok[ok] = [k in WHIRLING for k in dominant_kinds(model, A[:, ok])]
     order = np.argsort(lam.real[ok])
     A = A[:, ok][:, order]
     return np.sqrt(lam.real[ok][order]), whirl_index(model, A), A

@@ -53,6 +53,9 @@ DECADES = 4.0
 # basis is doubled
 TRUNCATION = 1e-3
 BASIS_MIN = 24
+# a branch of a shaft not of revolution goes on in the root at the next stiffness whose
+# shape is at least this like its own (MAC)
+FOLLOW = 0.5
 
 
 def default_range(scene: Scene) -> np.ndarray:
@@ -137,15 +140,16 @@ def lateral_frequencies(model: RotorModel, k: float, count: int
     return np.sqrt(np.maximum(lam[keep], 0.0)) / (2 * math.pi), V[:, keep]
 
 
-def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "forward"
-                       ) -> tuple[np.ndarray, np.ndarray]:
+def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "forward",
+                       every: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """The lowest `count` synchronous critical speeds of `whirl` (as Hz: Omega / 2 pi) at
     the bearing stiffness k (N/m), and their modal shapes (N, count); NaN where fewer
     exist (a backward branch of a disk whose polar inertia outweighs its diametral one
     has no synchronous crossing). In the turning frame (a shaft that is not a solid of
     revolution) a forward synchronous whirl stands still: the roots at zero frequency,
     one per principal plane (a keyed shaft has two criticals where a round one has a
-    pair); a backward one turns at twice the spin there."""
+    pair); a backward one turns at twice the spin there. `every`: the roots that are
+    most of a torsion or axial mode kept too (fem.tracking.order_roots)."""
     from shaftfem.fem.tracking import SHARE_MIN, one_of_each_pair, order_roots
     from shaftfem.fem.whirl import FORWARD
 
@@ -154,10 +158,10 @@ def synchronous_speeds(model: RotorModel, k: float, count: int, whirl: str = "fo
         speeds, index, A = order_roots(stiff, 1)
         keep = np.flatnonzero(index > FORWARD if whirl == "forward" else index < -FORWARD)
     elif whirl == "forward":
-        speeds, index, A = order_roots(stiff, 0)
+        speeds, index, A = order_roots(stiff, 0, every=every)
         keep = one_of_each_pair(speeds)
     else:
-        speeds, index, A = order_roots(stiff, 2)
+        speeds, index, A = order_roots(stiff, 2, every=every)
         keep = np.flatnonzero(0.5 * (1 - index) >= SHARE_MIN)
     keep = keep[:count]
     out = np.full(count, np.nan)
@@ -173,6 +177,55 @@ def branches_at(model: RotorModel, k: float, count: int, kind: str
     if kind == "standstill":
         return lateral_frequencies(model, k, count)
     return synchronous_speeds(model, k, count, kind)
+
+
+def _mac(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The modal assurance criterion between the columns of a (N, p) and b (N, q)."""
+    num = np.abs(a.conj().T @ b) ** 2
+    den = np.outer(np.sum(np.abs(a) ** 2, axis=0), np.sum(np.abs(b) ** 2, axis=0))
+    return num / np.where(den > 0, den, 1.0)
+
+
+def _matched(shapes: np.ndarray, candidates: np.ndarray) -> np.ndarray:
+    """For each branch (its last shape, a column of `shapes`), the candidate root most
+    like it (MAC at least FOLLOW), each root to one branch, the likest pairs first;
+    -1 where none is."""
+    mac = _mac(shapes, candidates)
+    mac[~np.isfinite(mac)] = 0.0
+    out = np.full(shapes.shape[1], -1)
+    while mac.size and mac.max() >= FOLLOW:
+        i, j = np.unravel_index(int(np.argmax(mac)), mac.shape)
+        out[i] = j
+        mac[i, :], mac[:, j] = 0.0, 0.0
+    return out
+
+
+def followed(model: RotorModel, ks: np.ndarray, count: int, kind: str
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """The map's branches (Hz, (count, len(ks))) and their shapes at each stiffness
+    ((len(ks), N, count)). In the turning frame a branch is followed by its shape from
+    stiffness to stiffness (a keyed shaft's mode in one principal plane takes on torsion
+    as its bearings stiffen, and the lowest roots of the next kind would take its place
+    in a list by speed); where no root is like it any more it ends (NaN). A shaft of
+    revolution's map, and the standstill map, list by speed (their pairs are double)."""
+    first, Y = branches_at(model, float(ks[0]), count, kind)
+    freqs, shapes = [first], [Y]
+    follow = model.frame == "rotating" and kind != "standstill"
+    for k in ks[1:]:
+        if not follow:
+            f, Y = branches_at(model, float(k), count, kind)
+        else:
+            c, C = synchronous_speeds(model, float(k), 4 * count, kind, every=True)
+            live = np.isfinite(c)
+            c, C = c[live], C[:, live]
+            pick = _matched(shapes[-1], C)
+            f = np.where(pick >= 0, c[np.maximum(pick, 0)], np.nan) if c.size else np.full(
+                count, np.nan)
+            Y = np.where(pick[None, :] >= 0, C[:, np.maximum(pick, 0)], shapes[-1]) if c.size \
+                else shapes[-1]
+        freqs.append(f)
+        shapes.append(Y)
+    return np.column_stack(freqs), np.array(shapes)
 
 
 def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
@@ -206,33 +259,39 @@ def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
                     f"{reference / 1e3:.3g} N/mm")
         result = run_modes(with_modes(uniform, count=size), options)
         model = rotor_model(result, "stationary" if scene.axisymmetric else "rotating")
-        freqs = np.column_stack([branches_at(model, k, branches, kind)[0] for k in ks])
+        freqs, shapes = followed(model, ks, branches, kind)
         smaller = model.truncated(2 * size // 3)
-        check = np.column_stack([branches_at(smaller, k, branches, kind)[0] for k in ks])
+        check = followed(smaller, ks, branches, kind)[0]
         n = min(freqs.shape[0], check.shape[0])
         both = np.isfinite(freqs[:n]) & np.isfinite(check[:n])
         change = float(np.max(np.abs(check[:n][both] / freqs[:n][both] - 1))) if both.any() else 0.0
         if change <= TRUNCATION or size >= 96:
             break
         size *= 2
-    z, soft, stiff = _end_lines(result, model, ks, branches, line, kind)
+    z, soft, stiff = _end_lines(result, model, shapes, line)
 
     def branch_rpm(k: float, i: int) -> float:   # branch i at stiffness k, solved again
-        return 60.0 * float(branches_at(model, k, branches, kind)[0][i])
+        if model.frame != "rotating" or kind == "standstill":
+            return 60.0 * float(branches_at(model, k, branches, kind)[0][i])
+        near = int(np.argmin(np.abs(np.log(ks) - math.log(k))))
+        c, C = synchronous_speeds(model, k, 4 * branches, kind, every=True)
+        live = np.isfinite(c)
+        mac = _mac(shapes[near][:, i:i + 1], C[:, live])[0]
+        return 60.0 * float(c[live][int(np.argmax(mac))]) if mac.size else math.nan
 
     return UcsMap(scene=scene, stiffness=ks, frequencies=freqs, z=z, soft_lines=soft,
                   stiff_lines=stiff, bearings=_bearing_curves(scene, ks, freqs, branch_rpm),
                   reference=reference, basis=model.size, change=change, kind=kind)
 
 
-def _end_lines(result: ModalResult, model: RotorModel, ks: np.ndarray, branches: int, line,
-               kind: str = "standstill") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _end_lines(result: ModalResult, model: RotorModel, shapes: np.ndarray, line
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each branch's deflected line at the softest and the stiffest bearings (the
-    orbit's major semi-axis along the shaft for a synchronous branch)."""
+    orbit's major semi-axis along the shaft for a synchronous branch), from the
+    branches' shapes at each stiffness (len(ks), N, branches)."""
     assert model.shapes is not None
     out = []
-    for k in (ks[0], ks[-1]):
-        _, Y = branches_at(model, k, branches, kind)
+    for Y in (shapes[0], shapes[-1]):
         rows = []
         for j in range(Y.shape[1]):
             u = model.shapes @ Y[:, j]
