@@ -167,14 +167,17 @@ def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
     _chromium(tmp_path / "s", alone.as_uri(), "--window-size=1100,3000",
               f"--screenshot={SHOTS / 'rotordynamics.png'}")
     assert (SHOTS / "rotordynamics.png").stat().st_size > 50_000
-    assert 'data-rotor-pictures="7"' in dom and 'data-rotor-decoded="7"' in dom
+    # the nominal case's seven, and each other case's Campbell diagram, critical speeds'
+    # shapes and unbalance response
+    assert 'data-rotor-pictures="13"' in dom and 'data-rotor-decoded="13"' in dom
     section = dom[dom.index('<section id="rotordynamics">'):]
     section = section[:section.index("</section>")]
     for heading in ("Summary against API 684", "Campbell diagram", "Critical speed map",
                     "Deflected shapes at the critical speeds", "Unbalance response",
                     "Level I screening", "Run-up", "The study's cases",
                     "Bearing and seal coefficients against speed"):
-        assert f"<h3>{heading}</h3>" in section, heading
+        assert (f"<h3>{heading}</h3>" in section
+                or f"<h3>{heading} (nominal case)</h3>" in section), heading
     for item in ("separation margin of the critical speeds", "least log decrement",
                  "zones of growth (instability)", "unbalance peak at impeller",
                  "nominal (the scene as given)", "the verdict (the worst case decides)",
@@ -184,6 +187,43 @@ def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
         '<td class="text">FAIL</td>') >= 4
     markdown = (pump_report.parent / "report.md").read_text()
     assert "## Rotordynamics (API 684)" in markdown and "![Critical speed map](ucs.png)" in markdown
+
+
+def test_each_case_is_pictured_and_tabled_as_itself(pump_report):
+    """Every case of the pump's study under its own heading, in report.md and report.html:
+    its Campbell diagram, critical speeds' shapes and unbalance response (its own files,
+    not the nominal case's), and its whirl and critical speeds. Each is its own physics:
+    a tighter, colder film is stiffer (the forward 1x critical rises from the loose, hot
+    case through the nominal to the tight, cold one) and carries the journal sooner (its
+    lift-off speed falls, the Sommerfeld number growing with viscosity over clearance
+    squared)."""
+    import re
+
+    folder = pump_report.parent
+    markdown = (folder / "report.md").read_text()
+    page = pump_report.read_text()
+    forward, lift = {}, {}
+    for case, tail in (("min clearance, cold oil", "_min-clearance-cold-oil"),
+                       ("max clearance, hot oil", "_max-clearance-hot-oil"),
+                       ("nominal", "")):
+        heading = (f"### Case: {case}" if tail else
+                   "### Whirl, critical speeds and stability (nominal case)")
+        part = markdown[markdown.index(heading):]
+        part = part[:part.index("```", part.index("```text") + 7)]
+        if tail:
+            assert f"<h3>Case: {case}</h3>" in page
+            for stem in ("campbell", "critical_shapes", "bode"):
+                assert f"]({stem}{tail}.png)" in part, (case, stem)
+                ours, nominal = folder / f"{stem}{tail}.png", folder / f"{stem}.png"
+                assert ours.stat().st_size > 10_000
+                assert ours.read_bytes() != nominal.read_bytes()
+        forward[case] = float(re.search(r"1x forward\s+([\d,]+) r/min", part)[1]
+                              .replace(",", ""))
+        lift[case] = float(re.search(r"journals lifted from ([\d,]+) r/min", part)[1]
+                           .replace(",", ""))
+    assert (forward["min clearance, cold oil"] > forward["nominal"]
+            > forward["max clearance, hot oil"]), forward
+    assert lift["min clearance, cold oil"] < lift["nominal"] < lift["max clearance, hot oil"], lift
 
 
 def test_the_report_has_its_title_block_its_cases_and_each_case_s_films(pump_report):

@@ -70,10 +70,46 @@ def study_cases(study: RotorStudy) -> list[tuple[str, Campbell]]:
 
 
 CASES_NOTE = ("Each case is solved and judged as the nominal one; the verdict takes the "
-              "worst. The summary above gives each case as itself; the pictures and the "
-              "tables below are the nominal case's. Minimum clearance goes with cold oil "
-              "(the stiffest films), maximum clearance with hot oil (the softest); a part "
-              "whose joint the scene does not give is run on both joints.")
+              "worst. The summary above gives each case as itself; the pictures and "
+              "tables below are the nominal case's, and each other case's follow them "
+              "under its name. Minimum clearance goes with cold oil (the stiffest films), "
+              "maximum clearance with hot oil (the softest); a part whose joint the scene "
+              "does not give is run on both joints.")
+# a case's own pictures, in the order its part of the section shows them
+CASE_PICTURES = (("campbell", "Campbell diagram"), ("critical_shapes", "Deflected shapes at "
+                                                    "the critical speeds"),
+                 ("bode", "Unbalance response"), ("weight_2x", "The weight's 2x whirl"))
+
+
+def case_suffix(name: str) -> str:
+    """What follows a file's stem for a case's own files: '_' and its name in lower-case
+    words joined by '-' ("max clearance, hot oil" -> "_max-clearance-hot-oil")."""
+    return "_" + "-".join("".join(ch if ch.isalnum() else " " for ch in name.lower()).split())
+
+
+def case_sections(study: RotorStudy, pictures: Sequence[Path]
+                  ) -> list[tuple[str, list[tuple[str, Path]], str]]:
+    """Each case but the nominal one: its name, its pictures among `pictures` with their
+    headings, and its whirl, critical speed and stability text."""
+    from shaftfem.outputs.tables import campbell_text
+
+    by_name = {Path(p).name: Path(p) for p in pictures}
+    out = []
+    for r in (study.cases or [])[1:]:
+        tail = case_suffix(r.case.name)
+        shown = [(title, by_name[f"{stem}{tail}.png"]) for stem, title in CASE_PICTURES
+                 if f"{stem}{tail}.png" in by_name]
+        out.append((r.case.name, shown, campbell_text(r.campbell)))
+    return out
+
+
+def shown_in_study(study: RotorStudy, pictures: Sequence[Path]) -> set[str]:
+    """The names of the pictures the rotordynamic section shows."""
+    return ({name for name, _ in STUDY_PICTURES}
+            | {p.name for _, shown, _ in case_sections(study, pictures) for _, p in shown})
+# the study's pictures that are the nominal case's where there are others
+NOMINAL_PICTURES = ("campbell.png", "critical_shapes.png", "bode.png", "weight_2x.png",
+                    "level1.png", "runup.png")
 # the study's pictures, in the order the section shows them, with their headings
 STUDY_PICTURES = (("bearings.png", "Bearing and seal coefficients against speed"),
                   ("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),
@@ -93,9 +129,11 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
     if study.cases:
         lines += ["### The study's cases", "", CASES_NOTE, ""]
         lines += tables.markdown(*tables.cases_rows(study.cases)) + [""]
+    nominal = " (nominal case)" if study.cases else ""
     for name, title in STUDY_PICTURES:
         if name in names:
-            lines += [f"### {title}", "", f"![{title}]({name})", ""]
+            lines += [f"### {title}{nominal if name in NOMINAL_PICTURES else ''}", "",
+                      f"![{title}]({name})", ""]
             if name == "bearings.png":
                 lines += tables.markdown(*tables.bearing_rows(study_cases(study))) + [""]
             if name == "level1.png" and study.level1 is not None:
@@ -104,7 +142,13 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
                 lines += ["```text", tables.ucs_text(study.ucs), "```", ""]
             if name == "runup.png" and study.runup is not None:
                 lines += ["```text", tables.runup_text(study.runup), "```", ""]
-    lines += ["### Whirl, critical speeds and stability", "", "```text", study.text, "```"]
+    lines += [f"### Whirl, critical speeds and stability{nominal}", "", "```text", study.text,
+              "```"]
+    for case, shown, text in case_sections(study, pictures):
+        lines += ["", f"### Case: {case}", ""]
+        for title, path in shown:
+            lines += [f"#### {title} ({case})", "", f"![{title}, {case}]({path.name})", ""]
+        lines += ["```text", text, "```"]
     return lines
 
 
@@ -146,7 +190,7 @@ def report_markdown(result: ModalResult, verdict: ResonanceVerdict | None,
         lines += tables.participation_markdown(result, participation)
     if rotor is not None:
         lines += ["", *rotordynamics_markdown(rotor, pictures)]
-        shown = {name for name, _ in STUDY_PICTURES}
+        shown = shown_in_study(rotor, pictures)
         pictures = [p for p in pictures if Path(p).name not in shown]
     lines += ["", "## Resonance check", ""]
     lines += (tables.verdict_markdown(verdict) if verdict is not None

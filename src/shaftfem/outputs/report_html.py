@@ -75,7 +75,14 @@ def _picture(path: Path) -> str:
 def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
     """The rotordynamic section: the API 684 summary, each picture under its heading,
     the whirl and critical speeds."""
-    from shaftfem.outputs.report import CASES_NOTE, STUDY_NOTE, STUDY_PICTURES, study_cases
+    from shaftfem.outputs.report import (
+        CASES_NOTE,
+        NOMINAL_PICTURES,
+        STUDY_NOTE,
+        STUDY_PICTURES,
+        case_sections,
+        study_cases,
+    )
 
     by_name = {Path(p).name: Path(p) for p in pictures}
     head, rows = tables.api684_rows(study)
@@ -87,9 +94,12 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
     if study.cases:
         parts += ["<h3>The study's cases</h3>", _paragraphs([CASES_NOTE]),
                   _table(tables.cases_rows(study.cases), ("",))]
+    nominal = " (nominal case)" if study.cases else ""
     for name, title in STUDY_PICTURES:
         if name in by_name:
-            parts += [f"<h3>{html.escape(title)}</h3>", _picture(by_name[name])]
+            parts += [f"<h3>{html.escape(title)}"
+                      f"{nominal if name in NOMINAL_PICTURES else ''}</h3>",
+                      _picture(by_name[name])]
             if name == "bearings.png":
                 parts.append(_table(tables.bearing_rows(study_cases(study)),
                                     ("case", "bearing")))
@@ -99,8 +109,14 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
                 parts.append(f"<pre>{html.escape(tables.ucs_text(study.ucs))}</pre>")
             if name == "runup.png" and study.runup is not None:
                 parts.append(f"<pre>{html.escape(tables.runup_text(study.runup))}</pre>")
-    parts += ["<h3>Whirl, critical speeds and stability</h3>",
-              f"<pre>{html.escape(study.text)}</pre></section>"]
+    parts += [f"<h3>Whirl, critical speeds and stability{nominal}</h3>",
+              f"<pre>{html.escape(study.text)}</pre>"]
+    for case, shown, text in case_sections(study, pictures):
+        parts.append(f"<h3>Case: {html.escape(case)}</h3>")
+        for title, path in shown:
+            parts += [f"<h4>{html.escape(title)} ({html.escape(case)})</h4>", _picture(path)]
+        parts.append(f"<pre>{html.escape(text)}</pre>")
+    parts.append("</section>")
     return "\n".join(parts)
 
 
@@ -168,7 +184,7 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
     (`rotor`: the rotordynamic study, for a shaft with [rotor]; `drawing`: the modes'
     drawing the pictures were made from, where there is one; `strength`: the shaft under
     its duty, for a scene with [strength])."""
-    from shaftfem.outputs.report import STUDY_PICTURES, shaft_facts, title_rows
+    from shaftfem.outputs.report import shaft_facts, shown_in_study, title_rows
     from shaftfem.outputs.web_scene import viewer_html
 
     scene = result.scene
@@ -203,7 +219,7 @@ def report_html(result: ModalResult, verdict: ResonanceVerdict | None,
                   _table(tables.participation_rows(result, participation))]
     if rotor is not None:
         parts.append(_rotordynamics(rotor, pictures))
-        shown = {name for name, _ in STUDY_PICTURES}
+        shown = shown_in_study(rotor, pictures)
         pictures = [p for p in pictures if Path(p).name not in shown]
     parts.append("<h2>Resonance check</h2>")
     parts.append(_table(tables.verdict_rows(verdict), ("source", "kind", "")) if verdict

@@ -352,11 +352,17 @@ def write_campbell_csv(c, path: Path) -> Path:
 
 def study_pictures(study, folder: Path) -> list[Path]:
     """bearings.png (the coefficients against speed of each case), ucs.png, level1.png
-    and runup.png of the rotordynamic study, where it has them."""
+    and runup.png of the rotordynamic study, where it has them; each case's but the
+    nominal one's Campbell diagram, critical speeds' shapes, unbalance response (and
+    weight's 2x whirl), its name after each file's stem."""
     from shaftfem.outputs.plots import level1_figure, save_png
+    from shaftfem.outputs.report import case_suffix
     from shaftfem.outputs.ucs_plot import ucs_figure
 
     out = []
+    for r in (study.cases or [])[1:] if study is not None else []:
+        out += campbell_pictures(r.campbell, folder, case_suffix(r.case.name), orbits=False,
+                                 case=r.case.name)
     if study is not None:
         from shaftfem.outputs.plots import bearings_figure
         from shaftfem.outputs.report import study_cases
@@ -375,11 +381,25 @@ def study_pictures(study, folder: Path) -> list[Path]:
     return out
 
 
-def campbell_pictures(c, folder: Path) -> list[Path]:
+def _titled(fig, case: str):
+    """The figure with `case` named in its title (its suptitle, else its first axes')."""
+    if not case:
+        return fig
+    title = fig._suptitle
+    if title is not None:
+        title.set_text(f"{title.get_text()}, case: {case}")
+    elif fig.axes:
+        fig.axes[0].set_title(f"{fig.axes[0].get_title()}, case: {case}")
+    return fig
+
+
+def campbell_pictures(c, folder: Path, suffix: str = "", orbits: bool = True,
+                      case: str = "") -> list[Path]:
     """campbell.png, campbell.csv, critical_shapes.png (the deflected shape at each 1x
     critical speed), bode.png when the scene has unbalances, weight_2x.png when the
     shaft's weight drives a 2x whirl (a shaft not of revolution), and orbits.png (the
-    whirl at the first operating speed), in `folder`."""
+    whirl at the first operating speed), in `folder`; `suffix` after each file's stem
+    (a case's: outputs.report.case_suffix) and `case` named in each picture's title."""
     from shaftfem.outputs.campbell_plot import (
         bode_figure,
         campbell_figure,
@@ -389,14 +409,18 @@ def campbell_pictures(c, folder: Path) -> list[Path]:
     from shaftfem.outputs.plots import save_png
     from shaftfem.outputs.whirl_files import orbits_figure
 
-    out = [save_png(campbell_figure(c), folder / "campbell.png", dpi=130),
-           write_campbell_csv(c, folder / "campbell.csv"),
-           save_png(critical_shapes_figure(c), folder / "critical_shapes.png", dpi=130)]
+    def at(stem: str, ext: str = ".png") -> Path:
+        return folder / f"{stem}{suffix}{ext}"
+
+    out = [save_png(_titled(campbell_figure(c), case), at("campbell"), dpi=130),
+           write_campbell_csv(c, at("campbell", ".csv")),
+           save_png(_titled(critical_shapes_figure(c), case), at("critical_shapes"), dpi=130)]
     if c.unbalance is not None:
-        out.append(save_png(bode_figure(c), folder / "bode.png", dpi=130))
+        out.append(save_png(_titled(bode_figure(c), case), at("bode"), dpi=130))
     if c.weight_2x:
-        out.append(save_png(weight_figure(c), folder / "weight_2x.png", dpi=130))
-    out.append(save_png(orbits_figure(c), folder / "orbits.png", dpi=130))
+        out.append(save_png(_titled(weight_figure(c), case), at("weight_2x"), dpi=130))
+    if orbits:
+        out.append(save_png(_titled(orbits_figure(c), case), at("orbits"), dpi=130))
     return out
 
 
