@@ -784,3 +784,62 @@ def test_each_rotor_keeps_its_own_roots_and_they_go_with_it():
         gc.collect()
         assert key not in floquet._MEMOS
     assert len(set(np.round(grown, 3))) == len(grown)   # four rotors, four answers
+
+
+def stationary_multipliers(kx: float, ky: float, c: float, omega: float) -> np.ndarray:
+    """The asymmetric Jeffcott rotor's multipliers over one period pi / Omega, integrated
+    in the stationary frame (stationary_growth's equations)."""
+    from scipy.integrate import solve_ivp
+
+    def rhs(t: float, s: np.ndarray) -> np.ndarray:
+        X = s.reshape(4, 4)
+        a = omega * t
+        R = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        Ks = R @ np.diag([K1, K2]) @ R.T + np.diag([kx, ky])
+        A = np.block([[np.zeros((2, 2)), np.eye(2)], [-Ks / M, -c / M * np.eye(2)]])
+        return (A @ X).ravel()
+
+    sol = solve_ivp(rhs, (0.0, math.pi / omega), np.eye(4).ravel(), method="DOP853",
+                    rtol=1e-12, atol=1e-14)
+    return np.linalg.eigvals(sol.y[:, -1].reshape(4, 4))
+
+
+def test_a_periodic_rotor_s_1x_criticals_are_the_edges_of_its_bands_locked_to_the_speed():
+    """An asymmetric Jeffcott rotor (k1 != k2) on supports kx != ky, damped: its 1x
+    crossings are bands, not points, where a pair of multipliers (integrated in the
+    stationary frame, apart from shaftfem) stands on the negative real axis: a motion
+    locked to the speed. Its unbalance response peaks at the bands' edges, and those
+    edges are the critical speeds shaftfem lists (within 1e-5), each once, none inside a
+    band (the curves followed by shape met the line at 406 and 416 rad/s inside the
+    first) and none elsewhere (the curves' jumps from root to root crossed it at 453, 459
+    and 484 rad/s, where no exponent is seen at 1x)."""
+    from shaftfem.fem.tracking import track
+    from shaftfem.workflows.campbell import RPM, critical_speeds, with_sides
+
+    kx, ky, c = 0.5 * K1, 1.5 * K1, 12.0
+
+    def locked(omega: float) -> bool:
+        mu = stationary_multipliers(kx, ky, c, omega)
+        pair = mu[(mu.real < 0) & (np.abs(mu.imag) <= 1e-9 * np.abs(mu))]
+        return pair.size >= 2 and float(np.ptp(np.abs(pair))) > 1e-9
+
+    def edge(inside: float, outside: float) -> float:
+        while abs(inside - outside) > 1e-8 * inside:
+            mid = 0.5 * (inside + outside)
+            inside, outside = (mid, outside) if locked(mid) else (inside, mid)
+        return 0.5 * (inside + outside)
+
+    grid = np.linspace(300.0, 650.0, 71)
+    on = [locked(w) for w in grid]
+    bands = []
+    for i in range(1, len(grid)):
+        if on[i] and not on[i - 1]:
+            bands.append(edge(grid[i], grid[i - 1]))
+        if on[i - 1] and not on[i]:
+            bands.append(edge(grid[i - 1], grid[i]))
+    assert len(bands) == 4, bands    # two bands
+    model = jeffcott(kx, ky, c, K1, K2)
+    curves = [with_sides(model, cv) for cv in track(model, np.linspace(30.0, 700.0, 60), 4)]
+    found, _ = critical_speeds(model, curves, (1,), 700.0)
+    ours = sorted(cs.speed_rpm * RPM for cs in found if 300.0 <= cs.speed_rpm * RPM <= 650.0)
+    np.testing.assert_allclose(ours, bands, rtol=1e-5)

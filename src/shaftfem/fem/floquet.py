@@ -670,6 +670,61 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     return out
 
 
+# a crossing of a periodic rotor stands where an exponent is seen on its order line: within
+# this share of the spin (a curve's jump from one root to another crosses without one)
+ON_LINE = 1e-3
+# ... and a band locked to the line where two exponents stand on it (within LOCKED of the
+# spin) with decays a period apart by more than SPLIT (a pair met there: a multiplier
+# pair on the real axis; a lone exponent and its conjugate decay alike)
+LOCKED = 1e-7
+SPLIT = 1e-7
+
+
+def on_line(model: RotorModel, omega: float, order: int) -> tuple[np.ndarray, np.ndarray]:
+    """How far each settled Floquet exponent at the spin omega stands from the order
+    line (as a share of omega) and its decay per period (-Re lam T). The turning frame
+    sees order m where Im lam = (m + 1) Omega modulo 2 Omega (the housing sees a form's
+    harmonics at Im lam + (2 d + 1) Omega)."""
+    h = converged_hill(model, omega)
+    lam = h.lam[np.abs(h.lam) <= h.top * (1 + 1e-9)] if h.top < math.inf else h.lam
+    r = np.mod(lam.imag - (order + 1) * omega + omega, 2 * omega) - omega
+    return np.abs(r) / omega, -lam.real * math.pi / omega
+
+
+def locked(model: RotorModel, omega: float, order: int) -> bool:
+    """Whether a pair of Floquet exponents is locked to the order line at the spin omega
+    (ON_LINE, SPLIT): inside a band of speeds, not at one crossing."""
+    r, decay = on_line(model, omega, order)
+    d = decay[r <= LOCKED]
+    return d.size >= 2 and float(d.max() - d.min()) > SPLIT
+
+
+def lock_band(model: RotorModel, omega: float, order: int, lowest: float, highest: float,
+              tol: float = 1e-7) -> tuple[float, float]:
+    """The band of speeds (rad/s) about omega, where a pair is locked to the order line,
+    within [lowest, highest]: each edge bracketed by steps doubling from 1e-3 of omega,
+    then bisected to tol of it."""
+    def edge(sign: int) -> float:
+        inside, step = omega, 1e-3 * omega
+        while True:
+            out = min(max(omega + sign * step, lowest), highest)
+            if not locked(model, out, order):
+                break
+            inside = out
+            if out in (lowest, highest):
+                return out
+            step *= 2
+        while abs(out - inside) > tol * omega:
+            mid = 0.5 * (inside + out)
+            if locked(model, mid, order):
+                inside = mid
+            else:
+                out = mid
+        return 0.5 * (inside + out)
+
+    return edge(-1), edge(+1)
+
+
 def any_roots(model: RotorModel, omega: float) -> Roots:
     """The rotor's roots at the spin omega: its Floquet exponents where its equations are
     periodic there (floquet_roots), else the constant system's (fem.rotor.roots)."""

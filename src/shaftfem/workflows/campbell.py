@@ -231,6 +231,8 @@ def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, .
                               frequency_hz=x.order * x.omega / (2 * math.pi), mode=x.curve,
                               log_dec=x.log_dec if abs(x.log_dec) > ROUND_OFF else 0.0,
                               component=x.component, share=x.share) for x in found])
+    lowest = min((float(c.speeds_rpm[0]) * RPM for c in curves), default=0.0)
+    out = locked_bands(model, out, lowest, top)
     why = direct_applies(model)
     if why is not None:
         return out, CrossingCheck(False, why, on_curves=len(out))
@@ -262,6 +264,55 @@ def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, .
     check = CrossingCheck(True, "constant, undamped bearings", worst, len(out), len(direct),
                           len(extra), len(unused))
     return sorted(out + extra, key=lambda c: (c.speed_rpm, c.order)), check
+
+
+def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: float,
+                 top: float) -> list[CriticalSpeed]:
+    """A periodic rotor's crossings as its exponents have them: one where no exponent is
+    seen on its order line (ON_LINE: a followed curve that jumped from root to root) is
+    none; one where a pair of exponents is locked to the line holds a band of speeds,
+    whose two edges are the crossings (the unbalance response peaks there, the locked
+    pair's multipliers meeting on the real axis), each band once (fem.floquet.lock_band,
+    within [lowest, top] rad/s); a band narrower than PAIR, a round shaft's pair split
+    by its mesh, is the one crossing."""
+    from shaftfem.fem.floquet import ON_LINE, lock_band, locked, on_line
+    from shaftfem.fem.tracking import PAIR
+
+    out: list[CriticalSpeed] = []
+    bands: list[tuple[int, float, float]] = []
+    for cs in crossings:
+        om = cs.speed_rpm * RPM
+        if om <= 0 or not model.periodic(om):
+            out.append(cs)
+            continue
+        try:
+            r, _ = on_line(model, om, cs.order)
+            if not r.size or float(r.min()) > ON_LINE:
+                continue
+            if not locked(model, om, cs.order):
+                out.append(cs)
+                continue
+            if any(o == cs.order and lo <= om <= hi for o, lo, hi in bands):
+                continue
+            lo, hi = lock_band(model, om, cs.order, max(lowest, 1e-9), top)
+        except UnsettledError:
+            out.append(cs)
+            continue
+        bands.append((cs.order, lo, hi))
+        if hi - lo <= PAIR * om:
+            # narrower than the split a mesh gives a round shaft's pair: one crossing
+            out.append(cs)
+            continue
+        for edge in (lo, hi):
+            r, decay = on_line(model, edge, cs.order)
+            d = float(np.mean(decay[r <= ON_LINE])) if np.any(r <= ON_LINE) else 0.0
+            # log dec over a period of the seen whirl: the decay a period T = pi / Omega
+            # over the periods it holds (order x Omega T / 2 pi = order / 2)
+            log_dec = 2 * d / cs.order
+            out.append(replace(cs, speed_rpm=edge / RPM,
+                               frequency_hz=cs.order * edge / (2 * math.pi),
+                               log_dec=log_dec if abs(log_dec) > ROUND_OFF else 0.0))
+    return sorted(out, key=lambda c: (c.speed_rpm, c.order))
 
 
 def onsets(model: RotorModel, curves: list[Curve]) -> list[Onset]:
