@@ -675,9 +675,12 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
 ON_LINE = 1e-3
 # ... and a band locked to the line where two exponents stand on it (within LOCKED of the
 # spin) with decays a period apart by more than SPLIT (a pair met there: a multiplier
-# pair on the real axis; a lone exponent and its conjugate decay alike)
+# pair on the real axis; a lone exponent and its conjugate decay alike), lightly damped:
+# decaying by less than e^-LIGHT a period on average (a log decrement below 1 at 1x; two
+# overdamped roots stand still there too)
 LOCKED = 1e-7
 SPLIT = 1e-7
+LIGHT = 0.5
 
 
 def on_line(model: RotorModel, omega: float, order: int) -> tuple[np.ndarray, np.ndarray]:
@@ -693,10 +696,10 @@ def on_line(model: RotorModel, omega: float, order: int) -> tuple[np.ndarray, np
 
 def locked(model: RotorModel, omega: float, order: int) -> bool:
     """Whether a pair of Floquet exponents is locked to the order line at the spin omega
-    (ON_LINE, SPLIT): inside a band of speeds, not at one crossing."""
+    (LOCKED, SPLIT, LIGHT): inside a band of speeds, not at one crossing."""
     r, decay = on_line(model, omega, order)
-    d = decay[r <= LOCKED]
-    return d.size >= 2 and float(d.max() - d.min()) > SPLIT
+    d = np.sort(decay[r <= LOCKED])[:2]     # the least damped two
+    return d.size == 2 and float(d[1] - d[0]) > SPLIT and float(d.mean()) <= LIGHT
 
 
 def lock_band(model: RotorModel, omega: float, order: int, lowest: float, highest: float,

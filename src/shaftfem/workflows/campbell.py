@@ -266,6 +266,10 @@ def critical_speeds(model: RotorModel, curves: list[Curve], orders: tuple[int, .
     return sorted(out + extra, key=lambda c: (c.speed_rpm, c.order)), check
 
 
+# a band's edge within this share of a crossing already found is that crossing
+SAME_EDGE = 1e-4
+
+
 def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: float,
                  top: float) -> list[CriticalSpeed]:
     """A periodic rotor's crossings as its exponents have them: one where no exponent is
@@ -304,10 +308,13 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
             out.append(cs)
             continue
         for edge in (lo, hi):
+            if any(o.order == cs.order and abs(o.speed_rpm * RPM / edge - 1) <= SAME_EDGE
+                   for o in [*crossings, *out]):
+                continue    # followed to the edge already (a stretch's end)
             r, decay = on_line(model, edge, cs.order)
-            d = float(np.mean(decay[r <= ON_LINE])) if np.any(r <= ON_LINE) else 0.0
-            # log dec over a period of the seen whirl: the decay a period T = pi / Omega
-            # over the periods it holds (order x Omega T / 2 pi = order / 2)
+            # the locked pair's decay a period T = pi / Omega (the least damped two on
+            # the line), as a log decrement over the seen whirl's period, order / 2 of T
+            d = float(np.mean(np.sort(decay[r <= ON_LINE])[:2])) if np.any(r <= ON_LINE) else 0.0
             log_dec = 2 * d / cs.order
             out.append(replace(cs, speed_rpm=edge / RPM,
                                frequency_hz=cs.order * edge / (2 * math.pi),
