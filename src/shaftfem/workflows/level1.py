@@ -157,6 +157,11 @@ def run_level1(scene: Scene, q_n_per_mm: np.ndarray | None = None,
     if scene.rotor is None:
         raise SceneError(f"{scene.source}: no [rotor] table: Level I screens the shaft at its "
                          "highest operating speed; add [rotor] speed_rpm")
+    # a plane off the shaft, or a Q_A that is none, is refused before any solve
+    if at is not None:
+        screening_plane(scene, at)
+    if q_anticipated is not None:
+        anticipated(scene, q_anticipated)
     scene = equipped(scene, options)
     assert scene.rotor is not None
     z, where = screening_plane(scene, at)
