@@ -56,13 +56,11 @@ def growth(model: RotorModel, omega: float) -> float:
     return max(g, r.divergence) if r.divergence > 0 else g
 
 
-def stationary_growth(kx: float, ky: float, c: float, omega: float) -> float:
+def stationary_multipliers(kx: float, ky: float, c: float, omega: float) -> np.ndarray:
     """The same rotor written directly in the stationary frame, x'' = -(K_s(t) x + c x')
-    / m with the shaft's K_s(t) = R(Omega t) diag(k1, k2) R(Omega t)^T, integrated over
-    one period from each unit state (scipy's DOP853): the largest ln |mu| / T."""
+    / m with the shaft's K_s(t) = R(Omega t) diag(k1, k2) R(Omega t)^T: its multipliers,
+    integrated over one period pi / Omega from each unit state (scipy's DOP853)."""
     from scipy.integrate import solve_ivp
-
-    T = math.pi / omega
 
     def rhs(t: float, s: np.ndarray) -> np.ndarray:
         X = s.reshape(4, 4)
@@ -72,10 +70,15 @@ def stationary_growth(kx: float, ky: float, c: float, omega: float) -> float:
         A = np.block([[np.zeros((2, 2)), np.eye(2)], [-Ks / M, -c / M * np.eye(2)]])
         return (A @ X).ravel()
 
-    sol = solve_ivp(rhs, (0.0, T), np.eye(4).ravel(), method="DOP853", rtol=1e-11,
-                    atol=1e-13)
-    mu = np.linalg.eigvals(sol.y[:, -1].reshape(4, 4))
-    return float(np.max(np.log(np.abs(mu)))) / T
+    sol = solve_ivp(rhs, (0.0, math.pi / omega), np.eye(4).ravel(), method="DOP853",
+                    rtol=1e-12, atol=1e-14)
+    return np.linalg.eigvals(sol.y[:, -1].reshape(4, 4))
+
+
+def stationary_growth(kx: float, ky: float, c: float, omega: float) -> float:
+    """The largest ln |mu| / T of stationary_multipliers."""
+    mu = stationary_multipliers(kx, ky, c, omega)
+    return float(np.max(np.log(np.abs(mu)))) / (math.pi / omega)
 
 
 def edges(g, lo: float, hi: float, n: int = 240) -> list[float]:
@@ -785,23 +788,6 @@ def test_each_rotor_keeps_its_own_roots_and_they_go_with_it():
         assert key not in floquet._MEMOS
     assert len(set(np.round(grown, 3))) == len(grown)   # four rotors, four answers
 
-
-def stationary_multipliers(kx: float, ky: float, c: float, omega: float) -> np.ndarray:
-    """The asymmetric Jeffcott rotor's multipliers over one period pi / Omega, integrated
-    in the stationary frame (stationary_growth's equations)."""
-    from scipy.integrate import solve_ivp
-
-    def rhs(t: float, s: np.ndarray) -> np.ndarray:
-        X = s.reshape(4, 4)
-        a = omega * t
-        R = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-        Ks = R @ np.diag([K1, K2]) @ R.T + np.diag([kx, ky])
-        A = np.block([[np.zeros((2, 2)), np.eye(2)], [-Ks / M, -c / M * np.eye(2)]])
-        return (A @ X).ravel()
-
-    sol = solve_ivp(rhs, (0.0, math.pi / omega), np.eye(4).ravel(), method="DOP853",
-                    rtol=1e-12, atol=1e-14)
-    return np.linalg.eigvals(sol.y[:, -1].reshape(4, 4))
 
 
 def test_a_periodic_rotor_s_1x_criticals_are_the_edges_of_its_bands_locked_to_the_speed():
