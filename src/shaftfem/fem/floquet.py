@@ -694,12 +694,18 @@ def on_line(model: RotorModel, omega: float, order: int) -> tuple[np.ndarray, np
     return np.abs(r) / omega, -lam.real * math.pi / omega
 
 
-def locked(model: RotorModel, omega: float, order: int) -> bool:
-    """Whether a pair of Floquet exponents is locked to the order line at the spin omega
-    (LOCKED, SPLIT, LIGHT): inside a band of speeds, not at one crossing."""
-    r, decay = on_line(model, omega, order)
+def locked_pair(r: np.ndarray, decay: np.ndarray) -> bool:
+    """Whether, of exponents standing r from an order line with their decays a period
+    (on_line), a pair is locked to it (LOCKED, SPLIT, LIGHT): inside a band of speeds,
+    not at one crossing."""
     d = np.sort(decay[r <= LOCKED])[:2]     # the least damped two
     return d.size == 2 and float(d[1] - d[0]) > SPLIT and float(d.mean()) <= LIGHT
+
+
+def locked(model: RotorModel, omega: float, order: int) -> bool:
+    """Whether a pair of Floquet exponents is locked to the order line at the spin omega
+    (locked_pair)."""
+    return locked_pair(*on_line(model, omega, order))
 
 
 def lock_band(model: RotorModel, omega: float, order: int, lowest: float, highest: float,

@@ -106,10 +106,10 @@ def orbits_figure(c: Campbell, i: int = 0, count: int = 4):
     fig = Figure(figsize=(9.0, 1.2 + 1.5 * max(len(keep), 1)))
     axes = fig.subplots(max(len(keep), 1), 1, squeeze=False)[:, 0]
     gap = 2.4
+    at = [near & (np.abs(z - zj) <= slab) for zj in zs]    # the points standing for each
     for ax, k in zip(axes, keep):
         w = rows[k]
         t = np.linspace(0.0, 1.0 / w.frequency_hz, 73)
-        at = [near & (np.abs(z - zj) <= slab) for zj in zs]
         X = np.array([[H[d, k, a, 0].mean() if a.any() else 0.0 for a in at]
                       for d in range(H.shape[0])])
         Y = np.array([[H[d, k, a, 1].mean() if a.any() else 0.0 for a in at]

@@ -279,7 +279,7 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
     pair's multipliers meeting on the real axis), each band once (fem.floquet.lock_band,
     within [lowest, top] rad/s); a band narrower than PAIR, a round shaft's pair split
     by its mesh, is the one crossing."""
-    from shaftfem.fem.floquet import ON_LINE, lock_band, locked, on_line
+    from shaftfem.fem.floquet import ON_LINE, lock_band, locked_pair, on_line
     from shaftfem.fem.tracking import PAIR
 
     out: list[CriticalSpeed] = []
@@ -290,10 +290,10 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
             out.append(cs)
             continue
         try:
-            r, _ = on_line(model, om, cs.order)
+            r, decay = on_line(model, om, cs.order)
             if not r.size or float(r.min()) > ON_LINE:
                 continue
-            if not locked(model, om, cs.order):
+            if not locked_pair(r, decay):
                 out.append(cs)
                 continue
             if any(o == cs.order and lo <= om <= hi for o, lo, hi in bands):

@@ -200,6 +200,15 @@ def _matched(shapes: np.ndarray, candidates: np.ndarray) -> np.ndarray:
     return out
 
 
+def _candidates(model: RotorModel, k: float, count: int, kind: str
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """The roots at stiffness k (N/m) a followed branch may go on in: the lowest 4 count
+    of `kind`, torsion and axial ones too, and their shapes."""
+    c, C = synchronous_speeds(model, k, 4 * count, kind, every=True)
+    live = np.isfinite(c)
+    return c[live], C[:, live]
+
+
 def followed(model: RotorModel, ks: np.ndarray, count: int, kind: str
              ) -> tuple[np.ndarray, np.ndarray]:
     """The map's branches (Hz, (count, len(ks))) and their shapes at each stiffness
@@ -215,14 +224,13 @@ def followed(model: RotorModel, ks: np.ndarray, count: int, kind: str
         if not follow:
             f, Y = branches_at(model, float(k), count, kind)
         else:
-            c, C = synchronous_speeds(model, float(k), 4 * count, kind, every=True)
-            live = np.isfinite(c)
-            c, C = c[live], C[:, live]
+            c, C = _candidates(model, float(k), count, kind)
             pick = _matched(shapes[-1], C)
-            f = np.where(pick >= 0, c[np.maximum(pick, 0)], np.nan) if c.size else np.full(
-                count, np.nan)
-            Y = np.where(pick[None, :] >= 0, C[:, np.maximum(pick, 0)], shapes[-1]) if c.size \
-                else shapes[-1]
+            found = pick >= 0
+            f = np.full(count, np.nan)
+            f[found] = c[pick[found]]
+            Y = shapes[-1].copy()     # an ended branch keeps its last shape
+            Y[:, found] = C[:, pick[found]]
         freqs.append(f)
         shapes.append(Y)
     return np.column_stack(freqs), np.array(shapes)
@@ -274,10 +282,9 @@ def run_ucs(scene: Scene, stiffness: np.ndarray | None = None,
         if model.frame != "rotating" or kind == "standstill":
             return 60.0 * float(branches_at(model, k, branches, kind)[0][i])
         near = int(np.argmin(np.abs(np.log(ks) - math.log(k))))
-        c, C = synchronous_speeds(model, k, 4 * branches, kind, every=True)
-        live = np.isfinite(c)
-        mac = _mac(shapes[near][:, i:i + 1], C[:, live])[0]
-        return 60.0 * float(c[live][int(np.argmax(mac))]) if mac.size else math.nan
+        c, C = _candidates(model, k, branches, kind)
+        mac = _mac(shapes[near][:, i:i + 1], C)[0]
+        return 60.0 * float(c[int(np.argmax(mac))]) if mac.size else math.nan
 
     return UcsMap(scene=scene, stiffness=ks, frequencies=freqs, z=z, soft_lines=soft,
                   stiff_lines=stiff, bearings=_bearing_curves(scene, ks, freqs, branch_rpm),
