@@ -694,6 +694,26 @@ def on_line(model: RotorModel, omega: float, order: int) -> tuple[np.ndarray, np
     return np.abs(r) / omega, -lam.real * math.pi / omega
 
 
+def line_whirl(model: RotorModel, omega: float, order: int) -> float:
+    """The whirl index, as the housing sees it (fem.rotor.seen_whirl_index, every
+    harmonic), of the least damped two forms on the order line at the spin omega, their
+    mean: at a locked band's edge the pair meets in one form, whose whirl is the
+    crossing's (0 where none stands on the line)."""
+    from shaftfem.fem.rotor import seen_whirl_index
+
+    h = converged_hill(model, omega)
+    assert h.forms is not None
+    keep = np.flatnonzero(np.abs(h.lam) <= h.top * (1 + 1e-9)) if h.top < math.inf \
+        else np.arange(h.lam.size)
+    r, decay = on_line(model, omega, order)
+    near = keep[r <= ON_LINE]
+    if not near.size:
+        return 0.0
+    two = near[np.argsort(decay[r <= ON_LINE])[:2]]
+    index = seen_whirl_index(model, omega, h.lam[two].imag, h.forms[:, :, two])
+    return float(np.mean(index))
+
+
 def locked_pair(r: np.ndarray, decay: np.ndarray) -> bool:
     """Whether, of exponents standing r from an order line with their decays a period
     (on_line), a pair is locked to it (LOCKED, SPLIT, LIGHT): inside a band of speeds,

@@ -277,49 +277,58 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
     none; one where a pair of exponents is locked to the line holds a band of speeds,
     whose two edges are the crossings (the unbalance response peaks there, the locked
     pair's multipliers meeting on the real axis), each band once (fem.floquet.lock_band,
-    within [lowest, top] rad/s); a band narrower than PAIR, a round shaft's pair split
-    by its mesh, is the one crossing."""
-    from shaftfem.fem.floquet import ON_LINE, lock_band, locked_pair, on_line
-    from shaftfem.fem.tracking import PAIR
+    within [lowest, top] rad/s; an edge at either end is none). An edge is the pair's:
+    its whirl that of the form the pair meets in (fem.floquet.line_whirl), its log
+    decrement the pair's, whatever curve led to the band, so that the list does not
+    depend on the speeds the curves were followed at. A band narrower than PAIR, a round
+    shaft's pair split by its mesh, is the one crossing."""
+    from shaftfem.fem.floquet import ON_LINE, line_whirl, lock_band, locked_pair, on_line
+    from shaftfem.fem.tracking import PAIR, component_whirl
 
-    out: list[CriticalSpeed] = []
-    bands: list[tuple[int, float, float]] = []
+    kept: list[CriticalSpeed] = []
+    bands: list[tuple[CriticalSpeed, float, float]] = []
     for cs in crossings:
         om = cs.speed_rpm * RPM
         if om <= 0 or not model.periodic(om):
-            out.append(cs)
+            kept.append(cs)
             continue
         try:
             r, decay = on_line(model, om, cs.order)
             if not r.size or float(r.min()) > ON_LINE:
                 continue
             if not locked_pair(r, decay):
-                out.append(cs)
+                kept.append(cs)
                 continue
-            if any(o == cs.order and lo <= om <= hi for o, lo, hi in bands):
+            if any(b.order == cs.order and lo <= om <= hi for b, lo, hi in bands):
                 continue
             lo, hi = lock_band(model, om, cs.order, max(lowest, 1e-9), top)
         except UnsettledError:
-            out.append(cs)
+            kept.append(cs)
             continue
-        bands.append((cs.order, lo, hi))
         if hi - lo <= PAIR * om:
             # narrower than the split a mesh gives a round shaft's pair: one crossing
-            out.append(cs)
+            kept.append(cs)
             continue
+        bands.append((cs, lo, hi))
+    edges: list[CriticalSpeed] = []
+    for cs, lo, hi in bands:
         for edge in (lo, hi):
-            if any(o.order == cs.order and abs(o.speed_rpm * RPM / edge - 1) <= SAME_EDGE
-                   for o in [*crossings, *out]):
-                continue    # followed to the edge already (a stretch's end)
+            if edge <= max(lowest, 1e-9) * (1 + 1e-9) or edge >= top * (1 - 1e-9):
+                continue   # the band runs on past the diagram's end
             r, decay = on_line(model, edge, cs.order)
             # the locked pair's decay a period T = pi / Omega (the least damped two on
             # the line), as a log decrement over the seen whirl's period, order / 2 of T
             d = float(np.mean(np.sort(decay[r <= ON_LINE])[:2])) if np.any(r <= ON_LINE) else 0.0
             log_dec = 2 * d / cs.order
-            out.append(replace(cs, speed_rpm=edge / RPM,
-                               frequency_hz=cs.order * edge / (2 * math.pi),
-                               log_dec=log_dec if abs(log_dec) > ROUND_OFF else 0.0))
-    return sorted(out, key=lambda c: (c.speed_rpm, c.order))
+            edges.append(replace(
+                cs, whirl=component_whirl("", 1.0, line_whirl(model, edge, cs.order)),
+                speed_rpm=edge / RPM, frequency_hz=cs.order * edge / (2 * math.pi),
+                log_dec=log_dec if abs(log_dec) > ROUND_OFF else 0.0, component="",
+                share=1.0))
+    # a crossing followed to a band's edge (a curve's stretch ending there) is that edge
+    out = [cs for cs in kept if not any(
+        e.order == cs.order and abs(e.speed_rpm / cs.speed_rpm - 1) <= SAME_EDGE for e in edges)]
+    return sorted(out + edges, key=lambda c: (c.speed_rpm, c.order))
 
 
 def onsets(model: RotorModel, curves: list[Curve]) -> list[Onset]:
