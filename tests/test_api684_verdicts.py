@@ -162,6 +162,64 @@ def test_a_fail_names_its_tightest_pair_and_the_table_shows_every_failing_one(wh
         assert any(r[5] == a.kind and r[0] == a.source and r[-1] == "TOO CLOSE" for r in rows)
 
 
+def test_the_unbalance_response_fails_the_verdict_where_the_report_marks_it(wheel):
+    """The verdict and the report's rows judge the unbalance response alike: an orbit
+    above [rotor] amplitude_limit_um at any speed of the Bode plot (a run-up rubs a seal
+    on the way), or under API 684 a damped peak nearer the running speed than its AF's
+    margin (a flat criterion shows the peaks for information), fails
+    the check (exit 1) and is a FAIL row; under the limit and clear of its peaks it
+    passes. The orbit where the shaft runs is the curve's at the running speed. The
+    response is made here (a curve peaking at 12 um at 2,000 r/min; 3.8 um at 3,600
+    r/min by linear reading between 5 and 3 um), the rotor's own crossings and stability
+    kept: before, the report said FAIL under a passing verdict."""
+    from shaftfem.checks.whirl_check import check_whirl
+    from shaftfem.fem.whirl import Bode, Peak, UnbalanceResponse
+    from shaftfem.outputs.tables import _api684_case_rows, verdict_line, verdict_lines
+
+    c = wheel[4]
+    n = np.array([0.0, 1000.0, 2000.0, 3000.0, 4000.0, 9000.0])
+    major = np.array([0.5, 2.0, 12.0, 5.0, 3.0, 2.0]) * 1e-6
+    bode = Bode("wheel", 0.43, n, major, np.zeros_like(n), major)
+    peak = Peak("wheel", 3400.0, 12e-6, (3200.0, 3625.0), 8.0, 0.0556, 0.16)
+
+    def judged(limit_um, peaks=(), criterion="api684"):
+        rotor = replace(c.rotor_scene.rotor, min_log_dec=0.0, amplitude_limit=(
+            None if limit_um is None else limit_um * 1e-6))
+        cc = replace(c, scene=replace(c.rotor_scene, rotor=rotor, criterion=criterion),
+                     unbalance=UnbalanceResponse((bode,), tuple(peaks)))
+        v = check_whirl(cc)
+        rows = {r[0]: r for r in _api684_case_rows(cc, v, None, "")}
+        return v, rows
+
+    clear, rows = judged(15.0)
+    assert clear.response == []
+    assert rows["largest unbalance response at wheel"][1:] == [
+        "12 um at 2,000 r/min", "15 um", "pass"]
+    assert rows["unbalance response at wheel where the shaft runs"][1:] == [
+        "3.8 um at 3,600 r/min", "15 um", "pass"]
+    rubbed, rows = judged(10.0)
+    assert not rubbed.ok and rubbed.exit_status == 1
+    assert rubbed.response == ["unbalance orbit at wheel: 12 um at 2,000 r/min, above the "
+                               "10 um limit ([rotor] amplitude_limit_um)"]
+    assert rows["largest unbalance response at wheel"][-1] == "FAIL"
+    assert rows["unbalance response at wheel where the shaft runs"][-1] == "pass"
+    assert any(line.startswith("UNBALANCE RESPONSE NOT MET: unbalance orbit at wheel")
+               for line in verdict_lines(rubbed))
+    if clear.ok:
+        assert "FAIL" in verdict_line(rubbed) and "unbalance response" in verdict_line(rubbed)
+    _, rows = judged(3.0)
+    assert rows["unbalance response at wheel where the shaft runs"][-1] == "FAIL"
+    near, rows = judged(None, [peak])
+    assert not near.ok and len(near.response) == 1
+    assert near.response[0].startswith("unbalance peak at wheel: 3,400 r/min (AF 8.0), 5.6 %")
+    assert rows["unbalance peak at wheel"][-1] == "FAIL"
+    assert "unbalance response at wheel where the shaft runs" in rows   # no limit: shown
+    assert rows["unbalance response at wheel where the shaft runs"][-1] == "-"
+    # a flat margin judges the crossings; the peaks are shown for information
+    flat, rows = judged(None, [peak], "flat")
+    assert flat.response == [] and rows["unbalance peak at wheel"][-1] == "-"
+
+
 def test_a_section_between_the_mesh_nodes_is_read_as_exactly_as_one_on_them(wheel):
     """fem.supports.section_means at a position with no node plane: each rigid motion of
     the section reads exactly (translation 1, tilt its angle, turn its angle), and a

@@ -75,11 +75,15 @@ class ResonanceVerdict:
     underdamped: list[str] = field(default_factory=list)
     # what is printed beside the verdict and does not fail it (onsets beyond the range)
     warnings: list[str] = field(default_factory=list)
+    # what the unbalance response fails (a peak nearer the running range than its
+    # amplification factor's margin, an orbit above [rotor] amplitude_limit_um where the
+    # shaft runs): the rows the report marks FAIL fail the verdict too
+    response: list[str] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
         return (all(a.ok for a in self.approaches) and not self.unstable
-                and not self.underdamped)
+                and not self.underdamped and not self.response)
 
     @property
     def exit_status(self) -> int:
@@ -125,6 +129,7 @@ class ResonanceVerdict:
             "turning": self.turning,
             "unstable": list(self.unstable),
             "stability_criteria_not_met": list(self.underdamped),
+            "unbalance_response_not_met": list(self.response),
             "warnings": list(self.warnings),
             "approaches": [
                 {"mode": a.mode, "frequency_hz": a.frequency, "kind": a.kind, "source": a.source,

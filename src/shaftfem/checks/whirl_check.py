@@ -153,6 +153,66 @@ def stability_findings(c: Campbell) -> tuple[list[str], list[str], list[str]]:
     return fails, short, warns
 
 
+def api684_peaks(scene: Scene) -> bool:
+    """Whether the unbalance response's peaks are judged by API 684's margins (its
+    criterion "api684"), not shown for information beside a flat margin."""
+    return scene.criterion == "api684"
+
+
+def running_orbits(c: Campbell, anywhere: bool = False) -> list[tuple[str, float, float]]:
+    """Each probe's largest unbalance orbit where the shaft runs (or `anywhere` on its
+    Bode curve, as a run-up passes through it): its name, the orbit's major semi-axis
+    (0-peak, m) and the speed (r/min), over its Bode curve at each operating speed and
+    range (the range's ends and the curve's speeds and finite peaks inside)."""
+    import numpy as np
+
+    rotor = c.rotor_scene.rotor
+    if c.unbalance is None or rotor is None:
+        return []
+    spans = [(lo / RPM, hi / RPM) for lo, hi in rotor.spans]
+    if anywhere:
+        spans = [(-math.inf, math.inf)]
+    out = []
+    for b in c.unbalance.bode:
+        n, a = b.speeds_rpm, b.major
+        at: list[tuple[float, float]] = []
+        for lo, hi in spans:
+            at += [(float(np.interp(x, n, a)), float(x)) for x in {lo, hi} if n[0] <= x <= n[-1]]
+            inside = (n >= lo) & (n <= hi)
+            at += [(float(y), float(x)) for y, x in zip(a[inside], n[inside])]
+            at += [(p.amplitude, p.speed_rpm) for p in c.unbalance.peaks
+                   if p.probe == b.name and lo <= p.speed_rpm <= hi
+                   and not (p.unstable or p.unbounded)]
+        if at:
+            amp, speed = max(at)
+            out.append((b.name, amp, speed))
+    return out
+
+
+def response_findings(c: Campbell) -> list[str]:
+    """What the unbalance response fails: under API 684 (scene criterion "api684"), a
+    peak (damped, steady) nearer the running range than the margin its half-power
+    amplification factor requires (the standard's own reading of a critical speed; other
+    criteria judge the crossings by their flat margin and show the peaks for
+    information), and under any criterion an orbit above
+    [rotor] amplitude_limit_um anywhere on the Bode plot's speeds (a seal's clearance is
+    rubbed on the way up as at speed; running_orbits)."""
+    rotor = c.rotor_scene.rotor
+    if c.unbalance is None or rotor is None:
+        return []
+    out = [f"unbalance peak at {p.probe}: {p.speed_rpm:,.0f} r/min (AF {p.amplification:.1f}), "
+           f"{p.margin * 100:.1f} % from where the shaft runs, {p.required_margin * 100:.1f} % "
+           "required" for p in c.unbalance.peaks if api684_peaks(c.rotor_scene)
+           and not (p.unstable or p.unbounded) and p.required_margin is not None
+           and p.amplification is not None and p.margin < p.required_margin]
+    limit = rotor.amplitude_limit
+    if limit is not None:
+        out += [f"unbalance orbit at {name}: {amp * 1e6:.3g} um at {n:,.0f} r/min, above the "
+                f"{limit * 1e6:g} um limit ([rotor] amplitude_limit_um)"
+                for name, amp, n in running_orbits(c, anywhere=True) if amp > limit]
+    return out
+
+
 def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     """The turning shaft's verdict: its critical speeds against where it runs, its whirl
     at the operating speeds against the other sources, and its stability."""
@@ -237,7 +297,7 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
     return ResonanceVerdict(approaches=out, required=flat, free_free=not scene.held,
                             free_free_intended=scene.free_free_intended or scene.hanging_free,
                             turning=basis, unstable=fails, underdamped=short,
-                            warnings=warns)
+                            warnings=warns, response=response_findings(c))
 
 
 def with_level1(verdict: ResonanceVerdict, level1) -> ResonanceVerdict:

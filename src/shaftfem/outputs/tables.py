@@ -378,6 +378,7 @@ def verdict_lines(v: ResonanceVerdict | None) -> list[str]:
     if v is not None:
         lines += [f"UNSTABLE: {u}" for u in v.unstable]
         lines += [f"STABILITY CRITERION NOT MET: {u}" for u in v.underdamped]
+        lines += [f"UNBALANCE RESPONSE NOT MET: {u}" for u in v.response]
         lines += [f"warning: {w}" for w in v.warnings]
     if v is not None and v.turning:
         lines.append(f"judged on {v.turning}")
@@ -399,6 +400,10 @@ def verdict_line(v: ResonanceVerdict | None) -> str:
         return (f"**VERDICT: FAIL{free}** - stable where the shaft runs, but a stability "
                 f"criterion is not met: {v.underdamped[0]}"
                 + (f" (and {len(v.underdamped) - 1} more)" if len(v.underdamped) > 1 else ""))
+    if v.response and all(a.ok for a in v.approaches):
+        return (f"**VERDICT: FAIL{free}** - stable, the critical speeds clear their margins, "
+                f"but the unbalance response does not: {v.response[0]}"
+                + (f" (and {len(v.response) - 1} more)" if len(v.response) > 1 else ""))
     if v.ok and not v.approaches:
         return (f"**VERDICT: PASS{free}** - stable, and no critical speed or whirl frequency "
                 "meets an excitation harmonic in the range checked")
@@ -888,7 +893,7 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
 def _api684_case_rows(c, verdict, lv, unscreened) -> list[list[str]]:
     """One case's rows of api684_rows: its Campbell run `c`, its verdict, its Level I
     screening `lv` (None: not run) and why Level I was left out (unscreened)."""
-    import numpy as np
+    from shaftfem.checks.whirl_check import api684_peaks, running_orbits
 
     rows = []
     crit = [a for a in verdict.approaches if "critical" in a.kind and not a.exempt]
@@ -921,26 +926,26 @@ def _api684_case_rows(c, verdict, lv, unscreened) -> list[list[str]]:
     if c.unbalance is not None:
         for p in c.unbalance.peaks:
             need = p.required_margin
-            ok = p.unbounded is False and (need is None or p.margin >= need)
+            # judged as the verdict judges it (checks.whirl_check.response_findings): a
+            # peak with no damping to bound it is judged by its critical speed
             rows.append([f"unbalance peak at {p.probe}",
-                         f"{p.amplitude * 1e6:,.3g} um at {p.speed_rpm:,.0f} r/min, margin "
-                         f"{p.margin * 100:.1f} %",
+                         ("unbounded (no damping)" if p.unbounded
+                          else f"{p.amplitude * 1e6:,.3g} um")
+                         + f" at {p.speed_rpm:,.0f} r/min, margin {p.margin * 100:.1f} %",
                          "-" if need is None else f"{need * 100:.1f} % (AF "
                          f"{p.amplification:.1f})" if p.amplification else "-",
-                         "pass" if ok else "FAIL"])
+                         "-" if p.unbounded or p.unstable or not api684_peaks(c.rotor_scene)
+                         else "pass" if p.ok else "FAIL"])
         limit = c.rotor_scene.rotor.amplitude_limit if c.rotor_scene.rotor else None
-        if limit is not None and c.unbalance.peaks:
-            worst = max(p.amplitude for p in c.unbalance.peaks)
-            rows.append(["largest unbalance response", f"{worst * 1e6:,.3g} um",
-                         f"{limit * 1e6:,.3g} um", "pass" if worst <= limit else "FAIL"])
-        # where the shaft runs: each probe's orbit at the operating speeds
-        for b in c.unbalance.bode:
-            at = [(float(np.interp(n, b.speeds_rpm, b.major)), n) for n in c.operating_rpm
-                  if b.speeds_rpm[0] <= n <= b.speeds_rpm[-1]]
-            if not at:
-                continue
-            amp, n = max(at)
-            rows.append([f"unbalance response at {b.name} where the shaft runs",
+        # each probe's largest orbit on the Bode plot's speeds (what the verdict judges
+        # against the limit, checks.whirl_check.response_findings) and where the shaft runs
+        if limit is not None:
+            for name, amp, n in running_orbits(c, anywhere=True):
+                rows.append([f"largest unbalance response at {name}",
+                             f"{amp * 1e6:,.3g} um at {n:,.0f} r/min", f"{limit * 1e6:,.3g} um",
+                             "pass" if amp <= limit else "FAIL"])
+        for name, amp, n in running_orbits(c):
+            rows.append([f"unbalance response at {name} where the shaft runs",
                          f"{amp * 1e6:,.3g} um at {n:,.0f} r/min",
                          "-" if limit is None else f"{limit * 1e6:,.3g} um",
                          "-" if limit is None else ("pass" if amp <= limit else "FAIL")])

@@ -443,7 +443,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                "two numbers, 0 < lowest < highest <= 10^6", required=False),
         "amplitude_limit_um": Key(float, "the largest unbalance response allowed at a probe "
                                   "(0-peak, for example a seal's radial clearance), um: drawn "
-                                  "on the Bode plot, and a peak above it is said",
+                                  "on the Bode plot; an orbit above it at any of its speeds "
+                                  "fails the check",
                                   *upto(1e6, "up to 1 m"), required=False),
         "min_log_dec": Key(float, "the least log decrement a whirling mode may have where "
                            "the shaft runs: at its operating speeds and in its ranges, above "

@@ -161,6 +161,7 @@ def combined(results: list[CaseResult]) -> ResonanceVerdict:
     approaches.sort(key=lambda a: (a.exempt, a.margin - a.required))
     unstable = [named(u, r) for r in results for u in r.verdict.unstable]
     underdamped = [named(u, r) for r in results for u in r.verdict.underdamped]
+    response = [named(u, r) for r in results for u in r.verdict.response]
     warnings = list(first.warnings)   # the nominal case's, then what the others add
     for r in results[1:]:
         warnings += [named(w, r) for w in r.verdict.warnings if w not in first.warnings]
@@ -170,4 +171,4 @@ def combined(results: list[CaseResult]) -> ResonanceVerdict:
                             free_free=first.free_free,
                             free_free_intended=first.free_free_intended, turning=turning,
                             unstable=unstable, underdamped=underdamped,
-                            warnings=warnings)
+                            warnings=warnings, response=response)
