@@ -189,6 +189,10 @@ def test_the_rotordynamics_section_reads_as_api_684_asks(pump_report, tmp_path):
         '<td class="text">FAIL</td>') >= 4
     markdown = (pump_report.parent / "report.md").read_text()
     assert "## Rotordynamics (API 684)" in markdown and "![Critical speed map](ucs.png)" in markdown
+    # an image link only to a picture; the diagram's numbers (campbell.csv) a plain link
+    images = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", markdown)
+    assert images and all(i.endswith((".png", ".jpg", ".svg")) for i in images), images
+    assert re.search(r"(?<!!)\[[^\]]*\]\(campbell\.csv\)", markdown)
 
 
 def test_each_case_is_pictured_and_tabled_as_itself(pump_report):

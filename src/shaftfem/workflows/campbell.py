@@ -277,12 +277,13 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
     none; one where a pair of exponents is locked to the line holds a band of speeds,
     whose two edges are the crossings (the unbalance response peaks there, the locked
     pair's multipliers meeting on the real axis), each band once (fem.floquet.lock_band,
-    within [lowest, top] rad/s; an edge at either end is none). An edge is the pair's:
+    within [lowest, top] rad/s; an edge at either end is none; a crossing at an edge
+    finds its band from beside it). An edge is the pair's:
     its whirl that of the form the pair meets in (fem.floquet.line_whirl), its log
     decrement the pair's, whatever curve led to the band, so that the list does not
     depend on the speeds the curves were followed at. A band narrower than PAIR, a round
     shaft's pair split by its mesh, is the one crossing."""
-    from shaftfem.fem.floquet import ON_LINE, line_whirl, lock_band, locked_pair, on_line
+    from shaftfem.fem.floquet import ON_LINE, line_whirl, lock_band, locked, locked_pair, on_line
     from shaftfem.fem.tracking import PAIR, component_whirl
 
     kept: list[CriticalSpeed] = []
@@ -297,8 +298,13 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
             if not r.size or float(r.min()) > ON_LINE:
                 continue
             if not locked_pair(r, decay):
-                kept.append(cs)
-                continue
+                # a curve that met the line at a band's edge (the pair parts just there):
+                # the band is found from beside it
+                om = next((w for w in (om * (1 - SAME_EDGE), om * (1 + SAME_EDGE))
+                           if lowest < w < top and locked(model, w, cs.order)), 0.0)
+                if not om:
+                    kept.append(cs)
+                    continue
             if any(b.order == cs.order and lo <= om <= hi for b, lo, hi in bands):
                 continue
             lo, hi = lock_band(model, om, cs.order, max(lowest, 1e-9), top)
