@@ -75,9 +75,9 @@ class ResonanceVerdict:
     underdamped: list[str] = field(default_factory=list)
     # what is printed beside the verdict and does not fail it (onsets beyond the range)
     warnings: list[str] = field(default_factory=list)
-    # what the unbalance response fails (a peak nearer the running range than its
-    # amplification factor's margin, an orbit above [rotor] amplitude_limit_um where the
-    # shaft runs): the rows the report marks FAIL fail the verdict too
+    # what the unbalance response fails (under API 684 a peak nearer the running range
+    # than its amplification factor's margin; an orbit above [rotor] amplitude_limit_um
+    # at any speed of the Bode plot): the rows the report marks FAIL fail the verdict too
     response: list[str] = field(default_factory=list)
 
     @property
