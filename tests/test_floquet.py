@@ -872,7 +872,7 @@ def test_a_periodic_rotor_s_critical_speeds_do_not_depend_on_the_speeds_its_curv
     stationary frame alone (the orbit's orders, stationary_whirl: +0.247, -0.238, -0.245,
     +0.240 at 401, 432, 514 and 538 rad/s; the index within 0.01; the code before
     labelled an edge by whichever curve led to its band, two of four wrong)."""
-    from shaftfem.fem.floquet import line_whirl
+    from shaftfem.fem.floquet import line_pair
     from shaftfem.fem.tracking import track
     from shaftfem.workflows.campbell import RPM, critical_speeds, with_sides
 
@@ -893,6 +893,6 @@ def test_a_periodic_rotor_s_critical_speeds_do_not_depend_on_the_speeds_its_curv
         inside = w * (1 + 1e-5 if i % 2 == 0 else 1 - 1e-5)   # the bands' edges, in pairs
         index = stationary_whirl(kx, ky, c, inside)
         assert abs(index) > 0.1, (w, index)
-        assert abs(line_whirl(model, w, 1) - index) <= 0.01, (w, index)
+        assert abs(line_pair(model, w, 1)[0] - index) <= 0.01, (w, index)
         senses.append(("forward" if index > 0 else "backward", whirl))
     assert all(x == y for x, y in senses), senses

@@ -159,6 +159,13 @@ def api684_peaks(scene: Scene) -> bool:
     return scene.criterion == "api684"
 
 
+def judged_peak(scene: Scene, p) -> bool:
+    """Whether an unbalance peak is judged against its margin (api684_peaks): a steady,
+    damped one; a peak where a mode grows has no steady response, and one with no damping
+    to bound it is judged by its critical speed."""
+    return api684_peaks(scene) and not (p.unstable or p.unbounded)
+
+
 def running_orbits(c: Campbell, anywhere: bool = False) -> list[tuple[str, float, float]]:
     """Each probe's largest unbalance orbit where the shaft runs (or `anywhere` on its
     Bode curve, as a run-up passes through it): its name, the orbit's major semi-axis
@@ -202,9 +209,8 @@ def response_findings(c: Campbell) -> list[str]:
         return []
     out = [f"unbalance peak at {p.probe}: {p.speed_rpm:,.0f} r/min (AF {p.amplification:.1f}), "
            f"{p.margin * 100:.1f} % from where the shaft runs, {p.required_margin * 100:.1f} % "
-           "required" for p in c.unbalance.peaks if api684_peaks(c.rotor_scene)
-           and not (p.unstable or p.unbounded) and p.required_margin is not None
-           and p.amplification is not None and p.margin < p.required_margin]
+           "required" for p in c.unbalance.peaks
+           if judged_peak(c.rotor_scene, p) and p.required_margin is not None and not p.ok]
     limit = rotor.amplitude_limit
     if limit is not None:
         out += [f"unbalance orbit at {name}: {amp * 1e6:.3g} um at {n:,.0f} r/min, above the "

@@ -152,6 +152,11 @@ class Hill:
     forms: np.ndarray | None = None   # each form's harmonics of q, k = -H..H (2H+1, N, 2N)
     top: float = math.inf   # the largest |lam| settled (s^-1): those above are not
 
+    @property
+    def settled(self) -> np.ndarray:
+        """Which exponents are settled (|lam| up to top; every one where top is inf)."""
+        return np.abs(self.lam) <= self.top * (1 + 1e-9)
+
 
 def hill(model: RotorModel, omega: float, harmonics: int) -> Hill:
     """The Floquet exponents at the spin omega (rad/s) by Hill's method with harmonics
@@ -417,7 +422,7 @@ def growth_apart(model: RotorModel, omega: float) -> float:
     growing exponent of the monodromy that none of them has counts as 1."""
     h = converged_hill(model, omega)
     T = math.pi / omega
-    settled = h.lam[np.abs(h.lam) <= h.top * (1 + 1e-9)]
+    settled = h.lam[h.settled]
     lam = settled[settled.real * T >= math.log(RESOLVED)]
     mono = np.log(multipliers(model, omega).astype(complex)) / T
     worst = 0.0
@@ -627,7 +632,7 @@ def floquet_roots(model: RotorModel, omega: float) -> Roots:
     forms = h.forms
     assert forms is not None
     if h.top < math.inf:   # a widened speed: the forms reported there, settled
-        low = np.abs(h.lam) <= h.top * (1 + 1e-9)
+        low = h.settled
         forms = forms[:, :, low]
         h = replace(h, lam=h.lam[low], y=h.y[:, low], centroid=h.centroid[low],
                     residual=h.residual[low], forms=forms)
@@ -688,30 +693,32 @@ def on_line(model: RotorModel, omega: float, order: int) -> tuple[np.ndarray, np
     line (as a share of omega) and its decay per period (-Re lam T). The turning frame
     sees order m where Im lam = (m + 1) Omega modulo 2 Omega (the housing sees a form's
     harmonics at Im lam + (2 d + 1) Omega)."""
-    h = converged_hill(model, omega)
-    lam = h.lam[np.abs(h.lam) <= h.top * (1 + 1e-9)] if h.top < math.inf else h.lam
+    return _on_line(converged_hill(model, omega), omega, order)
+
+
+def _on_line(h: Hill, omega: float, order: int) -> tuple[np.ndarray, np.ndarray]:
+    lam = h.lam[h.settled]
     r = np.mod(lam.imag - (order + 1) * omega + omega, 2 * omega) - omega
     return np.abs(r) / omega, -lam.real * math.pi / omega
 
 
-def line_whirl(model: RotorModel, omega: float, order: int) -> float:
-    """The whirl index, as the housing sees it (fem.rotor.seen_whirl_index, every
-    harmonic), of the least damped two forms on the order line at the spin omega, their
-    mean: at a locked band's edge the pair meets in one form, whose whirl is the
-    crossing's (0 where none stands on the line)."""
+def line_pair(model: RotorModel, omega: float, order: int) -> tuple[float, float]:
+    """The least damped two forms on the order line at the spin omega (within ON_LINE):
+    their mean whirl index as the housing sees it (fem.rotor.seen_whirl_index, every
+    harmonic) and their mean decay per period (on_line); (0, 0) where none stands there.
+    At a locked band's edge the pair meets in one form: the crossing's whirl and decay."""
     from shaftfem.fem.rotor import seen_whirl_index
 
     h = converged_hill(model, omega)
     assert h.forms is not None
-    keep = np.flatnonzero(np.abs(h.lam) <= h.top * (1 + 1e-9)) if h.top < math.inf \
-        else np.arange(h.lam.size)
-    r, decay = on_line(model, omega, order)
-    near = keep[r <= ON_LINE]
-    if not near.size:
-        return 0.0
-    two = near[np.argsort(decay[r <= ON_LINE])[:2]]
-    index = seen_whirl_index(model, omega, h.lam[two].imag, h.forms[:, :, two])
-    return float(np.mean(index))
+    r, decay = _on_line(h, omega, order)
+    on = r <= ON_LINE
+    if not on.any():
+        return 0.0, 0.0
+    two = np.argsort(decay[on])[:2]
+    forms = np.flatnonzero(h.settled)[on][two]
+    index = seen_whirl_index(model, omega, h.lam[forms].imag, h.forms[:, :, forms])
+    return float(np.mean(index)), float(np.mean(decay[on][two]))
 
 
 def locked_pair(r: np.ndarray, decay: np.ndarray) -> bool:

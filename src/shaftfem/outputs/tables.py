@@ -557,7 +557,7 @@ def film_text(films) -> str:
 def campbell_text(c) -> str:
     """What `shaftfem campbell` prints: the frame, the whirl at each operating speed,
     the critical speeds and the basis check (a workflows.campbell.Campbell)."""
-    from shaftfem.checks.whirl_check import span_margin
+    from shaftfem.checks.whirl_check import api684_peaks, span_margin
     from shaftfem.fem.whirl import RPM
 
     r = c.result
@@ -617,7 +617,7 @@ def campbell_text(c) -> str:
     if c.zones and not c.zones[-1].open:
         lines.append(f"stable above {c.zones[-1].to_rpm:,.0f} r/min to the diagram's end")
     if c.unbalance is not None:
-        verdict = ("the verdict follows these margins" if c.result.scene.criterion == "api684"
+        verdict = ("the verdict follows these margins" if api684_peaks(c.rotor_scene)
                    else "for information: the verdict takes [resonance]'s flat margin")
         lines += ["", "unbalance response peaks (the orbit's major semi-axis, 0-peak; "
                   "half-power amplification factor, API 684 separation margin; "
@@ -893,7 +893,7 @@ def api684_rows(study) -> tuple[list[str], list[list[str]]]:
 def _api684_case_rows(c, verdict, lv, unscreened) -> list[list[str]]:
     """One case's rows of api684_rows: its Campbell run `c`, its verdict, its Level I
     screening `lv` (None: not run) and why Level I was left out (unscreened)."""
-    from shaftfem.checks.whirl_check import api684_peaks, running_orbits
+    from shaftfem.checks.whirl_check import api684_peaks, judged_peak, running_orbits
 
     rows = []
     crit = [a for a in verdict.approaches if "critical" in a.kind and not a.exempt]
@@ -926,8 +926,7 @@ def _api684_case_rows(c, verdict, lv, unscreened) -> list[list[str]]:
     if c.unbalance is not None:
         for p in c.unbalance.peaks:
             need = p.required_margin
-            # judged as the verdict judges it (checks.whirl_check.response_findings): a
-            # peak with no damping to bound it is judged by its critical speed
+            # judged as the verdict judges it (checks.whirl_check.judged_peak)
             rows.append([f"unbalance peak at {p.probe}",
                          ("unbounded (no damping)" if p.unbounded
                           else f"{p.amplitude * 1e6:,.3g} um")
@@ -936,8 +935,8 @@ def _api684_case_rows(c, verdict, lv, unscreened) -> list[list[str]]:
                           f"{p.amplification:.1f})" if p.amplification else "-")
                          + ("" if api684_peaks(c.rotor_scene) or need is None
                             else ", for information (a flat margin is judged)"),
-                         "-" if p.unbounded or p.unstable or not api684_peaks(c.rotor_scene)
-                         else "pass" if p.ok else "FAIL"])
+                         ("pass" if p.ok else "FAIL") if judged_peak(c.rotor_scene, p)
+                         else "-"])
         limit = c.rotor_scene.rotor.amplitude_limit if c.rotor_scene.rotor else None
         # each probe's largest orbit on the Bode plot's speeds (what the verdict judges
         # against the limit, checks.whirl_check.response_findings) and where the shaft runs

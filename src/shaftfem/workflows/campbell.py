@@ -279,11 +279,11 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
     pair's multipliers meeting on the real axis), each band once (fem.floquet.lock_band,
     within [lowest, top] rad/s; an edge at either end is none; a crossing at an edge
     finds its band from beside it). An edge is the pair's:
-    its whirl that of the form the pair meets in (fem.floquet.line_whirl), its log
+    its whirl that of the form the pair meets in (fem.floquet.line_pair), its log
     decrement the pair's, whatever curve led to the band, so that the list does not
     depend on the speeds the curves were followed at. A band narrower than PAIR, a round
     shaft's pair split by its mesh, is the one crossing."""
-    from shaftfem.fem.floquet import ON_LINE, line_whirl, lock_band, locked, locked_pair, on_line
+    from shaftfem.fem.floquet import ON_LINE, line_pair, lock_band, locked, locked_pair, on_line
     from shaftfem.fem.tracking import PAIR, component_whirl
 
     kept: list[CriticalSpeed] = []
@@ -321,13 +321,12 @@ def locked_bands(model: RotorModel, crossings: list[CriticalSpeed], lowest: floa
         for edge in (lo, hi):
             if edge <= max(lowest, 1e-9) * (1 + 1e-9) or edge >= top * (1 - 1e-9):
                 continue   # the band runs on past the diagram's end
-            r, decay = on_line(model, edge, cs.order)
-            # the locked pair's decay a period T = pi / Omega (the least damped two on
-            # the line), as a log decrement over the seen whirl's period, order / 2 of T
-            d = float(np.mean(np.sort(decay[r <= ON_LINE])[:2])) if np.any(r <= ON_LINE) else 0.0
+            # the locked pair's whirl and decay a period T = pi / Omega, as a log
+            # decrement over the seen whirl's period, order / 2 of T
+            index, d = line_pair(model, edge, cs.order)
             log_dec = 2 * d / cs.order
             edges.append(replace(
-                cs, whirl=component_whirl("", 1.0, line_whirl(model, edge, cs.order)),
+                cs, whirl=component_whirl("", 1.0, index),
                 speed_rpm=edge / RPM, frequency_hz=cs.order * edge / (2 * math.pi),
                 log_dec=log_dec if abs(log_dec) > ROUND_OFF else 0.0, component="",
                 share=1.0))
