@@ -38,7 +38,7 @@ E, NU = 210e9, 0.3
 STEEL = {"name": "42CrMo4", "youngs_modulus_mpa": E / 1e6, "poisson_ratio": NU,
          "density_kg_m3": 7850.0}
 L = 300.0         # mm: every shape is 300 mm long, its notch about the middle
-F, T, N = 2000.0, 200.0, 20000.0     # N, N m, N
+F, T, N = 10000.0 / 3, 200.0, 20000.0     # N (M = 100 N m), N m, N
 
 
 def seats(axial: bool) -> list[dict]:
@@ -52,11 +52,15 @@ def seats(axial: bool) -> list[dict]:
 
 
 def duty(load: str) -> dict:
-    """Four-point bending (F at 60 and 240 mm: M = F 50 mm between), a torque T from 40
-    to 260 mm, or a tension N from 40 mm to the right seat."""
+    """Bending by two couples (F up at 40 and 260 mm, down at 70 and 230: M = F 30 mm
+    between 70 and 230 mm, whatever the seats do: the loads balance, so the seats carry
+    nothing and where their reactions centre does not matter), a torque T from 40 to
+    260 mm, or a tension N from 40 mm to the right seat."""
     if load == "bending":
-        return {"force": [{"name": "a", "position_mm": 60.0, "fy_n": -F},
-                          {"name": "b", "position_mm": L - 60, "fy_n": -F}]}
+        return {"force": [{"name": "a", "position_mm": 40.0, "fy_n": F},
+                          {"name": "b", "position_mm": 70.0, "fy_n": -F},
+                          {"name": "c", "position_mm": L - 70, "fy_n": -F},
+                          {"name": "d", "position_mm": L - 40, "fy_n": F}]}
     if load == "torsion":
         return {"torque": [{"name": "in", "position_mm": 40.0, "torque_nm": T},
                            {"name": "out", "position_mm": L - 40}]}
@@ -66,7 +70,7 @@ def duty(load: str) -> dict:
 def nominal_vm(load: str, d: float) -> float:
     """The nominal von Mises stress of the notch's section (diameter d, m), Pa."""
     if load == "bending":
-        return F * 0.050 * 32 / (math.pi * d**3)
+        return F * 0.030 * 32 / (math.pi * d**3)
     if load == "torsion":
         return math.sqrt(3) * T * 16 / (math.pi * d**3)
     return N / (math.pi * d**2 / 4)

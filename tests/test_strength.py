@@ -437,27 +437,33 @@ def test_a_keyed_shaft_lists_one_spot_on_a_shoulders_circle_away_from_its_keyway
 
 
 def test_a_filleted_shoulder_is_refined_around_its_hot_spot_until_bounded():
-    """The same shoulder with a 3 mm fillet: a smooth notch, refined around the spot
-    until its bound meets the 2 % wanted: the spot's elements at least 2.5 times smaller
-    than the fillet's 2 mm, the DOFs less than 4 times the first mesh's (not everywhere:
-    shrinking every element 2.5 times would multiply them by 15)."""
-    result = ws.run_strength(load_scene(sharp_shoulder(3.0)))
+    """The same shoulder with a 3 mm fillet, bent by two balancing couples (M = 60 N m
+    over it, whatever the seats do): a smooth notch, refined around the spot until its
+    bound meets the 2 % wanted: the spot's elements at least 2.5 times smaller than the
+    fillet's 2 mm, the DOFs less than 6 times the first mesh's (not everywhere: shrinking
+    every element 2.5 times would multiply them by 15; each round keeps the refinement of
+    the rounds before)."""
+    data = sharp_shoulder(3.0)
+    data["force"] = [{"position_mm": z, "fy_n": f} for z, f in
+                     ((40.0, 2000.0), (70.0, -2000.0), (230.0, -2000.0), (260.0, 2000.0))]
+    result = ws.run_strength(load_scene(data))
     worst = result.spots[0]
     assert abs(worst.z - 0.1485) < 2e-3 and worst.converging and result.ok
-    assert worst.bound is not None and worst.bound <= 0.02 and result.bounded
+    assert worst.bound is not None and worst.bound <= 0.02
     assert worst.size < 2e-3 / 2.5 and len(result.dofs) >= 3
-    assert result.dofs[-1] < 4 * result.dofs[1]
+    assert result.dofs[-1] < 6 * result.dofs[1]
     # its K_t in bending beside Peterson's: the chart (Pilkey's fit, chart 3.10, h/r
-    # 2.67) 1.777 by hand; NGSolve at order 4 on this shoulder in pure bending 1.840
-    # (benchmarks/notch_factors.py, docs/verification.md), here within the spot's bound
-    # and the shear's share (the load 70 mm away)
+    # 2.67) 1.777 by hand; the largest principal stress over nominal from NGSolve's
+    # axisymmetric solution of this shoulder in pure bending, 1.8373 at orders 5 and 6
+    # (benchmarks/axisymmetric_reference.py, docs/verification.md), here within the 2 %
+    # wanted (the spot's bound is its von Mises stress's)
     (kt,) = [k for k in worst.factors if k.load == "bending"]
     h_r, x = 8 / 3, 16 / 48
     c = [a + b * math.sqrt(h_r) + e * h_r for a, b, e in (
         (1.232, 0.832, -0.008), (-3.813, 0.968, -0.260), (7.423, -4.868, 0.869),
         (-3.839, 3.070, -0.600))]
     assert kt.table == pytest.approx(c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3, rel=1e-9)
-    assert kt.computed == pytest.approx(1.840, rel=0.03)
+    assert kt.computed == pytest.approx(1.8373, rel=0.02)
     assert (kt.large, kt.small, kt.radius) == pytest.approx((0.048, 0.032, 0.003))
 
 
@@ -545,3 +551,49 @@ def test_only_a_re_entrant_edge_turns_the_surface_concavely():
     i = 5  # on the face z = 0, at the edge
     assert math.degrees(ws._edge_turn(_edge_field(True), i)) == pytest.approx(90.0, abs=1e-6)
     assert ws._edge_turn(_edge_field(False), i) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_a_refined_mesh_is_never_coarser_than_the_scenes_own():
+    """A strength round's size field refines the scene's mesh and never coarsens it: asked
+    for elements ten times the scene's largest everywhere, the mesher still gives the
+    scene's own mesh (its fillet at 2 mm), not a coarser one; without `refine` it follows
+    the field alone and the fillet coarsens. (Left coarse round a notch, the far side of
+    a fillet shifts load onto the refined spot.)"""
+    from shaftfem.cad.mesh import generate_mesh
+    from shaftfem.runtime import RunOptions
+    from shaftfem.workflows.pipeline import built
+
+    placed, shape, mesh = built(load_scene(sharp_shoulder(3.0)), RunOptions())
+    coarse = np.full(mesh.points.shape[0], 10 * placed.mesh.size)
+    args = (shape, placed.shaft, placed.grooves, placed.mesh,
+            (mesh.points, mesh.cells[:, :4], coarse), placed.seat_cuts(), placed.hubs())
+    kept, followed = generate_mesh(*args, refine=True), generate_mesh(*args)
+    n0 = mesh.points.shape[0]
+    assert 0.9 * n0 < kept.points.shape[0] < 1.1 * n0
+    assert followed.points.shape[0] < 0.5 * n0
+
+
+@pytest.mark.slow
+def test_a_shoulders_stress_in_tension_lies_within_its_bound_of_an_exact_solution():
+    """A 64/32 mm shoulder with a 5 mm fillet pulled by 20 kN: K_t = sigma_vM,max /
+    sigma_nom against NGSolve's axisymmetric solution of the same half-section (nu 0.3) at
+    orders 5 and 6 (1.725839, 1.725820: benchmarks/axisymmetric_reference.py), inside the
+    spot's bound. (Refined rounds that coarsened the fillet's far side read 1.7484
+    +-0.19 % here.)"""
+    stepped = {"name": "pulled", "material": STEEL, "static": {"gravity_m_s2": 0.0},
+               "section": [{"length_mm": 150.0, "diameter_mm": 32.0, "fillet_mm": 5.0},
+                           {"length_mm": 150.0, "diameter_mm": 64.0}],
+               "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": 2.5,
+                        "edge_element_size_mm": 2.5},
+               "support": [{"name": "left", "position_mm": 10.0, "width_mm": 16.0,
+                            "kind": "springs", "radial_stiffness_n_per_mm": 1e9},
+                           {"name": "right", "position_mm": 290.0, "width_mm": 16.0,
+                            "kind": "springs", "radial_stiffness_n_per_mm": 1e9,
+                            "axial_stiffness_n_per_mm": 1e9}],
+               "force": [{"name": "pull", "position_mm": 40.0, "fz_n": -20000.0}],
+               "strength": {"target_error_percent": 2.0}}
+    result = ws.run_strength(load_scene(stepped))
+    spot = max((s for s in result.spots if 0.140 <= s.z <= 0.160), key=lambda s: s.peak)
+    kt = spot.peak / (20000.0 / (math.pi * 0.032**2 / 4))
+    assert spot.bound is not None and spot.converging
+    assert abs(kt / 1.72582 - 1) <= spot.bound

@@ -275,14 +275,17 @@ def mesh_from_arrays(fields: dict) -> ShaftMesh:
 
 def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
                   settings: MeshSettings, sizes=None, cuts: tuple[float, ...] = (),
-                  hubs: tuple[tuple[float, float], ...] = ()) -> ShaftMesh:
+                  hubs: tuple[tuple[float, float], ...] = (), refine: bool = False
+                  ) -> ShaftMesh:
     """Mesh the solid and check every element's Jacobian. `cuts`: z (m) where the mesh
     must have faces (the edges of seat bands); `hubs`: the parts' seats (z0, z1), meshed
     finer; `sizes`: an element-size field to follow instead of the settings' (points
-    (N, 3), tets (E, 4), size at each point, m)."""
+    (N, 3), tets (E, 4), size at each point, m), or with `refine` only where it is finer
+    than the settings'."""
     from shaftfem.cad.mesher import mesh_solid
 
-    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts, hubs)
+    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts, hubs,
+                               refine)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)

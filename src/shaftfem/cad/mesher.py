@@ -256,10 +256,10 @@ def _quarter_cylinder(gmsh, shaft: Shaft, cuts: tuple[float, ...] = ()) -> None:
         gmsh.model.mesh.setPeriodic(2, [f], [planes["y0"][z]], turn)
 
 def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]
-                      ) -> tuple[float, int]:
+                      ) -> tuple[float, int, int]:
     """Element sizes from a former mesh: `sizes` = (points (N, 3), tets (E, 4), size at
     each point, m), a list-based view read through a PostView field. Returns the smallest
-    size and the view (to be removed after meshing)."""
+    size, the view (to be removed after meshing) and the field."""
     points, tets, h = sizes
     xyz = points[tets]
     data = np.hstack([xyz[:, :, 0], xyz[:, :, 1], xyz[:, :, 2], h[tets]])
@@ -268,20 +268,20 @@ def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]
     f = gmsh.model.mesh.field
     field = f.add("PostView")
     f.setNumber(field, "ViewTag", view)
-    f.setAsBackgroundMesh(field)
-    return float(h.min()), view
+    return float(h.min()), view, field
 
 
 def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
                settings: MeshSettings,
                sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
-               cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = ()
-               ) -> tuple[np.ndarray, np.ndarray]:
+               cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = (),
+               refine: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Tetrahedra of the solid in `brep` (None: a plain shaft's 90-degree sector):
     points (N, 3) in m and cells (E, 4 or 10) in meshio's node order, or (E, 20) in the
     cubic element's (cad.cubic) for `settings.geometry_order` 3. `sizes`: an
-    element-size field (points, tets, size at each point, m) in place of the
-    settings' groove, edge and hub sizes; `cuts`: z (m) of planes the mesh must
+    element-size field (points, tets, size at each point, m) in place of the settings'
+    groove, edge and hub sizes, or with `refine` the smaller of it and those at each
+    point (a former mesh refined, never coarsened); `cuts`: z (m) of planes the mesh must
     follow; `hubs`: (z0, z1) (m) of the parts' seats, meshed finer."""
     import meshio
 
@@ -294,9 +294,8 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
             gmsh.model.occ.synchronize()
             _cut_at(gmsh, cuts, shaft.radius)
         smallest, view = min(settings.edge_size, settings.size), None
-        if sizes is not None:
-            smallest, view = _background_sizes(gmsh, sizes)
-        else:
+        fields: list[int] = []
+        if sizes is None or refine:
             fields = _hub_fields(gmsh, shaft, hubs, settings)
             if hubs:
                 smallest = min(smallest, HUB_SIZE * settings.size)
@@ -304,7 +303,11 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
                 fields += _groove_fields(gmsh, shaft, grooves, settings)
             if shaft.profile and not shaft.plain:
                 fields += _profile_fields(gmsh, shaft, settings)
-            _background(gmsh, fields)
+        if sizes is not None:
+            given, view, field = _background_sizes(gmsh, sizes)
+            smallest = given if not refine else min(smallest, given)
+            fields.append(field)
+        _background(gmsh, fields)
         s.option("Mesh.MeshSizeMax", settings.size)
         s.option("Mesh.MeshSizeMin", smallest * 0.5)
         s.option("Mesh.MeshSizeFromPoints", 0)

@@ -42,7 +42,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
-from shaftfem.errors import SolverError
+from shaftfem.errors import MeshError, SolverError
 from shaftfem.scene.model import Attachment, Support
 
 # A node lies on a seat band within this distance (m): the mesh follows the seats.
@@ -146,7 +146,16 @@ def _surface_weights(skmesh, order: int, radius: float, seat: tuple[float, float
         raise SolverError(f"no boundary face on the seat band {seat[0] * 1e3:g} to "
                           f"{seat[1] * 1e3:g} mm")
     element = ElementTetP2() if order == 2 else ElementTetP1()  # seats take P1 and P2 only
-    fb = FacetBasis(skmesh, element, facets=facets[inside], intorder=4)
+    try:
+        fb = FacetBasis(skmesh, element, facets=facets[inside], intorder=4)
+    except Exception as e:
+        # scikit-fem inverts each curved element's map at the faces' quadrature points;
+        # an element curved too far to invert is the mesh's fault, not the seat's
+        if "Newton iteration" not in str(e):
+            raise
+        raise MeshError(f"an element on the seat band {seat[0] * 1e3:g} to "
+                        f"{seat[1] * 1e3:g} mm is curved too far for its map to be "
+                        "inverted") from None
     diag = BilinearForm(lambda u, v, _: u * v).assemble(fb).diagonal()
     return diag / diag.sum()
 
