@@ -119,64 +119,56 @@ def largest(s: np.ndarray, load: str) -> np.ndarray:
 
 
 def solve(mesh, load: str, p: int, d: float, R: float, mu: float, lam: float):
-    """The displacement's amplitudes and the stress amplitudes (rr, tt, zz, rt, tz, rz)
-    as coefficient functions: cos(theta) parts, then the sin(theta) parts (bending)."""
+    """The number of DOFs, and the stress amplitudes (rr, tt, zz, rt, tz, rz) as a
+    coefficient function: under bending the rr, tt, zz, rz ones are cos(theta)'s, rt and
+    tz sin(theta)'s."""
     r = y
     c = (d / 2) ** 3 / R ** 4        # bending and torsion: a unit nominal stress at d
+    # each load's space, strains of its components, and end traction times a test function
     if load == "tension":
         fes = H1(mesh, order=p, dirichlet="fix") * H1(mesh, order=p, dirichlet="fix|axis")
-        (uz, ur), (vz, vr) = fes.TnT()
 
         def strain(w_z, w_r):
             return [grad(w_r)[1], w_r / r, grad(w_z)[0], 0, 0, grad(w_r)[0] + grad(w_z)[1]]
+
+        def traction(w_z, w_r):
+            return (d / 2 / R) ** 2 * w_z
     elif load == "torsion":
         fes = H1(mesh, order=p, dirichlet="fix|axis")
-        V, W_ = fes.TnT()
 
         def strain(v):
             return [0, 0, 0, grad(v)[1] - v / r, grad(v)[0], 0]
+
+        def traction(v):
+            return c * r * v
     else:
         P_ = H1(mesh, order=p, dirichlet="fix|axis")
-        Q_ = H1(mesh, order=p, dirichlet="fix")
-        fes = P_ * Q_ * P_
-        (Pu, Qu, Wu), (Pv, Qv, Wv) = fes.TnT()
+        fes = P_ * H1(mesh, order=p, dirichlet="fix") * P_
 
         def strain(P, Q, W):
             gU, gV = (grad(P) + grad(Q)) / 2, (grad(P) - grad(Q)) / 2
             return [gU[1], P / r, grad(W)[0],
                     gV[1] - P / r, gV[0] - W / r, gU[0] + grad(W)[1]]
 
+        def traction(P, Q, W):
+            return c * r * W
+
     def stress(e):
         tr = e[0] + e[1] + e[2]
         return [2 * mu * e[0] + lam * tr, 2 * mu * e[1] + lam * tr,
                 2 * mu * e[2] + lam * tr, mu * e[3], mu * e[4], mu * e[5]]
 
-    def energy(e, f):
-        s = stress(e)
-        return sum(si * fi for si, fi in zip(s[:3], f[:3])) + sum(
-            si * fi for si, fi in zip(s[3:], f[3:]))
+    def parts(w):
+        return [w] if load == "torsion" else list(w)
 
-    if load == "tension":
-        eu, ev = strain(uz, ur), strain(vz, vr)
-        rhs = (d / 2 / R) ** 2 * vz * r
-    elif load == "torsion":
-        eu, ev = strain(V), strain(W_)
-        rhs = c * r * W_ * r
-    else:
-        eu, ev = strain(Pu, Qu, Wu), strain(Pv, Qv, Wv)
-        rhs = c * r * Wv * r
-    a = BilinearForm(energy(eu, ev) * r * dx).Assemble()
-    f = LinearForm(rhs * ds("load")).Assemble()
+    u, v = fes.TnT()
+    ev = strain(*parts(v))
+    a = BilinearForm(sum(si * fi for si, fi in zip(stress(strain(*parts(u))), ev)) * r
+                     * dx).Assemble()
+    f = LinearForm(traction(*parts(v)) * r * ds("load")).Assemble()
     g = GridFunction(fes)
     g.vec.data = a.mat.Inverse(fes.FreeDofs(), inverse="sparsecholesky") * f.vec
-    if load == "tension":
-        e = strain(*g.components)
-    elif load == "torsion":
-        e = strain(g)
-    else:
-        e = strain(*g.components)
-    s = stress(e)
-    return fes.ndof, CF(tuple(s))
+    return fes.ndof, CF(tuple(stress(strain(*([g] if load == "torsion" else g.components)))))
 
 
 def main(cfg: dict) -> None:

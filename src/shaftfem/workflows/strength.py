@@ -8,11 +8,12 @@ seat's or a hub's band, whose stresses depend on the fit, not on the shaft). Eac
 stress is bounded as each frequency is: the same scene solved on a mesh COARSER times
 coarser, the bound the difference between the two meshes' peaks at the spot, and at
 least CURVATURE_ERROR (h / rho)^2 in a notch of radius rho (two meshes can agree by
-chance; P2's surface stress there is off by up to about that, either way). While a bound exceeds the
-target ([strength] target_error_percent), the mesh is refined around
+chance; P2's surface stress there is off by up to about that, either way). While a
+bound exceeds the target ([strength] target_error_percent), the mesh is refined around
 those spots only (a gmsh size field: the elements within a few sizes of the spot shrink
 by at least COARSER, by as much as P2 stresses' h^2 convergence asks for AIM times the
-target), and the spots are bounded again against the mesh before. A spot whose stress
+target; every earlier round's refinement kept, none coarser than the scene's own
+mesh), and the spots are bounded again against the mesh before. A spot whose stress
 keeps growing as the mesh refines where the surface turns concavely within an element is a
 sharp re-entrant corner of the geometry (a singular stress): it is reported as such,
 without a number to trust. A convex edge (a land's corner where two grooves' root fillets
@@ -371,8 +372,14 @@ def _requested(spots: list[HotSpot], target: float) -> list[_Request]:
         error = s.bound if s.aim is None else s.aim
         shrink = SHRINK_MAX if not s.resolved else COARSER if error is None else float(np.clip(
             math.sqrt(error / (AIM * target)), COARSER, SHRINK_MAX))
-        out.append(_Request(s, s.size / shrink, max(REACH * s.size, 0.1 * s.radius)))
+        out.append(_Request(s, s.size / shrink, _reach(s.size, s.radius)))
     return out
+
+
+def _reach(size: float, radius: float) -> float:
+    """How far round a spot a round refines (m): REACH of its element sizes, or a tenth
+    of the local radius, whichever is larger."""
+    return max(REACH * size, 0.1 * radius)
 
 
 def _refined_sizes(mesh, requests: list[_Request], round_: bool, largest: float
@@ -399,18 +406,16 @@ def _within_budget(built, mesh, requests: list[_Request], asked: list[_Request],
     from shaftfem.cad.mesh import check_mesh_budget, mesh_dofs
 
     placed = built[0]
-    made = _remeshed(built, mesh, _refined_sizes(mesh, requests + asked, scene.axisymmetric,
-                                                 scene.mesh.size))
-    for _ in range(BUDGET_TRIES):
+    for tries in range(BUDGET_TRIES + 1):
+        made = _remeshed(built, mesh, _refined_sizes(mesh, requests + asked,
+                                                     scene.axisymmetric, scene.mesh.size))
         n = mesh_dofs(made)
-        if n <= placed.max_dofs:
+        if n <= placed.max_dofs or tries == BUDGET_TRIES:
             break
         grow = 1.1 * (n / placed.max_dofs) ** (1 / 3)
         options.say(f"the refined mesh has {n:,} DOFs, above the budget of "
                     f"{placed.max_dofs:,}: this round's elements {grow:.2f} times larger")
         asked = [replace(q, size=q.size * grow) for q in asked]
-        made = _remeshed(built, mesh, _refined_sizes(mesh, requests + asked,
-                                                     scene.axisymmetric, scene.mesh.size))
     check_mesh_budget(made, placed.mesh, placed.max_dofs)
     return made, asked
 
@@ -737,7 +742,7 @@ def _round_the_circle(before: list[HotSpot], fine: _Field, i: int, value: np.nda
     # its load's plane, a few degrees from where a coarser vertex found it: read at the
     # old spot's own angle, the spot stayed low by 1 - cos of that)
     d = _distance(fine.points, replace(old, radius=r), True)
-    reach = max(REACH * old.size, 0.1 * r, 2 * float(fine.edge[i]))
+    reach = max(_reach(old.size, r), 2 * float(fine.edge[i]))
     near = np.flatnonzero((d <= reach) & fine.allowed)
     if not near.size:
         return i
