@@ -65,6 +65,7 @@ TABLES = {
     "stability": ("verification: the stability checks", ["stability.py"]),
     "paper-unknowns": ("case study: the paper's unknowns", ["paper_unknowns.py"]),
     "notch-factors": ("verification: Notch stresses against NGSolve", ["notch_factors.py"]),
+    "pad-bearings": ("verification: Bearings of pads", ["pad_bearings.py"]),
 }
 
 

@@ -337,7 +337,7 @@ def test_a_film_table_comes_back_from_the_cache_whole_or_not_at_all(tmp_path, mo
     solved = journal.table(0.75, "gumbel")
     journal._KNOWN.clear()
     film_table(b)
-    read = journal._KNOWN[(0.75, "gumbel")]
+    read = journal._KNOWN[(0.75, "gumbel", None)]
     for name in journal.TABLE_FIELDS:
         np.testing.assert_array_equal(getattr(read, name), getattr(solved, name))
     path.write_bytes(path.read_bytes()[:100])
@@ -366,7 +366,7 @@ def test_a_film_table_solved_beside_the_run_is_the_table_solved_in_it(tmp_path, 
     monkeypatch.setattr(journal, "table", lambda *a: pytest.fail("solved in the run"))
     equip.film_table(b)
     equip.films_dropped(started)                  # taken already: nothing to stop
-    beside = journal._KNOWN[(0.65, "gumbel")]
+    beside = journal._KNOWN[(0.65, "gumbel", None)]
     for name in journal.TABLE_FIELDS:
         np.testing.assert_array_equal(getattr(beside, name), getattr(inline, name))
     assert len(list((tmp_path / "films").glob("*.npz"))) == 1

@@ -258,10 +258,17 @@ class FilmTable:
     force: np.ndarray
     stiffness: np.ndarray
     damping: np.ndarray
+    bore: Any = None            # scene.model.JournalBore; None: the plain bore
+    thinnest: np.ndarray | None = None    # the thinnest film over c (None: 1 - eps)
+
+    @property
+    def films(self) -> np.ndarray:
+        """The thinnest film over the clearance at each row."""
+        return 1 - self.eccentricity if self.thinnest is None else self.thinnest
 
 
-# tables made elsewhere (read from a cache by the caller), by (L / D, cavitation)
-_KNOWN: dict[tuple[float, str], FilmTable] = {}
+# tables made elsewhere (read from a cache by the caller), by (L / D, cavitation, bore)
+_KNOWN: dict[tuple[float, str, Any], FilmTable] = {}
 # what a film table depends on besides its L / D and cavitation: a cache's key
 SETTINGS = {"version": 1, "eccentricities": list(ECCENTRICITIES), "theta_cells": THETA_CELLS,
             "z_cells": Z_CELLS, "grading": GRADING, "feed": FEED, "coarsest": COARSEST}
@@ -269,15 +276,21 @@ TABLE_FIELDS = ("eccentricity", "sommerfeld", "attitude", "force", "stiffness", 
 
 
 def remember(t: FilmTable) -> None:
-    """Take `t` as the film table of its L / D and cavitation (one read from a cache)."""
-    _KNOWN[(t.ratio, t.cavitation)] = t
+    """Take `t` as the film table of its L / D, cavitation and bore (one read from a
+    cache)."""
+    _KNOWN[(t.ratio, t.cavitation, t.bore)] = t
 
 
 @lru_cache(maxsize=16)
-def table(ratio: float, cavitation: str = "reynolds") -> FilmTable:
-    """The film of a bearing of L / D = ratio at every eccentricity of ECCENTRICITIES."""
-    if (ratio, cavitation) in _KNOWN:
-        return _KNOWN[(ratio, cavitation)]
+def table(ratio: float, cavitation: str = "reynolds", bore: Any = None) -> FilmTable:
+    """The film of a bearing of L / D = ratio at every eccentricity of ECCENTRICITIES
+    (a bore of pads, `bore`: at the Sommerfeld numbers of parts.pads.SOMMERFELD)."""
+    if (ratio, cavitation, bore) in _KNOWN:
+        return _KNOWN[(ratio, cavitation, bore)]
+    if bore is not None:
+        from shaftfem.parts import pads
+
+        return pads.film_table(bore, ratio)
     rows = [state(ratio, e, cavitation) for e in ECCENTRICITIES]
     S, phi, F, K, C = [], [], [], [], []
     for r in rows:
@@ -314,7 +327,7 @@ def operating(b: JournalBearing, omega: float) -> Operating:
     number, scaled by the load and turned onto the load's direction."""
     from scipy.interpolate import PchipInterpolator
 
-    t = table(round(b.ratio, 9), b.cavitation)
+    t = table(round(b.ratio, 9), b.cavitation, b.bore)
     S = b.sommerfeld(max(omega, 1e-12))
     logS = np.log(t.sommerfeld)
     beyond = t.sommerfeld[-1] > S
@@ -322,16 +335,19 @@ def operating(b: JournalBearing, omega: float) -> Operating:
         eps = t.eccentricity[0] * t.sommerfeld[0] / S
         phi, Fbar = t.attitude[0], t.force[0] * eps / t.eccentricity[0]
         Kbar, Cbar = t.stiffness[0], t.damping[0]
+        film = 1 - eps if t.thinnest is None else float(t.films[0])
     else:
         eps = float(PchipInterpolator(-logS, t.eccentricity)(-math.log(max(S, t.sommerfeld[-1]))))
         at = PchipInterpolator(t.eccentricity, np.column_stack([
-            t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4)]))(eps)
+            t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4),
+            t.films]))(eps)
         phi, Fbar = float(at[0]), float(at[1])
         Kbar, Cbar = at[2:6].reshape(2, 2), at[6:10].reshape(2, 2)
+        film = float(at[10])
     Q = rotation(math.atan2(b.direction[1], b.direction[0]) + math.pi / 2)
     unit = b.load / (b.clearance * Fbar)
     return Operating(speed=omega, eccentricity=float(eps), attitude=float(phi),
-                     min_film=b.clearance * (1 - float(eps)), sommerfeld=S,
+                     min_film=b.clearance * film, sommerfeld=S,
                      K=unit * (Q @ Kbar @ Q.T), C=unit / max(omega, 1e-12) * (Q @ Cbar @ Q.T),
                      beyond=bool(beyond))
 
@@ -358,7 +374,7 @@ class SpeedTable:
 def table_end(b: JournalBearing) -> float:
     """The speed (rad/s) below which the film is thinner than its table's last row
     (eccentricity 0.98): the values there are that row's."""
-    t = table(round(b.ratio, 9), b.cavitation)
+    t = table(round(b.ratio, 9), b.cavitation, b.bore)
     return 2 * math.pi * t.sommerfeld[-1] / b.sommerfeld(2 * math.pi)
 
 
@@ -370,9 +386,17 @@ def lift_off(b: JournalBearing) -> float:
     the speed where the film table's S meets that eccentricity."""
     from scipy.interpolate import PchipInterpolator
 
-    t = table(round(b.ratio, 9), b.cavitation)
+    t = table(round(b.ratio, 9), b.cavitation, b.bore)
     eps = 1 - b.min_film / b.clearance
-    if eps <= t.eccentricity[0]:   # a film that thick is met only in the linear limit
+    if t.thinnest is not None:   # a bore of pads: where its thinnest film is min_film
+        h = b.min_film / b.clearance
+        if h >= t.films[0]:
+            S = t.sommerfeld[0]
+        elif h <= t.films[-1]:
+            S = t.sommerfeld[-1]
+        else:
+            S = float(np.exp(PchipInterpolator(-t.films, np.log(t.sommerfeld))(-h)))
+    elif eps <= t.eccentricity[0]:   # a film that thick is met only in the linear limit
         S = t.sommerfeld[0] * t.eccentricity[0] / max(eps, 1e-12)
     elif eps >= t.eccentricity[-1]:
         S = t.sommerfeld[-1]

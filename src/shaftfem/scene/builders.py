@@ -190,6 +190,13 @@ class Support(_Table):
     load_n: Number | None = None
     load_angle_deg: Number | None = None
     cavitation: str | None = None
+    bore: str | None = None
+    pads: int | None = None
+    pad_arc_deg: Number | None = None
+    preload: Number | None = None
+    pivot_offset: Number | None = None
+    load_between_pads: bool | None = None
+    groove_arc_deg: Number | None = None
     min_film_um: Number | None = None
     elements: int | None = None
     element_diameter_mm: Number | None = None

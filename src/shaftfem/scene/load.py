@@ -25,6 +25,7 @@ from shaftfem.scene.model import (
     Excitation,
     Grooves,
     JournalBearing,
+    JournalBore,
     Material,
     MeshSettings,
     ModeRequest,
@@ -506,7 +507,7 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
     bearing = JournalBearing(
         diameter=diameter, length=s.width, clearance=clearance, viscosity=viscosity,
         load=t["load_n"] or 0.0, direction=(math.cos(angle), math.sin(angle)),
-        cavitation=t["cavitation"],
+        cavitation=t["cavitation"], bore=_bore(source, table, t),
         min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
         * 1e-6, oil_iso_vg=t["oil_iso_vg"], oil_temperature=t["oil_temperature_c"])
     # an oil given by its grade: the viscosities of its temperature range come from the
@@ -518,6 +519,48 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
                            viscosity=spread, temperature=temperature)
                  if ranges else None)
     return replace(s, tolerance=tolerance, journal=bearing)
+
+
+def _bore(source: str, table: str, t: dict) -> JournalBore | None:
+    """A journal's bore of pads as declared (None: the plain bore), its keys checked
+    together: pads that fit round the bore, keys that belong to its kind."""
+    kind = t["bore"]
+    tilting = ("pads", "pad_arc_deg")
+    if kind != "tilting_pad":
+        for key in tilting:
+            if t[key] is not None:
+                raise SceneError(f"{where(source, table, key)}: only with bore = "
+                                 "\"tilting_pad\"")
+    if kind == "plain":
+        if t["preload"] is not None:
+            raise SceneError(f"{where(source, table, 'preload')}: a plain bore has none "
+                             "(bore = \"elliptical\" or \"tilting_pad\")")
+        return None
+    if t["cavitation"] != "reynolds":
+        raise SceneError(f"{where(source, table, 'cavitation')} = \"{t['cavitation']}\": a "
+                         "bore of pads is solved with \"reynolds\" (Swift-Stieber) only")
+    groove = math.radians(t["groove_arc_deg"])
+    if kind == "two_axial_groove":
+        if t["preload"] is not None:
+            raise SceneError(f"{where(source, table, 'preload')}: a two-axial-groove bore "
+                             "is round (bore = \"elliptical\" for a preloaded one)")
+        return JournalBore(kind, arc=math.pi - groove, groove=groove)
+    if kind == "elliptical":
+        if t["preload"] is None:
+            raise SceneError(f"{where(source, table, 'preload')}: missing (an elliptical "
+                             "bore's preload, in (0, 1): 0.5 is common)")
+        return JournalBore(kind, arc=math.pi - groove, preload=t["preload"], groove=groove)
+    for key in tilting:
+        if t[key] is None:
+            raise SceneError(f"{where(source, table, key)}: missing (bore = "
+                             "\"tilting_pad\" needs its pads and their arc)")
+    if t["pads"] * t["pad_arc_deg"] >= 360:
+        raise SceneError(f"{where(source, table, 'pad_arc_deg')} = {t['pad_arc_deg']:g}: "
+                         f"{t['pads']} pads of it overlap (together "
+                         f"{t['pads'] * t['pad_arc_deg']:g} deg, less than 360 fit)")
+    return JournalBore(kind, pads=t["pads"], arc=math.radians(t["pad_arc_deg"]),
+                       preload=t["preload"] or 0.0, offset=t["pivot_offset"],
+                       between=t["load_between_pads"])
 
 
 def _seat_diameter(source: str, table: str, t: dict, shaft: Shaft, s: Support,

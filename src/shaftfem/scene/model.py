@@ -414,8 +414,27 @@ INLET_LOSS = 0.1
 
 
 @dataclass(frozen=True)
+class JournalBore:
+    """A journal's bore when it is not one plain circle, set about its load's line:
+    "two_axial_groove" (two pads split by axial grooves across the load, the load
+    through a pad's middle), "elliptical" (those pads preloaded: a lemon bore) or
+    "tilting_pad" (`pads` pads of `arc` each, rad, pivoted `offset` of the arc from
+    their leading edges, the load on a pad or `between` two). `preload` m = 1 - c_b /
+    c_p; `groove` the axial grooves' arc (rad)."""
+
+    kind: str
+    pads: int = 2
+    arc: float = math.radians(160.0)
+    preload: float = 0.0
+    offset: float = 0.5
+    between: bool = True
+    groove: float = math.radians(20.0)
+
+
+@dataclass(frozen=True)
 class JournalBearing:
-    """A plain cylindrical journal bearing: its journal diameter, length and radial
+    """An oil-film journal bearing (a plain cylindrical bore, or `bore`): its journal
+    diameter, length and radial
     clearance (m), the oil's dynamic viscosity (Pa s; None while the scene gives the oil
     as its ISO VG grade `oil_iso_vg` at the film's mean temperature `oil_temperature`, C,
     which shaftfem.parts.oil turns into one), the static load on the journal (N; 0
@@ -433,6 +452,7 @@ class JournalBearing:
     min_film: float = 10e-6
     oil_iso_vg: int | None = None
     oil_temperature: float | None = None
+    bore: JournalBore | None = None     # None: a plain cylindrical bore
 
     @property
     def ratio(self) -> float:

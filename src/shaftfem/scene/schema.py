@@ -26,6 +26,8 @@ GEOMETRY_ORDERS = (2, 3)
 SUPPORT_KINDS = ("rigid", "rigid-radial", "clamped", "springs", "bearing", "journal", "ball",
                  "roller", "seal")
 CAVITATION = ("reynolds", "gumbel")
+# a journal's bores: one cylinder, or pads (shaftfem.parts.pads)
+BORES = ("plain", "two_axial_groove", "elliptical", "tilting_pad")
 # ISO 3448 viscosity grades shaftfem knows the temperature line of (shaftfem.parts.oil)
 ISO_VG = (10, 15, 22, 32, 46, 68, 100, 150, 220, 320, 460, 680)
 # A journal bearing's film thinner than this at an operating speed is a warning.
@@ -307,6 +309,31 @@ SCHEMA: dict[str, dict[str, Key]] = {
                           "vanish) or \"gumbel\" (half-Sommerfeld: negative pressures dropped)",
                           lambda v: v in CAVITATION, ", ".join(f'"{c}"' for c in CAVITATION),
                           default="reynolds", required=False),
+        "bore": Key(str, "the journal's bore (kind = \"journal\"): \"plain\" (default: one "
+                    "cylinder), \"two_axial_groove\" (two pads split by axial grooves across "
+                    "the load), \"elliptical\" (those pads preloaded: a lemon bore) or "
+                    "\"tilting_pad\" (pads that tilt on pivots); docs/journal-bearing.md",
+                    lambda v: v in BORES, ", ".join(f'"{b}"' for b in BORES), default="plain",
+                    required=False),
+        "pads": Key(int, "the number of tilting pads (bore = \"tilting_pad\")",
+                    lambda v: 3 <= v <= 12, "in [3, 12]", required=False),
+        "pad_arc_deg": Key(float, "each tilting pad's arc, deg (bore = \"tilting_pad\"; the "
+                           "pads' arcs together less than 360)",
+                           lambda v: 10 <= v < 180, "in [10, 180)", required=False),
+        "preload": Key(float, "the pads' preload m = 1 - c_b / c_p (bore = \"elliptical\", "
+                       "\"tilting_pad\"; radial_clearance_um is c_b, the assembled one)",
+                       lambda v: 0 <= v < 1, "in [0, 1)", required=False),
+        "pivot_offset": Key(float, "each pivot's place along its pad's arc from the leading "
+                            "edge (bore = \"tilting_pad\"; default 0.5: centred)",
+                            lambda v: 0 < v < 1, "in (0, 1)", default=0.5, required=False),
+        "load_between_pads": Key(bool, "whether the load falls between two pads (bore = "
+                                 "\"tilting_pad\"; default true) or on a pad's pivot",
+                                 lambda v: True, "true or false", default=True,
+                                 required=False),
+        "groove_arc_deg": Key(float, "each axial groove's arc, deg (bore = "
+                              "\"two_axial_groove\", \"elliptical\"; default 20)",
+                              lambda v: 0 < v < 90, "in (0, 90)", default=20.0,
+                              required=False),
         "min_film_um": Key(float, "the thinnest film that is fine at an operating speed, um "
                            f"(kind = \"journal\"; default {DEFAULT_MIN_FILM_UM:g})",
                            *upto(10_000, "up to 10 mm"), required=False),

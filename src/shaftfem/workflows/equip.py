@@ -30,13 +30,20 @@ if TYPE_CHECKING:
 
 
 def _film_path(bearing: JournalBearing):
-    """The film's L / D (rounded) and cavitation, and where its table is kept."""
+    """The film's L / D (rounded), cavitation and bore, and where its table is kept."""
+    from dataclasses import asdict
+
     from shaftfem.parts import journal
     from shaftfem.store import cache_dir, content_key
 
-    ratio, cavitation = round(bearing.ratio, 9), bearing.cavitation
-    key = content_key({"ratio": ratio, "cavitation": cavitation, **journal.SETTINGS})
-    return ratio, cavitation, cache_dir() / "films" / f"{key}.npz"
+    ratio, cavitation, bore = round(bearing.ratio, 9), bearing.cavitation, bearing.bore
+    settings = journal.SETTINGS
+    if bore is not None:
+        from shaftfem.parts import pads
+
+        settings = {**pads.SETTINGS, "bore": asdict(bore)}
+    key = content_key({"ratio": ratio, "cavitation": cavitation, **settings})
+    return ratio, cavitation, bore, cache_dir() / "films" / f"{key}.npz"
 
 
 # film tables being solved beside the run (films_ahead), by their cache path
@@ -52,9 +59,9 @@ def films_ahead(bearings: list[JournalBearing]) -> list[str]:
 
     started = []
     for b in bearings:
-        ratio, cavitation, path = _film_path(b)
+        ratio, cavitation, bore, path = _film_path(b)
         if not path.exists() and str(path) not in _AHEAD:
-            _AHEAD[str(path)] = Aside(_solved_table, ratio, cavitation)
+            _AHEAD[str(path)] = Aside(_solved_table, ratio, cavitation, bore)
             started.append(str(path))
     return started
 
@@ -67,10 +74,10 @@ def films_dropped(paths: list[str]) -> None:
             job.close()
 
 
-def _solved_table(ratio: float, cavitation: str):
+def _solved_table(ratio: float, cavitation: str, bore=None):
     from shaftfem.parts import journal
 
-    return journal.table(ratio, cavitation)
+    return journal.table(ratio, cavitation, bore)
 
 
 def film_table(bearing: JournalBearing) -> None:
@@ -82,18 +89,19 @@ def film_table(bearing: JournalBearing) -> None:
     from shaftfem.parts import journal
     from shaftfem.store import discard, load_arrays, save_arrays
 
-    ratio, cavitation, path = _film_path(bearing)
+    ratio, cavitation, bore, path = _film_path(bearing)
+    names = journal.TABLE_FIELDS + (() if bore is None else ("thinnest",))
     ahead = _AHEAD.pop(str(path), None)
     if ahead is None and path.exists():
-        fields, why = load_arrays(path, journal.TABLE_FIELDS)
+        fields, why = load_arrays(path, names)
         if fields is not None:
-            journal.remember(journal.FilmTable(ratio, cavitation, **fields))
+            journal.remember(journal.FilmTable(ratio, cavitation, bore=bore, **fields))
             return
         discard("journal film table", why, path)
-    t = journal.table(ratio, cavitation) if ahead is None else ahead.result()
+    t = journal.table(ratio, cavitation, bore) if ahead is None else ahead.result()
     journal.remember(t)
     try:
-        save_arrays(path, {n: np.asarray(getattr(t, n)) for n in journal.TABLE_FIELDS})
+        save_arrays(path, {n: np.asarray(getattr(t, n)) for n in names})
     except OSError:   # a cache that cannot be written costs time, not the result
         pass
 

@@ -1,0 +1,88 @@
+"""Tilting-pad journal bearings solved by ross-rotordynamics 3.1's fluid-film engine
+(`ross.bearings.tilting_pad.TiltingPad`, isoviscous: thermal_type=None, the journal's
+place matched to the load): an independent code's eccentricity, attitude and
+synchronously reduced coefficients for the bearings of BEARINGS, written to a JSON file
+the tests compare shaftfem's pad films with (tests/data/tilting_pads_ross.json).
+
+ross 3.1 is no dependency of shaftfem, and asks for Python 3.13; it runs on 3.11 in an
+environment of its own:
+
+    python3 -m venv .venv-ross3
+    .venv-ross3/bin/pip install --ignore-requires-python --no-deps ross-rotordynamics==3.1.0
+    .venv-ross3/bin/pip install "numpy>=2.2" "scipy>=1.15" toml "pandas>=2.3" \\
+        "plotly>=5.15" xlrd "pint>=0.24.4" methodtools numba "ccp-performance>=0.4.1" \\
+        prettytable control
+    .venv-ross3/bin/python benchmarks/tilting_pad_reference.py tests/data/tilting_pads_ross.json
+
+ross's angles run from +x towards +y, the journal turning the same way; a pad's pivot
+offset is its share of the arc from the leading edge. Its films here are finer than its
+defaults (60 cells round each pad, 40 along it). About 5 minutes.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import warnings
+
+# SI; pivots in degrees from +x; the load on the journal along -y
+BEARINGS = {
+    "5 pads, load between pads": {
+        "diameter": 0.1, "length": 0.05, "clearance": 100e-6, "pads": 5, "arc_deg": 60.0,
+        "preload": 0.5, "offset": 0.5, "first_pivot_deg": 18.0, "viscosity": 0.02,
+        "load": 5000.0, "speeds_rpm": [3000.0, 6000.0]},
+    "4 pads, load on pad, offset 0.6": {
+        "diameter": 0.12, "length": 0.09, "clearance": 90e-6, "pads": 4, "arc_deg": 80.0,
+        "preload": 0.3, "offset": 0.6, "first_pivot_deg": 270.0, "viscosity": 0.015,
+        "load": 8000.0, "speeds_rpm": [4000.0, 8000.0]},
+}
+
+
+def solve(b: dict) -> list[dict]:
+    from ross.bearings.tilting_pad import TiltingPad
+    from ross.units import Q_
+
+    n = b["pads"]
+    mu = b["viscosity"]
+    # equal viscosities at both temperatures: the engine's viscosity law is constant
+    oil = {"liquid_viscosity1": mu, "temperature1": 313.15, "liquid_viscosity2": mu,
+           "temperature2": 373.15, "liquid_density": 860.0, "liquid_specific_heat": 1951.0,
+           "liquid_thermal_conductivity": 0.13}
+    bearing = TiltingPad(
+        n=0, speed=Q_(b["speeds_rpm"], "RPM"), equilibrium_type="match_load",
+        journal_diameter=b["diameter"], radial_clearance=b["clearance"], pad_thickness=0.02,
+        pivot_angle=Q_([b["first_pivot_deg"] + k * 360.0 / n for k in range(n)], "deg"),
+        pad_arc=Q_([b["arc_deg"]] * n, "deg"), pad_axial_length=[b["length"]] * n,
+        preload=[b["preload"]] * n, offset=[b["offset"]] * n, lubricant=oil,
+        oil_supply_temperature=Q_(40, "degC"), oil_flow_v=Q_(20, "l/min"),
+        fxs_load=0.0, fys_load=-b["load"], thermal_type=None,
+        total_ex_film=60, total_ez_film=40)
+    rows = []
+    for i, rpm in enumerate(b["speeds_rpm"]):
+        out = bearing._results.outputs[i]
+        row = {"speed_rpm": rpm, "sommerfeld": float(out["x_som_m"][0]),
+               "eccentricity": float(out["eccentricity"][0]),
+               "x_over_c": float(out["xj_cb"][0]), "y_over_c": float(out["yj_cb"][0])}
+        for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"):
+            row[k] = float(getattr(bearing, k)[i])
+        rows.append(row)
+    return rows
+
+
+def main(argv: list[str]) -> int:
+    import ross
+
+    warnings.filterwarnings("ignore")
+    out = {"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, thermal_type=None, "
+                     "equilibrium_type='match_load', 60 x 40 film cells per pad",
+           "bearings": {name: {**b, "results": solve(b)} for name, b in BEARINGS.items()}}
+    with open(argv[0], "w") as f:
+        json.dump(out, f, indent=1)
+    for name, b in out["bearings"].items():
+        for r in b["results"]:
+            print(name, r)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,399 @@
+"""Bearings of pads: the oil film on each arc of a bore that is not one full circle (a
+two-axial-groove bore, an elliptical "lemon" bore, tilting pads), from the Reynolds
+equation as in shaftfem.parts.journal, each pad on its own P1 film.
+
+Nondimensional as the plain journal (shaftfem.parts.journal): theta from +x towards +y,
+the journal turning with it, Z = z / R, lengths over the bearing's (assembled) clearance
+c_b, P = p (c_b / R)^2 / (mu omega). A pad spans [start, start + arc]; its surface's
+centre of curvature sits c_p - c_b towards its pivot angle theta_p, c_p = c_b / (1 - m)
+with m the preload, so with the journal centred its film is thinnest (c_b) at theta_p:
+
+    H = H_0(theta) + sum_j g_j(theta) q_j,
+    H_0 = (1 - m cos(theta - theta_p)) / (1 - m),
+
+over the generalised coordinates q: the journal's (X, Y), with g = -cos, -sin, and a
+tilting pad's tilt about its pivot, g = -sin(theta - theta_p) (the tilt's angle times
+R / c_b). On each pad div(H^3 grad P) = 6 dH/dtheta + 12 dH/dtau, P = 0 at the pad's
+edges (the grooves' oil at ambient pressure) and its ends, Swift-Stieber cavitation
+where the film ruptures. The film's generalised force on coordinate i (the virtual work
+of the pressure as q_i moves the surfaces) is Q_i = int P g_i dtheta dZ, so that
+Q_X, Q_Y are the force on the journal and a tilt's Q its moment about the pivot; the
+stiffness K_ij = -dQ_i/dq_j and damping C_ij = -dQ_i/dq'_j are those of the discrete
+film, exact (one tangent solve each on the pad's own factorisation).
+
+References: Lund (1964), spring and damping coefficients of the tilting-pad journal
+bearing; Lund and Thomsen (1978), the coefficients of fixed-geometry bearings.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from shaftfem.parts.journal import _pressure
+
+# the film's cells around a pad, per radian of its arc, and across its half length
+CELLS_PER_RADIAN = 50
+Z_CELLS = 16
+
+
+@dataclass(frozen=True)
+class Pad:
+    """One arc of a bore (rad): where it starts and how far it spans, the pivot angle
+    its preload points to (a fixed pad's middle, or a tilting pad's pivot), the preload
+    m = 1 - c_b / c_p in [0, 1), and whether it tilts about its pivot."""
+
+    start: float
+    arc: float
+    pivot: float
+    preload: float = 0.0
+    tilts: bool = False
+
+
+@dataclass(frozen=True)
+class Bore:
+    """A bearing's pads and its length over diameter."""
+
+    pads: tuple[Pad, ...]
+    ratio: float
+
+    @property
+    def tilts(self) -> tuple[int, ...]:
+        """The indices of the pads that tilt (each one more coordinate after X, Y)."""
+        return tuple(k for k, p in enumerate(self.pads) if p.tilts)
+
+
+def two_axial_groove(ratio: float, groove_arc: float = math.radians(20.0),
+                     load_angle: float = -math.pi / 2) -> Bore:
+    """Two pads split by axial grooves at right angles to the load (the load at
+    `load_angle`, rad, through the middle of a pad), each pi - groove_arc long."""
+    arc = math.pi - groove_arc
+    return Bore(tuple(Pad(start=c - arc / 2, arc=arc, pivot=c)
+                      for c in (load_angle, load_angle + math.pi)), ratio)
+
+
+def elliptical(ratio: float, preload: float, groove_arc: float = math.radians(20.0),
+               load_angle: float = -math.pi / 2) -> Bore:
+    """A lemon bore: the two pads of two_axial_groove with their centres of curvature
+    moved apart along the load line (preload m)."""
+    b = two_axial_groove(ratio, groove_arc, load_angle)
+    return Bore(tuple(Pad(p.start, p.arc, p.pivot, preload) for p in b.pads), ratio)
+
+
+def tilting(ratio: float, pads: int, arc: float, preload: float, offset: float = 0.5,
+            first_pivot: float = -math.pi / 2) -> Bore:
+    """Tilting pads: `pads` of `arc` (rad) evenly round the bore, the first pivot at
+    `first_pivot` (the load's angle: load on pad; half a pitch from it: between pads),
+    each pivot `offset` of its arc from its leading edge (in the turning's sense)."""
+    pitch = 2 * math.pi / pads
+    return Bore(tuple(Pad(start=first_pivot + k * pitch - offset * arc, arc=arc,
+                          pivot=first_pivot + k * pitch, preload=preload, tilts=True)
+                      for k in range(pads)), ratio)
+
+
+@dataclass(frozen=True)
+class PadFilm:
+    """One pad's half film (Z from 0 to L / D) on a P1 mesh: the operators that do not
+    depend on where the journal or the pad is."""
+
+    basis: Any
+    free: np.ndarray        # nodes off the pad's edges and its end
+    theta: np.ndarray       # the quadrature points' theta (elements, points)
+
+
+@lru_cache(maxsize=64)
+def pad_film(start: float, arc: float, ratio: float, cells: int, z_cells: int) -> PadFilm:
+    """The pad's film mesh (cached by its arc, L / D and cells)."""
+    from skfem import Basis, ElementTriP1, MeshTri
+
+    mesh = MeshTri.init_tensor(np.linspace(start, start + arc, cells + 1),
+                               np.linspace(0.0, ratio, z_cells + 1))
+    basis = Basis(mesh, ElementTriP1(), intorder=4)
+    x = mesh.p
+    edge = (np.isclose(x[0], start) | np.isclose(x[0], start + arc) | np.isclose(x[1], ratio))
+    return PadFilm(basis=basis, free=np.flatnonzero(~edge),
+                   theta=np.asarray(basis.global_coordinates())[0])
+
+
+def _modes(pad: Pad, theta: np.ndarray, tilt: bool) -> list[tuple[np.ndarray, np.ndarray]]:
+    """g and dg/dtheta of the coordinates that move this pad's film: X, Y and, if it
+    tilts, its tilt."""
+    out = [(-np.cos(theta), np.sin(theta)), (-np.sin(theta), -np.cos(theta))]
+    if tilt:
+        out.append((-np.sin(theta - pad.pivot), -np.cos(theta - pad.pivot)))
+    return out
+
+
+@dataclass(frozen=True)
+class PadState:
+    """One pad's film at q: its generalised forces Q (n,), stiffness K and damping C
+    (n, n) on its own coordinates (X, Y[, tilt]), the pressure on its nodes, and the
+    share of its film that carries pressure."""
+
+    force: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    pressure: np.ndarray
+    wet: float
+
+
+def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = None,
+              cells_per_radian: int | None = None, z_cells: int | None = None) -> PadState:
+    """The pad's film with its coordinates q = (X, Y[, tilt]) (module docstring); the
+    whole length's forces (twice the half film's). `guess`: where a nearby state's film
+    ruptured, to start the cavitation's active set from."""
+    from scipy.sparse.linalg import splu
+    from skfem import BilinearForm, LinearForm
+
+    per = CELLS_PER_RADIAN if cells_per_radian is None else cells_per_radian
+    f = pad_film(pad.start, pad.arc, ratio, max(8, round(per * pad.arc)),
+                 Z_CELLS if z_cells is None else z_cells)
+    theta = f.theta
+    modes = _modes(pad, theta, len(q) > 2)
+    m = pad.preload
+    H = (1 - m * np.cos(theta - pad.pivot)) / (1 - m)
+    dH = m * np.sin(theta - pad.pivot) / (1 - m)
+    for (g, dg), qj in zip(modes, q):
+        H = H + g * qj
+        dH = dH + dg * qj
+    if float(H.min()) <= 0:
+        raise ValueError(f"the journal touches the pad at {math.degrees(pad.pivot):.0f} deg "
+                         f"(film {float(H.min()):.3g} of the clearance)")
+
+    @BilinearForm
+    def flow(u, v, w):
+        return w.k * (u.grad[0] * v.grad[0] + u.grad[1] * v.grad[1])
+
+    @LinearForm
+    def weighted(v, w):
+        return w.k * v
+
+    A = flow.assemble(f.basis, k=H ** 3).tocsr()
+    b = weighted.assemble(f.basis, k=-6.0 * dH)
+    P, live = _pressure(A, b, f.free, "reynolds", guess)
+    # the modes' weights int g v (force, squeeze), int dg v (Couette) and dA/dq_j
+    gv = [weighted.assemble(f.basis, k=g) for g, _ in modes]
+    dgv = [weighted.assemble(f.basis, k=dg) for _, dg in modes]
+    n = len(modes)
+    rhs = np.zeros((P.size, 2 * n))
+    for j, (g, _) in enumerate(modes):
+        dA = flow.assemble(f.basis, k=3.0 * H ** 2 * g)
+        rhs[:, j] = -6.0 * dgv[j] - dA @ P
+        rhs[:, n + j] = -12.0 * gv[j]
+    dP = np.zeros_like(rhs)
+    dP[live] = splu(A[live][:, live].tocsc()).solve(rhs[live])
+    G = 2.0 * np.array(gv)            # (n, nodes): Q_i = G_i . P over the whole length
+    dQ = G @ dP
+    return PadState(force=G @ P, stiffness=-dQ[:, :n], damping=-dQ[:, n:], pressure=P,
+                    wet=float(live.size / max(f.free.size, 1)))
+
+
+@dataclass(frozen=True)
+class BoreState:
+    """The bearing's film at q = (X, Y, tilts...): its generalised forces Q, stiffness K
+    and damping C on all of q, and each pad's state."""
+
+    q: np.ndarray
+    force: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    pads: tuple[PadState, ...]
+
+
+def bore_state(bore: Bore, q: np.ndarray, guesses: tuple | None = None) -> BoreState:
+    """Every pad's film at q, gathered on the bearing's coordinates."""
+    n = 2 + len(bore.tilts)
+    Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
+    states = []
+    tilt_of = {k: 2 + i for i, k in enumerate(bore.tilts)}
+    for k, pad in enumerate(bore.pads):
+        idx = [0, 1] + ([tilt_of[k]] if pad.tilts else [])
+        guess = None if guesses is None else guesses[k]
+        s = pad_state(pad, bore.ratio, q[idx], guess)
+        Q[idx] += s.force
+        K[np.ix_(idx, idx)] += s.stiffness
+        C[np.ix_(idx, idx)] += s.damping
+        states.append(s)
+    return BoreState(q=q, force=Q, stiffness=K, damping=C, pads=tuple(states))
+
+
+def _film_at(pad: Pad, X: float, Y: float, tilt: float, samples: int = 721) -> np.ndarray:
+    """The pad's film thickness H on `samples` angles over its arc."""
+    theta = np.linspace(pad.start, pad.start + pad.arc, samples)
+    m = pad.preload
+    return ((1 - m * np.cos(theta - pad.pivot)) / (1 - m) - X * np.cos(theta)
+            - Y * np.sin(theta) - tilt * np.sin(theta - pad.pivot))
+
+
+# a film thinner than this share of the clearance anywhere is a touch (the search's
+# limits)
+TOUCH = 1e-3
+
+
+def settle(pad: Pad, ratio: float, X: float, Y: float, tilt: float,
+             guess: np.ndarray | None, tol: float) -> tuple[float, PadState]:
+    """The tilt about its pivot at which the pad's film has no moment about it (the
+    journal at X, Y): Newton's steps on the exact dQ/dtilt, kept inside a bracket
+    [Q > 0, Q < 0] (a larger tilt closes the trailing edge, which moves the pressure's
+    centre back past the pivot), halving it where a step leaves it."""
+    theta = np.linspace(pad.start, pad.start + pad.arc, 721)
+    s = np.sin(theta - pad.pivot)
+    room = _film_at(pad, X, Y, 0.0) - TOUCH
+    hi = float(np.min(room[s > 0] / s[s > 0]))
+    lo = float(np.max(room[s < 0] / s[s < 0]))
+    tilt = float(np.clip(tilt, lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo)))
+    for _ in range(100):
+        state = pad_state(pad, ratio, np.array([X, Y, tilt]), guess)
+        Q, K = float(state.force[2]), float(state.stiffness[2, 2])
+        scale = max(float(np.abs(state.force[:2]).max()), 1e-300)
+        if abs(Q) <= tol * scale:
+            return tilt, state
+        if Q > 0:
+            lo = tilt
+        else:
+            hi = tilt
+        step = tilt + Q / K if K != 0 else np.nan
+        tilt = step if lo < step < hi else 0.5 * (lo + hi)
+        guess = state.pressure <= 0
+    raise ValueError(f"the pad at {math.degrees(pad.pivot):.0f} deg found no tilt without a "
+                     "moment about its pivot")
+
+
+def equilibrium(bore: Bore, load: np.ndarray, tol: float = 1e-10, steps: int = 60,
+                start: BoreState | None = None) -> BoreState:
+    """The journal's place (and the pads' tilts) where the film carries the load:
+    Q_X, Q_Y = -load (the nondimensional load on the journal, W c_b^2 / (mu omega R^4)
+    along its direction) and every tilt's moment zero (from `start`, a nearby load's
+    state, if given). At each place the journal takes,
+    each tilting pad settles first (settle); the journal then moves by Newton's steps
+    on the film's stiffness with the pads settled (each pad's tilt condensed out),
+    shortened while they do not lower the residual or would close the film."""
+    load = np.asarray(load, dtype=float)
+    scale = max(float(np.linalg.norm(load)), 1e-300)
+    tilt_of = {k: 2 + i for i, k in enumerate(bore.tilts)}
+    n = 2 + len(tilt_of)
+
+    def at(xy: np.ndarray, q: np.ndarray, guesses: tuple) -> BoreState:
+        q = q.copy()
+        q[:2] = xy
+        Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
+        states = []
+        for k, pad in enumerate(bore.pads):
+            if pad.tilts:
+                q[tilt_of[k]], s = settle(pad, bore.ratio, xy[0], xy[1], q[tilt_of[k]],
+                                            guesses[k], tol)
+                idx = [0, 1, tilt_of[k]]
+            else:
+                s = pad_state(pad, bore.ratio, xy, guesses[k])
+                idx = [0, 1]
+            Q[idx] += s.force
+            K[np.ix_(idx, idx)] += s.stiffness
+            C[np.ix_(idx, idx)] += s.damping
+            states.append(s)
+        return BoreState(q=q, force=Q, stiffness=K, damping=C, pads=tuple(states))
+
+    if start is None:
+        xy = 0.05 * load / scale
+        state = at(xy, np.zeros(n), (None,) * len(bore.pads))
+    else:   # from a nearby load's state
+        xy = start.q[:2].copy()
+        state = at(xy, start.q, tuple(p.pressure <= 0 for p in start.pads))
+    for _ in range(steps):
+        r = state.force[:2] + load
+        if float(np.linalg.norm(r)) <= tol * scale:
+            return state
+        step = np.linalg.solve(condensed(state.stiffness), r)
+        t = 1.0
+        while True:
+            try:
+                trial = at(xy + t * step, state.q, tuple(p.pressure <= 0 for p in state.pads))
+            except ValueError:
+                trial = None
+            if trial is not None and (np.linalg.norm(trial.force[:2] + load)
+                                      < np.linalg.norm(r)):
+                break
+            if t < 1e-4:
+                raise ValueError("the film does not carry the load: the journal touches "
+                                 "a pad")
+            t /= 2
+        xy, state = xy + t * step, trial
+    raise ValueError(f"the film's equilibrium did not settle in {steps} steps")
+
+
+def condensed(Z: np.ndarray) -> np.ndarray:
+    """The journal's 2x2 block of a film matrix (stiffness, or a dynamic stiffness
+    K + i w C - w^2 M at a whirl) with the pads' coordinates condensed out: Z_jj - Z_jp
+    Z_pp^-1 Z_pj."""
+    if Z.shape[0] == 2:
+        return Z
+    return Z[:2, :2] - Z[:2, 2:] @ np.linalg.solve(Z[2:, 2:], Z[2:, :2])
+
+
+def sommerfeld_load(ratio: float, sommerfeld: float) -> float:
+    """The nondimensional load |Fbar| = W c^2 / (mu omega R^4) of a bearing of L / D =
+    ratio at Sommerfeld's S = mu N L D / W (R / c)^2 (N in rev/s): 2 ratio / (pi S)."""
+    return 2 * ratio / (math.pi * sommerfeld)
+
+
+def thinnest(bore: Bore, state: BoreState) -> float:
+    """The thinnest film over the pads, over the clearance c_b."""
+    tilt_of = {k: 2 + i for i, k in enumerate(bore.tilts)}
+    X, Y = state.q[:2]
+    return min(float(_film_at(p, X, Y, state.q[tilt_of[k]] if p.tilts else 0.0).min())
+               for k, p in enumerate(bore.pads))
+
+
+def bore_of(spec, ratio: float) -> Bore:
+    """A scene's bore (scene.model.JournalBore) set about a load along -y."""
+    down = -math.pi / 2
+    if spec.kind == "two_axial_groove":
+        return two_axial_groove(ratio, spec.groove, down)
+    if spec.kind == "elliptical":
+        return elliptical(ratio, spec.preload, spec.groove, down)
+    if spec.kind == "tilting_pad":
+        first = down + (math.pi / spec.pads if spec.between else 0.0)
+        return tilting(ratio, spec.pads, spec.arc, spec.preload, spec.offset, first)
+    raise ValueError(f"bore {spec.kind!r}: not a bore of pads")
+
+
+# the Sommerfeld numbers (on c_b) a bore's table is solved at, lightest load first; it
+# ends where the film would be thinner than THINNEST of the clearance
+SOMMERFELD = tuple(np.geomspace(10.0, 0.005, 28).round(6))
+THINNEST = 0.02
+# what a bore's film table depends on besides its L / D and bore: a cache's key
+SETTINGS = {"version": 1, "pads": True, "cells_per_radian": CELLS_PER_RADIAN,
+            "z_cells": Z_CELLS, "sommerfeld": list(SOMMERFELD), "thinnest": THINNEST}
+
+
+def film_table(spec, ratio: float):
+    """A bore's film over SOMMERFELD, in the frame where the load on the journal points
+    along -y (parts.journal.FilmTable): each row's eccentricity and attitude, |Fbar|,
+    and the synchronously reduced Kbar, Cbar (a tilting pad's tilt condensed out at a
+    whirl at the speed of the spin, its pad massless), and the thinnest film."""
+    from shaftfem.parts.journal import FilmTable
+
+    bore = bore_of(spec, ratio)
+    rows = []
+    state = None
+    for S in SOMMERFELD:
+        F = sommerfeld_load(ratio, S)
+        try:
+            state = equilibrium(bore, np.array([0.0, -F]), start=state)
+        except ValueError:
+            break
+        h = thinnest(bore, state)
+        if h < THINNEST:
+            break
+        Z = condensed(state.stiffness + 1j * state.damping)
+        X, Y = state.q[:2]
+        rows.append((math.hypot(X, Y), S, math.atan2(X, -Y), F, Z.real, Z.imag, h))
+    if len(rows) < 4:
+        raise ValueError(f"the {spec.kind} bore's film carries too little load to tabulate")
+    col: list[np.ndarray] = [np.array(c) for c in zip(*rows)]
+    return FilmTable(ratio=ratio, cavitation="reynolds", eccentricity=col[0],
+                     sommerfeld=col[1], attitude=col[2], force=col[3], stiffness=col[4],
+                     damping=col[5], bore=spec, thinnest=col[6])
