@@ -206,3 +206,22 @@ def test_a_rotor_on_tilting_pads_gets_the_pads_reduced_coefficients():
     assert np.allclose(on.K, unit * Z.real, rtol=0.01, atol=0.01 * abs(on.K).max())
     assert np.allclose(on.C, unit / omega * Z.imag, rtol=0.01, atol=0.01 * abs(on.C).max())
     assert on.min_film == pytest.approx(b.clearance * pads.thinnest(spec, direct), rel=0.01)
+
+
+def test_a_heavily_loaded_tilting_pad_bearing_lets_its_unloaded_pads_float():
+    """Pushed hard onto its lower pads, the journal draws away from the upper ones, whose
+    films then diverge whatever their tilt: they carry nothing and add nothing (their
+    coordinates left out of the condensation), and the bearing's table runs on to a
+    film of a few percent of the clearance, its eccentricity rising with the load."""
+    from shaftfem.scene.model import JournalBore
+
+    spec = JournalBore("tilting_pad", pads=5, arc=math.radians(60), preload=0.3)
+    bore = pads.bore_of(spec, 0.5)
+    state = pads.equilibrium(bore, np.array([0.0, -pads.sommerfeld_load(0.5, 0.02)]))
+    floating = [k for k, s in enumerate(state.pads) if not (s.pressure > 0).any()]
+    assert floating, [s.wet for s in state.pads]
+    assert all(abs(state.pads[k].force).max() == 0 for k in floating)
+    K = pads.condensed(state.stiffness)
+    assert np.all(np.linalg.eigvals(K + K.T).real > 0)
+    table = pads.film_table(spec, 0.5)
+    assert table.films[-1] < 0.05 and np.all(np.diff(table.eccentricity) > 0)

@@ -328,9 +328,14 @@ def condensed(Z: np.ndarray) -> np.ndarray:
     """The journal's 2x2 block of a film matrix (stiffness, or a dynamic stiffness
     K + i w C - w^2 M at a whirl) with the pads' coordinates condensed out: Z_jj - Z_jp
     Z_pp^-1 Z_pj."""
-    if Z.shape[0] == 2:
-        return Z
-    return Z[:2, :2] - Z[:2, 2:] @ np.linalg.solve(Z[2:, 2:], Z[2:, :2])
+    # a pad whose film carries nothing (the journal pulled away from it: its film
+    # diverges all over, whatever its tilt) floats: it adds nothing, and is left out
+    loaded = [i for i in range(2, Z.shape[0])
+              if np.abs(Z[i]).max() > 1e-12 * max(float(np.abs(Z).max()), 1e-300)]
+    if not loaded:
+        return Z[:2, :2]
+    p = np.array(loaded)
+    return Z[:2, :2] - Z[:2, p] @ np.linalg.solve(Z[np.ix_(p, p)], Z[p, :2])
 
 
 def sommerfeld_load(ratio: float, sommerfeld: float) -> float:
