@@ -436,49 +436,68 @@ def test_a_keyed_shaft_lists_one_spot_on_a_shoulders_circle_away_from_its_keyway
         (round(s.z * 1e3, 1), round(math.degrees(s.angle))) for s in spots]
 
 
-def test_a_filleted_shoulder_is_refined_around_its_hot_spot_until_bounded():
+@pytest.mark.parametrize("target,shrink", [
+    pytest.param(2.0, 2.5, marks=pytest.mark.slow), (5.0, 1.5)])
+def test_a_filleted_shoulder_is_refined_around_its_hot_spot_until_bounded(target, shrink):
     """The same shoulder with a 3 mm fillet, bent by two balancing couples (M = 60 N m
     over it, whatever the seats do): a smooth notch, refined around the spot until its
-    bound meets the 2 % wanted: the spot's elements at least 2.5 times smaller than the
-    fillet's 2 mm, the DOFs less than 6 times the first mesh's (not everywhere: shrinking
-    every element 2.5 times would multiply them by 15; each round keeps the refinement of
-    the rounds before)."""
+    bound meets the target (2 %, and 5 % in the default suite): the spot's elements at
+    least `shrink` times smaller than the fillet's 2 mm, the DOFs less than 6 times the
+    first mesh's (not everywhere: shrinking every element 2.5 times would multiply them
+    by 15; each round keeps the refinement of the rounds before)."""
     data = sharp_shoulder(3.0)
     data["force"] = [{"position_mm": z, "fy_n": f} for z, f in
                      ((40.0, 2000.0), (70.0, -2000.0), (230.0, -2000.0), (260.0, 2000.0))]
+    data["strength"]["target_error_percent"] = target
     result = ws.run_strength(load_scene(data))
     worst = result.spots[0]
     assert abs(worst.z - 0.1485) < 2e-3 and worst.converging and result.ok
-    assert worst.bound is not None and worst.bound <= 0.02
-    assert worst.size < 2e-3 / 2.5 and len(result.dofs) >= 3
+    assert worst.bound is not None and worst.bound <= target / 100
+    assert worst.size < 2e-3 / shrink and len(result.dofs) >= 3
     assert result.dofs[-1] < 6 * result.dofs[1]
     # its K_t in bending beside Peterson's: the chart (Pilkey's fit, chart 3.10, h/r
     # 2.67) 1.777 by hand; the largest principal stress over nominal from NGSolve's
     # axisymmetric solution of this shoulder in pure bending, 1.8373 at orders 5 and 6
-    # (benchmarks/axisymmetric_reference.py, docs/verification.md), here within the 2 %
-    # wanted (the spot's bound is its von Mises stress's)
+    # (benchmarks/axisymmetric_reference.py, docs/verification.md), here within the
+    # target (the spot's bound is its von Mises stress's)
     (kt,) = [k for k in worst.factors if k.load == "bending"]
     h_r, x = 8 / 3, 16 / 48
     c = [a + b * math.sqrt(h_r) + e * h_r for a, b, e in (
         (1.232, 0.832, -0.008), (-3.813, 0.968, -0.260), (7.423, -4.868, 0.869),
         (-3.839, 3.070, -0.600))]
     assert kt.table == pytest.approx(c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3, rel=1e-9)
-    assert kt.computed == pytest.approx(1.8373, rel=0.02)
+    assert kt.computed == pytest.approx(1.8373, rel=target / 100)
     assert (kt.large, kt.small, kt.radius) == pytest.approx((0.048, 0.032, 0.003))
 
 
+@pytest.mark.slow
 def test_the_gear_shaft_example_holds_with_its_worst_spot_at_a_shoulder(tmp_path):
     """examples/gear_shaft.toml as a user runs it: 15 kW through a helical gear between
     two ball bearings. Its worst spots are the shoulders' fillets, bounded; the gear's
     slope is the beam's order of magnitude (F L^3-ish microns, far within the limits)."""
-    import subprocess
-    import sys
     from pathlib import Path
 
-    scene = Path(__file__).parents[1] / "examples" / "gear_shaft.toml"
+    _gear_shaft(Path(__file__).parents[1] / "examples" / "gear_shaft.toml", tmp_path, 0.04)
+
+
+def test_the_gear_shaft_example_within_a_smaller_budget(tmp_path):
+    """The same example as a user runs it with `--max-dofs 290000` (the default suite's
+    time: the run above, to the 400,000 DOFs it needs, is slow): its refinement stops at
+    the budget after a round, with the same worst spot, mean stress and seat slopes, and
+    its K_t in torsion within 5 % of the chart."""
+    from pathlib import Path
+
+    _gear_shaft(Path(__file__).parents[1] / "examples" / "gear_shaft.toml", tmp_path, 0.05,
+                ["--max-dofs", "290000"])
+
+
+def _gear_shaft(scene, tmp_path, kt_within: float, flags: list[str] | None = None) -> None:
+    import subprocess
+    import sys
+
     out = tmp_path / "gear.json"
     run = subprocess.run([sys.executable, "-m", "shaftfem", "strength", str(scene),
-                          "--json", str(out), "-q"], capture_output=True, text=True,
+                          "--json", str(out), "-q", *(flags or [])], capture_output=True, text=True,
                          timeout=900)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-2000:]
     data = json.loads(out.read_text())
@@ -492,7 +511,7 @@ def test_the_gear_shaft_example_holds_with_its_worst_spot_at_a_shoulder(tmp_path
     # the torque passes the shoulder at 210 mm: its K_t in torsion beside Peterson's
     # chart 3.12 (D/d 40/30, r 1.5 mm: 1.63), printed beside it
     torsion = next(k for k in worst["stress_concentration"] if k["load"] == "torsion")
-    assert torsion["kt"] == pytest.approx(torsion["kt_table"], rel=0.04)
+    assert torsion["kt"] == pytest.approx(torsion["kt_table"], rel=kt_within)
     assert "stress concentration at shoulder fillets" in run.stdout
     assert f"torsion {torsion['kt']:.2f} (chart {torsion['kt_table']:.2f})" in run.stdout
 
