@@ -15,7 +15,7 @@ cover the shape.
 
     .venv/bin/python benchmarks/notch_factors.py [--target 2] [--only "NAME;NAME"]
 
-Needs .venv-ngsolve (see benchmarks/notch_reference.py). About 50 minutes on 2 cores.
+Needs .venv-ngsolve (see benchmarks/notch_reference.py). About 70 minutes on 2 cores.
 """
 
 from __future__ import annotations
@@ -140,6 +140,16 @@ SHAPES = {
     "relief groove 40/32 r4, bending": (relief(40, 32, 4), "bending", 32, (140, 160), None),
     "relief groove 40/32 r4, tension": (relief(40, 32, 4), "tension", 32, (140, 160), None),
     "relief groove 40/32 r2, torsion": (relief(40, 32, 2), "torsion", 32, (140, 160), None),
+    # held out: shapes never used to set the bound's constants (run after they were set)
+    "shoulder 44/36 r2.5, bending": _shoulder_case(44, 36, 2.5, "bending",
+                                                   pilkey_shoulder_bending),
+    "shoulder 44/36 r2.5, tension": _shoulder_case(44, 36, 2.5, "tension",
+                                                   pilkey_shoulder_tension),
+    "shoulder 50/40 r1.2, torsion": _shoulder_case(50, 40, 1.2, "torsion",
+                                                   pilkey_shoulder_torsion),
+    "shoulder 40/30 r4, tension": _shoulder_case(40, 30, 4, "tension", pilkey_shoulder_tension),
+    "shoulder 60/40 r6, bending": _shoulder_case(60, 40, 6, "bending", pilkey_shoulder_bending),
+    "relief groove 48/36 r3, bending": (relief(48, 36, 3), "bending", 36, (140, 160), None),
     "keyway 10x5 r1, bending": (keyed(32, 40, 10, 5, 1.0), "bending", 32, (125, 175), None),
     "keyway 10x5 r1, torsion": (keyed(32, 40, 10, 5, 1.0), "torsion", 32, (125, 175), None),
     "radial hole 8 deep 8 r1, torsion": (keyed(32, 8, 8, 8, 1.0), "torsion", 32, (140, 160),
