@@ -65,13 +65,17 @@ class FilmState:
     """The film with the journal at (X, Y) = (eps, 0): its force on the journal (Fbar,
     2), the stiffness Kbar = -dFbar/d(X, Y) and the damping Cbar = -dFbar/d(X', Y')
     (2x2), all nondimensional (module docstring); `wet`, the film's share that carries
-    pressure."""
+    pressure; and what heats the oil (film_heat): the friction integral, the flow into
+    the film at its feed and the flow out of its ends."""
 
     eccentricity: float
     force: np.ndarray
     stiffness: np.ndarray
     damping: np.ndarray
     wet: float
+    friction: float = 0.0
+    inflow: float = 0.0
+    side_flow: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -210,9 +214,54 @@ def state(ratio: float, eccentricity: float, cavitation: str = "reynolds",
         mask[wet] = 1.0
         dP = dP * mask[:, None]
     dF = np.column_stack([force(dP[:, k]) for k in range(4)])
+    friction, inflow, side_flow = film_heat(f, eccentricity, carried, A @ P - b)
     return FilmState(eccentricity=float(eccentricity), force=force(carried),
                      stiffness=-dF[:, :2], damping=-dF[:, 2:],
-                     wet=float(wet.size / max(f.free.size, 1)))
+                     wet=float(wet.size / max(f.free.size, 1)), friction=friction,
+                     inflow=inflow, side_flow=side_flow)
+
+
+def film_heat(f: Film, eps: float, P: np.ndarray, residual: np.ndarray
+              ) -> tuple[float, float, float]:
+    """What heats the oil and what carries the heat away, nondimensional, for the whole
+    length (the half film doubled), the journal at (eps, 0):
+
+    * the friction integral I = int [1/H + (H / 2) dP/dtheta] dtheta dZ: the shear on
+      the journal (Couette, also where the film has ruptured into streamers, as Petroff
+      and Raimondi and Boyd take it, and Poiseuille), its friction force mu omega R^3 I
+      / c and power loss mu omega^2 R^4 I / c;
+    * the flow into the film at its feed (theta = -pi, the widest gap), q_in = int [H /
+      2 - (H^3 / 12) dP/dtheta] dZ, the pressure's part read from the discrete film's
+      flux there (`residual` = A P - b at the feed's nodes);
+    * the side flow out of both ends, q_s = q_in - q_out, q_out the Couette flow where
+      the film ruptures on each line along the journal (its pressure and gradient zero
+      there): by mass conservation, as accurate as the film's cells round the bearing.
+
+    A flow Q = omega R^2 c q. Raimondi and Boyd's variables: (R / c) f = I / |Fbar|,
+    Q / (R c N L) = pi q_in / (L / D), likewise Q_s."""
+    from skfem import Functional
+
+    x = f.at
+    ratio = f.ratio
+    end = np.isclose(x[:, 1], ratio)
+    feed = np.isclose(x[:, 0], -math.pi) & ~end
+    inflow = ratio * (1 + eps) - (2.0 / 12.0) * float(-residual[feed].sum())
+    leaving = []
+    lines = np.unique(x[~end, 1])
+    for z in lines:
+        row = np.flatnonzero(np.isclose(x[:, 1], z))
+        row = row[np.argsort(x[row, 0])]
+        wet = np.flatnonzero(P[row] > 0)
+        # the first dry node after the pressurised film (the last node, if none ruptures)
+        k = row[min(int(wet.max()) + 1, row.size - 1)] if wet.size else row[0]
+        leaving.append(0.5 * (1 - eps * math.cos(float(x[k, 0]))))
+    q = np.append(leaving, leaving[-1])
+    outflow = 2.0 * float(np.sum(0.5 * (q[1:] + q[:-1]) * np.diff(np.append(lines, ratio))))
+    Pn = f.periodic @ P
+    shear = Functional(lambda w: 1.0 / (1 - eps * np.cos(w.x[0]))
+                       + 0.5 * (1 - eps * np.cos(w.x[0])) * w["p"].grad[0])
+    friction = 2.0 * float(shear.assemble(f.basis, p=f.basis.interpolate(Pn)))
+    return friction, float(inflow), float(inflow - outflow)
 
 
 def _ruptured(ratio: float, eccentricity: float, cavitation: str, theta_cells: int,
@@ -260,6 +309,10 @@ class FilmTable:
     damping: np.ndarray
     bore: Any = None            # scene.model.JournalBore; None: the plain bore
     thinnest: np.ndarray | None = None    # the thinnest film over c (None: 1 - eps)
+    # what heats the oil, per row (FilmState; None: not solved for this bore)
+    friction: np.ndarray | None = None
+    inflow: np.ndarray | None = None
+    side_flow: np.ndarray | None = None
 
     @property
     def films(self) -> np.ndarray:
@@ -270,9 +323,11 @@ class FilmTable:
 # tables made elsewhere (read from a cache by the caller), by (L / D, cavitation, bore)
 _KNOWN: dict[tuple[float, str, Any], FilmTable] = {}
 # what a film table depends on besides its L / D and cavitation: a cache's key
-SETTINGS = {"version": 1, "eccentricities": list(ECCENTRICITIES), "theta_cells": THETA_CELLS,
+SETTINGS = {"version": 2, "eccentricities": list(ECCENTRICITIES), "theta_cells": THETA_CELLS,
             "z_cells": Z_CELLS, "grading": GRADING, "feed": FEED, "coarsest": COARSEST}
 TABLE_FIELDS = ("eccentricity", "sommerfeld", "attitude", "force", "stiffness", "damping")
+# a plain film's table also keeps what heats its oil
+HEAT_FIELDS = ("friction", "inflow", "side_flow")
 
 
 def remember(t: FilmTable) -> None:
@@ -302,7 +357,10 @@ def table(ratio: float, cavitation: str = "reynolds", bore: Any = None) -> FilmT
         K.append(Q @ r.stiffness @ Q.T)
         C.append(Q @ r.damping @ Q.T)
     return FilmTable(ratio, cavitation, np.array(ECCENTRICITIES), np.array(S), np.array(phi),
-                     np.array(F), np.array(K), np.array(C))
+                     np.array(F), np.array(K), np.array(C),
+                     friction=np.array([r.friction for r in rows]),
+                     inflow=np.array([r.inflow for r in rows]),
+                     side_flow=np.array([r.side_flow for r in rows]))
 
 
 @dataclass(frozen=True)
@@ -350,6 +408,29 @@ def operating(b: JournalBearing, omega: float) -> Operating:
                      min_film=b.clearance * film, sommerfeld=S,
                      K=unit * (Q @ Kbar @ Q.T), C=unit / max(omega, 1e-12) * (Q @ Cbar @ Q.T),
                      beyond=bool(beyond))
+
+
+def heat_terms(b: JournalBearing, omega: float) -> tuple[float, float, float]:
+    """The film's friction power (W), flow into it at its feed and side flow out of its
+    ends (m^3/s) at the spin omega (rad/s), at its viscosity (film_heat's integrals
+    read from the table at its Sommerfeld number)."""
+    from scipy.interpolate import PchipInterpolator
+
+    t = table(round(b.ratio, 9), b.cavitation, b.bore)
+    if t.friction is None or t.inflow is None or t.side_flow is None:
+        raise ValueError("the film's heating is solved for a plain bore only")
+    assert b.viscosity is not None
+    S = b.sommerfeld(max(omega, 1e-12))
+    if t.sommerfeld[0] < S:   # lighter than the first row: Petroff's film
+        eps = t.eccentricity[0] * t.sommerfeld[0] / S
+    else:
+        eps = float(PchipInterpolator(-np.log(t.sommerfeld), t.eccentricity)(
+            -math.log(max(S, t.sommerfeld[-1]))))
+    I, q_in, q_s = (float(v) for v in PchipInterpolator(t.eccentricity, np.column_stack(
+        [t.friction, t.inflow, t.side_flow]))(max(eps, float(t.eccentricity[0]))))
+    R, c = b.diameter / 2, b.clearance
+    return (b.viscosity * omega**2 * R**4 * I / c, omega * R**2 * c * q_in,
+            omega * R**2 * c * q_s)
 
 
 # The speed table a journal bearing's coefficients are given to the rotor on: this

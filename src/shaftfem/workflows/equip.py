@@ -90,7 +90,7 @@ def film_table(bearing: JournalBearing) -> None:
     from shaftfem.store import discard, load_arrays, save_arrays
 
     ratio, cavitation, bore, path = _film_path(bearing)
-    names = journal.TABLE_FIELDS + (() if bore is None else ("thinnest",))
+    names = journal.TABLE_FIELDS + (journal.HEAT_FIELDS if bore is None else ("thinnest",))
     ahead = _AHEAD.pop(str(path), None)
     if ahead is None and path.exists():
         fields, why = load_arrays(path, names)
