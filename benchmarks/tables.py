@@ -66,6 +66,7 @@ TABLES = {
     "paper-unknowns": ("case study: the paper's unknowns", ["paper_unknowns.py"]),
     "notch-factors": ("verification: Notch stresses against NGSolve", ["notch_factors.py"]),
     "pad-bearings": ("verification: Bearings of pads", ["pad_bearings.py"]),
+    "pad-cost": ("performance: Tilting pads", ["pad_cost.py", "3"]),
 }
 
 
