@@ -25,7 +25,12 @@ sys.path.insert(0, str(Path(__file__).parent))
 sys.path.insert(0, str(ROOT / "tests"))
 import _common  # noqa: E402, F401  (one BLAS thread, as the CLI)
 from shaftfem.parts import pads  # noqa: E402
-from test_pads import ELLIPTICAL, TWO_AXIAL_GROOVE, lund_thomsen_frame  # noqa: E402
+from test_pads import (  # noqa: E402
+    ELLIPTICAL,
+    TWO_AXIAL_GROOVE,
+    lund_thomsen_frame,
+    ross_cases,
+)
 
 NAMES = ("Kxx", "Kxy", "Kyx", "Kyy", "Bxx", "Bxy", "Byy")
 
@@ -51,33 +56,21 @@ def literature() -> None:
 
 
 def tilting() -> None:
-    import numpy as np
-
     ref = json.loads((ROOT / "tests" / "data" / "tilting_pads_ross.json").read_text())
     print(f"\nreference: {ref['source']}\n")
     print("| bearing | r/min | eccentricity (ross) | kxx | kyy | cxx | cyy | largest cross "
           "term over the direct ones, shaftfem / ross |")
     print("|---|---|---|---|---|---|---|---|")
-    for name, b in ref["bearings"].items():
-        R, c = b["diameter"] / 2, b["clearance"]
-        bore = pads.tilting(b["length"] / b["diameter"], b["pads"], math.radians(b["arc_deg"]),
-                            b["preload"], b["offset"], math.radians(b["first_pivot_deg"]))
-        for r in b["results"]:
-            omega = r["speed_rpm"] * math.pi / 30
-            W = b["load"] * c**2 / (b["viscosity"] * omega * R**4)
-            state = pads.equilibrium(bore, np.array([0.0, -W]))
-            Z = pads.condensed(state.stiffness + 1j * state.damping)
-            K = Z.real * b["load"] / (c * W)
-            C = Z.imag * b["load"] / (c * omega * W)
-            cells = []
-            for M, kind in ((K, "k"), (C, "c")):
-                for (i, j), ij in ((0, 0), "xx"), ((1, 1), "yy"):
-                    cells.append(f"{M[i, j] / r[kind + ij] - 1:+.2%}")
-            cross = max(abs(K[0, 1]), abs(K[1, 0])) / max(abs(K[0, 0]), abs(K[1, 1]))
-            theirs = max(abs(r["kxy"]), abs(r["kyx"])) / max(abs(r["kxx"]), abs(r["kyy"]))
-            print(f"| {name} | {r['speed_rpm']:,.0f} | {math.hypot(*state.q[:2]):.4f} "
-                  f"({r['eccentricity']:.4f}) | {' | '.join(cells)} | {cross:.1e} / "
-                  f"{theirs:.1e} |", flush=True)
+    for name, _, r, state, K, C in ross_cases():
+        cells = []
+        for M, kind in ((K, "k"), (C, "c")):
+            for (i, j), ij in ((0, 0), "xx"), ((1, 1), "yy"):
+                cells.append(f"{M[i, j] / r[kind + ij] - 1:+.2%}")
+        cross = max(abs(K[0, 1]), abs(K[1, 0])) / max(abs(K[0, 0]), abs(K[1, 1]))
+        theirs = max(abs(r["kxy"]), abs(r["kyx"])) / max(abs(r["kxx"]), abs(r["kyy"]))
+        print(f"| {name} | {r['speed_rpm']:,.0f} | {math.hypot(*state.q[:2]):.4f} "
+              f"({r['eccentricity']:.4f}) | {' | '.join(cells)} | {cross:.1e} / "
+              f"{theirs:.1e} |", flush=True)
 
 
 if __name__ == "__main__":

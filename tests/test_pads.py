@@ -114,12 +114,10 @@ def test_a_pads_tilt_is_the_journal_moving_along_its_pivots_tangent():
     assert np.allclose(s1.force, s2.force, rtol=1e-10, atol=1e-12)
 
 
-def test_tilting_pads_agree_with_ross_on_two_bearings_at_two_speeds():
-    """ross 3.1's TiltingPad (isoviscous, load matched; benchmarks/tilting_pad_reference.py)
-    on a 5-pad bearing loaded between pads and a 4-pad bearing loaded on a pad with its
-    pivots 0.6 of the arc from the leading edges: the eccentricity within 0.01 and the
-    synchronously reduced coefficients within 3 % (of the larger direct one where a
-    coefficient is cross-coupled and vanishing, as tilting pads make it)."""
+def ross_cases():
+    """Each bearing and speed of tests/data/tilting_pads_ross.json with shaftfem's film
+    there: (name, bearing, ross's row, the film's state, K (N/m) and C (N s/m) reduced at
+    a whirl at the spin, massless pads)."""
     ref = json.loads((DATA / "tilting_pads_ross.json").read_text())
     for name, b in ref["bearings"].items():
         R, c = b["diameter"] / 2, b["clearance"]
@@ -130,16 +128,25 @@ def test_tilting_pads_agree_with_ross_on_two_bearings_at_two_speeds():
             W = b["load"] * c**2 / (b["viscosity"] * omega * R**4)
             state = pads.equilibrium(bore, np.array([0.0, -W]))
             Z = pads.condensed(state.stiffness + 1j * state.damping)   # whirl = spin
-            K = Z.real * b["load"] / (c * W)
-            C = Z.imag * b["load"] / (c * omega * W)
-            assert math.hypot(*state.q[:2]) == pytest.approx(r["eccentricity"], abs=0.01)
-            for M, kind in ((K, "k"), (C, "c")):
-                direct = max(abs(r[kind + "xx"]), abs(r[kind + "yy"]))
-                for (i, j), ij in zip(np.ndindex(2, 2), ("xx", "xy", "yx", "yy")):
-                    theirs = r[kind + ij]
-                    allowed = 0.03 * (abs(theirs) if ij in ("xx", "yy") else direct)
-                    assert abs(M[i, j] - theirs) <= allowed, (name, r["speed_rpm"], kind + ij,
-                                                              M[i, j], theirs)
+            yield (name, b, r, state, Z.real * b["load"] / (c * W),
+                   Z.imag * b["load"] / (c * omega * W))
+
+
+def test_tilting_pads_agree_with_ross_on_two_bearings_at_two_speeds():
+    """ross 3.1's TiltingPad (isoviscous, load matched; benchmarks/tilting_pad_reference.py)
+    on a 5-pad bearing loaded between pads and a 4-pad bearing loaded on a pad with its
+    pivots 0.6 of the arc from the leading edges: the eccentricity within 0.01 and the
+    synchronously reduced coefficients within 3 % (of the larger direct one where a
+    coefficient is cross-coupled and vanishing, as tilting pads make it)."""
+    for name, _, r, state, K, C in ross_cases():
+        assert math.hypot(*state.q[:2]) == pytest.approx(r["eccentricity"], abs=0.01)
+        for M, kind in ((K, "k"), (C, "c")):
+            direct = max(abs(r[kind + "xx"]), abs(r[kind + "yy"]))
+            for (i, j), ij in zip(np.ndindex(2, 2), ("xx", "xy", "yx", "yy")):
+                theirs = r[kind + ij]
+                allowed = 0.03 * (abs(theirs) if ij in ("xx", "yy") else direct)
+                assert abs(M[i, j] - theirs) <= allowed, (name, r["speed_rpm"], kind + ij,
+                                                          M[i, j], theirs)
 
 
 def wheel_on(**bore) -> dict:
