@@ -338,14 +338,13 @@ def remember(t: FilmTable) -> None:
 
 @lru_cache(maxsize=16)
 def table(ratio: float, cavitation: str = "reynolds", bore: Any = None) -> FilmTable:
-    """The film of a bearing of L / D = ratio at every eccentricity of ECCENTRICITIES
-    (a bore of pads, `bore`: at the Sommerfeld numbers of parts.pads.SOMMERFELD)."""
+    """The film of a bearing of L / D = ratio at every eccentricity of ECCENTRICITIES;
+    a bore of pads' (`bore`), once remembered (parts.pads.film_table solves it)."""
     if (ratio, cavitation, bore) in _KNOWN:
         return _KNOWN[(ratio, cavitation, bore)]
-    if bore is not None:
-        from shaftfem.parts import pads
-
-        return pads.film_table(bore, ratio)
+    if bore is not None:   # solved by parts.pads.film_table, kept by remember()
+        raise ValueError(f"the film table of a {bore.kind} bore (L/D {ratio:g}) is not "
+                         "solved yet (shaftfem.parts.pads.film_table)")
     rows = [state(ratio, e, cavitation) for e in ECCENTRICITIES]
     S, phi, F, K, C = [], [], [], [], []
     for r in rows:

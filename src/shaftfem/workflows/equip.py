@@ -75,9 +75,13 @@ def films_dropped(paths: list[str]) -> None:
 
 
 def _solved_table(ratio: float, cavitation: str, bore=None):
-    from shaftfem.parts import journal
+    """A film's table solved: the plain bore's (parts.journal), or a bore of pads'
+    (parts.pads)."""
+    from shaftfem.parts import journal, pads
 
-    return journal.table(ratio, cavitation, bore)
+    if bore is not None:
+        return pads.film_table(bore, ratio)
+    return journal.table(ratio, cavitation)
 
 
 def film_table(bearing: JournalBearing) -> None:
@@ -98,7 +102,7 @@ def film_table(bearing: JournalBearing) -> None:
             journal.remember(journal.FilmTable(ratio, cavitation, bore=bore, **fields))
             return
         discard("journal film table", why, path)
-    t = journal.table(ratio, cavitation, bore) if ahead is None else ahead.result()
+    t = _solved_table(ratio, cavitation, bore) if ahead is None else ahead.result()
     journal.remember(t)
     try:
         save_arrays(path, {n: np.asarray(getattr(t, n)) for n in names})
