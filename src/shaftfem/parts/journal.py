@@ -386,15 +386,13 @@ def operating(b: JournalBearing, omega: float) -> Operating:
 
     t = table(round(b.ratio, 9), b.cavitation, b.bore)
     S = b.sommerfeld(max(omega, 1e-12))
-    logS = np.log(t.sommerfeld)
     beyond = t.sommerfeld[-1] > S
+    eps = _eccentricity(t, S)
     if t.sommerfeld[0] < S:   # lighter than the first row: the film's linear limit
-        eps = t.eccentricity[0] * t.sommerfeld[0] / S
         phi, Fbar = t.attitude[0], t.force[0] * eps / t.eccentricity[0]
         Kbar, Cbar = t.stiffness[0], t.damping[0]
         film = 1 - eps if t.thinnest is None else float(t.films[0])
     else:
-        eps = float(PchipInterpolator(-logS, t.eccentricity)(-math.log(max(S, t.sommerfeld[-1]))))
         at = PchipInterpolator(t.eccentricity, np.column_stack([
             t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4),
             t.films]))(eps)
@@ -409,6 +407,18 @@ def operating(b: JournalBearing, omega: float) -> Operating:
                      beyond=bool(beyond))
 
 
+def _eccentricity(t: FilmTable, S: float) -> float:
+    """The eccentricity ratio at Sommerfeld's S on the table (lighter than its first
+    row: the film's linear limit, eps proportional to 1 / S; heavier than its last: the
+    last row's)."""
+    from scipy.interpolate import PchipInterpolator
+
+    if t.sommerfeld[0] < S:
+        return float(t.eccentricity[0] * t.sommerfeld[0] / S)
+    return float(PchipInterpolator(-np.log(t.sommerfeld), t.eccentricity)(
+        -math.log(max(S, t.sommerfeld[-1]))))
+
+
 def heat_terms(b: JournalBearing, omega: float) -> tuple[float, float, float]:
     """The film's friction power (W), flow into it at its feed and side flow out of its
     ends (m^3/s) at the spin omega (rad/s), at its viscosity (film_heat's integrals
@@ -419,14 +429,10 @@ def heat_terms(b: JournalBearing, omega: float) -> tuple[float, float, float]:
     if t.friction is None or t.inflow is None or t.side_flow is None:
         raise ValueError("the film's heating is solved for a plain bore only")
     assert b.viscosity is not None
-    S = b.sommerfeld(max(omega, 1e-12))
-    if t.sommerfeld[0] < S:   # lighter than the first row: Petroff's film
-        eps = t.eccentricity[0] * t.sommerfeld[0] / S
-    else:
-        eps = float(PchipInterpolator(-np.log(t.sommerfeld), t.eccentricity)(
-            -math.log(max(S, t.sommerfeld[-1]))))
+    # lighter than the first row: that row's (Petroff's) film
+    eps = max(_eccentricity(t, b.sommerfeld(max(omega, 1e-12))), float(t.eccentricity[0]))
     I, q_in, q_s = (float(v) for v in PchipInterpolator(t.eccentricity, np.column_stack(
-        [t.friction, t.inflow, t.side_flow]))(max(eps, float(t.eccentricity[0]))))
+        [t.friction, t.inflow, t.side_flow]))(eps))
     R, c = b.diameter / 2, b.clearance
     return (b.viscosity * omega**2 * R**4 * I / c, omega * R**2 * c * q_in,
             omega * R**2 * c * q_s)

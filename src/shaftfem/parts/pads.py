@@ -66,6 +66,10 @@ class Bore:
         """The indices of the pads that tilt (each one more coordinate after X, Y)."""
         return tuple(k for k, p in enumerate(self.pads) if p.tilts)
 
+    def coordinates(self, k: int) -> list[int]:
+        """Where pad k's own coordinates (X, Y[, its tilt]) sit among the bearing's."""
+        return [0, 1] + ([2 + self.tilts.index(k)] if self.pads[k].tilts else [])
+
 
 def two_axial_groove(ratio: float, groove_arc: float = math.radians(20.0),
                      load_angle: float = -math.pi / 2) -> Bore:
@@ -128,6 +132,18 @@ def _modes(pad: Pad, theta: np.ndarray, tilt: bool) -> list[tuple[np.ndarray, np
     return out
 
 
+def _film(pad: Pad, theta: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The pad's film thickness H and dH/dtheta at angles theta, its coordinates q =
+    (X, Y[, tilt])."""
+    m = pad.preload
+    H = (1 - m * np.cos(theta - pad.pivot)) / (1 - m)
+    dH = m * np.sin(theta - pad.pivot) / (1 - m)
+    for (g, dg), qj in zip(_modes(pad, theta, len(q) > 2), q):
+        H = H + g * qj
+        dH = dH + dg * qj
+    return H, dH
+
+
 @dataclass(frozen=True)
 class PadState:
     """One pad's film at q: its generalised forces Q (n,), stiffness K and damping C
@@ -152,14 +168,8 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     per = CELLS_PER_RADIAN if cells_per_radian is None else cells_per_radian
     f = pad_film(pad.start, pad.arc, ratio, max(8, round(per * pad.arc)),
                  Z_CELLS if z_cells is None else z_cells)
-    theta = f.theta
-    modes = _modes(pad, theta, len(q) > 2)
-    m = pad.preload
-    H = (1 - m * np.cos(theta - pad.pivot)) / (1 - m)
-    dH = m * np.sin(theta - pad.pivot) / (1 - m)
-    for (g, dg), qj in zip(modes, q):
-        H = H + g * qj
-        dH = dH + dg * qj
+    modes = _modes(pad, f.theta, len(q) > 2)
+    H, dH = _film(pad, f.theta, q)
     if float(H.min()) <= 0:
         raise ValueError(f"the journal touches the pad at {math.degrees(pad.pivot):.0f} deg "
                          f"(film {float(H.min()):.3g} of the clearance)")
@@ -204,29 +214,22 @@ class BoreState:
     pads: tuple[PadState, ...]
 
 
-def bore_state(bore: Bore, q: np.ndarray, guesses: tuple | None = None) -> BoreState:
-    """Every pad's film at q, gathered on the bearing's coordinates."""
-    n = 2 + len(bore.tilts)
+def _gathered(bore: Bore, q: np.ndarray, states: list[PadState]) -> BoreState:
+    """The pads' states gathered on the bearing's coordinates q."""
+    n = q.size
     Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
-    states = []
-    tilt_of = {k: 2 + i for i, k in enumerate(bore.tilts)}
-    for k, pad in enumerate(bore.pads):
-        idx = [0, 1] + ([tilt_of[k]] if pad.tilts else [])
-        guess = None if guesses is None else guesses[k]
-        s = pad_state(pad, bore.ratio, q[idx], guess)
+    for k, s in enumerate(states):
+        idx = bore.coordinates(k)
         Q[idx] += s.force
         K[np.ix_(idx, idx)] += s.stiffness
         C[np.ix_(idx, idx)] += s.damping
-        states.append(s)
     return BoreState(q=q, force=Q, stiffness=K, damping=C, pads=tuple(states))
 
 
-def _film_at(pad: Pad, X: float, Y: float, tilt: float, samples: int = 721) -> np.ndarray:
-    """The pad's film thickness H on `samples` angles over its arc."""
+def _film_at(pad: Pad, q: np.ndarray, samples: int = 721) -> tuple[np.ndarray, np.ndarray]:
+    """`samples` angles over the pad's arc, and its film thickness H there."""
     theta = np.linspace(pad.start, pad.start + pad.arc, samples)
-    m = pad.preload
-    return ((1 - m * np.cos(theta - pad.pivot)) / (1 - m) - X * np.cos(theta)
-            - Y * np.sin(theta) - tilt * np.sin(theta - pad.pivot))
+    return theta, _film(pad, theta, q)[0]
 
 
 # a film thinner than this share of the clearance anywhere is a touch (the search's
@@ -235,14 +238,14 @@ TOUCH = 1e-3
 
 
 def settle(pad: Pad, ratio: float, X: float, Y: float, tilt: float,
-             guess: np.ndarray | None, tol: float) -> tuple[float, PadState]:
+           guess: np.ndarray | None, tol: float) -> tuple[float, PadState]:
     """The tilt about its pivot at which the pad's film has no moment about it (the
     journal at X, Y): Newton's steps on the exact dQ/dtilt, kept inside a bracket
     [Q > 0, Q < 0] (a larger tilt closes the trailing edge, which moves the pressure's
     centre back past the pivot), halving it where a step leaves it."""
-    theta = np.linspace(pad.start, pad.start + pad.arc, 721)
+    theta, H = _film_at(pad, np.array([X, Y]))
     s = np.sin(theta - pad.pivot)
-    room = _film_at(pad, X, Y, 0.0) - TOUCH
+    room = H - TOUCH
     hi = float(np.min(room[s > 0] / s[s > 0]))
     lo = float(np.max(room[s < 0] / s[s < 0]))
     tilt = float(np.clip(tilt, lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo)))
@@ -274,27 +277,20 @@ def equilibrium(bore: Bore, load: np.ndarray, tol: float = 1e-10, steps: int = 6
     shortened while they do not lower the residual or would close the film."""
     load = np.asarray(load, dtype=float)
     scale = max(float(np.linalg.norm(load)), 1e-300)
-    tilt_of = {k: 2 + i for i, k in enumerate(bore.tilts)}
-    n = 2 + len(tilt_of)
+    n = 2 + len(bore.tilts)
 
     def at(xy: np.ndarray, q: np.ndarray, guesses: tuple) -> BoreState:
         q = q.copy()
         q[:2] = xy
-        Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
         states = []
         for k, pad in enumerate(bore.pads):
             if pad.tilts:
-                q[tilt_of[k]], s = settle(pad, bore.ratio, xy[0], xy[1], q[tilt_of[k]],
-                                            guesses[k], tol)
-                idx = [0, 1, tilt_of[k]]
+                t = bore.coordinates(k)[2]
+                q[t], s = settle(pad, bore.ratio, xy[0], xy[1], q[t], guesses[k], tol)
             else:
                 s = pad_state(pad, bore.ratio, xy, guesses[k])
-                idx = [0, 1]
-            Q[idx] += s.force
-            K[np.ix_(idx, idx)] += s.stiffness
-            C[np.ix_(idx, idx)] += s.damping
             states.append(s)
-        return BoreState(q=q, force=Q, stiffness=K, damping=C, pads=tuple(states))
+        return _gathered(bore, q, states)
 
     if start is None:
         xy = 0.05 * load / scale
@@ -346,9 +342,7 @@ def sommerfeld_load(ratio: float, sommerfeld: float) -> float:
 
 def thinnest(bore: Bore, state: BoreState) -> float:
     """The thinnest film over the pads, over the clearance c_b."""
-    tilt_of = {k: 2 + i for i, k in enumerate(bore.tilts)}
-    X, Y = state.q[:2]
-    return min(float(_film_at(p, X, Y, state.q[tilt_of[k]] if p.tilts else 0.0).min())
+    return min(float(_film_at(p, state.q[bore.coordinates(k)])[1].min())
                for k, p in enumerate(bore.pads))
 
 
