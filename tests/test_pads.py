@@ -232,3 +232,23 @@ def test_a_heavily_loaded_tilting_pad_bearing_lets_its_unloaded_pads_float():
     assert np.all(np.linalg.eigvals(K + K.T).real > 0)
     table = pads.film_table(spec, 0.5)
     assert table.films[-1] < 0.05 and np.all(np.diff(table.eccentricity) > 0)
+
+
+def test_the_report_names_a_journals_bore():
+    """How the shaft is held (outputs.tables.installation_lines) names each journal's bore
+    of pads as declared: its pads, their arc, preload and pivots, and where the load
+    falls; a fixed bore its grooves (and an elliptical one its preload); a plain one
+    nothing more."""
+    from shaftfem.outputs.tables import bore_words
+    from shaftfem.scene.load import load_scene
+
+    def words(**bore) -> str:
+        return bore_words(load_scene(wheel_on(**bore)).supports[0].journal)
+
+    assert words(bore="tilting_pad", pads=5, pad_arc_deg=60.0, preload=0.3,
+                 load_between_pads=False) == (
+        ", 5 tilting pads of 60 deg (preload 0.3, pivots at 0.5, the load on a pad)")
+    assert words(bore="elliptical", preload=0.5, groove_arc_deg=15.0) == (
+        ", elliptical (preload 0.5), two axial grooves of 15 deg")
+    assert words(bore="two_axial_groove") == ", two axial grooves of 20 deg"
+    assert words() == ""

@@ -124,6 +124,19 @@ def _oil(j) -> str:
     return f"{j.viscosity * 1e3:.3g} mPa s"
 
 
+def bore_words(j) -> str:
+    """A journal's bore in a few words ('' for the plain bore)."""
+    b = j.bore
+    if b is None:
+        return ""
+    if b.kind == "tilting_pad":
+        return (f", {b.pads} tilting pads of {math.degrees(b.arc):g} deg (preload "
+                f"{b.preload:g}, pivots at {b.offset:g}, the load "
+                f"{'between pads' if b.between else 'on a pad'})")
+    lemon = f"elliptical (preload {b.preload:g}), " if b.kind == "elliptical" else ""
+    return f", {lemon}two axial grooves of {math.degrees(b.groove):g} deg"
+
+
 def installation_lines(result: ModalResult) -> list[str]:
     """How the shaft is held and what sits on it, one line each."""
     scene = result.scene
@@ -137,8 +150,8 @@ def installation_lines(result: ModalResult) -> list[str]:
                 "clamped": "clamped"}.get(s.kind)
         if what is None and s.journal is not None:
             j, t = s.journal, s.tolerance
-            what = (f"journal bearing {j.diameter * 1e3:g} x {j.length * 1e3:g} mm, radial "
-                    f"clearance {j.clearance * 1e6:g} um"
+            what = (f"journal bearing {j.diameter * 1e3:g} x {j.length * 1e3:g} mm{bore_words(j)}, "
+                    f"radial clearance {j.clearance * 1e6:g} um"
                     + _range(t and t.clearance, 1e6, "g") + f", oil {_oil(j)}"
                     + _range(t and t.viscosity, 1e3, ".3g")
                     + ": its film's coefficients against speed in the rotordynamics section")
