@@ -67,6 +67,7 @@ TABLES = {
     "notch-factors": ("verification: Notch stresses against NGSolve", ["notch_factors.py"]),
     "pad-bearings": ("verification: Bearings of pads", ["pad_bearings.py"]),
     "pad-cost": ("performance: Tilting pads", ["pad_cost.py", "3"]),
+    "pad-whirl": ("journal-bearing: The pads in the rotor model", ["pad_whirl.py"]),
 }
 
 

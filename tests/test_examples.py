@@ -231,9 +231,12 @@ def test_the_compressor_on_tilting_pads_is_stable_where_plain_journals_whip(tmp_
     c = json.loads((tmp_path / "pads.json").read_text())["campbell"]
     for f in c["journal_bearings"]:
         direct = max(f["kxx_n_per_m"], f["kyy_n_per_m"])
-        assert abs(f["kxy_n_per_m"]) < 1e-6 * direct and abs(f["kyx_n_per_m"]) < 1e-6 * direct
+        # zero to the film table's interpolation (tests/test_pads.py)
+        assert abs(f["kxy_n_per_m"]) < 3e-4 * direct and abs(f["kyx_n_per_m"]) < 3e-4 * direct
         assert f["lifted"] and abs(f["attitude_deg"]) < 1e-6
     assert not c["instability_onsets"] and c["stability"]["log_dec"] > 0.1
+    # the judged mode on the pads' own tilts, and as the reduced coefficients would read it
+    assert c["stability"]["log_dec_with_pads_reduced_at_spin"] > 0.1
     plain = scene.read_text().replace('bore = "tilting_pad"', 'bore = "plain"')
     plain = "\n".join(line for line in plain.splitlines() if not line.startswith(
         ("pads =", "pad_arc_deg", "preload =", "pivot_offset", "load_between_pads")))

@@ -201,7 +201,9 @@ def test_a_rotor_on_tilting_pads_gets_the_pads_reduced_coefficients():
     b = pads_scene.supports[0].journal
     on = journal.operating(b, omega)
     plain = journal.operating(plain_scene.supports[0].journal, omega)
-    assert abs(on.K[0, 1]) < 1e-6 * abs(on.K).max() and abs(on.K[1, 0]) < 1e-6 * abs(on.K).max()
+    # zero to the table's interpolation: the film on the tilts is read between the table's
+    # rows and reduced there (each row's own reduction has it to 1e-13)
+    assert abs(on.K[0, 1]) < 3e-4 * abs(on.K).max() and abs(on.K[1, 0]) < 3e-4 * abs(on.K).max()
     assert abs(plain.K[0, 1]) > 0.3 * abs(plain.K[1, 1])
     # the table's reading against the film solved at that very load
     spec = pads.bore_of(b.bore, b.ratio)

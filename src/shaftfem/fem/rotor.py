@@ -29,6 +29,13 @@ Bearings: K_b(Omega) and C_b(Omega) act on each seat's mean radial motion
 (q_x, q_y) = (c_x . u, c_y . u) (fem.supports); the standstill modes already hold
 kxx(0) and kyy(0), dK_b is the rest. A seal's added mass M_b there makes the mass
 I + beta^T M_b beta (turning with the shaft, M_b (q'' + 2 Omega S q' - Omega^2 q)).
+
+Tilting pads (stationary frame): each pad's tilt phi is a coordinate of its own, s =
+R phi (m), and the film's K, C act on (q_x, q_y, s_1, ...). The pads' equations,
+m_p s'' + K_pj u + K_pp s + C_pj u' + C_pp s' = 0 (m_p = I_p / R^2; zero: massless, a
+first-order state), close the rotor's; condensed at a whirl w they give back the 2x2
+Z_jj - Z_jp Z_pp^-1 Z_pj of Z = K + i w C, which `reduced` uses at w = Omega for every
+whirl (the synchronously reduced coefficients other tools give).
 """
 
 from __future__ import annotations
@@ -92,10 +99,20 @@ class RotorModel:
     # settle there (those reported)
     wide: tuple[float, ...] = ()
     wide_forms: int = 0
+    # tilting pads' bearings take their synchronously reduced 2x2 (see the module's
+    # equation), not their tilts as coordinates
+    reduced: bool = False
 
     @property
     def size(self) -> int:
         return self.omega2.size
+
+    @property
+    def tilting(self) -> bool:
+        """Whether the pads' tilts are coordinates of this model: a bearing of tilting
+        pads, in the stationary frame, not `reduced`."""
+        return (self.frame == "stationary" and not self.reduced
+                and any(b.coefficients.pads is not None for b in self.bearings))
 
     def truncated(self, n: int) -> RotorModel:
         """The same rotor on its first n modes and, where it has residual modes, the
@@ -129,15 +146,20 @@ class RotorModel:
                        residual=P.shape[1], static=static,
                        weight=None if self.weight is None else self.weight @ V)
 
-    def matrices(self, omega: float) -> tuple[np.ndarray, np.ndarray]:
+    def matrices(self, omega: float, pads: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """(D, K) of M q'' + D q' + K q = 0 at the spin omega (rad/s); in the rotating
         frame their mean over a turn, the bearings' isotropic parts (what differs along
-        x and y turns at 2 omega there: periodic_parts)."""
+        x and y turns at 2 omega there: periodic_parts). Tilting pads' bearings give
+        their synchronously reduced 2x2, or with `pads` their film's block on the seat
+        alone (what `augmented` couples to the tilts)."""
         D = omega * self.G
         K = np.diag(self.omega2) + omega**2 * self.K2
         for b in self.bearings:
-            Kb = np.array(b.coefficients.stiffness(omega))
-            Cb = np.array(b.coefficients.damping(omega))
+            if pads and b.coefficients.pads is not None:
+                Kb, Cb = (A[:2, :2] for A in b.coefficients.pad_film(omega))
+            else:
+                Kb = np.array(b.coefficients.stiffness(omega))
+                Cb = np.array(b.coefficients.damping(omega))
             if self.frame == "rotating" and omega != 0.0:   # at rest the frames are one
                 Kb, Cb = isotropic_part(Kb), isotropic_part(Cb)
             D = D + b.beta.T @ Cb @ b.beta
@@ -182,6 +204,52 @@ class RotorModel:
             Kc += B.T @ (kc + omega * cc @ S2) @ B
             Ks += B.T @ (ks + omega * cs @ S2) @ B
         return Dc, Ds, Kc, Ks
+
+    def augmented(self, omega: float) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                np.ndarray]:
+        """(M, D, K) on the N modal coordinates and then every loaded tilting pad's s =
+        R phi (the module's equation), and which coordinates have no mass (massless
+        pads: first-order). Without tilting pads, the N-coordinate model. A pad whose
+        film carries nothing at this speed floats, and is left out."""
+        if not self.tilting:
+            D, K = self.matrices(omega)
+            return self.mass(omega), D, K, np.zeros(self.size, dtype=bool)
+        D, K = self.matrices(omega, pads=True)
+        M = self.mass(omega)
+        blocks = []
+        for b in self.bearings:
+            if b.coefficients.pads is None:
+                continue
+            Kf, Cf = b.coefficients.pad_film(omega)
+            scale = max(float(np.abs(Kf).max()), 1e-300)
+            loaded = [i for i in range(2, Kf.shape[0]) if np.abs(Kf[i]).max() > 1e-12 * scale]
+            inertia = b.coefficients.pads.inertia or (0.0,) * (Kf.shape[0] - 2)
+            blocks.append((b.beta, Kf, Cf, loaded, [inertia[i - 2] for i in loaded]))
+        n, P = self.size, sum(len(x[3]) for x in blocks)
+        Ma, Da, Ka = (np.zeros((n + P, n + P)) for _ in range(3))
+        Ma[:n, :n], Da[:n, :n], Ka[:n, :n] = M, D, K
+        at = n
+        for beta, Kf, Cf, loaded, inertia in blocks:
+            p = np.arange(at, at + len(loaded))
+            for A, Af in ((Ka, Kf), (Da, Cf)):
+                A[:n, p] = beta.T @ Af[:2, loaded]
+                A[p, :n] = Af[loaded, :2] @ beta
+                A[np.ix_(p, p)] = Af[np.ix_(loaded, loaded)]
+            Ma[p, p] = inertia
+            at += len(loaded)
+        massless = np.zeros(n + P, dtype=bool)
+        massless[n:] = np.diag(Ma)[n:] == 0.0
+        return Ma, Da, Ka, massless
+
+    def dynamic(self, omega: float, w: float) -> np.ndarray:
+        """The dynamic stiffness K - w^2 M + i w D (N, N) at the spin omega for a
+        motion at w (rad/s), the pads' tilts condensed out exactly at w."""
+        M, D, K, _ = self.augmented(omega)
+        Z = K - w * w * M + 1j * w * D
+        n = self.size
+        if Z.shape[0] == n:
+            return Z
+        return Z[:n, :n] - Z[:n, n:] @ np.linalg.solve(Z[n:, n:], Z[n:, :n])
 
     def mass(self, omega: float) -> np.ndarray:
         """M of M q'' + D q' + K q = 0 at the spin omega (rad/s): the identity on the
@@ -242,12 +310,15 @@ def roots(model: RotorModel, omega: float) -> Roots:
     frequency first. Real ones (overdamped, or a divergence) are left out, the fastest
     growth among them kept (a shaft stiffer across one diameter than across the other
     diverges in the frame that turns with it between its pair's frequencies)."""
-    D, K = model.matrices(omega)
     n = model.size
-    if any(b.coefficients.has_mass for b in model.bearings):
-        X = np.linalg.solve(model.mass(omega), np.hstack([D, K]))
-        D, K = X[:, :n], X[:, n:]
-    A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -D]])
+    if model.tilting:
+        A = state_matrix(*model.augmented(omega))
+    else:
+        D, K = model.matrices(omega)
+        if any(b.coefficients.has_mass for b in model.bearings):
+            X = np.linalg.solve(model.mass(omega), np.hstack([D, K]))
+            D, K = X[:, :n], X[:, n:]
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -D]])
     lam, V = np.linalg.eig(A)
     scale = math.sqrt(max(float(np.max(np.abs(model.omega2))), 1.0))
     still = (np.abs(lam.imag) <= 1e-9 * scale) | still_seen(model, omega, lam, V[:n])
@@ -257,6 +328,29 @@ def roots(model: RotorModel, omega: float) -> Roots:
     order = np.argsort(lam.imag)
     return Roots(lam=lam[order], y=V[:, order],
                  divergence=divergence if divergence > 1e-9 * scale else 0.0)
+
+
+def state_matrix(M: np.ndarray, D: np.ndarray, K: np.ndarray, massless: np.ndarray
+                 ) -> np.ndarray:
+    """The first-order form z' = A z of M s'' + D s' + K s = 0 where some coordinates
+    (b, `massless`) have no mass: z = (s_a, s_a', s_b), their rows D_b. s' + K_b. s = 0
+    solved for s_b' (a massless pad's tilt follows its film's damping). The first
+    entries of z are the first coordinates of s."""
+    a, b = np.flatnonzero(~massless), np.flatnonzero(massless)
+    if b.size == 0:
+        X = np.linalg.solve(M, np.hstack([D, K]))
+        return np.block([[np.zeros_like(M), np.eye(a.size)], [-X[:, a.size:], -X[:, :a.size]]])
+    Kaa, Kab, Kba, Kbb = K[np.ix_(a, a)], K[np.ix_(a, b)], K[np.ix_(b, a)], K[np.ix_(b, b)]
+    Daa, Dab, Dba, Dbb = D[np.ix_(a, a)], D[np.ix_(a, b)], D[np.ix_(b, a)], D[np.ix_(b, b)]
+    # s_b' = -Dbb^-1 (Dba s_a' + Kba s_a + Kbb s_b)
+    X = np.linalg.solve(Dbb, np.hstack([Kba, Dba, Kbb]))
+    Sa, Va, Sb = X[:, :a.size], X[:, a.size:2 * a.size], X[:, 2 * a.size:]
+    R = np.linalg.solve(M[np.ix_(a, a)], np.hstack([-Kaa + Dab @ Sa, -Daa + Dab @ Va,
+                                                    -Kab + Dab @ Sb]))
+    na, nb = a.size, b.size
+    return np.block([[np.zeros((na, na)), np.eye(na), np.zeros((na, nb))],
+                     [R[:, :na], R[:, na:2 * na], R[:, 2 * na:]],
+                     [-Sa, -Va, -Sb]])
 
 
 def still_seen(model: RotorModel, omega: float, lam: np.ndarray, y: np.ndarray
@@ -711,7 +805,6 @@ def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.nd
     Stationary frame: the force m e omega^2 (cos(omega t + phase), sin(...)) is
     U omega^2 (1, -i) exp(i omega t), solved from (K - omega^2 I + i omega D) y = F.
     Rotating frame: it stands still there, omega^2 (Re U, Im U), and K y = F."""
-    D, K = model.matrices(omega)
     F = np.zeros(model.size, dtype=complex)
     for beta, U in forces:
         if model.frame == "stationary":
@@ -719,8 +812,8 @@ def unbalance_response(model: RotorModel, omega: float, forces: list[tuple[np.nd
         else:
             F += omega**2 * (U.real * beta[0] + U.imag * beta[1])
     if model.frame == "stationary":
-        return np.linalg.solve(K - omega**2 * model.mass(omega) + 1j * omega * D, F)
-    return np.linalg.solve(K.astype(complex), F)
+        return np.linalg.solve(model.dynamic(omega, omega), F)
+    return np.linalg.solve(model.matrices(omega)[1].astype(complex), F)
 
 
 def orbit(model: RotorModel, beta: np.ndarray, y: np.ndarray

@@ -322,6 +322,10 @@ class Stability:
     passed: tuple[tuple[int, str, float, float], ...] = ()
     # the modes the required log decrement applies to: "forward", "first_forward", "all"
     modes: str = "forward"
+    # on tilting pads (their tilts coordinates of the model): the same mode's log
+    # decrement at that speed with the pads' synchronously reduced 2x2 coefficients, as
+    # tools that reduce them give it (None: no tilting pads)
+    reduced_log_dec: float | None = None
 
     @property
     def applies_text(self) -> str:
@@ -340,6 +344,7 @@ class Stability:
                 "log_dec": self.log_dec, "required_min_log_dec": self.required,
                 "judged": self.judged, "growing": self.growing, "ok": self.ok,
                 "required_of": self.modes,
+                "log_dec_with_pads_reduced_at_spin": self.reduced_log_dec,
                 "others_failing": [{"curve": n, "speed_rpm": sp, "frequency_hz": f,
                                     "whirl": w, "log_dec": d}
                                    for n, sp, f, w, d in self.others],

@@ -625,6 +625,10 @@ def campbell_text(c) -> str:
                      f"{st.frequency_hz:.2f} Hz, at {st.speed_rpm:,.0f} r/min)"
                      + ("" if not st.judged else f", required above {st.required:g} of "
                         f"{st.applies_text}"))
+        if st.reduced_log_dec is not None:
+            lines.append(f"  on the tilting pads' own tilts; with their coefficients reduced "
+                         f"at the spin (as tools that reduce the pads give them) it would "
+                         f"read {st.reduced_log_dec:.3g}")
     lines += [f"UNSTABLE {z.span_text}: {zone_causes(c, z)}; {z.growth_text}"
               for z in c.zones]
     if c.zones and not c.zones[-1].open:

@@ -38,7 +38,14 @@ from typing import Any
 
 import numpy as np
 
-from shaftfem.scene.model import JOURNAL_RATIOS, BearingCoefficients, JournalBearing, Rotor
+from shaftfem.scene.model import (
+    JOURNAL_RATIOS,
+    BearingCoefficients,
+    JournalBearing,
+    Rotor,
+    TiltingFilm,
+    condensed,
+)
 
 CAVITATION = ("reynolds", "gumbel")
 # The lengths over diameter the film is solved for (outside them a bearing is not plain).
@@ -313,6 +320,10 @@ class FilmTable:
     friction: np.ndarray | None = None
     inflow: np.ndarray | None = None
     side_flow: np.ndarray | None = None
+    # a bore of tilting pads: Kbar, Cbar on the journal and each tilt (n, 2 + P, 2 + P;
+    # parts.pads.film_table), the rows the synchronously reduced ones are condensed from
+    pad_stiffness: np.ndarray | None = None
+    pad_damping: np.ndarray | None = None
 
     @property
     def films(self) -> np.ndarray:
@@ -328,6 +339,8 @@ SETTINGS = {"version": 2, "eccentricities": list(ECCENTRICITIES), "theta_cells":
 TABLE_FIELDS = ("eccentricity", "sommerfeld", "attitude", "force", "stiffness", "damping")
 # a plain film's table also keeps what heats its oil
 HEAT_FIELDS = ("friction", "inflow", "side_flow")
+# a bore of tilting pads also keeps its film on the tilts
+PAD_FIELDS = ("pad_stiffness", "pad_damping")
 
 
 def remember(t: FilmTable) -> None:
@@ -377,6 +390,9 @@ class Operating:
     K: np.ndarray
     C: np.ndarray
     beyond: bool = False
+    # a bore of tilting pads: K (N/m), C (N s/m) on (x, y, R phi_1, ...) (FilmTable)
+    pad_K: np.ndarray | None = None
+    pad_C: np.ndarray | None = None
 
 
 def operating(b: JournalBearing, omega: float) -> Operating:
@@ -388,23 +404,41 @@ def operating(b: JournalBearing, omega: float) -> Operating:
     S = b.sommerfeld(max(omega, 1e-12))
     beyond = t.sommerfeld[-1] > S
     eps = _eccentricity(t, S)
+    Kt, Ct = t.pad_stiffness, t.pad_damping
+    pads = Kt is not None and Ct is not None
+    n = Kt.shape[1] if Kt is not None else 0
     if t.sommerfeld[0] < S:   # lighter than the first row: the film's linear limit
         phi, Fbar = t.attitude[0], t.force[0] * eps / t.eccentricity[0]
         Kbar, Cbar = t.stiffness[0], t.damping[0]
         film = 1 - eps if t.thinnest is None else float(t.films[0])
+        if Kt is not None and Ct is not None:
+            Kp, Cp = Kt[0], Ct[0]
     else:
-        at = PchipInterpolator(t.eccentricity, np.column_stack([
-            t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4),
-            t.films]))(eps)
+        columns = [t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4),
+                   t.films]
+        if Kt is not None and Ct is not None:
+            columns += [Kt.reshape(-1, n * n), Ct.reshape(-1, n * n)]
+        at = PchipInterpolator(t.eccentricity, np.column_stack(columns))(eps)
         phi, Fbar = float(at[0]), float(at[1])
         Kbar, Cbar = at[2:6].reshape(2, 2), at[6:10].reshape(2, 2)
         film = float(at[10])
+        if pads:
+            Kp, Cp = at[11:11 + n * n].reshape(n, n), at[11 + n * n:].reshape(n, n)
     Q = rotation(math.atan2(b.direction[1], b.direction[0]) + math.pi / 2)
     unit = b.load / (b.clearance * Fbar)
+    w = max(omega, 1e-12)
+    K, C = unit * (Q @ Kbar @ Q.T), unit / w * (Q @ Cbar @ Q.T)
+    pad_K = pad_C = None
+    if pads:   # the tilts are scalars: only the journal's block turns
+        T = np.eye(n)
+        T[:2, :2] = Q
+        pad_K, pad_C = unit * (T @ Kp @ T.T), unit / w * (T @ Cp @ T.T)
+        # reduced from the film read here, so that the two agree exactly at this speed
+        Z = condensed(pad_K + 1j * w * pad_C)
+        K, C = Z.real, Z.imag / w
     return Operating(speed=omega, eccentricity=float(eps), attitude=float(phi),
-                     min_film=b.clearance * film, sommerfeld=S,
-                     K=unit * (Q @ Kbar @ Q.T), C=unit / max(omega, 1e-12) * (Q @ Cbar @ Q.T),
-                     beyond=bool(beyond))
+                     min_film=b.clearance * film, sommerfeld=S, K=K, C=C,
+                     beyond=bool(beyond), pad_K=pad_K, pad_C=pad_C)
 
 
 def _eccentricity(t: FilmTable, S: float) -> float:
@@ -455,6 +489,9 @@ class SpeedTable:
     K: np.ndarray
     C: np.ndarray
     lift: float
+    # a bore of tilting pads: on the journal and its tilts (n, 2 + P, 2 + P; Operating)
+    pad_K: np.ndarray | None = None
+    pad_C: np.ndarray | None = None
 
 
 def table_end(b: JournalBearing) -> float:
@@ -501,8 +538,11 @@ def speed_table(b: JournalBearing, top: float, points: int = SPEED_POINTS) -> Sp
                          f"speed {top * 60 / (2 * math.pi):,.0f} r/min")
     speeds = np.geomspace(lift, top, points)
     ops = [operating(b, w) for w in speeds]
+    pads = ops[0].pad_K is not None
     return SpeedTable(speeds=speeds, K=np.array([o.K for o in ops]),
-                      C=np.array([o.C for o in ops]), lift=float(lift))
+                      C=np.array([o.C for o in ops]), lift=float(lift),
+                      pad_K=np.array([o.pad_K for o in ops]) if pads else None,
+                      pad_C=np.array([o.pad_C for o in ops]) if pads else None)
 
 
 def with_oil(b: JournalBearing) -> JournalBearing:
@@ -536,4 +576,13 @@ def coefficients(b: JournalBearing, rotor: Rotor) -> BearingCoefficients:
         speeds=tuple(float(w) for w in speeds.speeds), kxx=column(K, 0, 0),
         kxy=column(K, 0, 1), kyx=column(K, 1, 0), kyy=column(K, 1, 1), cxx=column(C, 0, 0),
         cxy=column(C, 0, 1), cyx=column(C, 1, 0), cyy=column(C, 1, 1),
-        reference=max(low, speeds.lift))
+        reference=max(low, speeds.lift), pads=_pad_film(b, speeds))
+
+
+def _pad_film(b: JournalBearing, speeds: SpeedTable) -> TiltingFilm | None:
+    """A bore of tilting pads' film on its tilts for the rotor model (massless pads)."""
+    if speeds.pad_K is None or speeds.pad_C is None:
+        return None
+    return TiltingFilm(size=speeds.pad_K.shape[1],
+                   stiffness=tuple(float(v) for v in speeds.pad_K.ravel()),
+                   damping=tuple(float(v) for v in speeds.pad_C.ravel()))

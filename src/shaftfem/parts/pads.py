@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from shaftfem.parts.journal import _pressure
+from shaftfem.scene.model import condensed
 
 # the film's cells around a pad, per radian of its arc, and across its half length
 CELLS_PER_RADIAN = 50
@@ -320,20 +321,6 @@ def equilibrium(bore: Bore, load: np.ndarray, tol: float = 1e-10, steps: int = 6
     raise ValueError(f"the film's equilibrium did not settle in {steps} steps")
 
 
-def condensed(Z: np.ndarray) -> np.ndarray:
-    """The journal's 2x2 block of a film matrix (stiffness, or a dynamic stiffness
-    K + i w C - w^2 M at a whirl) with the pads' coordinates condensed out: Z_jj - Z_jp
-    Z_pp^-1 Z_pj."""
-    # a pad whose film carries nothing (the journal pulled away from it: its film
-    # diverges all over, whatever its tilt) floats: it adds nothing, and is left out
-    loaded = [i for i in range(2, Z.shape[0])
-              if np.abs(Z[i]).max() > 1e-12 * max(float(np.abs(Z).max()), 1e-300)]
-    if not loaded:
-        return Z[:2, :2]
-    p = np.array(loaded)
-    return Z[:2, :2] - Z[:2, p] @ np.linalg.solve(Z[np.ix_(p, p)], Z[p, :2])
-
-
 def sommerfeld_load(ratio: float, sommerfeld: float) -> float:
     """The nondimensional load |Fbar| = W c^2 / (mu omega R^4) of a bearing of L / D =
     ratio at Sommerfeld's S = mu N L D / W (R / c)^2 (N in rev/s): 2 ratio / (pi S)."""
@@ -364,7 +351,7 @@ def bore_of(spec, ratio: float) -> Bore:
 SOMMERFELD = tuple(np.geomspace(10.0, 0.005, 28).round(6))
 THINNEST = 0.02
 # what a bore's film table depends on besides its L / D and bore: a cache's key
-SETTINGS = {"version": 1, "pads": True, "cells_per_radian": CELLS_PER_RADIAN,
+SETTINGS = {"version": 2, "pads": True, "cells_per_radian": CELLS_PER_RADIAN,
             "z_cells": Z_CELLS, "sommerfeld": list(SOMMERFELD), "thinnest": THINNEST}
 
 
@@ -372,7 +359,10 @@ def film_table(spec, ratio: float):
     """A bore's film over SOMMERFELD, in the frame where the load on the journal points
     along -y (parts.journal.FilmTable): each row's eccentricity and attitude, |Fbar|,
     and the synchronously reduced Kbar, Cbar (a tilting pad's tilt condensed out at a
-    whirl at the speed of the spin, its pad massless), and the thinnest film."""
+    whirl at the speed of the spin, its pad massless), and the thinnest film; a bore of
+    tilting pads also its Kbar, Cbar on the journal and every tilt (n, 2 + pads, 2 +
+    pads; a tilt's coordinate is its angle times R / c_b, as the journal's are over
+    c_b), for the rotor model to keep the tilts as its own coordinates."""
     from shaftfem.parts.journal import FilmTable
 
     bore = bore_of(spec, ratio)
@@ -389,10 +379,13 @@ def film_table(spec, ratio: float):
             break
         Z = condensed(state.stiffness + 1j * state.damping)
         X, Y = state.q[:2]
-        rows.append((math.hypot(X, Y), S, math.atan2(X, -Y), F, Z.real, Z.imag, h))
+        rows.append((math.hypot(X, Y), S, math.atan2(X, -Y), F, Z.real, Z.imag, h,
+                     state.stiffness, state.damping))
     if len(rows) < 4:
         raise ValueError(f"the {spec.kind} bore's film carries too little load to tabulate")
     col: list[np.ndarray] = [np.array(c) for c in zip(*rows)]
     return FilmTable(ratio=ratio, cavitation="reynolds", eccentricity=col[0],
                      sommerfeld=col[1], attitude=col[2], force=col[3], stiffness=col[4],
-                     damping=col[5], bore=spec, thinnest=col[6])
+                     damping=col[5], bore=spec, thinnest=col[6],
+                     pad_stiffness=col[7] if bore.tilts else None,
+                     pad_damping=col[8] if bore.tilts else None)

@@ -234,6 +234,34 @@ class ModeRequest:
     max_frequency: float | None = None
 
 
+def condensed(Z):
+    """The journal's 2x2 block of a film matrix on (x, y, tilts...) (stiffness, or a
+    dynamic stiffness K + i w C - w^2 M at a whirl) with the tilts condensed out: Z_jj -
+    Z_jp Z_pp^-1 Z_pj."""
+    import numpy as np
+
+    # a pad whose film carries nothing (the journal pulled away from it: its film
+    # diverges all over, whatever its tilt) floats: it adds nothing, and is left out
+    loaded = [i for i in range(2, Z.shape[0])
+              if np.abs(Z[i]).max() > 1e-12 * max(float(np.abs(Z).max()), 1e-300)]
+    if not loaded:
+        return Z[:2, :2]
+    p = np.array(loaded)
+    return Z[:2, :2] - Z[:2, p] @ np.linalg.solve(Z[np.ix_(p, p)], Z[p, :2])
+
+
+@dataclass(frozen=True)
+class TiltingFilm:
+    """A tilting-pad bearing's film on the seat's (q_x, q_y) and its pads' tilts, per
+    speed of its BearingCoefficients: K (N/m) and C (N s/m), (speeds, size, size)
+    flattened, and each pad's inertia about its pivot over R^2 (kg; zero: massless)."""
+
+    size: int
+    stiffness: tuple[float, ...]
+    damping: tuple[float, ...]
+    inertia: tuple[float, ...] = ()
+
+
 @dataclass(frozen=True)
 class BearingCoefficients:
     """A rotor bearing's or seal's stiffness (N/m), damping (N s/m) and added mass (kg)
@@ -256,6 +284,9 @@ class BearingCoefficients:
     reference: float = 0.0   # rad/s: the speed whose kxx, kyy the standstill modes hold
     mxx: tuple[float, ...] = ()
     myy: tuple[float, ...] = ()
+    # a bearing of tilting pads: its film on the seat and on each pad's tilt, per speed
+    # (None: the 2x2 coefficients are the whole bearing)
+    pads: TiltingFilm | None = None
 
     @functools.cached_property
     def _table(self):
@@ -279,18 +310,62 @@ class BearingCoefficients:
 
     def stiffness(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
         """[[kxx, kxy], [kyx, kyy]] at the speed omega (rad/s), N/m."""
+        if self.pads is not None:
+            return self._synchronous(omega)[0]
         kxx, kxy, kyx, kyy = self._values(omega)[:4]
         return ((kxx, kxy), (kyx, kyy))
 
     def damping(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
         """[[cxx, cxy], [cyx, cyy]] at the speed omega (rad/s), N s/m."""
+        if self.pads is not None:
+            return self._synchronous(omega)[1]
         cxx, cxy, cyx, cyy = self._values(omega)[4:8]
         return ((cxx, cxy), (cyx, cyy))
+
+    @functools.cached_property
+    def _reduced(self) -> dict:
+        return {}
+
+    def _synchronous(self, omega: float):
+        """A tilting pads' bearing's 2x2 (K, C) at the speed omega: its film on the seat
+        and the tilts (pad_film) with the tilts condensed out at a whirl at omega (its
+        table's kxx... are these at its speeds)."""
+        if omega not in self._reduced:
+            K, C = self.pad_film(omega)
+            w = max(omega, 1e-12)
+            Z = condensed(K + 1j * w * C)
+            self._reduced[omega] = (tuple(map(tuple, Z.real.tolist())),
+                                    tuple(map(tuple, (Z.imag / w).tolist())))
+        return self._reduced[omega]
 
     def mass(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
         """[[mxx, 0], [0, myy]] at the speed omega (rad/s), kg."""
         mxx, myy = self._values(omega)[8:]
         return ((mxx, 0.0), (0.0, myy))
+
+    @functools.cached_property
+    def _pad_arrays(self):
+        """The speeds and the pads' film (n, size, size) as arrays: read at every speed."""
+        import numpy as np
+
+        assert self.pads is not None
+        n = self.pads.size
+        return (np.asarray(self.speeds, dtype=float),
+                np.asarray(self.pads.stiffness).reshape(-1, n, n),
+                np.asarray(self.pads.damping).reshape(-1, n, n))
+
+    def pad_film(self, omega: float):
+        """The bearing's (K, C) on (q_x, q_y, R phi_1, ..., R phi_P) at the speed omega
+        (rad/s): N/m and N s/m, each tilt phi (rad) as the motion R phi it gives the pad's
+        surface; linear between speeds as the 2x2 ones. None without pads."""
+        if self.pads is None:
+            return None
+        speeds, K, C = self._pad_arrays
+        if speeds.size <= 1:
+            return K[0], C[0]
+        i = min(max(int(speeds.searchsorted(omega)), 1), speeds.size - 1)
+        t = min(max((omega - speeds[i - 1]) / (speeds[i] - speeds[i - 1]), 0.0), 1.0)
+        return (1 - t) * K[i - 1] + t * K[i], (1 - t) * C[i - 1] + t * C[i]
 
     @property
     def has_mass(self) -> bool:

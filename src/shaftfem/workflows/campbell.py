@@ -474,6 +474,20 @@ def least_damped(scene: Scene, curves: list[Curve], lift: float) -> Stability | 
                      modes=rotor.log_dec_modes)
 
 
+def reduced_reading(model: RotorModel, st: Stability | None) -> Stability | None:
+    """The judged mode's log decrement read again with the tilting pads' synchronously
+    reduced coefficients (the mode of the same whirl nearest in frequency): how far
+    reducing the pads at the spin, as tools that do not keep their tilts do, moves it."""
+    if st is None or not model.tilting:
+        return st
+    whirls = [w for w in whirl_at(replace(model, reduced=True), st.speed_rpm * RPM,
+                                  max(2 * model.size, 1)) if w.whirl == st.whirl]
+    if not whirls:
+        return st
+    near = min(whirls, key=lambda w: abs(w.frequency_hz - st.frequency_hz))
+    return replace(st, reduced_log_dec=near.log_dec)
+
+
 def divergent_bands(model: RotorModel, speeds: np.ndarray
                     ) -> list[tuple[float, float, float, float]]:
     """The speed bands where a root grows without oscillating: their edges (r/min),
@@ -1048,7 +1062,7 @@ def campbell_of(scene: Scene, result: ModalResult, model: RotorModel, why: str,
         notes.append(f"{len(shell)} crossing(s) below the journals' lift-off ({lift:,.0f} "
                      "r/min) left out: the journal runs on its shell there, and the film's "
                      "coefficients are placeholders")
-    stability = least_damped(scene, curves, lift)
+    stability = reduced_reading(model, least_damped(scene, curves, lift))
     unstable = onsets(model, curves)
     # a root stands at zero frequency in the turning frame where the 1x line crosses it:
     # between two such crossings (the soft and the stiff diameter's critical speeds of a

@@ -95,6 +95,8 @@ def film_table(bearing: JournalBearing) -> None:
 
     ratio, cavitation, bore, path = _film_path(bearing)
     names = journal.TABLE_FIELDS + (journal.HEAT_FIELDS if bore is None else ("thinnest",))
+    if bore is not None and bore.kind == "tilting_pad":
+        names += journal.PAD_FIELDS
     ahead = _AHEAD.pop(str(path), None)
     if ahead is None and path.exists():
         fields, why = load_arrays(path, names)

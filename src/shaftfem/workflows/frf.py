@@ -52,11 +52,8 @@ def run_frequency_response(scene: Scene, force_at: float, probe_at: float,
             for j, f in enumerate(frequencies_hz):
                 H[i, j] = stationary_receptance(model, n * RPM, 2 * math.pi * f, bf, bp)
             continue
-        D, K = model.matrices(n * RPM)
-        M = model.mass(n * RPM)
         for j, f in enumerate(frequencies_hz):
-            w = 2 * math.pi * f
-            H[i, j] = bp @ np.linalg.solve(K - w * w * M + 1j * w * D, bf.T)
+            H[i, j] = bp @ np.linalg.solve(model.dynamic(n * RPM, 2 * math.pi * f), bf.T)
     return Receptance(scene=scene, force_at=force_at, probe_at=probe_at,
                              frequencies_hz=np.asarray(frequencies_hz, dtype=float),
                              speeds_rpm=np.asarray(speeds_rpm, dtype=float), H=H)
