@@ -68,6 +68,7 @@ TABLES = {
     "pad-bearings": ("verification: Bearings of pads", ["pad_bearings.py"]),
     "pad-cost": ("performance: Tilting pads", ["pad_cost.py", "3"]),
     "pad-whirl": ("journal-bearing: The pads in the rotor model", ["pad_whirl.py"]),
+    "pad-heat": ("journal-bearing: The film's heating", ["pad_heat.py"]),
 }
 
 

@@ -159,10 +159,13 @@ class PadState:
 
 
 def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = None,
-              cells_per_radian: int | None = None, z_cells: int | None = None) -> PadState:
+              cells_per_radian: int | None = None, z_cells: int | None = None,
+              viscosity: np.ndarray | None = None) -> PadState:
     """The pad's film with its coordinates q = (X, Y[, tilt]) (module docstring); the
     whole length's forces (twice the half film's). `guess`: where a nearby state's film
-    ruptured, to start the cavitation's active set from."""
+    ruptured, to start the cavitation's active set from; `viscosity`: the film's on the
+    pad's nodes over the one P is scaled with (a heated film: parts.pad_heat; None:
+    isoviscous), div(H^3 / mu grad P) = 6 dH/dtheta + 12 dH/dtau."""
     from scipy.sparse.linalg import splu
     from skfem import BilinearForm, LinearForm
 
@@ -183,7 +186,8 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     def weighted(v, w):
         return w.k * v
 
-    A = flow.assemble(f.basis, k=H ** 3).tocsr()
+    fluidity = 1.0 if viscosity is None else 1.0 / f.basis.interpolate(viscosity)
+    A = flow.assemble(f.basis, k=H ** 3 * fluidity).tocsr()
     b = weighted.assemble(f.basis, k=-6.0 * dH)
     P, live = _pressure(A, b, f.free, "reynolds", guess)
     # the modes' weights int g v (force, squeeze), int dg v (Couette) and dA/dq_j
@@ -192,7 +196,7 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     n = len(modes)
     rhs = np.zeros((P.size, 2 * n))
     for j, (g, _) in enumerate(modes):
-        dA = flow.assemble(f.basis, k=3.0 * H ** 2 * g)
+        dA = flow.assemble(f.basis, k=3.0 * H ** 2 * g * fluidity)
         rhs[:, j] = -6.0 * dgv[j] - dA @ P
         rhs[:, n + j] = -12.0 * gv[j]
     dP = np.zeros_like(rhs)
@@ -239,7 +243,8 @@ TOUCH = 1e-3
 
 
 def settle(pad: Pad, ratio: float, X: float, Y: float, tilt: float,
-           guess: np.ndarray | None, tol: float) -> tuple[float, PadState]:
+           guess: np.ndarray | None, tol: float, viscosity: np.ndarray | None = None
+           ) -> tuple[float, PadState]:
     """The tilt about its pivot at which the pad's film has no moment about it (the
     journal at X, Y): Newton's steps on the exact dQ/dtilt, kept inside a bracket
     [Q > 0, Q < 0] (a larger tilt closes the trailing edge, which moves the pressure's
@@ -251,7 +256,7 @@ def settle(pad: Pad, ratio: float, X: float, Y: float, tilt: float,
     lo = float(np.max(room[s < 0] / s[s < 0]))
     tilt = float(np.clip(tilt, lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo)))
     for _ in range(100):
-        state = pad_state(pad, ratio, np.array([X, Y, tilt]), guess)
+        state = pad_state(pad, ratio, np.array([X, Y, tilt]), guess, viscosity=viscosity)
         Q, K = float(state.force[2]), float(state.stiffness[2, 2])
         scale = max(float(np.abs(state.force[:2]).max()), 1e-300)
         if abs(Q) <= tol * scale:
@@ -268,14 +273,16 @@ def settle(pad: Pad, ratio: float, X: float, Y: float, tilt: float,
 
 
 def equilibrium(bore: Bore, load: np.ndarray, tol: float = 1e-10, steps: int = 60,
-                start: BoreState | None = None) -> BoreState:
+                start: BoreState | None = None, viscosity: tuple | None = None) -> BoreState:
     """The journal's place (and the pads' tilts) where the film carries the load:
     Q_X, Q_Y = -load (the nondimensional load on the journal, W c_b^2 / (mu omega R^4)
     along its direction) and every tilt's moment zero (from `start`, a nearby load's
     state, if given). At each place the journal takes,
     each tilting pad settles first (settle); the journal then moves by Newton's steps
     on the film's stiffness with the pads settled (each pad's tilt condensed out),
-    shortened while they do not lower the residual or would close the film."""
+    shortened while they do not lower the residual or would close the film. `viscosity`:
+    each pad's film viscosity on its nodes (pad_state), None isoviscous."""
+    visc = viscosity if viscosity is not None else (None,) * len(bore.pads)
     load = np.asarray(load, dtype=float)
     scale = max(float(np.linalg.norm(load)), 1e-300)
     n = 2 + len(bore.tilts)
@@ -287,9 +294,10 @@ def equilibrium(bore: Bore, load: np.ndarray, tol: float = 1e-10, steps: int = 6
         for k, pad in enumerate(bore.pads):
             if pad.tilts:
                 t = bore.coordinates(k)[2]
-                q[t], s = settle(pad, bore.ratio, xy[0], xy[1], q[t], guesses[k], tol)
+                q[t], s = settle(pad, bore.ratio, xy[0], xy[1], q[t], guesses[k], tol,
+                                 visc[k])
             else:
-                s = pad_state(pad, bore.ratio, xy, guesses[k])
+                s = pad_state(pad, bore.ratio, xy, guesses[k], viscosity=visc[k])
             states.append(s)
         return _gathered(bore, q, states)
 

@@ -1,0 +1,184 @@
+"""The films' heating on a bore of pads: each pad's temperature from the film's energy
+equation and its viscosity from the oil's ISO VG grade, solved in turn with its
+pressure (a thermohydrodynamic film), and the peak pad temperature.
+
+On each pad the oil's temperature T is taken as uniform across the film, and the pad and
+the journal as adiabatic: the heat the film makes leaves with its oil. In the film's
+nondimensional variables (parts.pads) the energy equation reads
+
+    qbar . grad T = dT_ref phi,      dT_ref = mu_s omega (R / c_b)^2 / (rho c_p),
+    qbar_theta = H / 2 - (H^3 / 12 m) dP/dtheta,   qbar_Z = -(H^3 / 12 m) dP/dZ,
+    phi = m / H + (H^3 / 12 m) |grad P|^2   (Couette and Poiseuille shear),
+
+where m = mu(T) / mu_s is the viscosity over the supply oil's (the flows are omega R c_b
+qbar per unit width). The film's heat is carried along it, and conduction along it is
+negligible beside that (a Peclet number of thousands). So T is marched along theta from
+the pad's leading edge, and upwind across Z from the mid-plane out to the ends.
+
+Each pad's leading edge takes the oil that left the pad before it: a share
+`carry_over` of that flow at its mean temperature. Supply oil makes up the rest of the
+flow (hot-oil carry-over, Ettles):
+
+    Q_in T_in = lambda Q_out,prev T_out,prev + (Q_in - lambda Q_out,prev) T_s.
+
+A pad's pressure (its film with its viscosity, pads.pad_state) and its temperature are
+solved in turn until the temperatures settle; the journal's place and the pads' tilts
+are those of the heated film.
+
+References: Ettles (1969), hot oil carry-over in thrust bearings; Fillon, Bligoud and
+Frene (1992), J. Tribology 114, a tilting-pad bearing's measured and computed pad
+temperatures (docs/journal-bearing.md, "The film's heating").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaftfem.parts import oil, pads
+from shaftfem.parts.heat import CARRY_OVER, HOTTEST, SPECIFIC_HEAT
+
+# the film's heat into the journal, Nu k (T - T_j) / h: a film heated evenly across its
+# thickness against one isothermal wall (the journal) and one adiabatic (the pad) has
+# Nu = 3 between its mean temperature and the wall
+NUSSELT = 3.0
+# ... and there the adiabatic wall runs hotter than the journal by 3/2 of the mean's
+# excess (T = T_j + (q h^2 / k)(xi - xi^2 / 2) across the film, xi from the journal)
+SURFACE = 1.5
+CONDUCTIVITY = 0.13   # W/(m K), a mineral oil's
+# the temperatures have settled when no node moves by more than this (K) in a round
+SETTLED = 0.02
+ROUNDS = 60
+
+
+@dataclass(frozen=True)
+class PadsHeat:
+    """A bore of pads' heated film: its state (pads.BoreState, the forces on the supply
+    oil's viscosity's scale), each pad's nodal temperatures (C) and relative viscosity,
+    each pad's inlet and mean outlet temperature (C) and inlet flow (m^3/s), and the
+    peak temperature over the pads (C) and which pad has it."""
+
+    state: pads.BoreState
+    temperature: tuple[np.ndarray, ...]
+    surface: tuple[np.ndarray, ...]
+    viscosity: tuple[np.ndarray, ...]
+    inlet: tuple[float, ...]
+    outlet: tuple[float, ...]
+    journal: float
+    flow: tuple[float, ...]
+    peak: float
+    hottest: int
+
+
+@dataclass(frozen=True)
+class _Grid:
+    """A pad film's nodes on its tensor grid: each node's theta and Z index, the grid's
+    theta and Z."""
+
+    i: np.ndarray
+    j: np.ndarray
+    theta: np.ndarray
+    Z: np.ndarray
+
+
+def _grid(pad: pads.Pad, ratio: float) -> tuple[pads.PadFilm, _Grid]:
+    f = pads.pad_film(pad.start, pad.arc, ratio, max(8, round(pads.CELLS_PER_RADIAN * pad.arc)),
+                      pads.Z_CELLS)
+    x = f.basis.mesh.p
+    theta, Z = np.unique(x[0].round(12)), np.unique(x[1].round(12))
+    i = np.rint((x[0] - theta[0]) / (theta[-1] - theta[0]) * (theta.size - 1)).astype(int)
+    j = np.rint(x[1] / Z[-1] * (Z.size - 1)).astype(int)
+    return f, _Grid(i=i, j=j, theta=theta, Z=Z)
+
+
+def march(H: np.ndarray, P: np.ndarray, m: np.ndarray, theta: np.ndarray, Z: np.ndarray,
+          inlet: float, rise: float, kappa: float = 0.0, journal: float = 0.0
+          ) -> tuple[np.ndarray, np.ndarray]:
+    """The film's temperature (C) on the pad's grid (theta, Z) of its thickness H,
+    pressure P and relative viscosity m there (module docstring), its leading edge at
+    `inlet` (C), dT_ref = `rise` (K); and the flow qbar_theta across each theta line
+    (the grid's shape)."""
+    dP_t, dP_z = np.gradient(P, theta, Z)
+    poiseuille = H**3 / (12 * m)
+    q_t = np.maximum(0.5 * H - poiseuille * dP_t, 1e-3 * H)   # no flow back at the edge
+    q_z = np.maximum(-poiseuille * dP_z, 0.0)                 # out towards the ends
+    phi = m / H + poiseuille * (dP_t**2 + dP_z**2)
+    T = np.empty_like(H)
+    T[0] = inlet
+    dt, dz = np.diff(theta), np.diff(Z)
+    for i in range(1, theta.size):
+        a = q_t[i] / dt[i - 1]
+        g = kappa / H[i]
+        T[i, 0] = (a[0] * T[i - 1, 0] + rise * phi[i, 0] + g[0] * journal) / (a[0] + g[0])
+        for j in range(1, Z.size):
+            b = q_z[i, j] / dz[j - 1]
+            T[i, j] = ((a[j] * T[i - 1, j] + b * T[i, j - 1] + rise * phi[i, j]
+                        + g[j] * journal) / (a[j] + b + g[j]))
+    return T, q_t
+
+
+def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance: float,
+           grade: int, supply: float, carry_over: float = CARRY_OVER,
+           specific_heat: float = SPECIFIC_HEAT) -> PadsHeat:
+    """The bore's heated film carrying `load` (N, along -y) at the spin omega (rad/s), the
+    journal's radius and the bearing's clearance c_b (m), oil of ISO VG `grade` supplied
+    at `supply` (C); a ValueError where a film runs above parts.heat.HOTTEST or the
+    temperatures do not settle."""
+    mu_s = oil.dynamic(grade, supply)
+    rise = mu_s * omega * (radius / clearance) ** 2 / (oil.density(supply) * specific_heat)
+    W = load * clearance**2 / (mu_s * omega * radius**4)
+    films = [_grid(p, bore.ratio) for p in bore.pads]
+    viscosity = np.vectorize(lambda t: oil.dynamic(grade, min(t, HOTTEST)) / mu_s)
+    T = [np.full(f.basis.mesh.p.shape[1], supply) for f, _ in films]
+    m = [np.ones_like(t) for t in T]
+    inlets = [supply] * len(bore.pads)
+    kappa = NUSSELT * CONDUCTIVITY / (oil.density(supply) * specific_heat * omega
+                                      * clearance**2)
+    journal = supply
+    state = None
+    n = len(bore.pads)
+    for _ in range(ROUNDS):
+        state = pads.equilibrium(bore, np.array([0.0, -W]), start=state, viscosity=tuple(m))
+        new, flows, outs, warm = [], [], [], []
+        for k, ((f, g), pad) in enumerate(zip(films, bore.pads)):
+            q = state.q[bore.coordinates(k)]
+            H = pads._film(pad, f.basis.mesh.p[0], q)[0]
+            shape = (g.theta.size, g.Z.size)
+            grid = np.zeros(shape), np.zeros(shape), np.ones(shape)
+            for a, v in zip(grid, (H, state.pads[k].pressure, m[k])):
+                a[g.i, g.j] = v
+            Tk, q_t = march(*grid, g.theta, g.Z, inlets[k], rise, kappa, journal)
+            new.append(Tk[g.i, g.j])
+            # the journal's heat from this pad's film, int (T - T_j) / H, and its weight
+            w = np.trapezoid(np.trapezoid(1 / grid[0], g.Z, axis=1), g.theta)
+            warm.append((np.trapezoid(np.trapezoid(Tk / grid[0], g.Z, axis=1), g.theta), w))
+            # the flow (qbar, whole length) and mean temperature at each edge
+            q_in, q_out = 2 * np.trapezoid(q_t[0], g.Z), 2 * np.trapezoid(q_t[-1], g.Z)
+            flows.append(q_in)
+            outs.append((q_out, float(np.trapezoid(q_t[-1] * Tk[-1], g.Z)
+                                      / np.trapezoid(q_t[-1], g.Z))))
+        moved = max(float(np.abs(a - b).max()) for a, b in zip(new, T))
+        if max(float(t.max()) for t in new) > HOTTEST:
+            raise ValueError(f"the pads' film would run above {HOTTEST:g} C (fed at "
+                             f"{supply:g} C)")
+        T = [0.5 * (a + b) for a, b in zip(new, T)]   # halved steps: the loop is stiff
+        m = [viscosity(t) for t in T]
+        # the journal turns through every film: it takes in as much heat as it gives
+        journal = 0.5 * (journal + sum(a for a, _ in warm) / sum(w for _, w in warm))
+        for k in range(n):   # the pad before k in the journal's turn
+            q_prev, t_prev = outs[(k - 1) % n]
+            kept = min(carry_over * q_prev, flows[k])
+            inlets[k] = (kept * t_prev + (flows[k] - kept) * supply) / flows[k]
+        if moved < SETTLED:
+            # the pad's surface: the film's adiabatic wall, hotter than its mean by half
+            # the mean's excess over the journal (the profile across the film of Nu = 3)
+            surface = [journal + SURFACE * (t - journal) for t in T]
+            peaks = [float(t.max()) for t in surface]
+            hot = int(np.argmax(peaks))
+            return PadsHeat(state=state, temperature=tuple(T), surface=tuple(surface),
+                            viscosity=tuple(m), inlet=tuple(inlets),
+                            outlet=tuple(t for _, t in outs), journal=journal,
+                            flow=tuple(omega * radius**2 * clearance * q for q in flows),
+                            peak=peaks[hot], hottest=hot)
+    raise ValueError(f"the pads' temperatures did not settle in {ROUNDS} rounds")
