@@ -250,6 +250,35 @@ def test_the_compressor_on_tilting_pads_is_stable_where_plain_journals_whip(tmp_
     assert c["stability"]["growing"]
 
 
+def test_the_pump_on_two_axial_groove_journals_heats_its_oil(tmp_path):
+    """examples/pump_on_two_axial_groove_journals.toml as a user runs it (`check
+    --json`): each film runs above the supply's temperature, its friction power is
+    Petroff's over its two pads' arcs at the film's viscosity within 10 % (a film
+    carrying its load at eps 0.27 loses a few percent more), the supply drains warmer by
+    that power over rho c Q, and the hot supply's case with the largest clearance is the
+    one that fails (its critical speed closer to the running speed)."""
+    import json
+
+    from shaftfem.parts import heat, oil
+
+    scene = EXAMPLES / "pump_on_two_axial_groove_journals.toml"
+    check = _shaftfem("check", str(scene), "-q", "--json", str(tmp_path / "pump.json"),
+                      cwd=tmp_path)
+    assert check.returncode == 1, check.stdout[-2000:] + check.stderr[-2000:]
+    out = json.loads((tmp_path / "pump.json").read_text())
+    omega, R, L, c = 3000 * math.pi / 30, 0.030, 0.030, 60e-6
+    arcs = 2 * math.radians(160.0)
+    for f in out["campbell"]["journal_bearings"]:
+        assert f["supply_temperature_c"] == 45.0 and f["film_temperature_c"] > 50.0
+        mu = oil.dynamic(46, f["film_temperature_c"])
+        petroff = arcs * mu * omega**2 * R**3 * L / c
+        assert petroff <= f["friction_power_w"] <= 1.1 * petroff
+        rise = f["friction_power_w"] / (oil.density(45.0) * heat.SPECIFIC_HEAT * 1.5 / 60e3)
+        assert f["drain_temperature_c"] == pytest.approx(45.0 + rise, rel=1e-9)
+        assert not f["starved"]
+    assert "max clearance, hot oil" in check.stdout.split("VERDICT")[1]
+
+
 def test_rotor_study(tmp_path):
     """The pump's study from Python: oil whip above the running speed; on the critical
     speed map each journal meets the first branch higher along its stiffer direction

@@ -73,3 +73,22 @@ def test_a_journals_effective_temperature_is_the_heat_balance_by_hand(carry_over
                                       + (h.flow - h.side_flow) * (h.outlet - h.inlet))
     assert out == pytest.approx(h.power, rel=1e-3)
     assert h.inlet == pytest.approx(40.0, abs=1e-9) if carry_over == 0 else h.inlet > 40.0
+
+
+def test_a_light_film_on_pads_loses_petroffs_power_over_their_arcs():
+    """A two-axial-groove bore barely loaded (eps 0.03): its pads' friction integral is
+    Petroff's over their arcs, int 1 / H = arcs 2 L / D (whole length), within 0.5 %;
+    the oil drawn into each pad is the Couette flow H / 2 over its length (L / D each,
+    nondimensional) within 1 %, and the side flow nearly none (what rupture leaves: eps)."""
+    from shaftfem.parts import pads
+
+    bore = pads.two_axial_groove(1.0)
+    state = pads.equilibrium(bore, np.array([0.0, -pads.sommerfeld_load(1.0, 5.0)]))
+    assert math.hypot(*state.q[:2]) < 0.05
+    friction, inflow, side = np.sum(
+        [pads.pad_heat_terms(p, 1.0, state.q[bore.coordinates(k)], s.pressure)
+         for k, (p, s) in enumerate(zip(bore.pads, state.pads))], axis=0)
+    arcs = sum(p.arc for p in bore.pads)
+    assert friction == pytest.approx(arcs * 2 * 1.0, rel=5e-3)
+    assert inflow == pytest.approx(2 * 1.0, rel=0.01)
+    assert abs(side) < 0.03 * inflow   # the gap the film opens into leaves it at eps

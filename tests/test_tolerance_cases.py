@@ -321,3 +321,57 @@ def test_a_hub_on_a_keyway_left_to_the_default_is_keyed_and_bracketed_by_rigid()
     assert joints == {"coupling hub": "rigid", "impeller": "distributing"}
     names = [c.name for c in cases_of(scene)]
     assert "rigid joints" in names and "distributing joints" in names
+
+
+@pytest.mark.parametrize("change,key,said", [
+    ({"oil_supply_temperature_c": 40.0}, "oil_temperature_c", "one of them"),
+    ({"oil_flow_l_min": 2.0}, "oil_flow_l_min", "only with oil_supply_temperature_c"),
+    ({"oil_temperature_c": None, "oil_supply_temperature_c": 200.0},
+     "oil_supply_temperature_c", "in [-20, 150] C"),
+    ({"oil_temperature_c": None, "oil_iso_vg": None, "viscosity_mpa_s": 20.0,
+      "oil_supply_temperature_c": 40.0}, "oil_supply_temperature_c", "only with oil_iso_vg"),
+])
+def test_a_supply_that_cannot_be_is_refused_naming_its_key(tmp_path, capsys, change, key,
+                                                            said):
+    """The oil by its supply: in place of the film's temperature, with a grade, in range;
+    its flow only with it."""
+    import tomli_w
+
+    scene = wheel()
+    for s in scene["support"]:
+        for k, v in change.items():
+            if v is None:
+                s.pop(k, None)
+            else:
+                s[k] = v
+    path = tmp_path / "wheel.toml"
+    path.write_bytes(tomli_w.dumps(scene).encode())
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert key in err and said in err and "Traceback" not in err, err
+
+
+def test_a_supply_range_runs_as_the_cases_with_the_film_heating_in_each():
+    """oil_supply_temperature_c = [40, 60]: the cases are the oil's ends as for the film's
+    temperature, each journal fed at its end, its film running above its supply."""
+    from dataclasses import replace
+
+    from shaftfem.parts.heat import at_speed
+    from shaftfem.workflows.equip import film_table
+
+    scene = wheel(clearance=(45.0, 45.0 + 1e-9))
+    for s in scene["support"]:
+        del s["oil_temperature_c"]
+        s["oil_supply_temperature_c"] = [40.0, 60.0]
+    loaded = load_scene(scene)
+    cases = cases_of(loaded)
+    assert [c.name for c in cases][1:] == ["min clearance, cold oil", "max clearance, hot oil"]
+    omega = 3600 * math.pi / 30
+    films = []
+    for c in cases:
+        j = replace(case_scene(loaded, c).supports[0].journal, load=500.0)
+        film_table(j)
+        films.append(at_speed(j, omega).oil_temperature - j.oil_supply_temperature)
+        assert films[-1] > 0
+    fed = [case_scene(loaded, c).supports[0].journal.oil_supply_temperature for c in cases]
+    assert fed == [50.0, 40.0, 60.0]

@@ -467,10 +467,26 @@ class FilmRow:
     C: tuple[float, ...]
     limit_um: float
     lifted: bool = True
+    # an oil given by its supply temperature (parts.heat): its supply and the film's
+    # effective temperature (C), the film's friction power (W) and side flow (m^3/s);
+    # with the supply's flow (m^3/s), the drain's temperature (C)
+    supply_c: float | None = None
+    film_c: float | None = None
+    power_w: float | None = None
+    side_flow: float | None = None
+    flow: float | None = None
+    drain_c: float | None = None
 
     @property
     def thin(self) -> bool:
         return not self.lifted or self.min_film_um < self.limit_um
+
+    @property
+    def starved(self) -> bool:
+        """Whether the supply's flow is less than the film's side flow (the oil it loses
+        through its ends, which the feed must make up)."""
+        return self.flow is not None and self.side_flow is not None and \
+            self.flow < self.side_flow
 
     def as_dict(self) -> dict:
         names = ("xx", "xy", "yx", "yy")
@@ -479,7 +495,13 @@ class FilmRow:
                 "min_film_um": self.min_film_um, "sommerfeld": self.sommerfeld,
                 **{f"k{n}_n_per_m": k for n, k in zip(names, self.K)},
                 **{f"c{n}_n_s_per_m": c for n, c in zip(names, self.C)},
-                "min_film_limit_um": self.limit_um, "lifted": self.lifted}
+                "min_film_limit_um": self.limit_um, "lifted": self.lifted,
+                **({} if self.film_c is None else {
+                    "supply_temperature_c": self.supply_c, "film_temperature_c": self.film_c,
+                    "friction_power_w": self.power_w,
+                    "side_flow_l_min": (self.side_flow or 0.0) * 60e3,
+                    "supply_flow_l_min": None if self.flow is None else self.flow * 60e3,
+                    "drain_temperature_c": self.drain_c, "starved": self.starved})}
 
 
 @dataclass(frozen=True)

@@ -119,6 +119,10 @@ def _range(span, unit: float, fmt: str) -> str:
 def _oil(j) -> str:
     """A journal's oil: its viscosity, or its grade at its temperature before the part
     gave the viscosity."""
+    if j.oil_supply_temperature is not None:
+        return (f"ISO VG {j.oil_iso_vg} fed at {j.oil_supply_temperature:g} C"
+                + ("" if j.oil_flow is None else f", {j.oil_flow * 60e3:.3g} l/min")
+                + " (the film heats: its temperature at each speed from its heat balance)")
     if j.viscosity is None:
         return f"ISO VG {j.oil_iso_vg} at {j.oil_temperature:g} C"
     return f"{j.viscosity * 1e3:.3g} mPa s"
@@ -564,6 +568,17 @@ def film_text(films) -> str:
         lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min {f.eccentricity:6.3f} "
                      f"{f.attitude_deg:7.1f} deg {f.min_film_um:7.1f} um {f.sommerfeld:10.4g}  "
                      f"K {k}; C {c}{flag}")
+    warm = [f for f in films if f.film_c is not None]
+    if warm:
+        lines += ["", "the films' heating (fed at the supply's temperature; heat balance, "
+                  "hot-oil carry-over 0.8):"]
+    for f in warm:
+        drain = ("" if f.drain_c is None else
+                 f"; supply {f.flow * 60e3:.3g} l/min drains at {f.drain_c:.1f} C"
+                 + (" - less than the film's side flow: STARVED" if f.starved else ""))
+        lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min: fed at {f.supply_c:g} C, "
+                     f"the film runs at {f.film_c:.1f} C, friction {f.power_w:,.0f} W, "
+                     f"side flow {f.side_flow * 60e3:.3g} l/min{drain}")
     return "\n".join(lines)
 
 
@@ -1008,7 +1023,10 @@ def cases_rows(results) -> tuple[list[str], list[list[str]]]:
 
         row(f"{s.name}: radial clearance, um",
             lambda r, seat=seat: f"{(seat(r).journal or seat(r).seal).clearance * 1e6:.1f}")
-        if s.journal is not None:
+        if s.journal is not None and s.journal.oil_supply_temperature is not None:
+            row(f"{s.name}: oil supply, C",
+                lambda r, seat=seat: f"{seat(r).journal.oil_supply_temperature:g}")
+        elif s.journal is not None:
             row(f"{s.name}: oil viscosity, mPa s",
                 lambda r, seat=seat: f"{seat(r).journal.viscosity * 1e3:.2f}")
     loose = [a.name for a in results[0].campbell.rotor_scene.attachments if not a.joint_given]

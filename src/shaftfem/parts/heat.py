@@ -1,5 +1,6 @@
-"""The oil film's heating: a plain journal's effective film temperature from a heat
-balance, fed by the oil's supply temperature.
+"""The oil film's heating: a journal's effective film temperature from a heat balance,
+fed by the oil's supply temperature (a plain bore, or a bore of pads with its pads'
+friction and flows: parts.pads.pad_heat_terms).
 
 The film's friction power H (parts.journal.heat_terms) heats the oil that flows
 through it, adiabatically (the journal and the shell carry none away, the usual
@@ -80,6 +81,16 @@ def heat_balance(b: JournalBearing, omega: float, supply: float,
                             power=power, flow=Q, side_flow=Qs, viscosity=film.viscosity)
         t += 0.5 * (new - t)
     raise ValueError(f"the film's temperature did not settle (fed at {supply:g} C)")
+
+
+def at_speed(b: JournalBearing, omega: float) -> JournalBearing:
+    """The bearing with its film's viscosity at the spin omega (rad/s): an oil given by
+    its supply temperature runs at its film's effective temperature there (heat_balance),
+    as `oil_temperature`; any other as it is."""
+    if b.oil_supply_temperature is None or omega <= 0:
+        return b
+    h = heat_balance(b, omega, b.oil_supply_temperature)
+    return replace(b, viscosity=h.viscosity, oil_temperature=h.effective)
 
 
 def petroff_power(b: JournalBearing, omega: float) -> float:

@@ -32,6 +32,7 @@ References: Reynolds (1886); Ocvirk (1952), the short bearing; Raimondi and Boyd
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -461,7 +462,7 @@ def heat_terms(b: JournalBearing, omega: float) -> tuple[float, float, float]:
 
     t = table(round(b.ratio, 9), b.cavitation, b.bore)
     if t.friction is None or t.inflow is None or t.side_flow is None:
-        raise ValueError("the film's heating is solved for a plain bore only")
+        raise ValueError("the film's heating is not in its table")
     assert b.viscosity is not None
     # lighter than the first row: that row's (Petroff's) film
     eps = max(_eccentricity(t, b.sommerfeld(max(omega, 1e-12))), float(t.eccentricity[0]))
@@ -528,16 +529,19 @@ def lift_off(b: JournalBearing) -> float:
     return max(2 * math.pi * S / b.sommerfeld(2 * math.pi), table_end(b))
 
 
-def speed_table(b: JournalBearing, top: float, points: int = SPEED_POINTS) -> SpeedTable:
-    """The bearing's coefficients from its lift-off speed to `top` (rad/s); a
-    ValueError if the film does not lift the journal below `top`."""
+def speed_table(b: JournalBearing, top: float, points: int = SPEED_POINTS,
+                film: Callable[[JournalBearing, float], JournalBearing] | None = None
+                ) -> SpeedTable:
+    """The bearing's coefficients from its lift-off speed to `top` (rad/s), its film at
+    each speed as `film(b, omega)` gives it (parts.heat.at_speed: heated; None: as it
+    is); a ValueError if the film does not lift the journal below `top`."""
     lift = table_end(b)
     if lift >= top:
         raise ValueError(f"the film lifts the journal (eccentricity {ECCENTRICITIES[-1]:g}) "
                          f"only at {lift * 60 / (2 * math.pi):,.0f} r/min, above the top "
                          f"speed {top * 60 / (2 * math.pi):,.0f} r/min")
     speeds = np.geomspace(lift, top, points)
-    ops = [operating(b, w) for w in speeds]
+    ops = [operating(b if film is None else film(b, w), w) for w in speeds]
     pads = ops[0].pad_K is not None
     return SpeedTable(speeds=speeds, K=np.array([o.K for o in ops]),
                       C=np.array([o.C for o in ops]), lift=float(lift),
@@ -552,17 +556,21 @@ def with_oil(b: JournalBearing) -> JournalBearing:
 
     from shaftfem.parts import oil
 
-    if b.oil_iso_vg is None or b.oil_temperature is None:
+    temperature = b.oil_temperature if b.oil_supply_temperature is None else \
+        b.oil_supply_temperature
+    if b.oil_iso_vg is None or temperature is None:
         return b
-    return replace(b, viscosity=oil.dynamic(b.oil_iso_vg, b.oil_temperature))
+    return replace(b, viscosity=oil.dynamic(b.oil_iso_vg, temperature))
 
 
-def coefficients(b: JournalBearing, rotor: Rotor) -> BearingCoefficients:
+def coefficients(b: JournalBearing, rotor: Rotor,
+                 film: Callable[[JournalBearing, float], JournalBearing] | None = None
+                 ) -> BearingCoefficients:
     """A loaded journal bearing's coefficients against speed, up to the Campbell
     diagram's end; its standstill ones at the lowest operating speed (or where its film
     lifts the journal, if later). A ValueError if the film does not lift it by then."""
     try:
-        speeds = speed_table(with_oil(b), rotor.max_speed)
+        speeds = speed_table(with_oil(b), rotor.max_speed, film=film)
     except ValueError as e:
         raise ValueError(f"{e}; the load is too large for this film (a larger clearance "
                          "ratio, viscosity, length or speed carries more)") from None

@@ -329,6 +329,63 @@ def equilibrium(bore: Bore, load: np.ndarray, tol: float = 1e-10, steps: int = 6
     raise ValueError(f"the film's equilibrium did not settle in {steps} steps")
 
 
+def pad_heat_terms(pad: Pad, ratio: float, q: np.ndarray, P: np.ndarray
+                   ) -> tuple[float, float, float]:
+    """What heats a pad's oil and what carries it away, nondimensional, whole length
+    (parts.journal.film_heat's on a plain film): the friction integral int [1/H + (H / 2)
+    dP/dtheta] over the pad, the flow into its leading edge int [H / 2 - (H^3 / 12)
+    dP/dtheta] dZ, and its side flow, that less what leaves the film downstream: on each
+    line along the journal the Couette flow H / 2 where the film ruptures (its pressure
+    and gradient zero there), or across the trailing edge where it does not."""
+    from skfem import Functional
+
+    f = pad_film(pad.start, pad.arc, ratio, max(8, round(CELLS_PER_RADIAN * pad.arc)), Z_CELLS)
+
+    @Functional
+    def shear(w):
+        H = _film(pad, w.x[0], q)[0]
+        return 1.0 / H + 0.5 * H * w["p"].grad[0]
+
+    friction = 2.0 * float(shear.assemble(f.basis, p=f.basis.interpolate(P)))
+    # the flux across each edge from the elements beside it (P's gradient is constant
+    # on each P1 cell): the cells' mean over Z of H / 2 - (H^3 / 12) dP/dtheta at the edge
+    mesh = f.basis.mesh
+    x = mesh.p
+    cells = mesh.t
+    grad = np.asarray(f.basis.interpolate(P).grad[0]).mean(axis=1)   # per element
+    flows = []
+    for edge in (pad.start, pad.start + pad.arc):
+        on = np.isclose(x[0][cells], edge).sum(axis=0) == 2   # cells with a side there
+        z = np.sort(x[1][cells[:, on]][np.isclose(x[0][cells[:, on]], edge)].reshape(-1, 2),
+                    axis=1)
+        H = _film(pad, np.full(z.shape[0], edge), q)[0]
+        flux = 0.5 * H - H**3 / 12 * grad[on]
+        flows.append(2.0 * float(np.sum(flux * (z[:, 1] - z[:, 0]))))
+    # where each line's film ruptures before the trailing edge, what leaves it is the
+    # Couette flow where it ruptures first (the cells' flux at the trailing edge counts
+    # the gap's, not the streamers')
+    lines = np.unique(x[1].round(12))
+    leaving = []
+    for zl in lines[:-1]:                       # the end line is the pad's edge, P = 0
+        row = np.flatnonzero(np.isclose(x[1], zl))
+        row = row[np.argsort(x[0][row])]
+        dry = np.flatnonzero(P[row[1:-1]] <= 0)
+        if not dry.size:
+            leaving.append(np.nan)              # a full film to the trailing edge
+        else:
+            # the film ruptures first there (at once: at the leading edge), and no more oil
+            # than passes there goes on: a film formed again downstream (Swift-Stieber's
+            # pressure near a converging trailing edge) carries no more
+            k = row[1 + dry[0]] if dry[0] > 0 else row[0]
+            leaving.append(0.5 * float(_film(pad, x[0][k:k + 1], q)[0][0]))
+    if not np.isnan(leaving).all():
+        # lines that do not rupture: their share of the trailing edge's flux
+        edge_q = flows[1] / (2 * lines[-1])
+        q_out = np.append(np.where(np.isnan(leaving), edge_q, leaving), edge_q)
+        flows[1] = 2.0 * float(np.sum(0.5 * (q_out[1:] + q_out[:-1]) * np.diff(lines)))
+    return friction, flows[0], flows[0] - flows[1]
+
+
 def sommerfeld_load(ratio: float, sommerfeld: float) -> float:
     """The nondimensional load |Fbar| = W c^2 / (mu omega R^4) of a bearing of L / D =
     ratio at Sommerfeld's S = mu N L D / W (R / c)^2 (N in rev/s): 2 ratio / (pi S)."""
@@ -359,7 +416,7 @@ def bore_of(spec, ratio: float) -> Bore:
 SOMMERFELD = tuple(np.geomspace(10.0, 0.005, 28).round(6))
 THINNEST = 0.02
 # what a bore's film table depends on besides its L / D and bore: a cache's key
-SETTINGS = {"version": 2, "pads": True, "cells_per_radian": CELLS_PER_RADIAN,
+SETTINGS = {"version": 4, "pads": True, "cells_per_radian": CELLS_PER_RADIAN,
             "z_cells": Z_CELLS, "sommerfeld": list(SOMMERFELD), "thinnest": THINNEST}
 
 
@@ -387,8 +444,10 @@ def film_table(spec, ratio: float):
             break
         Z = condensed(state.stiffness + 1j * state.damping)
         X, Y = state.q[:2]
+        heat = np.sum([pad_heat_terms(p, ratio, state.q[bore.coordinates(k)], s.pressure)
+                       for k, (p, s) in enumerate(zip(bore.pads, state.pads))], axis=0)
         rows.append((math.hypot(X, Y), S, math.atan2(X, -Y), F, Z.real, Z.imag, h,
-                     state.stiffness, state.damping))
+                     state.stiffness, state.damping, *heat))
     if len(rows) < 4:
         raise ValueError(f"the {spec.kind} bore's film carries too little load to tabulate")
     col: list[np.ndarray] = [np.array(c) for c in zip(*rows)]
@@ -396,4 +455,5 @@ def film_table(spec, ratio: float):
                      sommerfeld=col[1], attitude=col[2], force=col[3], stiffness=col[4],
                      damping=col[5], bore=spec, thinnest=col[6],
                      pad_stiffness=col[7] if bore.tilts else None,
-                     pad_damping=col[8] if bore.tilts else None)
+                     pad_damping=col[8] if bore.tilts else None,
+                     friction=col[9], inflow=col[10], side_flow=col[11])

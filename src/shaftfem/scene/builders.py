@@ -187,6 +187,8 @@ class Support(_Table):
     viscosity_mpa_s: Number | None = None
     oil_iso_vg: int | None = None
     oil_temperature_c: Number | None = None
+    oil_supply_temperature_c: Number | None = None
+    oil_flow_l_min: Number | None = None
     load_n: Number | None = None
     load_angle_deg: Number | None = None
     cavitation: str | None = None

@@ -374,7 +374,8 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
 
 
 JOURNAL_KEYS = ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", "oil_iso_vg",
-                "oil_temperature_c", "cavitation", "min_film_um")
+                "oil_temperature_c", "oil_supply_temperature_c", "oil_flow_l_min",
+                "cavitation", "min_film_um")
 ROLLING_KEYS = ("elements", "element_diameter_mm", "pitch_diameter_mm", "roller_length_mm",
                 "contact_angle_deg", "preload_n")
 SEAL_KEYS = ("pressure_drop_mpa", "fluid_density_kg_m3", "inlet_loss")
@@ -415,7 +416,8 @@ def _rolling(source: str, table: str, t: dict) -> RollingBearing:
 
 
 # the keys a journal (all three) or a seal (its clearance) takes as a tolerance range
-RANGED = {"journal": ("radial_clearance_um", "oil_temperature_c", "viscosity_mpa_s"),
+RANGED = {"journal": ("radial_clearance_um", "oil_temperature_c", "oil_supply_temperature_c",
+                      "viscosity_mpa_s"),
           "seal": ("radial_clearance_um",)}
 
 
@@ -474,15 +476,22 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         raise SceneError(f"{where(source, table, 'viscosity_mpa_s')}: give the oil as "
                          "viscosity_mpa_s, or as oil_iso_vg with oil_temperature_c (one of them)")
     viscosity = None
+    supply = t["oil_supply_temperature_c"]
     if t["oil_iso_vg"] is not None:
-        if t["oil_temperature_c"] is None:
-            raise SceneError(f"{where(source, table, 'oil_temperature_c')}: missing (with "
-                             "oil_iso_vg, the film's mean temperature, C)")
+        if (t["oil_temperature_c"] is None) == (supply is None):
+            raise SceneError(f"{where(source, table, 'oil_temperature_c')}: with oil_iso_vg, "
+                             "give the film's mean temperature oil_temperature_c, or the "
+                             "supply's oil_supply_temperature_c for the film to heat (one "
+                             "of them)")
     else:
-        if t["oil_temperature_c"] is not None:
-            raise SceneError(f"{where(source, table, 'oil_temperature_c')}: only with "
-                             "oil_iso_vg (viscosity_mpa_s is the film's viscosity already)")
+        for key in ("oil_temperature_c", "oil_supply_temperature_c"):
+            if t[key] is not None:
+                raise SceneError(f"{where(source, table, key)}: only with oil_iso_vg "
+                                 "(viscosity_mpa_s is the film's viscosity already)")
         viscosity = t["viscosity_mpa_s"] * 1e-3
+    if t["oil_flow_l_min"] is not None and supply is None:
+        raise SceneError(f"{where(source, table, 'oil_flow_l_min')}: only with "
+                         "oil_supply_temperature_c (the flow the supply heats)")
     diameter = _seat_diameter(source, table, t, shaft, s, "journal")
     clearance = t["radial_clearance_um"] * 1e-6
     widest = ranges.get("radial_clearance_um", (0.0, 0.0, t["radial_clearance_um"]))[2]
@@ -509,10 +518,12 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         load=t["load_n"] or 0.0, direction=(math.cos(angle), math.sin(angle)),
         cavitation=t["cavitation"], bore=_bore(source, table, t),
         min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
-        * 1e-6, oil_iso_vg=t["oil_iso_vg"], oil_temperature=t["oil_temperature_c"])
+        * 1e-6, oil_iso_vg=t["oil_iso_vg"], oil_temperature=t["oil_temperature_c"],
+        oil_supply_temperature=supply,
+        oil_flow=None if t["oil_flow_l_min"] is None else t["oil_flow_l_min"] / 60e3)
     # an oil given by its grade: the viscosities of its temperature range come from the
     # part (shaftfem.parts.oil), with the film's coefficients
-    temperature = ranges.get("oil_temperature_c")
+    temperature = ranges.get("oil_temperature_c", ranges.get("oil_supply_temperature_c"))
     spread = _scaled(ranges["viscosity_mpa_s"], 1e-3) if "viscosity_mpa_s" in ranges else None
     tolerance = (Tolerance(clearance=_scaled(ranges["radial_clearance_um"], 1e-6)
                            if "radial_clearance_um" in ranges else None,

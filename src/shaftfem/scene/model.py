@@ -528,6 +528,11 @@ class JournalBearing:
     oil_iso_vg: int | None = None
     oil_temperature: float | None = None
     bore: JournalBore | None = None     # None: a plain cylindrical bore
+    # the oil's supply temperature (C; None: the film at oil_temperature) and flow
+    # (m^3/s; None: not given): the film's temperature at each speed from its heat
+    # balance (shaftfem.parts.heat)
+    oil_supply_temperature: float | None = None
+    oil_flow: float | None = None
 
     @property
     def ratio(self) -> float:

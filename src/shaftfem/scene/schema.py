@@ -296,6 +296,16 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                  "study runs cold oil with the least clearance, hot with the "
                                  "largest",
                                  lambda v: -20 <= v <= 200, "in [-20, 200] C", required=False),
+        "oil_supply_temperature_c": Key(
+            float, "the oil's supply temperature, C (with oil_iso_vg, in place of "
+            "oil_temperature_c): the film's temperature at each speed then comes from its "
+            "heat balance (docs/journal-bearing.md); or its range, [cold, hot] or [cold, "
+            "nominal, hot], run as tolerance cases as oil_temperature_c's",
+            lambda v: -20 <= v <= 150, "in [-20, 150] C", required=False),
+        "oil_flow_l_min": Key(float, "the oil supplied to the bearing, l/min (with "
+                              "oil_supply_temperature_c): the report gives the drain's "
+                              "temperature, and warns where the film draws more",
+                              lambda v: 0 < v <= 1e4, "in (0, 10^4] l/min", required=False),
         "load_n": Key(float, "the static radial load the bearing carries, N (kind = "
                       "\"journal\", \"ball\", \"roller\"; a journal's default: its reaction "
                       "to the static loads, [static] and [[force]])",

@@ -1122,6 +1122,7 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
     """Each journal bearing at each operating speed and range end: its film there."""
     import math
 
+    from shaftfem.parts import heat, oil
     from shaftfem.parts.journal import operating
 
     rotor = scene.rotor
@@ -1134,13 +1135,22 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
         if b is None:
             continue
         for w in speeds:
-            op = operating(b, w)
+            op = operating(heat.at_speed(b, w), w)
+            warm = {}
+            supply = b.oil_supply_temperature
+            if supply is not None:
+                h = heat.heat_balance(b, w, supply)
+                # the supply carries off the film's heat: it drains warmer by H / (rho c Q)
+                drain = None if b.oil_flow is None else supply + h.power / (
+                    oil.density(supply) * heat.SPECIFIC_HEAT * b.oil_flow)
+                warm = dict(supply_c=supply, film_c=h.effective, power_w=h.power,
+                            side_flow=h.side_flow, flow=b.oil_flow, drain_c=drain)
             rows.append(FilmRow(
                 bearing=s.name, speed_rpm=w / RPM, eccentricity=op.eccentricity,
                 attitude_deg=math.degrees(op.attitude), min_film_um=op.min_film * 1e6,
                 sommerfeld=op.sommerfeld, K=tuple(float(v) for v in op.K.ravel()),
                 C=tuple(float(v) for v in op.C.ravel()), limit_um=b.min_film * 1e6,
-                lifted=not op.beyond))
+                lifted=not op.beyond, **warm))
     return tuple(rows)
 
 

@@ -83,7 +83,9 @@ def case_support(s: Support, case: Case, scene: Scene) -> Support:
     hot = {"cold": "min", "hot": "max", "nominal": "nominal"}[case.oil]
     if s.journal is not None:
         j = replace(s.journal, clearance=clearance or s.journal.clearance)
-        if t.temperature is not None:
+        if t.temperature is not None and j.oil_supply_temperature is not None:
+            j = replace(j, oil_supply_temperature=_end(t.temperature, hot), viscosity=None)
+        elif t.temperature is not None:
             j = replace(j, oil_temperature=_end(t.temperature, hot), viscosity=None)
         elif t.viscosity is not None:
             j = replace(j, viscosity=_end(t.viscosity, {"min": "max", "max": "min",

@@ -94,7 +94,7 @@ def film_table(bearing: JournalBearing) -> None:
     from shaftfem.store import discard, load_arrays, save_arrays
 
     ratio, cavitation, bore, path = _film_path(bearing)
-    names = journal.TABLE_FIELDS + (journal.HEAT_FIELDS if bore is None else ("thinnest",))
+    names = journal.TABLE_FIELDS + journal.HEAT_FIELDS + (() if bore is None else ("thinnest",))
     if bore is not None and bore.kind == "tilting_pad":
         names += journal.PAD_FIELDS
     ahead = _AHEAD.pop(str(path), None)
@@ -117,10 +117,10 @@ def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoeffi
     """A loaded journal's coefficients against speed (parts.journal.coefficients), its
     film's table from the cache; kept for the process: every study of a scene and each
     of its cases asks for the same journals."""
-    from shaftfem.parts import journal
+    from shaftfem.parts import heat, journal
 
     film_table(bearing)
-    return journal.coefficients(bearing, rotor)
+    return journal.coefficients(bearing, rotor, film=heat.at_speed)
 
 
 def _journal(scene: Scene, i: int, s: Support) -> Support:
