@@ -18,7 +18,6 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-import numpy as np  # noqa: E402
 
 import _common  # noqa: E402, F401  (one BLAS thread, as the CLI)
 from shaftfem.parts import pad_heat, pads  # noqa: E402
@@ -36,7 +35,7 @@ def main() -> None:
     for n, tehd, measured in zip(SPEEDS, TEHD, MEASURED):
         h = pad_heat.heated(bore, 10e3, n * math.pi / 30, 0.05, 148e-6 * (1 - 0.47), 32, 40.0)
         print(f"| {n:,.0f} | {h.peak:.1f} | {tehd} | {measured} | {h.peak - tehd:+.1f} | "
-              f"{h.journal:.1f} | {float(np.hypot(*h.state.q[:2])):.3f} |")
+              f"{h.journal:.1f} | {math.hypot(*h.state.q[:2]):.3f} |")
 
 
 if __name__ == "__main__":

@@ -21,7 +21,6 @@ from pathlib import Path
 
 ROOT = Path(__file__).parents[1]
 sys.path.insert(0, str(Path(__file__).parent))
-import numpy as np  # noqa: E402
 
 import _common  # noqa: E402, F401  (one BLAS thread, as the CLI)
 from shaftfem import RunOptions, load_scene  # noqa: E402
@@ -32,6 +31,8 @@ from shaftfem.workflows.campbell import turning  # noqa: E402
 def forward(model, omega):
     """The forward lateral roots at omega with a damping ratio below 0.5, lowest
     frequency first: (Hz, log dec, modal shapes)."""
+    import numpy as np
+
     r = roots(model, omega)
     lateral = np.array([k not in ("axial", "torsion") for k in dominant_kinds(model, r.y)])
     keep = (whirl_index(model, r.y) > 0) & (-r.lam.real / np.abs(r.lam) < 0.5) & lateral
@@ -43,6 +44,8 @@ def main() -> None:
     scene = load_scene(ROOT / "examples" / "compressor_on_tilting_pads.toml")
     _, model, _ = turning(scene, RunOptions())
     reduced = replace(model, reduced=True)
+    import numpy as np
+
     print("| speed, r/min | first forward, reduced | first forward, with the tilts | "
           "the reduced one's mode with the tilts (MAC) | log dec, reduced over with the "
           "tilts |")

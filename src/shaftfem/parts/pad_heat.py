@@ -2,18 +2,22 @@
 equation and its viscosity from the oil's ISO VG grade, solved in turn with its
 pressure (a thermohydrodynamic film), and the peak pad temperature.
 
-On each pad the oil's temperature T is taken as uniform across the film, and the pad and
-the journal as adiabatic: the heat the film makes leaves with its oil. In the film's
-nondimensional variables (parts.pads) the energy equation reads
+On each pad the oil's bulk temperature T (the one its flow carries) is solved in the
+film's plane. The pads are adiabatic. The journal is isothermal at T_j, and it takes
+from the hot films what it gives the cool ones. In the film's nondimensional variables
+(parts.pads) the energy equation reads
 
-    qbar . grad T = dT_ref phi,      dT_ref = mu_s omega (R / c_b)^2 / (rho c_p),
+    qbar . grad T = dT_ref phi - kappa (T - T_j) / H,
+    dT_ref = mu_s omega (R / c_b)^2 / (rho c_p),   kappa = Nu k / (rho c_p omega c_b^2),
     qbar_theta = H / 2 - (H^3 / 12 m) dP/dtheta,   qbar_Z = -(H^3 / 12 m) dP/dZ,
     phi = m / H + (H^3 / 12 m) |grad P|^2   (Couette and Poiseuille shear),
 
 where m = mu(T) / mu_s is the viscosity over the supply oil's (the flows are omega R c_b
-qbar per unit width). The film's heat is carried along it, and conduction along it is
-negligible beside that (a Peclet number of thousands). So T is marched along theta from
-the pad's leading edge, and upwind across Z from the mid-plane out to the ends.
+qbar per unit width), and Nu and the pad surface's temperature come from the profile
+across the film (NUSSELT, SURFACE). The film's heat is carried along it, and
+conduction along it is negligible beside that (a Peclet number of thousands). So T is
+marched along theta from the pad's leading edge, and upwind across Z from the
+mid-plane out to the ends.
 
 Each pad's leading edge takes the oil that left the pad before it: a share
 `carry_over` of that flow at its mean temperature. Supply oil makes up the rest of the
@@ -39,13 +43,13 @@ import numpy as np
 from shaftfem.parts import oil, pads
 from shaftfem.parts.heat import CARRY_OVER, HOTTEST, SPECIFIC_HEAT
 
-# the film's heat into the journal, Nu k (T - T_j) / h: a film heated evenly across its
-# thickness against one isothermal wall (the journal) and one adiabatic (the pad) has
-# Nu = 3 between its mean temperature and the wall
-NUSSELT = 3.0
-# ... and there the adiabatic wall runs hotter than the journal by 3/2 of the mean's
-# excess (T = T_j + (q h^2 / k)(xi - xi^2 / 2) across the film, xi from the journal)
-SURFACE = 1.5
+# Across the film, heated evenly (Couette shear), from the isothermal journal (xi = 0)
+# to the adiabatic pad (xi = 1): T = T_j + A (xi - xi^2 / 2), the journal taking k A / h.
+# The flow u = U (1 - xi) carries its bulk temperature T_j + A / 4, the one the march
+# transports: so the journal takes Nu k (T - T_j) / h with Nu = 4 on it, and the pad's
+# surface runs at T_j + A / 2, twice the bulk's excess over the journal.
+NUSSELT = 4.0
+SURFACE = 2.0
 CONDUCTIVITY = 0.13   # W/(m K), a mineral oil's
 # the temperatures have settled when no node moves by more than this (K) in a round
 SETTLED = 0.02
@@ -171,8 +175,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             kept = min(carry_over * q_prev, flows[k])
             inlets[k] = (kept * t_prev + (flows[k] - kept) * supply) / flows[k]
         if moved < SETTLED:
-            # the pad's surface: the film's adiabatic wall, hotter than its mean by half
-            # the mean's excess over the journal (the profile across the film of Nu = 3)
+            # the pad's surface: the film's adiabatic wall (SURFACE)
             surface = [journal + SURFACE * (t - journal) for t in T]
             peaks = [float(t.max()) for t in surface]
             hot = int(np.argmax(peaks))
