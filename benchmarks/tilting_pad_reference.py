@@ -13,6 +13,12 @@ environment of its own:
         "plotly>=5.15" xlrd "pint>=0.24.4" methodtools numba "ccp-performance>=0.4.1" \\
         prettytable control
     .venv-ross3/bin/python benchmarks/tilting_pad_reference.py tests/data/tilting_pads_ross.json
+    .venv-ross3/bin/python benchmarks/tilting_pad_reference.py --whirl \
+        tests/data/tilting_pads_ross_whirl.json
+
+`--whirl`: the first bearing at its first speed reduced at whirls of WHIRL_RATIOS times
+the spin (ross's excitation_ratio), its pads massless (pad_density 1e-9: shaftfem's
+film table takes massless pads).
 
 ross's angles run from +x towards +y, the journal turning the same way; a pad's pivot
 offset is its share of the arc from the leading edge. Its films here are finer than its
@@ -38,7 +44,10 @@ BEARINGS = {
 }
 
 
-def solve(b: dict) -> list[dict]:
+WHIRL_RATIOS = (0.5, 2.0)
+
+
+def solve(b: dict, **more) -> list[dict]:
     from ross.bearings.tilting_pad import TiltingPad
     from ross.units import Q_
 
@@ -56,7 +65,7 @@ def solve(b: dict) -> list[dict]:
         preload=[b["preload"]] * n, offset=[b["offset"]] * n, lubricant=oil,
         oil_supply_temperature=Q_(40, "degC"), oil_flow_v=Q_(20, "l/min"),
         fxs_load=0.0, fys_load=-b["load"], thermal_type=None,
-        total_ex_film=60, total_ez_film=40)
+        total_ex_film=60, total_ez_film=40, **more)
     rows = []
     for i, rpm in enumerate(b["speeds_rpm"]):
         out = bearing._results.outputs[i]
@@ -69,10 +78,29 @@ def solve(b: dict) -> list[dict]:
     return rows
 
 
+def whirl(path: str) -> int:
+    """The --whirl file: the first bearing's coefficients at its first speed, reduced at
+    each whirl ratio, massless pads."""
+    import ross
+
+    name, b = next(iter(BEARINGS.items()))
+    b = {**b, "speeds_rpm": b["speeds_rpm"][:1]}
+    rows = {str(r): solve(b, excitation_ratio=r, pad_density=1e-9)[0] for r in WHIRL_RATIOS}
+    out = {"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, thermal_type=None, "
+                     "excitation_ratio, pad_density 1e-9, 60 x 40 film cells per pad",
+           "bearing": name, **b, "whirl": rows}
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+    print(json.dumps(rows, indent=1))
+    return 0
+
+
 def main(argv: list[str]) -> int:
     import ross
 
     warnings.filterwarnings("ignore")
+    if argv[0] == "--whirl":
+        return whirl(argv[1])
     out = {"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, thermal_type=None, "
                      "equilibrium_type='match_load', 60 x 40 film cells per pad",
            "bearings": {name: {**b, "results": solve(b)} for name, b in BEARINGS.items()}}

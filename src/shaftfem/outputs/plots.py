@@ -342,6 +342,47 @@ def bearings_figure(cases):
     return fig
 
 
+def pads_figure(c):
+    """Each tilting pads' bearing's stiffness and damping at the first operating speed
+    against the whirl's frequency over the spin (its tilts condensed at each whirl), the
+    synchronous value and the judged mode's whirl marked (a Campbell run `c`). None
+    without tilting pads."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    held = [s for s in c.rotor_scene.held if s.bearing is not None and s.bearing.pads]
+    if not held:
+        return None
+    w = c.rotor_scene.rotor.speeds[0]
+    ratios = np.geomspace(0.1, 4.0, 120)
+    fig = Figure(figsize=(10, 2.8 * len(held) + 0.6))
+    axes = np.atleast_2d(fig.subplots(len(held), 2, squeeze=False))
+    colors = {"xx": "tab:blue", "xy": "tab:orange", "yx": "tab:green", "yy": "tab:red"}
+    judged = None if c.stability is None else c.stability.frequency_hz * 2 * np.pi / w
+    for row, s in enumerate(held):
+        pairs = [s.bearing.at_whirl(w, r * w) for r in ratios]
+        for j, (what, unit) in enumerate((("stiffness", "N/mm"), ("damping", "N s/mm"))):
+            ax = axes[row, j]
+            values = np.array([p[j] for p in pairs]) / 1e3
+            for (a, b), key in (((0, 0), "xx"), ((0, 1), "xy"), ((1, 0), "yx"), ((1, 1), "yy")):
+                ax.plot(ratios, values[:, a, b], color=colors[key], lw=1.2,
+                        label=f"{what[0]}{key}")
+            ax.axvline(1.0, color="black", lw=0.8, ls="--", label="synchronous")
+            if judged is not None:
+                ax.axvline(judged, color="tab:purple", lw=0.8, ls=":",
+                           label=f"judged mode ({c.stability.frequency_hz:.1f} Hz)")
+            ax.axhline(0.0, color="black", lw=0.6)
+            ax.set_xscale("log")
+            ax.set_title(f"{s.name}: {what} at {w * 30 / np.pi:,.0f} r/min", fontsize=9)
+            ax.set_ylabel(unit)
+            ax.set_xlabel("whirl frequency / spin")
+            ax.grid(True, alpha=0.3, which="both")
+            ax.legend(fontsize=7, ncol=2)
+    fig.suptitle("Tilting pads' coefficients against the whirl's frequency (the tilts "
+                 "condensed at each)", fontsize=10)
+    return fig
+
+
 def hot_spots_figure(result):
     """The shaft's surface unrolled (z in mm along, the angle about the axis in degrees
     across), coloured by the degree of utilisation (the larger of FKM's fatigue a_BK and

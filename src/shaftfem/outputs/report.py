@@ -112,6 +112,7 @@ NOMINAL_PICTURES = ("campbell.png", "critical_shapes.png", "bode.png", "weight_2
                     "level1.png", "runup.png")
 # the study's pictures, in the order the section shows them, with their headings
 STUDY_PICTURES = (("bearings.png", "Bearing and seal coefficients against speed"),
+                  ("pads.png", "Tilting pads' coefficients against the whirl's frequency"),
                   ("campbell.png", "Campbell diagram"), ("ucs.png", "Critical speed map"),
                   ("critical_shapes.png", "Deflected shapes at the critical speeds"),
                   ("bode.png", "Unbalance response"),
@@ -136,6 +137,8 @@ def rotordynamics_markdown(study: RotorStudy, pictures: Sequence[Path]) -> list[
                       f"![{title}]({name})", ""]
             if name == "bearings.png":
                 lines += tables.markdown(*tables.bearing_rows(study_cases(study))) + [""]
+            if name == "pads.png":
+                lines += tables.markdown(*tables.pad_rows(study_cases(study)[0][1])) + [""]
             if name == "level1.png" and study.level1 is not None:
                 lines += ["```text", tables.level1_text(study.level1), "```", ""]
             if name == "ucs.png" and study.ucs is not None:

@@ -103,6 +103,8 @@ def _rotordynamics(study: RotorStudy, pictures: Sequence[Path]) -> str:
             if name == "bearings.png":
                 parts.append(_table(tables.bearing_rows(study_cases(study)),
                                     ("case", "bearing")))
+            if name == "pads.png":
+                parts.append(_table(tables.pad_rows(study_cases(study)[0][1]), ("bearing",)))
             if name == "level1.png" and study.level1 is not None:
                 parts.append(f"<pre>{html.escape(tables.level1_text(study.level1))}</pre>")
             if name == "ucs.png" and study.ucs is not None:

@@ -1129,6 +1129,29 @@ def bearing_rows(cases) -> tuple[list[str], list[list[str]]]:
     return head, rows
 
 
+# the whirl ratios (whirl over spin) a tilting pads' bearing's coefficients are tabled at
+WHIRL_RATIOS = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0)
+
+
+def pad_rows(c) -> tuple[list[str], list[list[str]]]:
+    """Each tilting pads' bearing's coefficients at the first operating speed against the
+    whirl's frequency (its tilts condensed at each: BearingCoefficients.at_whirl): a
+    Campbell run `c`."""
+    head = ["bearing", "speed, r/min", "whirl / spin", "kxx, N/mm", "kxy", "kyx", "kyy",
+            "cxx, N s/mm", "cxy", "cyx", "cyy"]
+    rows = []
+    w = c.rotor_scene.rotor.speeds[0]
+    for s in c.rotor_scene.held:
+        if s.bearing is None or s.bearing.pads is None:
+            continue
+        for r in WHIRL_RATIOS:
+            K, C = s.bearing.at_whirl(w, r * w)
+            rows.append([s.name, f"{w * 30 / math.pi:,.0f}", f"{r:g}",
+                         *(f"{v / 1e3:.4g}" for v in K.ravel()),
+                         *(f"{v / 1e3:.4g}" for v in C.ravel())])
+    return head, rows
+
+
 def _degrees(angle: float) -> str:
     """An angle about the axis (rad) in whole degrees, 0 to 359 (359.7 deg is 0)."""
     return f"{round(math.degrees(angle)) % 360:d}"

@@ -322,6 +322,16 @@ class BearingCoefficients:
         cxx, cxy, cyx, cyy = self._values(omega)[4:8]
         return ((cxx, cxy), (cyx, cyy))
 
+    def at_whirl(self, omega: float, whirl: float):
+        """A tilting pads' bearing's 2x2 (K, C) (N/m, N s/m) at the spin omega for a whirl
+        at `whirl` (rad/s): its tilts condensed out there (the synchronous ones at whirl =
+        omega); None without pads."""
+        if self.pads is None:
+            return None
+        K, C = self.pad_film(omega)
+        Z = condensed(K + 1j * whirl * C)
+        return Z.real, Z.imag / whirl
+
     @functools.cached_property
     def _reduced(self) -> dict:
         return {}

@@ -370,6 +370,11 @@ def study_pictures(study, folder: Path) -> list[Path]:
         fig = bearings_figure(study_cases(study))
         if fig is not None:
             out.append(save_png(fig, folder / "bearings.png", dpi=110))
+        from shaftfem.outputs.plots import pads_figure
+
+        fig = pads_figure(study_cases(study)[0][1])
+        if fig is not None:
+            out.append(save_png(fig, folder / "pads.png", dpi=110))
     if study is not None and study.ucs is not None:
         out.append(save_png(ucs_figure(study.ucs), folder / "ucs.png", dpi=130))
     if study is not None and study.level1 is not None:
