@@ -284,3 +284,31 @@ def test_the_report_names_a_journals_bore():
         ", elliptical (preload 0.5), two axial grooves of 15 deg")
     assert words(bore="two_axial_groove") == ", two axial grooves of 20 deg"
     assert words() == ""
+
+
+def test_a_tilting_pad_journal_fed_at_its_supply_reports_its_pads_temperatures():
+    """The wheel rotor on 4 tilting pads loaded between pads, fed at 40 C with a 50 C pad
+    limit: at the running speed each journal's film runs above its supply and its pads'
+    surface above that at its peak; the two pads the load falls between are the hot
+    ones; the peak over the limit is flagged, in the report's words too."""
+    from shaftfem.outputs.tables import film_text
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.campbell import film_rows
+    from shaftfem.workflows.static import equipped
+
+    bore = {"bore": "tilting_pad", "pads": 4, "pad_arc_deg": 70.0, "preload": 0.25,
+            "oil_supply_temperature_c": 40.0, "pad_temperature_limit_c": 50.0}
+    scene = wheel_on(**bore)
+    for s in scene["support"]:
+        del s["oil_temperature_c"]
+    rows = film_rows(equipped(load_scene(scene)))
+    assert rows
+    for f in rows:
+        assert 40.0 < f.film_c < f.pad_peak_c == max(f.pad_peaks_c)
+        # pads from the first past the load's line: 0 and 3 straddle it
+        loaded, free = (f.pad_peaks_c[0], f.pad_peaks_c[3]), (f.pad_peaks_c[1], f.pad_peaks_c[2])
+        assert min(loaded) > max(free)
+        assert f.hot == (f.pad_peak_c > 50.0)
+    text = film_text(rows)
+    assert "peak pad temperature" in text
+    assert ("ABOVE" in text) == any(f.hot for f in rows)

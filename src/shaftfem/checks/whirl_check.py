@@ -279,6 +279,9 @@ def check_whirl(c: Campbell, required: float | None = None) -> ResonanceVerdict:
         f"{f.eccentricity:.2f}); the coefficients there are the film's at that eccentricity"
         if not f.lifted else f"minimum film {f.min_film_um:.1f} um, below its "
         f"{f.limit_um:g} um limit (min_film_um)")) for f in c.films if f.thin]
+    warns += [f"journal bearing {f.bearing!r} at {f.speed_rpm:,.0f} r/min: its pads run at "
+              f"{f.pad_peak_c:.1f} C, above their {f.pad_limit_c:g} C limit "
+              "(pad_temperature_limit_c)" for f in c.films if f.hot]
     check = c.crossing_check
     basis = (f"the shaft turning at {', '.join(_span_text(lo, hi) for lo, hi in spans)} "
              f"({c.frame} frame): critical speeds from 0 to {max(c.speeds_rpm):,.0f} r/min "

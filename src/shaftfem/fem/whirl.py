@@ -476,6 +476,16 @@ class FilmRow:
     side_flow: float | None = None
     flow: float | None = None
     drain_c: float | None = None
+    # tilting pads fed at a supply temperature: the pads' peak temperature from their
+    # heated film (parts.pad_heat) and its limit (C)
+    pad_peak_c: float | None = None
+    pad_limit_c: float | None = None
+    pad_peaks_c: tuple[float, ...] = ()   # each pad's, from the first after the load's line
+
+    @property
+    def hot(self) -> bool:
+        return self.pad_peak_c is not None and self.pad_limit_c is not None and \
+            self.pad_peak_c > self.pad_limit_c
 
     @property
     def thin(self) -> bool:
@@ -501,7 +511,11 @@ class FilmRow:
                     "friction_power_w": self.power_w,
                     "side_flow_l_min": (self.side_flow or 0.0) * 60e3,
                     "supply_flow_l_min": None if self.flow is None else self.flow * 60e3,
-                    "drain_temperature_c": self.drain_c, "starved": self.starved})}
+                    "drain_temperature_c": self.drain_c, "starved": self.starved}),
+                **({} if self.pad_peak_c is None else {
+                    "peak_pad_temperature_c": self.pad_peak_c,
+                    "pad_peak_temperatures_c": list(self.pad_peaks_c),
+                    "pad_temperature_limit_c": self.pad_limit_c})}
 
 
 @dataclass(frozen=True)

@@ -578,7 +578,12 @@ def film_text(films) -> str:
                  + (" - less than the film's side flow: STARVED" if f.starved else ""))
         lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min: fed at {f.supply_c:g} C, "
                      f"the film runs at {f.film_c:.1f} C, friction {f.power_w:,.0f} W, "
-                     f"side flow {f.side_flow * 60e3:.3g} l/min{drain}")
+                     f"side flow {f.side_flow * 60e3:.3g} l/min{drain}"
+                     + ("" if f.pad_peak_c is None else
+                        f"; peak pad temperature {f.pad_peak_c:.1f} C (limit "
+                        f"{f.pad_limit_c:g} C{': ABOVE' if f.hot else ''}); each pad's "
+                        "peak from the load's line in the journal's turn: "
+                        + ", ".join(f"{t:.1f}" for t in f.pad_peaks_c) + " C"))
     return "\n".join(lines)
 
 

@@ -188,6 +188,7 @@ class Support(_Table):
     oil_iso_vg: int | None = None
     oil_temperature_c: Number | None = None
     oil_supply_temperature_c: Number | None = None
+    pad_temperature_limit_c: Number | None = None
     oil_flow_l_min: Number | None = None
     load_n: Number | None = None
     load_angle_deg: Number | None = None

@@ -374,7 +374,8 @@ def _bearing(source: str, table: str, t: dict) -> BearingCoefficients:
 
 
 JOURNAL_KEYS = ("radial_clearance_um", "diameter_mm", "viscosity_mpa_s", "oil_iso_vg",
-                "oil_temperature_c", "oil_supply_temperature_c", "oil_flow_l_min",
+                "oil_temperature_c", "oil_supply_temperature_c", "pad_temperature_limit_c",
+                "oil_flow_l_min",
                 "cavitation", "min_film_um")
 ROLLING_KEYS = ("elements", "element_diameter_mm", "pitch_diameter_mm", "roller_length_mm",
                 "contact_angle_deg", "preload_n")
@@ -489,6 +490,10 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
                 raise SceneError(f"{where(source, table, key)}: only with oil_iso_vg "
                                  "(viscosity_mpa_s is the film's viscosity already)")
         viscosity = t["viscosity_mpa_s"] * 1e-3
+    if "pad_temperature_limit_c" in raw and (t["bore"] != "tilting_pad" or supply is None):
+        raise SceneError(f"{where(source, table, 'pad_temperature_limit_c')}: only with "
+                         "bore = \"tilting_pad\" and oil_supply_temperature_c (the pads' "
+                         "heated film gives their temperature)")
     if t["oil_flow_l_min"] is not None and supply is None:
         raise SceneError(f"{where(source, table, 'oil_flow_l_min')}: only with "
                          "oil_supply_temperature_c (the flow the supply heats)")
@@ -519,7 +524,7 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         cavitation=t["cavitation"], bore=_bore(source, table, t),
         min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
         * 1e-6, oil_iso_vg=t["oil_iso_vg"], oil_temperature=t["oil_temperature_c"],
-        oil_supply_temperature=supply,
+        oil_supply_temperature=supply, pad_limit=t["pad_temperature_limit_c"],
         oil_flow=None if t["oil_flow_l_min"] is None else t["oil_flow_l_min"] / 60e3)
     # an oil given by its grade: the viscosities of its temperature range come from the
     # part (shaftfem.parts.oil), with the film's coefficients

@@ -543,6 +543,7 @@ class JournalBearing:
     # balance (shaftfem.parts.heat)
     oil_supply_temperature: float | None = None
     oil_flow: float | None = None
+    pad_limit: float = 120.0   # C: the highest pad temperature allowed (tilting pads)
 
     @property
     def ratio(self) -> float:

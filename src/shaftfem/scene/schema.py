@@ -302,6 +302,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
             "heat balance (docs/journal-bearing.md); or its range, [cold, hot] or [cold, "
             "nominal, hot], run as tolerance cases as oil_temperature_c's",
             lambda v: -20 <= v <= 150, "in [-20, 150] C", required=False),
+        "pad_temperature_limit_c": Key(
+            float, "the highest pad temperature allowed, C (bore = \"tilting_pad\" with "
+            "oil_supply_temperature_c: the pads' heated film gives the peak; default 120, "
+            "a babbitt's limit)", lambda v: 40 <= v <= 300, "in [40, 300] C", default=120.0,
+            required=False),
         "oil_flow_l_min": Key(float, "the oil supplied to the bearing, l/min (with "
                               "oil_supply_temperature_c): the report gives the drain's "
                               "temperature, and warns where the film draws more",

@@ -1136,7 +1136,7 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
             continue
         for w in speeds:
             op = operating(heat.at_speed(b, w), w)
-            warm = {}
+            warm: dict = {}
             supply = b.oil_supply_temperature
             if supply is not None:
                 h = heat.heat_balance(b, w, supply)
@@ -1145,6 +1145,10 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                     oil.density(supply) * heat.SPECIFIC_HEAT * b.oil_flow)
                 warm = dict(supply_c=supply, film_c=h.effective, power_w=h.power,
                             side_flow=h.side_flow, flow=b.oil_flow, drain_c=drain)
+                if b.bore is not None and b.bore.kind == "tilting_pad" and w > 0:
+                    peaks = pad_peaks(b, w)
+                    warm.update(pad_peak_c=max(peaks), pad_limit_c=b.pad_limit,
+                                pad_peaks_c=peaks)
             rows.append(FilmRow(
                 bearing=s.name, speed_rpm=w / RPM, eccentricity=op.eccentricity,
                 attitude_deg=math.degrees(op.attitude), min_film_um=op.min_film * 1e6,
@@ -1152,6 +1156,19 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                 C=tuple(float(v) for v in op.C.ravel()), limit_um=b.min_film * 1e6,
                 lifted=not op.beyond, **warm))
     return tuple(rows)
+
+
+def pad_peaks(b, omega: float) -> tuple[float, ...]:
+    """A tilting pads' journal's peak temperature on each pad (C) at the spin omega
+    (rad/s), fed at its supply temperature: its pads' heated film (parts.pad_heat), the
+    pads from the first past the load's line in the journal's turn."""
+    from shaftfem.parts import pad_heat, pads
+
+    assert b.oil_iso_vg is not None and b.oil_supply_temperature is not None
+    bore = pads.bore_of(b.bore, b.ratio)
+    h = pad_heat.heated(bore, b.load, omega, b.diameter / 2, b.clearance, b.oil_iso_vg,
+                        b.oil_supply_temperature)
+    return tuple(float(t.max()) for t in h.surface)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
