@@ -111,3 +111,28 @@ def test_pads_with_inertia_lock_at_high_frequency(pad_bearing):
     light = jeffcott(pad_bearing)
     seat = condensed_at(light, w, 1j * nu) * 40.0 + nu * nu * 40.0 * np.eye(2)
     assert np.abs(seat - fixed).max() > 0.1 * np.abs(fixed).max()
+
+
+def test_a_scenes_pad_inertia_enters_the_model_and_its_reduced_coefficients(pad_bearing):
+    """pad_inertia_kg_mm2 = 20,000 on the same journals: the model's pads carry I / R^2 on
+    their tilts, and the 2x2 the tables give is the film condensed with it at the spin
+    (the model's dynamic stiffness there within 1e-8), no longer the massless one."""
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.static import equipped
+    from test_pads import wheel_on
+
+    bore = {"bore": "tilting_pad", "pads": 4, "pad_arc_deg": 70.0, "preload": 0.25,
+            "pad_inertia_kg_mm2": 20000.0}
+    scene = equipped(load_scene(wheel_on(**bore)))
+    b = scene.supports[0]
+    heavy = b.bearing
+    R = b.journal.diameter / 2
+    assert heavy.pads.inertia == pytest.approx((0.02 / R**2,) * 4)
+    model = jeffcott(heavy)
+    for n in SPEEDS_RPM:
+        w = n * math.pi / 30
+        D, K = replace(model, reduced=True).matrices(w)
+        Z = K - w * w * model.mass(w) + 1j * w * D
+        assert np.abs(model.dynamic(w, w) - Z).max() <= 1e-8 * np.abs(Z).max()
+        light = np.array(pad_bearing.stiffness(w))
+        assert np.abs(np.array(heavy.stiffness(w)) - light).max() > 1e-3 * np.abs(light).max()

@@ -575,6 +575,14 @@ def coefficients(b: JournalBearing, rotor: Rotor,
         raise ValueError(f"{e}; the load is too large for this film (a larger clearance "
                          "ratio, viscosity, length or speed carries more)") from None
     K, C = speeds.K, speeds.C
+    pads = _pad_film(b, speeds)
+    if pads is not None and pads.inertia and speeds.pad_K is not None \
+            and speeds.pad_C is not None:
+        # pads with inertia: the 2x2 at each speed is the film condensed with it
+        reduced = [condensed(A + 1j * w * B - w * w * pads.mass) for w, A, B in
+                   zip(speeds.speeds, speeds.pad_K, speeds.pad_C)]
+        K = np.array([Z.real for Z in reduced])
+        C = np.array([Z.imag / w for Z, w in zip(reduced, speeds.speeds)])
 
     def column(A, i: int, j: int) -> tuple[float, ...]:
         return tuple(float(v) for v in A[:, i, j])
@@ -584,13 +592,16 @@ def coefficients(b: JournalBearing, rotor: Rotor,
         speeds=tuple(float(w) for w in speeds.speeds), kxx=column(K, 0, 0),
         kxy=column(K, 0, 1), kyx=column(K, 1, 0), kyy=column(K, 1, 1), cxx=column(C, 0, 0),
         cxy=column(C, 0, 1), cyx=column(C, 1, 0), cyy=column(C, 1, 1),
-        reference=max(low, speeds.lift), pads=_pad_film(b, speeds))
+        reference=max(low, speeds.lift), pads=pads)
 
 
 def _pad_film(b: JournalBearing, speeds: SpeedTable) -> TiltingFilm | None:
-    """A bore of tilting pads' film on its tilts for the rotor model (massless pads)."""
+    """A bore of tilting pads' film on its tilts for the rotor model, with each pad's
+    inertia about its pivot over R^2 (the tilt's coordinate is R phi)."""
     if speeds.pad_K is None or speeds.pad_C is None:
         return None
-    return TiltingFilm(size=speeds.pad_K.shape[1],
-                   stiffness=tuple(float(v) for v in speeds.pad_K.ravel()),
-                   damping=tuple(float(v) for v in speeds.pad_C.ravel()))
+    n = speeds.pad_K.shape[1]
+    R = b.diameter / 2
+    return TiltingFilm(size=n, stiffness=tuple(float(v) for v in speeds.pad_K.ravel()),
+                       damping=tuple(float(v) for v in speeds.pad_C.ravel()),
+                       inertia=(b.pad_inertia / R**2,) * (n - 2) if b.pad_inertia else ())

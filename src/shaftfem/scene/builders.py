@@ -199,6 +199,7 @@ class Support(_Table):
     preload: Number | None = None
     pivot_offset: Number | None = None
     load_between_pads: bool | None = None
+    pad_inertia_kg_mm2: Number | None = None
     groove_arc_deg: Number | None = None
     min_film_um: Number | None = None
     elements: int | None = None

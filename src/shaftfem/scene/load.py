@@ -525,6 +525,7 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         min_film=(t["min_film_um"] if t["min_film_um"] is not None else DEFAULT_MIN_FILM_UM)
         * 1e-6, oil_iso_vg=t["oil_iso_vg"], oil_temperature=t["oil_temperature_c"],
         oil_supply_temperature=supply, pad_limit=t["pad_temperature_limit_c"],
+        pad_inertia=(t["pad_inertia_kg_mm2"] or 0.0) * 1e-6,
         oil_flow=None if t["oil_flow_l_min"] is None else t["oil_flow_l_min"] / 60e3)
     # an oil given by its grade: the viscosities of its temperature range come from the
     # part (shaftfem.parts.oil), with the film's coefficients
@@ -543,7 +544,7 @@ def _bore(source: str, table: str, t: dict) -> JournalBore | None:
     kind = t["bore"]
     tilting = ("pads", "pad_arc_deg")
     if kind != "tilting_pad":
-        for key in tilting:
+        for key in (*tilting, "pad_inertia_kg_mm2"):
             if t[key] is not None:
                 raise SceneError(f"{where(source, table, key)}: only with bore = "
                                  "\"tilting_pad\"")

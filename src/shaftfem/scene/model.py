@@ -261,6 +261,14 @@ class TiltingFilm:
     damping: tuple[float, ...]
     inertia: tuple[float, ...] = ()
 
+    @property
+    def mass(self):
+        """The film's coordinates' mass matrix (size, size): the pads' inertias on their
+        tilts, kg (zero on the seat's motion: the shaft's own mass is the rotor's)."""
+        import numpy as np
+
+        return np.diag([0.0, 0.0, *(self.inertia or (0.0,) * (self.size - 2))])
+
 
 @dataclass(frozen=True)
 class BearingCoefficients:
@@ -329,7 +337,8 @@ class BearingCoefficients:
         if self.pads is None:
             return None
         K, C = self.pad_film(omega)
-        Z = condensed(K + 1j * whirl * C)
+        assert self.pads is not None
+        Z = condensed(K + 1j * whirl * C - whirl**2 * self.pads.mass)
         return Z.real, Z.imag / whirl
 
     @functools.cached_property
@@ -342,8 +351,9 @@ class BearingCoefficients:
         table's kxx... are these at its speeds)."""
         if omega not in self._reduced:
             K, C = self.pad_film(omega)
+            assert self.pads is not None
             w = max(omega, 1e-12)
-            Z = condensed(K + 1j * w * C)
+            Z = condensed(K + 1j * w * C - w * w * self.pads.mass)
             self._reduced[omega] = (tuple(map(tuple, Z.real.tolist())),
                                     tuple(map(tuple, (Z.imag / w).tolist())))
         return self._reduced[omega]
@@ -544,6 +554,7 @@ class JournalBearing:
     oil_supply_temperature: float | None = None
     oil_flow: float | None = None
     pad_limit: float = 120.0   # C: the highest pad temperature allowed (tilting pads)
+    pad_inertia: float = 0.0   # kg m^2: each tilting pad's about its pivot (0: massless)
 
     @property
     def ratio(self) -> float:

@@ -345,6 +345,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                  "\"tilting_pad\"; default true) or on a pad's pivot",
                                  lambda v: True, "true or false", default=True,
                                  required=False),
+        "pad_inertia_kg_mm2": Key(float, "each tilting pad's moment of inertia about its "
+                                  "pivot, kg mm^2 (bore = \"tilting_pad\"; default 0: "
+                                  "massless pads, whose tilts are first-order in the rotor "
+                                  "model)", *upto(1e9, "up to 10^9 kg mm^2", closed_low=True),
+                                  required=False),
         "groove_arc_deg": Key(float, "each axial groove's arc, deg (bore = "
                               "\"two_axial_groove\", \"elliptical\"; default 20)",
                               lambda v: 0 < v < 90, "in (0, 90)", default=20.0,
