@@ -48,7 +48,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from shaftfem.errors import SolverError
-from shaftfem.scene.model import Attachment, BearingCoefficients
+from shaftfem.scene.model import FLOATING, Attachment, BearingCoefficients
 
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
@@ -221,8 +221,11 @@ class RotorModel:
             if b.coefficients.pads is None:
                 continue
             Kf, Cf = b.coefficients.pad_film(omega)
-            scale = max(float(np.abs(Kf).max()), 1e-300)
-            loaded = [i for i in range(2, Kf.shape[0]) if np.abs(Kf[i]).max() > 1e-12 * scale]
+            # the pads the synchronous reduction keeps (scene.model.condensed)
+            Zs = Kf + 1j * omega * Cf
+            scale = max(float(np.abs(Zs).max()), 1e-300)
+            loaded = [i for i in range(2, Kf.shape[0])
+                      if np.abs(Zs[i]).max() > FLOATING * scale]
             inertia = b.coefficients.pads.inertia or (0.0,) * (Kf.shape[0] - 2)
             blocks.append((b.beta, Kf, Cf, loaded, [inertia[i - 2] for i in loaded]))
         n, P = self.size, sum(len(x[3]) for x in blocks)

@@ -234,6 +234,12 @@ class ModeRequest:
     max_frequency: float | None = None
 
 
+# a pad whose film's row is below this share of the bearing's largest entry floats (read
+# between a table's rows, a pad that lifts off leaves a film of round-off: kept, its
+# tilt would be a root of that film's own tiny damping, far off the rotor's)
+FLOATING = 1e-8
+
+
 def condensed(Z):
     """The journal's 2x2 block of a film matrix on (x, y, tilts...) (stiffness, or a
     dynamic stiffness K + i w C - w^2 M at a whirl) with the tilts condensed out: Z_jj -
@@ -243,7 +249,7 @@ def condensed(Z):
     # a pad whose film carries nothing (the journal pulled away from it: its film
     # diverges all over, whatever its tilt) floats: it adds nothing, and is left out
     loaded = [i for i in range(2, Z.shape[0])
-              if np.abs(Z[i]).max() > 1e-12 * max(float(np.abs(Z).max()), 1e-300)]
+              if np.abs(Z[i]).max() > FLOATING * max(float(np.abs(Z).max()), 1e-300)]
     if not loaded:
         return Z[:2, :2]
     p = np.array(loaded)
