@@ -30,7 +30,7 @@ def jeffcott(coefficients, mass: float = 40.0, inertia: float = 0.0) -> RotorMod
     (kg) as given."""
     if inertia:
         coefficients = replace(coefficients, pads=replace(
-            coefficients.pads, inertia=(inertia,) * (coefficients.pads.size - 2)))
+            coefficients.pads, masses=(inertia,) * (coefficients.pads.size - 2)))
     b = BearingModal(name="pads", beta=np.eye(2) / math.sqrt(mass), coefficients=coefficients,
                      standstill=(0.0, 0.0))
     z = np.zeros((2, 2))
@@ -127,7 +127,7 @@ def test_a_scenes_pad_inertia_enters_the_model_and_its_reduced_coefficients(pad_
     b = scene.supports[0]
     heavy = b.bearing
     R = b.journal.diameter / 2
-    assert heavy.pads.inertia == pytest.approx((0.02 / R**2,) * 4)
+    assert heavy.pads.masses == pytest.approx((0.02 / R**2,) * 4)
     model = jeffcott(heavy)
     for n in SPEEDS_RPM:
         w = n * math.pi / 30
@@ -136,3 +136,57 @@ def test_a_scenes_pad_inertia_enters_the_model_and_its_reduced_coefficients(pad_
         assert np.abs(model.dynamic(w, w) - Z).max() <= 1e-8 * np.abs(Z).max()
         light = np.array(pad_bearing.stiffness(w))
         assert np.abs(np.array(heavy.stiffness(w)) - light).max() > 1e-3 * np.abs(light).max()
+
+
+def test_a_flexible_pivot_acts_in_series_with_each_pads_film():
+    """Each pad's radial motion r on a pivot of stiffness k_p (its film sees the journal's
+    motion less r n): condensed, a massless pad's film c_k n n^T (its tilt condensed, at
+    any whirl) and the pivot act in series, sum c_k k_p / (c_k + k_p) n_k n_k^T; a
+    pivot a million times stiffer gives back the rigid pivots' film within 1e-5."""
+    from shaftfem.parts import journal, pads
+    from shaftfem.scene.model import condensed
+
+    bore = pads.tilting(0.5, 4, math.radians(70.0), 0.25, 0.5, math.radians(-45.0))
+    state = pads.equilibrium(bore, np.array([0.0, -pads.sommerfeld_load(0.5, 0.3)]))
+    blocks = [pads._on_pivot(p, s) for p, s in zip(bore.pads, state.pads)]
+    for nu in (0.5, 1.0, 2.0):
+        Z = np.array([K + 1j * nu * C for K, C in blocks])
+        rigid = condensed(journal.assembled(Z, pivots=False))
+        series = np.zeros((2, 2), dtype=complex)
+        for p, z in zip(bore.pads, Z):
+            n = np.array([math.cos(p.pivot), math.sin(p.pivot)])
+            ck = n @ condensed(z[:3, :3]) @ n          # the pad's own film, c_k n n^T
+            series += ck * 3.0 / (ck + 3.0) * np.outer(n, n)
+        for k_p, expected, tol in ((3.0, series, 1e-9), (3e6 * np.abs(rigid).max(), rigid, 1e-5)):
+            A = journal.assembled(Z, pivots=True)
+            A[6:, 6:] += k_p * np.eye(4)
+            assert np.abs(condensed(A) - expected).max() <= tol * np.abs(expected).max()
+
+
+def test_a_scenes_flexible_pivots_are_coordinates_of_the_model(pad_bearing):
+    """pivot_stiffness_n_per_mm and pad_mass_kg on the 4-pad journals: the model carries
+    each pad's tilt and radial motion (2 + 8 coordinates), reduces exactly to the tables'
+    2x2 at the spin, every root exact at its own frequency; less damped than on rigid
+    pivots."""
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.static import equipped
+    from test_pads import wheel_on
+
+    bore = {"bore": "tilting_pad", "pads": 4, "pad_arc_deg": 70.0, "preload": 0.25,
+            "pivot_stiffness_n_per_mm": 2e5, "pad_mass_kg": 0.5}
+    b = equipped(load_scene(wheel_on(**bore))).supports[0].bearing
+    assert b.pads.size == 10 and b.pads.masses == pytest.approx((0.0,) * 4 + (0.5,) * 4)
+    model = jeffcott(b)
+    w = 3600 * math.pi / 30
+    D, K = replace(model, reduced=True).matrices(w)
+    Z = K - w * w * model.mass(w) + 1j * w * D
+    assert np.abs(model.dynamic(w, w) - Z).max() <= 1e-8 * np.abs(Z).max()
+    # the pivot in series takes damping from the film (its stiffness may rise: the
+    # series of a heavily damped film and a spring)
+    rigid = np.diag(pad_bearing.damping(w))
+    assert np.all(np.diag(b.damping(w)) < rigid)
+    M, Da, Ka, _ = model.augmented(w)
+    r = roots(model, w)
+    for lam, y in zip(r.lam, r.y.T):
+        terms = np.linalg.norm(Ka) + abs(lam) * np.linalg.norm(Da) + abs(lam)**2 * np.linalg.norm(M)
+        assert np.linalg.norm(condensed_at(model, w, lam) @ y) <= 1e-10 * terms * np.linalg.norm(y)

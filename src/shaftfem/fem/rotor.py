@@ -48,7 +48,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from shaftfem.errors import SolverError
-from shaftfem.scene.model import FLOATING, Attachment, BearingCoefficients
+from shaftfem.scene.model import Attachment, BearingCoefficients, coupled
 
 if TYPE_CHECKING:
     from shaftfem.fem.result import ModalResult
@@ -222,11 +222,8 @@ class RotorModel:
                 continue
             Kf, Cf = b.coefficients.pad_film(omega)
             # the pads the synchronous reduction keeps (scene.model.condensed)
-            Zs = Kf + 1j * omega * Cf
-            scale = max(float(np.abs(Zs).max()), 1e-300)
-            loaded = [i for i in range(2, Kf.shape[0])
-                      if np.abs(Zs[i]).max() > FLOATING * scale]
-            inertia = b.coefficients.pads.inertia or (0.0,) * (Kf.shape[0] - 2)
+            loaded = coupled(Kf + 1j * omega * Cf)
+            inertia = b.coefficients.pads.masses or (0.0,) * (Kf.shape[0] - 2)
             blocks.append((b.beta, Kf, Cf, loaded, [inertia[i - 2] for i in loaded]))
         n, P = self.size, sum(len(x[3]) for x in blocks)
         Ma, Da, Ka = (np.zeros((n + P, n + P)) for _ in range(3))

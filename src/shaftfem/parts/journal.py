@@ -321,8 +321,9 @@ class FilmTable:
     friction: np.ndarray | None = None
     inflow: np.ndarray | None = None
     side_flow: np.ndarray | None = None
-    # a bore of tilting pads: Kbar, Cbar on the journal and each tilt (n, 2 + P, 2 + P;
-    # parts.pads.film_table), the rows the synchronously reduced ones are condensed from
+    # a bore of tilting pads: each pad's Kbar, Cbar on (X, Y, its tilt, its pivot's
+    # radial motion) (n, P, 4, 4; parts.pads.film_table), what the synchronously reduced
+    # ones are condensed from (assembled)
     pad_stiffness: np.ndarray | None = None
     pad_damping: np.ndarray | None = None
 
@@ -396,6 +397,18 @@ class Operating:
     pad_C: np.ndarray | None = None
 
 
+def assembled(blocks: np.ndarray, pivots: bool) -> np.ndarray:
+    """A tilting-pad bearing's matrix on (x, y, each pad's tilt[, each pivot's radial
+    motion]) from its pads' blocks (P, 4, 4) on (x, y, tilt, r) (FilmTable): rigid pivots
+    leave the radial motions out."""
+    P = blocks.shape[0]
+    A = np.zeros((2 + P * (2 if pivots else 1),) * 2, dtype=blocks.dtype)
+    for k, block in enumerate(blocks):
+        idx = [0, 1, 2 + k] + ([2 + P + k] if pivots else [])
+        A[np.ix_(idx, idx)] += block[:len(idx), :len(idx)]
+    return A
+
+
 def operating(b: JournalBearing, omega: float) -> Operating:
     """The bearing at the spin omega (rad/s > 0): the film's table at its Sommerfeld
     number, scaled by the load and turned onto the load's direction."""
@@ -407,7 +420,7 @@ def operating(b: JournalBearing, omega: float) -> Operating:
     eps = _eccentricity(t, S)
     Kt, Ct = t.pad_stiffness, t.pad_damping
     pads = Kt is not None and Ct is not None
-    n = Kt.shape[1] if Kt is not None else 0
+    n = Kt.shape[1] * 16 if Kt is not None else 0   # the pads' 4 x 4 blocks
     if t.sommerfeld[0] < S:   # lighter than the first row: the film's linear limit
         phi, Fbar = t.attitude[0], t.force[0] * eps / t.eccentricity[0]
         Kbar, Cbar = t.stiffness[0], t.damping[0]
@@ -418,22 +431,28 @@ def operating(b: JournalBearing, omega: float) -> Operating:
         columns = [t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4),
                    t.films]
         if Kt is not None and Ct is not None:
-            columns += [Kt.reshape(-1, n * n), Ct.reshape(-1, n * n)]
+            columns += [Kt.reshape(-1, n), Ct.reshape(-1, n)]
         at = PchipInterpolator(t.eccentricity, np.column_stack(columns))(eps)
         phi, Fbar = float(at[0]), float(at[1])
         Kbar, Cbar = at[2:6].reshape(2, 2), at[6:10].reshape(2, 2)
         film = float(at[10])
         if pads:
-            Kp, Cp = at[11:11 + n * n].reshape(n, n), at[11 + n * n:].reshape(n, n)
+            Kp, Cp = at[11:11 + n].reshape(-1, 4, 4), at[11 + n:].reshape(-1, 4, 4)
     Q = rotation(math.atan2(b.direction[1], b.direction[0]) + math.pi / 2)
     unit = b.load / (b.clearance * Fbar)
     w = max(omega, 1e-12)
     K, C = unit * (Q @ Kbar @ Q.T), unit / w * (Q @ Cbar @ Q.T)
     pad_K = pad_C = None
-    if pads:   # the tilts are scalars: only the journal's block turns
-        T = np.eye(n)
+    if pads:   # the tilts and radial motions are scalars: only the journal's block turns
+        k_pivot = b.pivot_stiffness
+        pivots = k_pivot is not None
+        T = np.eye(2 + Kp.shape[0] * (2 if pivots else 1))
         T[:2, :2] = Q
-        pad_K, pad_C = unit * (T @ Kp @ T.T), unit / w * (T @ Cp @ T.T)
+        pad_K = unit * (T @ assembled(Kp, pivots) @ T.T)
+        pad_C = unit / w * (T @ assembled(Cp, pivots) @ T.T)
+        if k_pivot is not None:   # each pivot's spring holds its pad's radial motion
+            P = Kp.shape[0]
+            pad_K[2 + P:, 2 + P:] += k_pivot * np.eye(P)
         # reduced from the film read here, so that the two agree exactly at this speed
         Z = condensed(pad_K + 1j * w * pad_C)
         K, C = Z.real, Z.imag / w
@@ -576,7 +595,7 @@ def coefficients(b: JournalBearing, rotor: Rotor,
                          "ratio, viscosity, length or speed carries more)") from None
     K, C = speeds.K, speeds.C
     pads = _pad_film(b, speeds)
-    if pads is not None and pads.inertia and speeds.pad_K is not None \
+    if pads is not None and pads.masses and speeds.pad_K is not None \
             and speeds.pad_C is not None:
         # pads with inertia: the 2x2 at each speed is the film condensed with it
         reduced = [condensed(A + 1j * w * B - w * w * pads.mass) for w, A, B in
@@ -596,12 +615,15 @@ def coefficients(b: JournalBearing, rotor: Rotor,
 
 
 def _pad_film(b: JournalBearing, speeds: SpeedTable) -> TiltingFilm | None:
-    """A bore of tilting pads' film on its tilts for the rotor model, with each pad's
-    inertia about its pivot over R^2 (the tilt's coordinate is R phi)."""
+    """A bore of tilting pads' film on its tilts (and its pivots' radial motions) for the
+    rotor model, with each pad's inertia about its pivot over R^2 on its tilt (the tilt's
+    coordinate is R phi) and its mass on its radial motion."""
     if speeds.pad_K is None or speeds.pad_C is None:
         return None
     n = speeds.pad_K.shape[1]
+    P = n - 2 if b.pivot_stiffness is None else (n - 2) // 2
     R = b.diameter / 2
+    masses = (b.pad_inertia / R**2,) * P + ((b.pad_mass,) * P if b.pivot_stiffness else ())
     return TiltingFilm(size=n, stiffness=tuple(float(v) for v in speeds.pad_K.ravel()),
                        damping=tuple(float(v) for v in speeds.pad_C.ravel()),
-                       inertia=(b.pad_inertia / R**2,) * (n - 2) if b.pad_inertia else ())
+                       masses=masses if any(masses) else ())

@@ -386,6 +386,15 @@ def pad_heat_terms(pad: Pad, ratio: float, q: np.ndarray, P: np.ndarray
     return friction, flows[0], flows[0] - flows[1]
 
 
+def _on_pivot(pad: Pad, s: PadState) -> tuple[np.ndarray, np.ndarray]:
+    """A tilting pad's film (K, C) on (X, Y, its tilt, r): r its pivot's motion outward
+    along n = (cos, sin) of its pivot angle, which opens its film as the journal's motion
+    by -r n does (the pad's own coordinates are (X - r n_x, Y - r n_y, tilt))."""
+    n = np.array([math.cos(pad.pivot), math.sin(pad.pivot)])
+    T = np.array([[1.0, 0.0, 0.0, -n[0]], [0.0, 1.0, 0.0, -n[1]], [0.0, 0.0, 1.0, 0.0]])
+    return T.T @ s.stiffness @ T, T.T @ s.damping @ T
+
+
 def sommerfeld_load(ratio: float, sommerfeld: float) -> float:
     """The nondimensional load |Fbar| = W c^2 / (mu omega R^4) of a bearing of L / D =
     ratio at Sommerfeld's S = mu N L D / W (R / c)^2 (N in rev/s): 2 ratio / (pi S)."""
@@ -416,7 +425,7 @@ def bore_of(spec, ratio: float) -> Bore:
 SOMMERFELD = tuple(np.geomspace(10.0, 0.005, 28).round(6))
 THINNEST = 0.02
 # what a bore's film table depends on besides its L / D and bore: a cache's key
-SETTINGS = {"version": 4, "pads": True, "cells_per_radian": CELLS_PER_RADIAN,
+SETTINGS = {"version": 5, "pads": True, "cells_per_radian": CELLS_PER_RADIAN,
             "z_cells": Z_CELLS, "sommerfeld": list(SOMMERFELD), "thinnest": THINNEST}
 
 
@@ -425,9 +434,10 @@ def film_table(spec, ratio: float):
     along -y (parts.journal.FilmTable): each row's eccentricity and attitude, |Fbar|,
     and the synchronously reduced Kbar, Cbar (a tilting pad's tilt condensed out at a
     whirl at the speed of the spin, its pad massless), and the thinnest film; a bore of
-    tilting pads also its Kbar, Cbar on the journal and every tilt (n, 2 + pads, 2 +
-    pads; a tilt's coordinate is its angle times R / c_b, as the journal's are over
-    c_b), for the rotor model to keep the tilts as its own coordinates."""
+    tilting pads also each pad's Kbar, Cbar on (X, Y, its tilt, its pivot's radial
+    motion) (n, pads, 4, 4; a tilt's coordinate is its angle times R / c_b, as the
+    journal's are over c_b; _on_pivot), for the rotor model to keep the tilts (and a
+    flexible pivot's motion) as its own coordinates (parts.journal.assembled)."""
     from shaftfem.parts.journal import FilmTable
 
     bore = bore_of(spec, ratio)
@@ -446,8 +456,10 @@ def film_table(spec, ratio: float):
         X, Y = state.q[:2]
         heat = np.sum([pad_heat_terms(p, ratio, state.q[bore.coordinates(k)], s.pressure)
                        for k, (p, s) in enumerate(zip(bore.pads, state.pads))], axis=0)
+        blocks = [_on_pivot(p, s) for p, s in zip(bore.pads, state.pads) if p.tilts]
         rows.append((math.hypot(X, Y), S, math.atan2(X, -Y), F, Z.real, Z.imag, h,
-                     state.stiffness, state.damping, *heat))
+                     np.array([b[0] for b in blocks]), np.array([b[1] for b in blocks]),
+                     *heat))
     if len(rows) < 4:
         raise ValueError(f"the {spec.kind} bore's film carries too little load to tabulate")
     col: list[np.ndarray] = [np.array(c) for c in zip(*rows)]

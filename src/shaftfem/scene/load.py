@@ -494,6 +494,10 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         raise SceneError(f"{where(source, table, 'pad_temperature_limit_c')}: only with "
                          "bore = \"tilting_pad\" and oil_supply_temperature_c (the pads' "
                          "heated film gives their temperature)")
+    if t["pad_mass_kg"] is not None and t["pivot_stiffness_n_per_mm"] is None:
+        raise SceneError(f"{where(source, table, 'pad_mass_kg')}: only with "
+                         "pivot_stiffness_n_per_mm (on a rigid pivot the pad does not move "
+                         "radially)")
     if t["oil_flow_l_min"] is not None and supply is None:
         raise SceneError(f"{where(source, table, 'oil_flow_l_min')}: only with "
                          "oil_supply_temperature_c (the flow the supply heats)")
@@ -526,6 +530,8 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         * 1e-6, oil_iso_vg=t["oil_iso_vg"], oil_temperature=t["oil_temperature_c"],
         oil_supply_temperature=supply, pad_limit=t["pad_temperature_limit_c"],
         pad_inertia=(t["pad_inertia_kg_mm2"] or 0.0) * 1e-6,
+        pivot_stiffness=None if t["pivot_stiffness_n_per_mm"] is None
+        else t["pivot_stiffness_n_per_mm"] * 1e3, pad_mass=t["pad_mass_kg"] or 0.0,
         oil_flow=None if t["oil_flow_l_min"] is None else t["oil_flow_l_min"] / 60e3)
     # an oil given by its grade: the viscosities of its temperature range come from the
     # part (shaftfem.parts.oil), with the film's coefficients
@@ -544,7 +550,7 @@ def _bore(source: str, table: str, t: dict) -> JournalBore | None:
     kind = t["bore"]
     tilting = ("pads", "pad_arc_deg")
     if kind != "tilting_pad":
-        for key in (*tilting, "pad_inertia_kg_mm2"):
+        for key in (*tilting, "pad_inertia_kg_mm2", "pivot_stiffness_n_per_mm", "pad_mass_kg"):
             if t[key] is not None:
                 raise SceneError(f"{where(source, table, key)}: only with bore = "
                                  "\"tilting_pad\"")

@@ -240,6 +240,17 @@ class ModeRequest:
 FLOATING = 1e-8
 
 
+def coupled(Z) -> list[int]:
+    """The coordinates past the seat's two that a film matrix couples to the others
+    beyond FLOATING of its largest entry: a floating pad's tilt and radial motion (its
+    pivot's spring alone on its diagonal) are not."""
+    import numpy as np
+
+    off = np.abs(Z - np.diag(np.diag(Z)))
+    scale = FLOATING * max(float(np.abs(Z).max()), 1e-300)
+    return [i for i in range(2, Z.shape[0]) if off[i].max() > scale]
+
+
 def condensed(Z):
     """The journal's 2x2 block of a film matrix on (x, y, tilts...) (stiffness, or a
     dynamic stiffness K + i w C - w^2 M at a whirl) with the tilts condensed out: Z_jj -
@@ -248,8 +259,7 @@ def condensed(Z):
 
     # a pad whose film carries nothing (the journal pulled away from it: its film
     # diverges all over, whatever its tilt) floats: it adds nothing, and is left out
-    loaded = [i for i in range(2, Z.shape[0])
-              if np.abs(Z[i]).max() > FLOATING * max(float(np.abs(Z).max()), 1e-300)]
+    loaded = coupled(Z)
     if not loaded:
         return Z[:2, :2]
     p = np.array(loaded)
@@ -260,12 +270,14 @@ def condensed(Z):
 class TiltingFilm:
     """A tilting-pad bearing's film on the seat's (q_x, q_y) and its pads' tilts, per
     speed of its BearingCoefficients: K (N/m) and C (N s/m), (speeds, size, size)
-    flattened, and each pad's inertia about its pivot over R^2 (kg; zero: massless)."""
+    flattened, and the mass on each coordinate past the seat's two (kg; empty: none): a
+    pad's inertia about its pivot over R^2 on its tilt, its mass on its pivot's radial
+    motion."""
 
     size: int
     stiffness: tuple[float, ...]
     damping: tuple[float, ...]
-    inertia: tuple[float, ...] = ()
+    masses: tuple[float, ...] = ()
 
     @property
     def mass(self):
@@ -273,7 +285,7 @@ class TiltingFilm:
         tilts, kg (zero on the seat's motion: the shaft's own mass is the rotor's)."""
         import numpy as np
 
-        return np.diag([0.0, 0.0, *(self.inertia or (0.0,) * (self.size - 2))])
+        return np.diag([0.0, 0.0, *(self.masses or (0.0,) * (self.size - 2))])
 
 
 @dataclass(frozen=True)
@@ -561,6 +573,10 @@ class JournalBearing:
     oil_flow: float | None = None
     pad_limit: float = 120.0   # C: the highest pad temperature allowed (tilting pads)
     pad_inertia: float = 0.0   # kg m^2: each tilting pad's about its pivot (0: massless)
+    # N/m: each tilting pad's pivot's radial stiffness (None: rigid), and the pad's mass
+    # on it (kg)
+    pivot_stiffness: float | None = None
+    pad_mass: float = 0.0
 
     @property
     def ratio(self) -> float:

@@ -350,6 +350,15 @@ SCHEMA: dict[str, dict[str, Key]] = {
                                   "massless pads, whose tilts are first-order in the rotor "
                                   "model)", *upto(1e9, "up to 10^9 kg mm^2", closed_low=True),
                                   required=False),
+        "pivot_stiffness_n_per_mm": Key(float, "each tilting pad's pivot's radial stiffness, "
+                                        "N/mm (bore = \"tilting_pad\"; default: rigid). "
+                                        "The pad's radial motion on it is then a coordinate "
+                                        "of the rotor model, the film and the pivot in "
+                                        "series", *upto(1e12, "up to 10^12 N/mm"),
+                                        required=False),
+        "pad_mass_kg": Key(float, "each tilting pad's mass on its flexible pivot, kg (with "
+                           "pivot_stiffness_n_per_mm; default 0)",
+                           *upto(1e4, "up to 10^4 kg", closed_low=True), required=False),
         "groove_arc_deg": Key(float, "each axial groove's arc, deg (bore = "
                               "\"two_axial_groove\", \"elliptical\"; default 20)",
                               lambda v: 0 < v < 90, "in (0, 90)", default=20.0,
