@@ -355,7 +355,6 @@ class BearingCoefficients:
         if self.pads is None:
             return None
         K, C = self.pad_film(omega)
-        assert self.pads is not None
         Z = condensed(K + 1j * whirl * C - whirl**2 * self.pads.mass)
         return Z.real, Z.imag / whirl
 
@@ -368,12 +367,8 @@ class BearingCoefficients:
         and the tilts (pad_film) with the tilts condensed out at a whirl at omega (its
         table's kxx... are these at its speeds)."""
         if omega not in self._reduced:
-            K, C = self.pad_film(omega)
-            assert self.pads is not None
-            w = max(omega, 1e-12)
-            Z = condensed(K + 1j * w * C - w * w * self.pads.mass)
-            self._reduced[omega] = (tuple(map(tuple, Z.real.tolist())),
-                                    tuple(map(tuple, (Z.imag / w).tolist())))
+            K, C = self.at_whirl(omega, max(omega, 1e-12))
+            self._reduced[omega] = (tuple(map(tuple, K.tolist())), tuple(map(tuple, C.tolist())))
         return self._reduced[omega]
 
     def mass(self, omega: float) -> tuple[tuple[float, float], tuple[float, float]]:
