@@ -16,6 +16,15 @@ environment of its own:
     .venv-ross3/bin/python benchmarks/tilting_pad_reference.py --whirl \
         tests/data/tilting_pads_ross_whirl.json
 
+`--heat`: Fillon, Bligoud & Frene's (1992) 4-pad bearing (benchmarks/pad_heat.py) with
+ross's thermohydrodynamic film (thermal_type="full": the film's 3D energy equation,
+conduction in 20 mm pads, the journal at the films' mean temperature, hot-oil
+carry-over 0.8), rigid pads, at 1,000 to 4,000 r/min. Its oil is shaftfem's ISO VG 32
+(parts.oil) through ross's exponential law at 40 and 70 C, with shaftfem's specific heat
+and conductivity; the film cells are those of ross's own test of this rig.
+
+    .venv-ross3/bin/python benchmarks/tilting_pad_reference.py --heat tests/data/fillon_ross.json
+
 `--whirl`: the first bearing at its first speed reduced at whirls of WHIRL_RATIOS times
 the spin (ross's excitation_ratio), its pads massless (pad_density 1e-9: shaftfem's
 film table takes massless pads).
@@ -30,6 +39,7 @@ from __future__ import annotations
 import json
 import sys
 import warnings
+from pathlib import Path
 
 # SI; pivots in degrees from +x; the load on the journal along -y
 BEARINGS = {
@@ -95,12 +105,67 @@ def whirl(path: str) -> int:
     return 0
 
 
+# parts.heat.SPECIFIC_HEAT and parts.pad_heat.CONDUCTIVITY (tests/test_pad_heat.py
+# checks the file against them); the pads' conductivity and edge convection are ross's
+# Fillon case's
+FILLON = {"diameter": 0.1, "length": 0.07, "pad_clearance": 148e-6, "preload": 0.47,
+          "pads": 4, "arc_deg": 75.0, "offset": 0.5, "first_pivot_deg": 45.0, "load": 10e3,
+          "grade": 32, "supply_c": 40.0, "specific_heat": 1900.0, "conductivity": 0.13,
+          "carry_over": 0.8, "speeds_rpm": [1000.0, 2000.0, 3000.0, 4000.0]}
+
+
+def heat(path: str) -> int:
+    """The --heat file: ross's peak pad temperature, journal temperature and
+    eccentricity on Fillon's bearing at each speed."""
+    import ross
+    from ross.bearings.tilting_pad import TiltingPad
+    from ross.units import Q_
+
+    sys.path.insert(0, str(Path(__file__).parents[1] / "src"))
+    from shaftfem.parts import oil  # pure Python: no shaftfem dependency is needed here
+
+    b = FILLON
+    g, n = b["grade"], b["pads"]
+    lubricant = {"liquid_viscosity1": oil.dynamic(g, 40.0), "temperature1": 313.15,
+                 "liquid_viscosity2": oil.dynamic(g, 70.0), "temperature2": 343.15,
+                 "liquid_density": oil.density(b["supply_c"]),
+                 "liquid_specific_heat": b["specific_heat"],
+                 "liquid_thermal_conductivity": b["conductivity"]}
+    rows = []
+    for rpm in b["speeds_rpm"]:
+        bearing = TiltingPad(
+            n=0, speed=Q_([rpm], "RPM"), equilibrium_type="match_load", thermal_type="full",
+            deform_type=None, journal_diameter=b["diameter"],
+            radial_clearance=b["pad_clearance"] * (1 - b["preload"]), pad_thickness=0.02,
+            pivot_angle=Q_([b["first_pivot_deg"] + k * 360.0 / n for k in range(n)], "deg"),
+            pad_arc=Q_([b["arc_deg"]] * n, "deg"), pad_axial_length=[b["length"]] * n,
+            preload=[b["preload"]] * n, offset=[b["offset"]] * n, lubricant=lubricant,
+            oil_supply_temperature=Q_(b["supply_c"], "degC"), oil_flow_v=Q_(10, "gallon/min"),
+            fxs_load=0.0, fys_load=-b["load"], hot_oil_lambda=b["carry_over"],
+            pad_conductivity=50.0, edges_convection=73.59,
+            journal_temperature=Q_(49, "degC"),
+            total_ex_film=24, total_ez_film=10, total_ey_film=10, total_ey_pad=10)
+        out = bearing._results.outputs[0]
+        rows.append({"speed_rpm": rpm, "peak_c": float(out["tpad_max"][0]) - 273.15,
+                     "journal_c": float(out["journal_temperature_output"][0]) - 273.15,
+                     "eccentricity": float(out["eccentricity"][0])})
+        print(rows[-1], flush=True)
+    with open(path, "w") as f:
+        json.dump({"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, "
+                             "thermal_type='full', deform_type=None, 24 x 10 x 10 film "
+                             "cells, 10 through each pad",
+                   "bearing": b, "results": rows}, f, indent=1)
+    return 0
+
+
 def main(argv: list[str]) -> int:
     import ross
 
     warnings.filterwarnings("ignore")
     if argv[0] == "--whirl":
         return whirl(argv[1])
+    if argv[0] == "--heat":
+        return heat(argv[1])
     out = {"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, thermal_type=None, "
                      "equilibrium_type='match_load', 60 x 40 film cells per pad",
            "bearings": {name: {**b, "results": solve(b)} for name, b in BEARINGS.items()}}

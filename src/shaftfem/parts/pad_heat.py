@@ -3,8 +3,10 @@ equation and its viscosity from the oil's ISO VG grade, solved in turn with its
 pressure (a thermohydrodynamic film), and the peak pad temperature.
 
 On each pad the oil's bulk temperature T (the one its flow carries) is solved in the
-film's plane. The pads are adiabatic. The journal is isothermal at T_j, and it takes
-from the hot films what it gives the cool ones. In the film's nondimensional variables
+film's plane. The pads are adiabatic. The journal is isothermal at T_j, the films'
+mean temperature over the pads' area (the shaft also sheds heat to the grooves' oil and
+along its length, so it runs cooler than the thin films' balance alone would hold it:
+ross 3.1's default, its `averaged_film_temperature`). In the film's nondimensional variables
 (parts.pads) the energy equation reads
 
     qbar . grad T = dT_ref phi - kappa (T - T_j) / H,
@@ -154,9 +156,9 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
                 a[g.i, g.j] = v
             Tk, q_t = march(*grid, g.theta, g.Z, inlets[k], rise, kappa, journal)
             new.append(Tk[g.i, g.j])
-            # the journal's heat from this pad's film, int (T - T_j) / H, and its weight
-            w = np.trapezoid(np.trapezoid(1 / grid[0], g.Z, axis=1), g.theta)
-            warm.append((np.trapezoid(np.trapezoid(Tk / grid[0], g.Z, axis=1), g.theta), w))
+            # this pad's film temperature integrated over its area, and the area
+            warm.append((np.trapezoid(np.trapezoid(Tk, g.Z, axis=1), g.theta),
+                         (g.theta[-1] - g.theta[0]) * g.Z[-1]))
             # the flow (qbar, whole length) and mean temperature at each edge
             q_in, q_out = 2 * np.trapezoid(q_t[0], g.Z), 2 * np.trapezoid(q_t[-1], g.Z)
             flows.append(q_in)
@@ -168,7 +170,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
                              f"{supply:g} C)")
         T = [0.5 * (a + b) for a, b in zip(new, T)]   # halved steps: the loop is stiff
         m = [viscosity(t) for t in T]
-        # the journal turns through every film: it takes in as much heat as it gives
+        # the journal turns through every film and runs at their mean
         journal = 0.5 * (journal + sum(a for a, _ in warm) / sum(w for _, w in warm))
         for k in range(n):   # the pad before k in the journal's turn
             q_prev, t_prev = outs[(k - 1) % n]
