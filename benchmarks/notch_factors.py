@@ -10,8 +10,9 @@ one end and loaded by the pure traction at the other, so only the notch's K_t is
 Prints, per shape, K_t as shaftfem gives it (von Mises peak over the nominal von Mises
 stress of the notch's section), its bound, the reference's K_t at both orders, the
 difference, whether the reference lies inside the bound's interval, and the chart's K_t
-(largest principal or largest shear over nominal) beside Peterson's where Pilkey's fits
-cover the shape.
+(largest principal or largest shear over nominal; a transverse hole in torsion: the
+largest principal over tau_nom of the gross section) beside Peterson's where Pilkey's
+fits cover the shape.
 
     .venv/bin/python benchmarks/notch_factors.py [--target 2] [--only "NAME;NAME"]
 
@@ -103,6 +104,40 @@ def keyed(d: float, length: float, width: float, depth: float, corner: float) ->
                      "edge_element_size_mm": max(corner, 0.5)}}
 
 
+def hole(D: float, d: float) -> dict:
+    """A round bar D with a transverse hole d through its axis at mid-length (along y),
+    brought as a STEP (built by `_hole_step`): no profile describes it."""
+    return {"hole": {"diameter_mm": D, "hole_mm": d},
+            "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": d / 6,
+                     "edge_element_size_mm": d / 6}}
+
+
+def _hole_step(D: float, d: float, path: Path) -> None:
+    """The STEP (mm) of `hole`, by gmsh's OpenCASCADE from two cylinders."""
+    import gmsh
+
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        occ = gmsh.model.occ
+        bar = occ.addCylinder(0, 0, 0, 0, 0, L, D / 2)
+        drill = occ.addCylinder(0, -D, L / 2, 0, 2 * D, 0, d / 2)
+        occ.cut([(3, bar)], [(3, drill)])
+        occ.synchronize()
+        gmsh.option.setString("Geometry.OCCTargetUnit", "MM")
+        gmsh.write(str(path))
+    finally:
+        gmsh.finalize()
+
+
+def pilkey_hole_torsion(D: float, d: float) -> float:
+    """Peterson's transverse hole through a round bar in torsion, by Pilkey's fit (the
+    tube's chart at d_i = 0; Pilkey & Pilkey, Peterson's Stress Concentration Factors,
+    3rd ed.): the largest principal stress over the gross section's 16 T / (pi D^3)."""
+    x = d / D
+    return 4.0 - 6.055 * x + 32.764 * x**2 - 38.33 * x**3
+
+
 def _chart(load: str):
     """Peterson's shoulder-fillet K_t under `load` (shaftfem.checks.notch_tables)."""
     return lambda D, d, r: shoulder_fillet(D, d, r, load)
@@ -150,6 +185,12 @@ SHAPES = {
     "shoulder 40/30 r4, tension": _shoulder_case(40, 30, 4, "tension", pilkey_shoulder_tension),
     "shoulder 60/40 r6, bending": _shoulder_case(60, 40, 6, "bending", pilkey_shoulder_bending),
     "relief groove 48/36 r3, bending": (relief(48, 36, 3), "bending", 36, (140, 160), None),
+    "transverse hole 32/6, torsion": (hole(32, 6), "torsion", 32, (140, 160),
+                                      pilkey_hole_torsion(32, 6)),
+    "transverse hole 32/3.2, torsion": (hole(32, 3.2), "torsion", 32, (140, 160),
+                                        pilkey_hole_torsion(32, 3.2)),
+    "transverse hole 40/10, torsion": (hole(40, 10), "torsion", 40, (140, 160),
+                                       pilkey_hole_torsion(40, 10)),
     "keyway 10x5 r1, bending": (keyed(32, 40, 10, 5, 1.0), "bending", 32, (125, 175), None),
     "keyway 10x5 r1, torsion": (keyed(32, 40, 10, 5, 1.0), "torsion", 32, (125, 175), None),
     "radial hole 8 deep 8 r1, torsion": (keyed(32, 8, 8, 8, 1.0), "torsion", 32, (140, 160),
@@ -166,6 +207,10 @@ def ours(name: str, target: float, folder: Path) -> dict:
     from shaftfem.workflows.strength import run_strength
 
     geometry, load, d, window, _ = SHAPES[name]
+    if "hole" in geometry:
+        given = folder / "solid.step"
+        _hole_step(geometry["hole"]["diameter_mm"], geometry["hole"]["hole_mm"], given)
+        geometry = {"shaft": {"step_file": str(given)}, "mesh": geometry["mesh"]}
     scene = load_scene({"name": "notch", "material": STEEL, "static": {"gravity_m_s2": 0.0},
                         "support": seats(load == "tension"), **geometry, **duty(load),
                         "strength": {"target_error_percent": target}})
@@ -174,10 +219,11 @@ def ours(name: str, target: float, folder: Path) -> dict:
     pieces = [{"a": list(p.a), "b": list(p.b),
                "centre": None if p.centre is None else list(p.centre)}
               for p in outline(scene.shaft)] if "section" in geometry else None
-    brep = folder / "solid.brep"
-    build_solid(scene.shaft, scene.grooves, brep)
     step = folder / "solid.step"
-    write_solid(brep, scene.shaft, [step])
+    if "shaft" not in geometry or "step_file" not in geometry["shaft"]:
+        brep = folder / "solid.brep"
+        build_solid(scene.shaft, scene.grooves, brep)
+        write_solid(brep, scene.shaft, [step])
     t = time.perf_counter()
     result = run_strength(scene, RunOptions())
     wall = time.perf_counter() - t
@@ -243,9 +289,10 @@ def main(argv: list[str]) -> int:
         ok = o["bound"] is not None and o["converging"] and abs(diff) <= o["bound"]
         held += ok
         peterson = SHAPES[name][4]
+        chart = p4["kt_principal"] if "hole" in SHAPES[name][0] else p4["kt_chart"]
         bound = "unknown" if o["bound"] is None else f"{o['bound']:.2%}"
         print(f"| {name} | {o['kt']:.4f} | {bound} | {p3['kt_vm']:.4f} | {p4['kt_vm']:.4f} "
-              f"| {diff:+.2%} | {'yes' if ok else 'NO'} | {p4['kt_chart']:.3f} | "
+              f"| {diff:+.2%} | {'yes' if ok else 'NO'} | {chart:.3f} | "
               f"{'' if peterson is None else f'{peterson:.3f}'} | "
               f"{o['dofs'][-1]:,} | {o['wall']:.0f} |", flush=True)
     print(f"\nthe reference inside shaftfem's bound on {held} of {len(names)} shapes")

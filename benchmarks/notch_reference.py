@@ -21,7 +21,9 @@ NGSolve is a benchmark tool, never a runtime need; it lives in a venv of its own
         "load": "bending", "window_mm": [140, 160], "d_nom_mm": 32, "h_mm": 8,
         "notch_h_mm": 0.6, "orders": [3, 4], "E_pa": 210e9, "nu": 0.3}'
 
-Prints one JSON line per order: {"order", "dofs", "kt_vm", "kt_chart", "where_mm"}.
+Prints one JSON line per order: {"order", "dofs", "kt_vm", "kt_chart", "kt_principal",
+"where_mm"} (kt_principal: the largest principal stress over the nominal stress, in
+torsion over tau_nom: a transverse hole's chart).
 benchmarks/notch_factors.py runs it for each of its shapes.
 """
 
@@ -135,6 +137,8 @@ def main(cfg: dict) -> None:
         k = int(np.argmax(vm))
         print(json.dumps({"order": p, "dofs": int(free.sum()),
                           "kt_vm": float(vm[k] / nominal_vm), "kt_chart": float(chart.max()),
+                          # a hole's chart in torsion: the largest principal over tau_nom
+                          "kt_principal": float(w[:, 2].max()),
                           "where_mm": [float(c) for c in where[k]]}), flush=True)
 
 

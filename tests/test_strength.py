@@ -346,6 +346,13 @@ def test_fkm_reproduces_a_published_worked_example():
      "needs one \\[\\[torque\\]\\] on the same part"),
     (dict(attachment=[GEAR], force=[{"part": "gear", "gear_pitch_diameter_mm": 100.0,
                                      "gear_helix_angle_deg": 50.0}]), "gear_helix_angle_deg"),
+    (dict(force=[{"position_mm": 100.0, "travel_to_mm": 450.0, "fy_n": 10.0}]),
+     "travel_to_mm = 450: must lie on the shaft"),
+    (dict(attachment=[GEAR], force=[{"part": "gear", "travel_to_mm": 300.0, "fy_n": 10.0}]),
+     "a part's load stays at its part"),
+    (dict(force=[{"position_mm": 100.0, "travel_to_mm": 100.0, "fy_n": 10.0}]),
+     "leave travel_to_mm out"),
+    (dict(strength={"travel_positions": 1}), "travel_positions"),
 ])
 def test_a_duty_that_cannot_stand_is_refused_by_key(tables, says):
     with pytest.raises(SceneError, match=says):
@@ -616,3 +623,47 @@ def test_a_shoulders_stress_in_tension_lies_within_its_bound_of_an_exact_solutio
     kt = spot.peak / (20000.0 / (math.pi * 0.032**2 / 4))
     assert spot.bound is not None and spot.converging
     assert abs(kt / 1.72582 - 1) <= spot.bound
+
+
+def test_a_travelling_load_is_screened_along_its_way_and_the_worst_place_bounded():
+    """A radial force travelling from 60 to 340 mm between seats 380 mm apart, the shaft
+    turning (fully reversed bending): on a plain bar the worst hot spot's utilisation
+    follows the beam's largest moment beside the load's band (a, b its distances to
+    the seats) within 1.5 %; the worst place, mid-span, is the one bounded and judged,
+    the seats each at the place that tilts them most."""
+    duty = dict(force=[{"name": "follower", "position_mm": 60.0, "travel_to_mm": 340.0,
+                        "fy_n": -2000.0}],
+                strength={"speed_rpm": 1000.0, "travel_positions": 5,
+                          "target_error_percent": 50.0})
+    result = ws.run_strength(load_scene(bar(**duty)))
+    assert [round(t.position * 1e3, 6) for t in result.travel] == [60.0, 130.0, 200.0,
+                                                                    270.0, 340.0]
+    l, e = 0.380, D / 4
+    # a bare force enters over a band z +- d/4 and is judged outside it: at the band's
+    # edges the moment is F (a b - e a) / l and F (a b - e b) / l, the larger of them
+    moment = []
+    for t in result.travel:
+        a = t.position - 0.010
+        moment.append((a * (l - a) - e * min(a, l - a)) / l)
+    use = [t.utilisation for t in result.travel]
+    assert np.allclose(np.array(use) / use[2], np.array(moment) / moment[2], rtol=0.015)
+    assert result.scene.forces[0].position == pytest.approx(0.200)
+    assert result.scene.forces[0].travel is None
+    I = math.pi * D**4 / 64
+    for seat in ("left", "right"):
+        # the seat's slope under a load at a from the left seat, b = l - a from the right,
+        # F a b (l + b) / (6 E I l) at the left, F a b (l + a) / (6 E I l) at the right:
+        # the worst of the five places
+        slopes = []
+        for t in result.travel:
+            a = t.position - 0.010
+            b = l - a
+            slopes.append(2000 * a * b * (l + (b if seat == "left" else a)) / (6 * E * I * l))
+        got = next(c for c in result.seats if c.name == seat)
+        assert got.slope == pytest.approx(max(slopes), rel=0.03), seat
+    data = result.as_dict()
+    assert [t["position_mm"] for t in data["travel"]] == pytest.approx([60, 130, 200, 270, 340])
+    from shaftfem.outputs.tables import strength_text
+
+    assert "screened at 5 places from 60.0 to 340.0 mm" in strength_text(result)
+    assert "the worst place, 200.0 mm" in strength_text(result)

@@ -1178,7 +1178,8 @@ def strength_text(result) -> str:
              f"({st.source}); R_z {st.roughness * 1e6:g} um; required safeties: fatigue "
              f"{st.fatigue_safety:g}, yield {st.yield_safety:g} at {st.peak_factor:g} x the duty",
              f"meshes solved: {', '.join(f'{d:,}' for d in result.dofs)} DOFs; bound wanted "
-             f"on each hot spot's stress: {result.target:.1%}", *result.notes, "",
+             f"on each hot spot's stress: {result.target:.1%}", *result.notes,
+             *([travel_line(result)] if result.travel else []), "",
              "hot spots (worst first; stresses von Mises, MPa; a: amplitude over a turn, "
              "m: mean, signed):",
              f"{'#':>2s} {'where':34s} {'a':>7s} {'m':>7s} {'peak':>7s} {'bound':>8s} "
@@ -1268,6 +1269,20 @@ def _safety(value: float) -> str:
     return ">99" if value > 99 else f"{value:.2f}"
 
 
+def travel_line(result) -> str:
+    """Where the travelling loads were screened and the worst place, judged: a line (''
+    when no load travels)."""
+    if not result.travel:
+        return ""
+    worst = max(result.travel, key=lambda t: t.utilisation)
+    return (f"The travelling loads were screened at {len(result.travel)} places from "
+            f"{result.travel[0].position * 1e3:.1f} to {result.travel[-1].position * 1e3:.1f} "
+            "mm on the coarser mesh (worst degree of utilisation at each: "
+            + ", ".join(f"{t.position * 1e3:.1f} mm {t.utilisation:.2f}" for t in result.travel)
+            + f"). The hot spots are those of the worst place, {worst.position * 1e3:.1f} mm; "
+            "each seat is at the place that tilts it most.")
+
+
 def strength_intro(result) -> str:
     """The strength section's line on the material, the safeties and the meshes."""
     st = result.scene.strength
@@ -1275,7 +1290,8 @@ def strength_intro(result) -> str:
             f"{st.yield_strength / 1e6:,.0f} MPa ({st.source}), R_z {st.roughness * 1e6:g} um; "
             f"required safeties {st.fatigue_safety:g} (fatigue, FKM j_D) and "
             f"{st.yield_safety:g} (yield, at {st.peak_factor:g} x the duty). Meshes solved: "
-            + ", ".join(f"{d:,}" for d in result.dofs) + " DOFs.")
+            + ", ".join(f"{d:,}" for d in result.dofs) + " DOFs."
+            + (" " + travel_line(result) if result.travel else ""))
 
 
 def strength_spot_rows(result) -> tuple[list[str], list[list[str]]]:

@@ -89,7 +89,11 @@ def at_speed(b: JournalBearing, omega: float) -> JournalBearing:
     as `oil_temperature`; any other as it is."""
     if b.oil_supply_temperature is None or omega <= 0:
         return b
-    h = heat_balance(b, omega, b.oil_supply_temperature)
+    return running(b, heat_balance(b, omega, b.oil_supply_temperature))
+
+
+def running(b: JournalBearing, h: FilmHeat) -> JournalBearing:
+    """The bearing with its film at the heat balance h: its viscosity and temperature."""
     return replace(b, viscosity=h.viscosity, oil_temperature=h.effective)
 
 

@@ -89,8 +89,7 @@ class _Grid:
 
 
 def _grid(pad: pads.Pad, ratio: float) -> tuple[pads.PadFilm, _Grid]:
-    f = pads.pad_film(pad.start, pad.arc, ratio, max(8, round(pads.CELLS_PER_RADIAN * pad.arc)),
-                      pads.Z_CELLS)
+    f = pads.pad_film(pad.start, pad.arc, ratio, pads.cells_round(pad.arc), pads.Z_CELLS)
     x = f.basis.mesh.p
     theta, Z = np.unique(x[0].round(12)), np.unique(x[1].round(12))
     i = np.rint((x[0] - theta[0]) / (theta[-1] - theta[0]) * (theta.size - 1)).astype(int)

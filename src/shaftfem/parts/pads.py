@@ -111,6 +111,12 @@ class PadFilm:
 
 
 @lru_cache(maxsize=64)
+def cells_round(arc: float, per_radian: int | None = None) -> int:
+    """A pad film's cells along its arc (rad): CELLS_PER_RADIAN (or `per_radian`) a
+    radian, at least 8."""
+    return max(8, round((CELLS_PER_RADIAN if per_radian is None else per_radian) * arc))
+
+
 def pad_film(start: float, arc: float, ratio: float, cells: int, z_cells: int) -> PadFilm:
     """The pad's film mesh (cached by its arc, L / D and cells)."""
     from skfem import Basis, ElementTriP1, MeshTri
@@ -169,8 +175,7 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     from scipy.sparse.linalg import splu
     from skfem import BilinearForm, LinearForm
 
-    per = CELLS_PER_RADIAN if cells_per_radian is None else cells_per_radian
-    f = pad_film(pad.start, pad.arc, ratio, max(8, round(per * pad.arc)),
+    f = pad_film(pad.start, pad.arc, ratio, cells_round(pad.arc, cells_per_radian),
                  Z_CELLS if z_cells is None else z_cells)
     modes = _modes(pad, f.theta, len(q) > 2)
     H, dH = _film(pad, f.theta, q)
@@ -339,7 +344,7 @@ def pad_heat_terms(pad: Pad, ratio: float, q: np.ndarray, P: np.ndarray
     and gradient zero there), or across the trailing edge where it does not."""
     from skfem import Functional
 
-    f = pad_film(pad.start, pad.arc, ratio, max(8, round(CELLS_PER_RADIAN * pad.arc)), Z_CELLS)
+    f = pad_film(pad.start, pad.arc, ratio, cells_round(pad.arc), Z_CELLS)
 
     @Functional
     def shear(w):

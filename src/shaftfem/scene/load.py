@@ -750,7 +750,8 @@ def _forces(source: str, data: dict, shaft: Shaft, attachments: tuple[Attachment
         position = _placed(source, table, t, shaft, attachments)
         force = PointForce(name=t["name"] or t["part"] or f"force {i + 1}",
                            position=position * MM, fx=t["fx_n"], fy=t["fy_n"], fz=t["fz_n"],
-                           width=_hub(t, attachments))
+                           width=_hub(t, attachments),
+                           travel=_travel(source, table, t, shaft, position))
         if t["gear_pitch_diameter_mm"] is not None:
             force = _gear_force(source, table, e, t, force, torques)
         out.append(force)
@@ -789,6 +790,23 @@ def _gear_force(source: str, table: str, given: dict, t: dict, force: PointForce
     c, s = math.cos(phi), math.sin(phi)
     return replace(force, fx=-tangential * s - radial * c, fy=tangential * c - radial * s,
                    fz=axial, mx=r * axial * s, my=-r * axial * c)
+
+
+def _travel(source: str, table: str, t: dict, shaft: Shaft, position: float) -> float | None:
+    """Where a load travels to (m), or None: a bare position on the shaft, not its own."""
+    to = t["travel_to_mm"]
+    if to is None:
+        return None
+    if t["part"] is not None:
+        raise SceneError(f"{where(source, table, 'travel_to_mm')}: a part's load stays at its "
+                         "part; a travelling load (a follower) takes position_mm")
+    if shaft.step is None and to > shaft.length / MM:
+        raise SceneError(f"{where(source, table, 'travel_to_mm')} = {to:g}: must lie on the "
+                         f"shaft, 0 to {shaft.length / MM:g} mm")
+    if to == position:
+        raise SceneError(f"{where(source, table, 'travel_to_mm')} = {to:g}: the load's own "
+                         "position_mm; leave travel_to_mm out for a load that stays")
+    return to * MM
 
 
 def _hub(t: dict, attachments: tuple[Attachment, ...]) -> float:
@@ -832,7 +850,8 @@ def _strength(source: str, data: dict, material: Material, rotor: Rotor | None,
                     target_error=t["target_error_percent"] / 100,
                     source=row.source if by_row and row is not None else "given",
                     fkm_group=row.fkm_group if row is not None else "Steel",
-                    size_exponents=(row.a_dm, row.a_dp) if row is not None else (0.3, 0.4))
+                    size_exponents=(row.a_dm, row.a_dp) if row is not None else (0.3, 0.4),
+                    travel_positions=t["travel_positions"])
 
 
 def _torques(source: str, data: dict, shaft: Shaft, attachments: tuple[Attachment, ...],
@@ -858,7 +877,8 @@ def _torques(source: str, data: dict, shaft: Shaft, attachments: tuple[Attachmen
             open_.append((i, table))
         out.append(Torque(name=t["name"] or t["part"] or f"torque {i + 1}",
                           position=position * MM, torque=torque or 0.0,
-                          width=_hub(t, attachments)))
+                          width=_hub(t, attachments),
+                          travel=_travel(source, table, t, shaft, position)))
     if len(open_) > 1:
         raise SceneError(f"{source}: {open_[1][1]}: only one torque may leave out torque_nm "
                          f"and power_kw (it takes the balance; {open_[0][1]} does already)")

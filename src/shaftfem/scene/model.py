@@ -476,6 +476,7 @@ class PointForce:
     width: float = 0.0
     mx: float = 0.0
     my: float = 0.0
+    travel: float | None = None   # where it travels to from `position` (m): a follower
 
 
 @dataclass(frozen=True)
@@ -487,6 +488,7 @@ class Torque:
     position: float
     torque: float
     width: float = 0.0
+    travel: float | None = None   # where it travels to from `position` (m)
 
 
 @dataclass(frozen=True)
@@ -509,6 +511,7 @@ class Strength:
     source: str = "given"
     fkm_group: str = "Steel"
     size_exponents: tuple[float, float] = (0.3, 0.4)
+    travel_positions: int = 9   # the places each travelling load is screened at
 
 
 # --------------------------------------------------------------------------

@@ -559,6 +559,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "fz_n": Key(float, "its component along the shaft axis, N (steady: a helical gear's "
                     "thrust, a follower's push); a supports' axial stiffness takes it",
                     lambda v: abs(v) <= 1e8, "in [-1e8, 1e8]", default=0.0, required=False),
+        "travel_to_mm": Key(float, "where the force travels to from position_mm, mm: a "
+                            "follower running along a groove; strength screens [strength] "
+                            "travel_positions places on the way and bounds the worst (a bare "
+                            "position, not a part)", *upto(20_000, "up to 20 m",
+                                                            closed_low=True), required=False),
         "gear_pitch_diameter_mm": Key(
             float, "a gear's pitch diameter d, mm: its tooth force from the torque through "
             "the [[torque]] on the same part, F_t = 2 T / d, F_r = F_t tan(alpha_n) / "
@@ -590,6 +595,9 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "power_kw": Key(float, "the power through it instead of torque_nm, kW: positive "
                         "entering, negative leaving (T = P / omega at [strength] speed_rpm)",
                         lambda v: abs(v) <= 1e6, "in [-1e6, 1e6]", required=False),
+        "travel_to_mm": Key(float, "where the torque travels to from position_mm, mm, with "
+                            "the [[force]] that travels the same way (a follower)",
+                            *upto(20_000, "up to 20 m", closed_low=True), required=False),
     },
     "strength": {  # will the shaft hold: workflows.strength, checks.fkm
         "speed_rpm": Key(float, "the running speed the duty is given at, r/min (turns power "
@@ -621,6 +629,10 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "target_error_percent": Key(float, "the bound wanted on each hot spot's stress, %: "
                                     "the mesh is refined until it is met", *upto(50, "up to 50 %"),
                                     default=2.0, required=False),
+        "travel_positions": Key(int, "how many places, ends included, each travelling load "
+                                "([[force]] travel_to_mm) is screened at; the worst is bounded "
+                                "(default 9)", lambda v: 2 <= v <= 101, "2 to 101", default=9,
+                                required=False),
     },
     "unbalance": {  # an array of tables: [[unbalance]], a mass off the axis (workflows.unbalance)
         "name": Key(str, "name of the unbalance, e.g. wheel", required=False),

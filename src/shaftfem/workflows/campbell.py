@@ -1135,11 +1135,11 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
         if b is None:
             continue
         for w in speeds:
-            op = operating(heat.at_speed(b, w), w)
-            warm: dict = {}
             supply = b.oil_supply_temperature
-            if supply is not None:
-                h = heat.heat_balance(b, w, supply)
+            h = None if supply is None or w <= 0 else heat.heat_balance(b, w, supply)
+            op = operating(b if h is None else heat.running(b, h), w)
+            warm: dict = {}
+            if supply is not None and h is not None:
                 # the supply carries off the film's heat: it drains warmer by H / (rho c Q)
                 drain = None if b.oil_flow is None else supply + h.power / (
                     oil.density(supply) * heat.SPECIFIC_HEAT * b.oil_flow)

@@ -25,13 +25,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
 from shaftfem.errors import BudgetError, MeshError, SceneError
 from shaftfem.runtime import RunOptions
-from shaftfem.scene.model import Scene
+from shaftfem.scene.model import PointForce, Scene, Torque
 
 if TYPE_CHECKING:
     from shaftfem.checks.fkm import PointAssessment
@@ -175,6 +175,16 @@ class StressSurface:
 
 
 @dataclass(frozen=True)
+class Travel:
+    """One place of the travelling loads' screening on the first meshes: where they
+    stood (m, the first travelling load's z) and the worst hot spot's utilisation
+    there (the larger of fatigue and yield)."""
+
+    position: float
+    utilisation: float
+
+
+@dataclass(frozen=True)
 class StrengthResult:
     """`shaftfem strength`: the hot spots (worst fatigue first), the seats' checks, the
     meshes solved (DOFs) and the scene."""
@@ -188,6 +198,8 @@ class StrengthResult:
     # field and the VTK file's
     surface: StressSurface | None = field(default=None, compare=False, repr=False)
     notes: tuple[str, ...] = ()   # why the refinement stopped short, where it did
+    # a travelling load's screening (Travel), the scene's loads at the worst place
+    travel: tuple[Travel, ...] = ()
 
     @property
     def sharp(self) -> tuple[HotSpot, ...]:
@@ -230,6 +242,8 @@ class StrengthResult:
             "sharp_edges": len(self.sharp),
             "target_error_percent": self.target * 100, "dofs": list(self.dofs),
             "notes": list(self.notes),
+            "travel": [{"position_mm": t.position * 1e3, "utilisation": t.utilisation}
+                       for t in self.travel],
             "material": {"tensile_strength_mpa": st.tensile_strength / 1e6,
                          "yield_strength_mpa": st.yield_strength / 1e6,
                          "source": st.source},
@@ -296,10 +310,27 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
         raise SceneError(f"{scene.source}: no [[support]] holds the shaft: its duty has "
                          "nothing to react it")
     target = scene.strength.target_error
+    stations = _stations(scene)
+    travel: list[Travel] = []
+    worst_seats: dict[str, SeatCheck] = {}
+    if len(stations) > 1:
+        for where, station in stations:
+            # screened on the coarser mesh alone: the places are compared, not bounded
+            coarse = _solve(with_mesh(station, station.mesh.size * 1e3 * COARSER),
+                            options)[0]
+            spots = _spots(station, coarse, coarse, None)
+            travel.append(Travel(where, max((_utilisation(s) for s in spots), default=0.0)))
+            options.say(f"travelling loads at {where * 1e3:.1f} mm: worst utilisation "
+                        f"{travel[-1].utilisation:.3f}")
+            for c in _seats(station, coarse):
+                if c.name not in worst_seats or _seat_use(c) > _seat_use(worst_seats[c.name]):
+                    worst_seats[c.name] = c
+        # the worst place is bounded: its coarser mesh again (from the cache), then finer
+        scene = stations[int(np.argmax([t.utilisation for t in travel]))][1]
     coarse = _solve(with_mesh(scene, scene.mesh.size * 1e3 * COARSER), options)[0]
     fine, mesh, built = _solve(scene, options)
-    dofs = [coarse.dofs, fine.dofs]
     spots = _spots(scene, fine, coarse, None)
+    dofs = [coarse.dofs, fine.dofs]
     notes: list[str] = []
     requests: list[_Request] = []
     for _ in range(MAX_REFINEMENTS):
@@ -326,9 +357,52 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
             break
         dofs.append(fine.dofs)
         spots = _spots(scene, fine, coarse, spots)
-    return StrengthResult(scene=scene, spots=tuple(spots), seats=_seats(scene, fine),
+    seats = _seats(scene, fine)
+    if worst_seats:
+        # each seat at the place of the travel that bends it most
+        seats = tuple(worst_seats.get(c.name, c) for c in seats)
+    return StrengthResult(scene=scene, spots=tuple(spots), seats=seats,
                           dofs=tuple(dofs), target=target, surface=_surface(scene, fine),
-                          notes=tuple(notes))
+                          notes=tuple(notes), travel=tuple(travel))
+
+
+def _travelling(scene: Scene) -> list[PointForce | Torque]:
+    """The scene's travelling loads ([[force]] and [[torque]] with travel_to_mm)."""
+    loads: list[PointForce | Torque] = [*scene.forces, *scene.torques]
+    return [q for q in loads if q.travel is not None]
+
+
+_Load = TypeVar("_Load", PointForce, Torque)
+
+
+def _stations(scene: Scene) -> list[tuple[float, Scene]]:
+    """The scene with its travelling loads at each of [strength] travel_positions places
+    along their ways, ends included (each load from its position to its travel's end),
+    with where the first of them stands (m); the scene itself when no load travels."""
+    moving = _travelling(scene)
+    if not moving:
+        return [(0.0, scene)]
+    assert scene.strength is not None
+
+    def at(q: _Load, t: float) -> _Load:
+        if q.travel is None:
+            return q
+        return replace(q, position=q.position + t * (q.travel - q.position), travel=None)
+
+    first = moving[0]
+    assert first.travel is not None
+    return [(first.position + t * (first.travel - first.position),
+             replace(scene, forces=tuple(at(f, t) for f in scene.forces),
+                     torques=tuple(at(q, t) for q in scene.torques)))
+            for t in np.linspace(0.0, 1.0, scene.strength.travel_positions)]
+
+
+def _seat_use(c: SeatCheck) -> float:
+    """How near a seat is to its limits (its slope where it has none: a larger one is
+    worse)."""
+    uses = [v / limit for v, limit in ((c.slope, c.slope_limit),
+                                       (c.deflection, c.deflection_limit)) if limit]
+    return max(uses) if uses else c.slope
 
 
 def _surface(scene: Scene, field: _Field) -> StressSurface:
