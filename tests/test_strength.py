@@ -628,8 +628,8 @@ def test_a_shoulders_stress_in_tension_lies_within_its_bound_of_an_exact_solutio
 def test_a_travelling_load_is_screened_along_its_way_and_the_worst_place_bounded():
     """A radial force travelling from 60 to 340 mm between seats 380 mm apart, the shaft
     turning (fully reversed bending): on a plain bar the worst hot spot's utilisation
-    follows the beam's largest moment beside the load's band (a, b its distances to
-    the seats) within 1.5 %; the worst place, mid-span, is the one bounded and judged,
+    at each place follows the beam's moment where that spot is, just beside the load's
+    band, within 2.5 %; the worst place, mid-span, is the one bounded and judged,
     the seats each at the place that tilts them most."""
     duty = dict(force=[{"name": "follower", "position_mm": 60.0, "travel_to_mm": 340.0,
                         "fy_n": -2000.0}],
@@ -638,17 +638,19 @@ def test_a_travelling_load_is_screened_along_its_way_and_the_worst_place_bounded
     result = ws.run_strength(load_scene(bar(**duty)))
     assert [round(t.position * 1e3, 6) for t in result.travel] == [60.0, 130.0, 200.0,
                                                                     270.0, 340.0]
-    l, e = 0.380, D / 4
-    # a bare force enters over a band z +- d/4 and is judged outside it: at the band's
-    # edges the moment is F (a b - e a) / l and F (a b - e b) / l, the larger of them
+    l = 0.380
+    # the beam's moment at each place's worst spot, F b z / l before the load, F a (l - z)
+    # / l after it (z, a from the left seat, b = l - a)
     moment = []
     for t in result.travel:
-        a = t.position - 0.010
-        moment.append((a * (l - a) - e * min(a, l - a)) / l)
+        a, z = t.position - 0.010, t.spot - 0.010
+        moment.append((l - a) * z / l if z <= a else a * (l - z) / l)
     use = [t.utilisation for t in result.travel]
-    assert np.allclose(np.array(use) / use[2], np.array(moment) / moment[2], rtol=0.015)
+    # (the ends' spots lie 3 cm from a seat's band: there the bar is not quite a beam yet)
+    assert np.allclose(np.array(use) / use[2], np.array(moment) / moment[2], rtol=0.025)
+    # each worst spot beside its load, outside the band it enters through (d / 4 each way)
+    assert all(D / 4 <= abs(t.spot - t.position) < D / 4 + 0.012 for t in result.travel)
     assert result.scene.forces[0].position == pytest.approx(0.200)
-    assert result.scene.forces[0].travel is None
     I = math.pi * D**4 / 64
     for seat in ("left", "right"):
         # the seat's slope under a load at a from the left seat, b = l - a from the right,

@@ -857,7 +857,8 @@ class Scene:
         zs = {z for part in self.supports + self.attachments for z in part.seat}
         zs |= {a.position for a in self.attachments if a.carried}
         zs |= {u.position for u in self.unbalances}
-        zs |= {f.position for f in self.forces}
+        # a travelling load's places share one mesh: their hot spots are compared on it
+        zs |= {f.position for f in self.forces if f.travel is None}
         zs |= set(self.rotor.probes if self.rotor is not None else ())
         zs |= set(self.mesh_cuts)
         return tuple(sorted(z for z in zs if 0.0 < z < self.shaft.length))

@@ -177,11 +177,12 @@ class StressSurface:
 @dataclass(frozen=True)
 class Travel:
     """One place of the travelling loads' screening on the first meshes: where they
-    stood (m, the first travelling load's z) and the worst hot spot's utilisation
-    there (the larger of fatigue and yield)."""
+    stood (m, the first travelling load's z), the worst hot spot's utilisation there
+    (the larger of fatigue and yield) and its z (m)."""
 
     position: float
     utilisation: float
+    spot: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -242,8 +243,8 @@ class StrengthResult:
             "sharp_edges": len(self.sharp),
             "target_error_percent": self.target * 100, "dofs": list(self.dofs),
             "notes": list(self.notes),
-            "travel": [{"position_mm": t.position * 1e3, "utilisation": t.utilisation}
-                       for t in self.travel],
+            "travel": [{"position_mm": t.position * 1e3, "utilisation": t.utilisation,
+                        "worst_z_mm": t.spot * 1e3} for t in self.travel],
             "material": {"tensile_strength_mpa": st.tensile_strength / 1e6,
                          "yield_strength_mpa": st.yield_strength / 1e6,
                          "source": st.source},
@@ -319,7 +320,9 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
             coarse = _solve(with_mesh(station, station.mesh.size * 1e3 * COARSER),
                             options)[0]
             spots = _spots(station, coarse, coarse, None)
-            travel.append(Travel(where, max((_utilisation(s) for s in spots), default=0.0)))
+            top = max(spots, key=_utilisation, default=None)
+            travel.append(Travel(where, 0.0 if top is None else _utilisation(top),
+                                 math.nan if top is None else top.z))
             options.say(f"travelling loads at {where * 1e3:.1f} mm: worst utilisation "
                         f"{travel[-1].utilisation:.3f}")
             for c in _seats(station, coarse):
@@ -385,9 +388,10 @@ def _stations(scene: Scene) -> list[tuple[float, Scene]]:
     assert scene.strength is not None
 
     def at(q: _Load, t: float) -> _Load:
+        # it keeps its travel: the mesh leaves out the planes of travelling loads
         if q.travel is None:
             return q
-        return replace(q, position=q.position + t * (q.travel - q.position), travel=None)
+        return replace(q, position=q.position + t * (q.travel - q.position))
 
     first = moving[0]
     assert first.travel is not None
