@@ -253,7 +253,7 @@ def test_the_report_has_its_title_block_its_cases_and_each_case_s_films(pump_rep
     for line in films.splitlines():
         cells = [c.strip() for c in line.strip("|").split("|")]
         if len(cells) == 11 and cells[1] == "drive-end journal" and cells[2] == "3,000":
-            kxy[cells[0]] = float(cells[4])
+            kxy[cells[0]] = float(cells[4].replace(",", ""))
     assert kxy["min clearance, cold oil"] > kxy["nominal"] > kxy["max clearance, hot oil"] > 0
     install = markdown[markdown.index("## Installation"):markdown.index("## Natural")]
     assert "support wear ring: seat 515-545 mm, annular seal" in install

@@ -366,7 +366,7 @@ def pads_figure(c):
             values = np.array([p[j] for p in pairs]) / 1e3
             for (a, b), key in (((0, 0), "xx"), ((0, 1), "xy"), ((1, 0), "yx"), ((1, 1), "yy")):
                 ax.plot(ratios, values[:, a, b], color=colors[key], lw=1.2,
-                        label=f"{what[0]}{key}")
+                        label=f"{'kc'[j]}{key}")   # the table's names: kxx, cxx
             ax.axvline(1.0, color="black", lw=0.8, ls="--", label="synchronous")
             if judged is not None:
                 ax.axvline(judged, color="tab:purple", lw=0.8, ls=":",

@@ -1129,9 +1129,19 @@ def bearing_rows(cases) -> tuple[list[str], list[list[str]]]:
                 (kxx, kxy), (kyx, kyy) = b.stiffness(w)
                 (cxx, cxy), (cyx, cyy) = b.damping(w)
                 rows.append([name, s.name, f"{n:,.0f}",
-                             *(f"{v / 1e3:.4g}" for v in (kxx, kxy, kyx, kyy)),
-                             *(f"{v / 1e3:.4g}" for v in (cxx, cxy, cyx, cyy))])
+                             *_coefficients((kxx, kxy, kyx, kyy)),
+                             *_coefficients((cxx, cxy, cyx, cyy))])
     return head, rows
+
+
+def _coefficients(values) -> list[str]:
+    """Four coefficients (SI, N/m or N s/m) per mm, as a bearing's table prints them:
+    thousands whole and separated, the rest to four figures, and a term below 1e-4 of
+    the largest (a pad's cross term) as the zero it is."""
+    v = [x / 1e3 for x in values]
+    big = max(abs(x) for x in v)
+    return ["0" if abs(x) < 1e-4 * big else f"{x:,.0f}" if abs(x) >= 1e3 else f"{x:.4g}"
+            for x in v]
 
 
 # the whirl ratios (whirl over spin) a tilting pads' bearing's coefficients are tabled at
@@ -1152,8 +1162,7 @@ def pad_rows(c) -> tuple[list[str], list[list[str]]]:
         for r in WHIRL_RATIOS:
             K, C = s.bearing.at_whirl(w, r * w)
             rows.append([s.name, f"{w * 30 / math.pi:,.0f}", f"{r:g}",
-                         *(f"{v / 1e3:.4g}" for v in K.ravel()),
-                         *(f"{v / 1e3:.4g}" for v in C.ravel())])
+                         *_coefficients(K.ravel()), *_coefficients(C.ravel())])
     return head, rows
 
 
