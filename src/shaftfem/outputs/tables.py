@@ -561,8 +561,7 @@ def film_text(films) -> str:
             f"{'min film':>10s} {'Sommerfeld':>10s}  K xx, xy, yx, yy (N/mm); C (N s/mm)")
     lines = ["journal bearings at the operating speeds (Reynolds film):", head]
     for f in films:
-        k = ", ".join(f"{v / 1e3:.4g}" for v in f.K)
-        c = ", ".join(f"{v / 1e3:.4g}" for v in f.C)
+        k, c = ", ".join(_coefficients(f.K)), ", ".join(_coefficients(f.C))
         flag = ("  the film does not lift the journal here" if not f.lifted else
                 f"  below its {f.limit_um:g} um limit" if f.thin else "")
         lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min {f.eccentricity:6.3f} "
