@@ -176,7 +176,7 @@ class StressSurface:
 
 @dataclass(frozen=True)
 class Travel:
-    """One place of the travelling loads' screening on the first meshes: where they
+    """One place of the travelling loads' screening on the coarser mesh: where they
     stood (m, the first travelling load's z), the worst hot spot's utilisation there
     (the larger of fatigue and yield) and its z (m)."""
 
