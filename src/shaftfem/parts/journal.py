@@ -163,32 +163,39 @@ def _assemble(f: Film, X: float, Y: float, short: bool = False):
 
 
 def _pressure(A, b: np.ndarray, free: np.ndarray, cavitation: str,
-              guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """The film pressure P (on every unknown, 0 at the ends) and the unknowns where it
-    is free (the rest held at 0): Swift-Stieber by a primal-dual active set (from the
-    ruptured film `guess`, or the half-Sommerfeld one; each step moves the film's edge
-    by about a cell), or the half-Sommerfeld film."""
-    from scipy.sparse.linalg import spsolve
+              guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, Any]:
+    """The film pressure P (on every unknown, 0 at the ends), the unknowns where it is
+    free (the rest held at 0) and the factors of A there (to solve its derivatives
+    with): Swift-Stieber by a primal-dual active set (from the ruptured film `guess`, or
+    the half-Sommerfeld one; each step moves the film's edge by about a cell), or the
+    half-Sommerfeld film."""
+    from scipy.sparse.linalg import splu
 
     n = A.shape[0]
-    Aff = A[free][:, free]
-    P = np.zeros(n)
-    P[free] = spsolve(Aff.tocsc(), b[free])
-    if cavitation == "gumbel":
-        return P, free
-    # ties (a node whose pressure or multiplier is zero to round-off) stay as they are
-    tol_p, tol_r = 1e-9 * float(np.abs(P).max()), 1e-9 * float(np.abs(b).max())
+    tol_r = 1e-9 * float(np.abs(b).max())
     active = np.zeros(n, dtype=bool)
-    active[free] = P[free] < 0 if guess is None else guess[free]
+    if guess is None or cavitation == "gumbel":
+        lu = splu(A[free][:, free].tocsc())
+        P = np.zeros(n)
+        P[free] = lu.solve(b[free])
+        if cavitation == "gumbel":
+            return P, free, lu
+        active[free] = P[free] < 0
+    else:
+        active[free] = guess[free]
+    tol_p = None
     for _ in range(STEPS):
         live = free[~active[free]]
+        lu = splu(A[live][:, live].tocsc())
         P = np.zeros(n)
-        P[live] = spsolve(A[live][:, live].tocsc(), b[live])
+        P[live] = lu.solve(b[live])
+        # ties (a node whose pressure or multiplier is zero to round-off) stay as they are
+        tol_p = 1e-9 * float(np.abs(P).max()) if tol_p is None else tol_p
         residual = A @ P - b
         now = np.zeros(n, dtype=bool)
         now[free] = np.where(active[free], residual[free] > -tol_r, P[free] < -tol_p)
         if np.array_equal(now, active):
-            return P, live
+            return P, live, lu
         active = now
     raise RuntimeError(f"the film's cavitation boundary did not settle in {STEPS} steps")
 
@@ -198,13 +205,11 @@ def state(ratio: float, eccentricity: float, cavitation: str = "reynolds",
           ) -> FilmState:
     """The film of a bearing of L / D = ratio with its journal at (eps, 0); `short`:
     without the circumferential pressure flow, Ocvirk's short-bearing film (a check)."""
-    from scipy.sparse.linalg import splu
-
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation {cavitation!r}: one of {CAVITATION}")
     f = film(float(ratio), theta_cells, z_cells)
     A, b, Ax, Ay, loads = _assemble(f, eccentricity, 0.0, short)
-    P, live = _pressure(A, b, f.free, cavitation,
+    P, live, lu = _pressure(A, b, f.free, cavitation,
                         _ruptured(float(ratio), eccentricity, cavitation, theta_cells, z_cells,
                                   short))
     carried = P.copy() if cavitation == "reynolds" else np.maximum(P, 0.0)
@@ -213,7 +218,6 @@ def state(ratio: float, eccentricity: float, cavitation: str = "reynolds",
     def force(p: np.ndarray) -> np.ndarray:   # the whole film: twice the half
         return -2.0 * np.array([f.cos @ p, f.sin @ p])
 
-    lu = splu(A[live][:, live].tocsc())
     rhs = np.column_stack([loads[:, 0] - Ax @ P, loads[:, 1] - Ay @ P, loads[:, 2], loads[:, 3]])
     dP = np.zeros((A.shape[0], 4))
     dP[live] = lu.solve(rhs[live])
@@ -281,7 +285,7 @@ def _ruptured(ratio: float, eccentricity: float, cavitation: str, theta_cells: i
     half = theta_cells // 2
     coarse = film(ratio, half, z_cells)
     A, b, *_ = _assemble(coarse, eccentricity, 0.0, short)
-    P, _ = _pressure(A, b, coarse.free, cavitation,
+    P, _, _ = _pressure(A, b, coarse.free, cavitation,
                      _ruptured(ratio, eccentricity, cavitation, half, z_cells, short))
     fine = film(ratio, theta_cells, z_cells)
     xc, xf = coarse.at, fine.at

@@ -117,8 +117,10 @@ def cells_round(arc: float, per_radian: int | None = None) -> int:
     return max(8, round((CELLS_PER_RADIAN if per_radian is None else per_radian) * arc))
 
 
+@lru_cache(maxsize=256)
 def pad_film(start: float, arc: float, ratio: float, cells: int, z_cells: int) -> PadFilm:
-    """The pad's film mesh (cached by its arc, L / D and cells)."""
+    """The pad's film mesh (cached by its arc, L / D and cells: a film's pressure is
+    solved thousands of times on the same few pads)."""
     from skfem import Basis, ElementTriP1, MeshTri
 
     mesh = MeshTri.init_tensor(np.linspace(start, start + arc, cells + 1),
@@ -137,6 +139,36 @@ def _modes(pad: Pad, theta: np.ndarray, tilt: bool) -> list[tuple[np.ndarray, np
     if tilt:
         out.append((-np.sin(theta - pad.pivot), -np.cos(theta - pad.pivot)))
     return out
+
+
+@dataclass(frozen=True)
+class _Weights:
+    """A pad film's integrals that do not move with the journal: each coordinate's int g
+    v (its force and squeeze) and int dg/dtheta v (its Couette term), (n, nodes), and
+    the preload's int dH0/dtheta v (nodes)."""
+
+    gv: np.ndarray
+    dgv: np.ndarray
+    preload: np.ndarray
+    g: tuple[np.ndarray, ...]   # each coordinate's g at the quadrature points
+
+
+@lru_cache(maxsize=256)
+def _weights(pad: Pad, ratio: float, cells: int, z_cells: int, tilt: bool) -> _Weights:
+    from skfem import LinearForm
+
+    @LinearForm
+    def weighted(v, w):
+        return w.k * v
+
+    f = pad_film(pad.start, pad.arc, ratio, cells, z_cells)
+    modes = _modes(pad, f.theta, tilt)
+    m = pad.preload
+    return _Weights(
+        gv=np.array([weighted.assemble(f.basis, k=g) for g, _ in modes]),
+        dgv=np.array([weighted.assemble(f.basis, k=dg) for _, dg in modes]),
+        preload=weighted.assemble(f.basis, k=m * np.sin(f.theta - pad.pivot) / (1 - m)),
+        g=tuple(g for g, _ in modes))
 
 
 def _film(pad: Pad, theta: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -172,13 +204,12 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     ruptured, to start the cavitation's active set from; `viscosity`: the film's on the
     pad's nodes over the one P is scaled with (a heated film: parts.pad_heat; None:
     isoviscous), div(H^3 / mu grad P) = 6 dH/dtheta + 12 dH/dtau."""
-    from scipy.sparse.linalg import splu
     from skfem import BilinearForm, LinearForm
 
-    f = pad_film(pad.start, pad.arc, ratio, cells_round(pad.arc, cells_per_radian),
-                 Z_CELLS if z_cells is None else z_cells)
-    modes = _modes(pad, f.theta, len(q) > 2)
-    H, dH = _film(pad, f.theta, q)
+    cells = cells_round(pad.arc, cells_per_radian)
+    f = pad_film(pad.start, pad.arc, ratio, cells, Z_CELLS if z_cells is None else z_cells)
+    w = _weights(pad, ratio, cells, Z_CELLS if z_cells is None else z_cells, len(q) > 2)
+    H, _ = _film(pad, f.theta, q)
     if float(H.min()) <= 0:
         raise ValueError(f"the journal touches the pad at {math.degrees(pad.pivot):.0f} deg "
                          f"(film {float(H.min()):.3g} of the clearance)")
@@ -188,25 +219,25 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
         return w.k * (u.grad[0] * v.grad[0] + u.grad[1] * v.grad[1])
 
     @LinearForm
-    def weighted(v, w):
-        return w.k * v
+    def pushed(v, w):   # flow's matrix with this k times the pressure p
+        return w.k * (w.p.grad[0] * v.grad[0] + w.p.grad[1] * v.grad[1])
 
     fluidity = 1.0 if viscosity is None else 1.0 / f.basis.interpolate(viscosity)
     A = flow.assemble(f.basis, k=H ** 3 * fluidity).tocsr()
-    b = weighted.assemble(f.basis, k=-6.0 * dH)
-    P, live = _pressure(A, b, f.free, "reynolds", guess)
-    # the modes' weights int g v (force, squeeze), int dg v (Couette) and dA/dq_j
-    gv = [weighted.assemble(f.basis, k=g) for g, _ in modes]
-    dgv = [weighted.assemble(f.basis, k=dg) for _, dg in modes]
-    n = len(modes)
+    # int dH v: dH is the preload's term and the coordinates' dg q_j
+    b = -6.0 * (w.preload + q @ w.dgv)
+    P, live, lu = _pressure(A, b, f.free, "reynolds", guess)
+    gv, dgv = w.gv, w.dgv
+    n = len(w.g)
     rhs = np.zeros((P.size, 2 * n))
-    for j, (g, _) in enumerate(modes):
-        dA = flow.assemble(f.basis, k=3.0 * H ** 2 * g * fluidity)
-        rhs[:, j] = -6.0 * dgv[j] - dA @ P
+    p = f.basis.interpolate(P)
+    for j, g in enumerate(w.g):
+        rhs[:, j] = -6.0 * dgv[j] - pushed.assemble(f.basis, k=3.0 * H ** 2 * g * fluidity,
+                                                    p=p)
         rhs[:, n + j] = -12.0 * gv[j]
     dP = np.zeros_like(rhs)
-    dP[live] = splu(A[live][:, live].tocsc()).solve(rhs[live])
-    G = 2.0 * np.array(gv)            # (n, nodes): Q_i = G_i . P over the whole length
+    dP[live] = lu.solve(rhs[live])
+    G = 2.0 * gv                      # (n, nodes): Q_i = G_i . P over the whole length
     dQ = G @ dP
     return PadState(force=G @ P, stiffness=-dQ[:, :n], damping=-dQ[:, n:], pressure=P,
                     wet=float(live.size / max(f.free.size, 1)))
