@@ -53,8 +53,13 @@ from shaftfem.parts.heat import CARRY_OVER, HOTTEST, SPECIFIC_HEAT
 NUSSELT = 4.0
 SURFACE = 2.0
 CONDUCTIVITY = 0.13   # W/(m K), a mineral oil's
-# the temperatures have settled when no node moves by more than this (K) in a round
+# the temperatures have settled when no node lies further than this (K) from where the
+# rounds converge to (a round's largest move m, its ratio r to the round before's: the
+# rounds converge linearly, so the rest of the way is m r / (1 - r))
 SETTLED = 0.02
+# each round moves the temperatures this share of the way to the new ones (1 overshoots:
+# the viscosity's and the journal's feedback makes the loop stiff)
+RELAX = 0.5
 ROUNDS = 60
 # ... and until they move by less than this (K), the film's equilibrium is solved to a
 # looser tolerance
@@ -146,7 +151,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
     journal = supply
     state = None
     n = len(bore.pads)
-    moved = np.inf
+    moved = before = np.inf
     for _ in range(ROUNDS):
         # while the temperatures still move by degrees, the film's place need not be
         # exact: the last rounds settle it to the full tolerance
@@ -171,19 +176,20 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             flows.append(q_in)
             outs.append((q_out, float(np.trapezoid(q_t[-1] * Tk[-1], g.Z)
                                       / np.trapezoid(q_t[-1], g.Z))))
-        moved = max(float(np.abs(a - b).max()) for a, b in zip(new, T))
+        moved, before = max(float(np.abs(a - b).max()) for a, b in zip(new, T)), moved
         if max(float(t.max()) for t in new) > HOTTEST:
             raise ValueError(f"the pads' film would run above {HOTTEST:g} C (fed at "
                              f"{supply:g} C)")
-        T = [0.5 * (a + b) for a, b in zip(new, T)]   # halved steps: the loop is stiff
+        T = [RELAX * a + (1 - RELAX) * b for a, b in zip(new, T)]
         m = [viscosity(t) for t in T]
         # the journal turns through every film and runs at their mean
-        journal = 0.5 * (journal + sum(a for a, _ in warm) / sum(w for _, w in warm))
+        journal += RELAX * (sum(a for a, _ in warm) / sum(w for _, w in warm) - journal)
         for k in range(n):   # the pad before k in the journal's turn
             q_prev, t_prev = outs[(k - 1) % n]
             kept = min(carry_over * q_prev, flows[k])
             inlets[k] = (kept * t_prev + (flows[k] - kept) * supply) / flows[k]
-        if moved < SETTLED:
+        rate = min(moved / before, 0.99) if before < np.inf else 0.99
+        if max(moved * rate / (1 - rate), moved) < SETTLED:
             # the pad's surface: the film's adiabatic wall (SURFACE)
             surface = [journal + SURFACE * (t - journal) for t in T]
             peaks = [float(t.max()) for t in surface]
