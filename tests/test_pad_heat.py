@@ -42,6 +42,27 @@ def test_a_film_cooled_by_the_journal_settles_where_it_gives_what_it_makes():
     assert np.abs(T - exact[:, None]).max() < 0.005 * abs(40.0 - Teq)
 
 
+def test_a_centred_journal_in_pads_loses_petroffs_power_and_draws_the_couette_flow():
+    """A two-axial-groove bore (two 160-degree pads) round a journal barely loaded (1 N):
+    the films are even and carry no pressure, so each pad's shear is Petroff's, 2 pi mu omega^2 R^3
+    L / c over its share of the turn, at the supply's viscosity (an oil that cannot warm:
+    a vast specific heat); the journal takes nothing from films at its own temperature;
+    and each pad draws the Couette flow omega R c L / 2 at its leading edge, of which the
+    pad before gives back CARRY_OVER, so the supply makes up the rest."""
+    from shaftfem.parts import oil
+    from shaftfem.scene.model import JournalBore
+
+    bore = pads.bore_of(JournalBore("two_axial_groove"), 0.5)
+    R, c, omega = 0.05, 100e-6, 3000 * math.pi / 30
+    h = pad_heat.heated(bore, 1.0, omega, R, c, 32, 50.0, specific_heat=1e12)
+    mu, L = oil.dynamic(32, 50.0), 0.5 * 2 * R
+    petroff = 2 * math.pi * mu * omega**2 * R**3 * L / c * (2 * 160 / 360)
+    assert h.power == pytest.approx(petroff, rel=1e-3)
+    assert abs(h.journal_power) < 1e-6 * h.power
+    couette = omega * R * c * L / 2
+    assert h.fresh == pytest.approx(2 * (1 - CARRY_OVER) * couette, rel=1e-3)
+
+
 FILLON_ROSS = Path(__file__).parent / "data" / "fillon_ross.json"
 
 

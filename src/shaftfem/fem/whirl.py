@@ -468,7 +468,8 @@ class FilmRow:
     limit_um: float
     lifted: bool = True
     # an oil given by its supply temperature (parts.heat): its supply and the film's
-    # effective temperature (C), the film's friction power (W) and side flow (m^3/s);
+    # effective temperature (C), the film's friction power (W) and side flow (m^3/s: the
+    # oil the feed must make up; on tilting pads the supply their leading edges draw);
     # with the supply's flow (m^3/s), the drain's temperature (C)
     supply_c: float | None = None
     film_c: float | None = None
@@ -481,6 +482,9 @@ class FilmRow:
     pad_peak_c: float | None = None
     pad_limit_c: float | None = None
     pad_peaks_c: tuple[float, ...] = ()   # each pad's, from the first after the load's line
+    # ... and of the friction power, what the films give the journal (W), which it sheds
+    # along the shaft, not into the drain
+    journal_w: float | None = None
 
     @property
     def hot(self) -> bool:
@@ -494,7 +498,8 @@ class FilmRow:
     @property
     def starved(self) -> bool:
         """Whether the supply's flow is less than the film's side flow (the oil it loses
-        through its ends, which the feed must make up)."""
+        through its ends, which the feed must make up; on tilting pads, the supply oil
+        their leading edges draw)."""
         return self.flow is not None and self.side_flow is not None and \
             self.flow < self.side_flow
 
@@ -515,6 +520,7 @@ class FilmRow:
                 **({} if self.pad_peak_c is None else {
                     "peak_pad_temperature_c": self.pad_peak_c,
                     "pad_peak_temperatures_c": list(self.pad_peaks_c),
+                    "journal_heat_w": self.journal_w,
                     "pad_temperature_limit_c": self.pad_limit_c})}
 
 

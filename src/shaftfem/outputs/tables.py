@@ -570,14 +570,20 @@ def film_text(films) -> str:
     warm = [f for f in films if f.film_c is not None]
     if warm:
         lines += ["", "the films' heating (fed at the supply's temperature; heat balance, "
-                  "hot-oil carry-over 0.8):"]
+                  "hot-oil carry-over 0.8; tilting pads' friction, draw and peaks from "
+                  "their heated films):"]
     for f in warm:
         drain = ("" if f.drain_c is None else
                  f"; supply {f.flow * 60e3:.3g} l/min drains at {f.drain_c:.1f} C"
-                 + (" - less than the film's side flow: STARVED" if f.starved else ""))
+                 + ("" if not f.starved else " - less than the film's side flow: STARVED"
+                    if f.journal_w is None else " - less than the pads draw: STARVED (their "
+                    "temperatures assume they get it)"))
         lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min: fed at {f.supply_c:g} C, "
-                     f"the film runs at {f.film_c:.1f} C, friction {f.power_w:,.0f} W, "
-                     f"side flow {f.side_flow * 60e3:.3g} l/min{drain}"
+                     f"the film runs at {f.film_c:.1f} C, friction {f.power_w:,.0f} W"
+                     + ("" if f.journal_w is None else
+                        f" (the journal takes {f.journal_w:,.0f} W of it along the shaft)")
+                     + (", side flow" if f.journal_w is None else ", the pads draw")
+                     + f" {f.side_flow * 60e3:.3g} l/min{drain}"
                      + ("" if f.pad_peak_c is None else
                         f"; peak pad temperature {f.pad_peak_c:.1f} C (limit "
                         f"{f.pad_limit_c:g} C{': ABOVE' if f.hot else ''}); each pad's "

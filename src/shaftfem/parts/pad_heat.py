@@ -70,8 +70,10 @@ ROUGH = 0.5
 class PadsHeat:
     """A bore of pads' heated film: its state (pads.BoreState, the forces on the supply
     oil's viscosity's scale), each pad's nodal temperatures (C) and relative viscosity,
-    each pad's inlet and mean outlet temperature (C) and inlet flow (m^3/s), and the
-    peak temperature over the pads (C) and which pad has it."""
+    each pad's inlet and mean outlet temperature (C) and inlet flow (m^3/s), the peak
+    temperature over the pads (C) and which pad has it, and the friction power (W):
+    2 mu_s omega^2 R^4 / c_b times the sum of the pads' int phi dtheta dZ (the whole
+    length's)."""
 
     state: pads.BoreState
     temperature: tuple[np.ndarray, ...]
@@ -83,6 +85,9 @@ class PadsHeat:
     flow: tuple[float, ...]
     peak: float
     hottest: int
+    power: float = 0.0   # W, the films' shear at their own viscosity, over all pads
+    journal_power: float = 0.0   # W, of it what the films give the journal
+    fresh: float = 0.0   # m^3/s, the supply oil the pads' leading edges draw
 
 
 @dataclass(frozen=True)
@@ -139,7 +144,8 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
     at `supply` (C); a ValueError where a film runs above parts.heat.HOTTEST or the
     temperatures do not settle."""
     mu_s = oil.dynamic(grade, supply)
-    rise = mu_s * omega * (radius / clearance) ** 2 / (oil.density(supply) * specific_heat)
+    rho_c = oil.density(supply) * specific_heat
+    rise = mu_s * omega * (radius / clearance) ** 2 / rho_c
     W = load * clearance**2 / (mu_s * omega * radius**4)
     films = [_grid(p, bore.ratio) for p in bore.pads]
     viscosity = np.vectorize(lambda t: oil.dynamic(grade, min(t, HOTTEST)) / mu_s)
@@ -158,7 +164,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
         tol = 1e-10 if moved < ROUGH else 1e-5
         state = pads.equilibrium(bore, np.array([0.0, -W]), tol=tol, start=state,
                                  viscosity=tuple(m))
-        new, flows, outs, warm = [], [], [], []
+        new, flows, outs, warm, shear, sink = [], [], [], [], 0.0, 0.0
         for k, ((f, g), pad) in enumerate(zip(films, bore.pads)):
             q = state.q[bore.coordinates(k)]
             H = pads._film(pad, f.basis.mesh.p[0], q)[0]
@@ -167,6 +173,12 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             for a, v in zip(grid, (H, state.pads[k].pressure, m[k])):
                 a[g.i, g.j] = v
             Tk, q_t = march(*grid, g.theta, g.Z, inlets[k], rise, kappa, journal)
+            H_, P_, m_ = grid
+            dP_t, dP_z = np.gradient(P_, g.theta, g.Z)
+            phi = m_ / H_ + H_**3 / (12 * m_) * (dP_t**2 + dP_z**2)
+            shear += float(np.trapezoid(np.trapezoid(phi, g.Z, axis=1), g.theta))
+            into = kappa * (Tk - journal) / H_
+            sink += float(np.trapezoid(np.trapezoid(into, g.Z, axis=1), g.theta))
             new.append(Tk[g.i, g.j])
             # this pad's film temperature integrated over its area, and the area
             warm.append((np.trapezoid(np.trapezoid(Tk, g.Z, axis=1), g.theta),
@@ -184,10 +196,12 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
         m = [viscosity(t) for t in T]
         # the journal turns through every film and runs at their mean
         journal += RELAX * (sum(a for a, _ in warm) / sum(w for _, w in warm) - journal)
+        fresh = 0.0
         for k in range(n):   # the pad before k in the journal's turn
             q_prev, t_prev = outs[(k - 1) % n]
             kept = min(carry_over * q_prev, flows[k])
             inlets[k] = (kept * t_prev + (flows[k] - kept) * supply) / flows[k]
+            fresh += flows[k] - kept
         rate = min(moved / before, 0.99) if before < np.inf else 0.99
         if max(moved * rate / (1 - rate), moved) < SETTLED:
             # the pad's surface: the film's adiabatic wall (SURFACE)
@@ -198,5 +212,8 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
                             viscosity=tuple(m), inlet=tuple(inlets),
                             outlet=tuple(t for _, t in outs), journal=journal,
                             flow=tuple(omega * radius**2 * clearance * q for q in flows),
-                            peak=peaks[hot], hottest=hot)
+                            peak=peaks[hot], hottest=hot,
+                            power=2 * mu_s * omega**2 * radius**4 / clearance * shear,
+                            journal_power=2 * rho_c * omega * clearance * radius**2 * sink,
+                            fresh=omega * radius**2 * clearance * fresh)
     raise ValueError(f"the pads' temperatures did not settle in {ROUNDS} rounds")

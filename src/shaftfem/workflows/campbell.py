@@ -1140,15 +1140,21 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
             op = operating(b if h is None else heat.running(b, h), w)
             warm: dict = {}
             if supply is not None and h is not None:
-                # the supply carries off the film's heat: it drains warmer by H / (rho c Q)
-                drain = None if b.oil_flow is None else supply + h.power / (
-                    oil.density(supply) * heat.SPECIFIC_HEAT * b.oil_flow)
-                warm = dict(supply_c=supply, film_c=h.effective, power_w=h.power,
-                            side_flow=h.side_flow, flow=b.oil_flow, drain_c=drain)
+                power, into_oil, side = h.power, h.power, h.side_flow
                 if b.bore is not None and b.bore.kind == "tilting_pad" and w > 0:
-                    peaks = pad_peaks(b, w)
+                    thd = pads_heat(b, w)
+                    peaks = tuple(float(t.max()) for t in thd.surface)
+                    # the friction, the supply drawn and the drain from the same heated
+                    # film as the peaks (each pad's shear at its own viscosity), with
+                    # the share the journal takes and sheds along the shaft
+                    power, into_oil, side = thd.power, thd.power - thd.journal_power, thd.fresh
                     warm.update(pad_peak_c=max(peaks), pad_limit_c=b.pad_limit,
-                                pad_peaks_c=peaks)
+                                pad_peaks_c=peaks, journal_w=thd.journal_power)
+                # the supply carries off the film's heat: it drains warmer by H / (rho c Q)
+                drain = None if b.oil_flow is None else supply + into_oil / (
+                    oil.density(supply) * heat.SPECIFIC_HEAT * b.oil_flow)
+                warm.update(supply_c=supply, film_c=h.effective, power_w=power,
+                            side_flow=side, flow=b.oil_flow, drain_c=drain)
             rows.append(FilmRow(
                 bearing=s.name, speed_rpm=w / RPM, eccentricity=op.eccentricity,
                 attitude_deg=math.degrees(op.attitude), min_film_um=op.min_film * 1e6,
@@ -1158,17 +1164,16 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
     return tuple(rows)
 
 
-def pad_peaks(b, omega: float) -> tuple[float, ...]:
-    """A tilting pads' journal's peak temperature on each pad (C) at the spin omega
-    (rad/s), fed at its supply temperature: its pads' heated film (parts.pad_heat), the
-    pads from the first past the load's line in the journal's turn."""
+def pads_heat(b, omega: float):
+    """A tilting pads' journal's heated film (parts.pad_heat.PadsHeat) at the spin omega
+    (rad/s), fed at its supply temperature: its pads from the first past the load's line
+    in the journal's turn."""
     from shaftfem.parts import pad_heat, pads
 
     assert b.oil_iso_vg is not None and b.oil_supply_temperature is not None
     bore = pads.bore_of(b.bore, b.ratio)
-    h = pad_heat.heated(bore, b.load, omega, b.diameter / 2, b.clearance, b.oil_iso_vg,
-                        b.oil_supply_temperature)
-    return tuple(float(t.max()) for t in h.surface)
+    return pad_heat.heated(bore, b.load, omega, b.diameter / 2, b.clearance, b.oil_iso_vg,
+                           b.oil_supply_temperature)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
