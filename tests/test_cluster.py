@@ -92,6 +92,7 @@ def test_no_scheduler_is_a_clear_error(tmp_path, monkeypatch):
         run_sweep(sweep, tmp_path / "out" / "results.csv", scheduler="tcp://127.0.0.1:9")
 
 
+@pytest.mark.slow
 def test_a_calibration_grid_runs_on_the_cluster_without_the_scene_file(cluster, tmp_path):
     import shutil
 

@@ -154,6 +154,7 @@ def _exact(scene, kinds):
     return ref, tol
 
 
+@pytest.mark.slow
 def test_the_bound_on_ten_torsion_modes_of_the_cylinder():
     """Torsion of a circular shaft is exact in 3D (c_t / 2L): on the first ten torsion
     modes every bound holds, and on at least eight it is 1-3 times the true error

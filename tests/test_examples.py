@@ -59,6 +59,7 @@ def test_check_in_ci_passes_and_fails_with_the_exit_status(tmp_path):
     assert "VERDICT: FAIL" in bad.stdout
 
 
+@pytest.mark.slow
 def test_installed_response(tmp_path):
     run = run_example("installed_response.py", tmp_path)
     assert run.returncode == 0, run.stderr[-2000:]
@@ -84,6 +85,7 @@ def test_sweep(tmp_path):
     assert (tmp_path / "out" / "length_sweep" / "results.csv").exists()
 
 
+@pytest.mark.slow
 def test_calibrate_from_measurements(tmp_path):
     run = run_example("calibrate_from_measurements.py", tmp_path)
     assert run.returncode == 0, run.stderr[-2000:]
@@ -132,6 +134,7 @@ def _shaftfem(*args: str, cwd: Path) -> subprocess.CompletedProcess:
                           env={**os.environ, "SHAFTFEM_CACHE": os.environ["SHAFTFEM_CACHE"]})
 
 
+@pytest.mark.slow
 def test_turning_examples_against_ross(tmp_path):
     """The overhung spindle and the motor with its fan, as a user runs them: the
     speed-aware `check`, whose JSON holds its Campbell diagram, against
@@ -171,6 +174,7 @@ def test_turning_examples_against_ross(tmp_path):
                              check.stdout)
 
 
+@pytest.mark.slow
 def test_bearings_from_their_physics_examples(tmp_path):
     """The pump on journal bearings and the spindle on ball bearings, as a user runs them
     (`static`, `check --json`, whose JSON holds campbell's): the journals carry the weight of
@@ -279,6 +283,7 @@ def test_the_pump_on_two_axial_groove_journals_heats_its_oil(tmp_path):
     assert "max clearance, hot oil" in check.stdout.split("VERDICT")[1]
 
 
+@pytest.mark.slow
 def test_rotor_study(tmp_path):
     """The pump's study from Python: oil whip above the running speed; on the critical
     speed map each journal meets the first branch higher along its stiffer direction
@@ -297,6 +302,7 @@ def test_rotor_study(tmp_path):
     assert (tmp_path / "campbell.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow
 def test_the_rotordynamic_commands_on_the_pump(tmp_path):
     """The commands of the pump's study as examples.md gives them (coarse): `campbell`;
     `runup`, whose peak lies by the steady peak (a 300 r/min per s passage of a

@@ -116,6 +116,7 @@ def test_an_asymmetric_jeffcott_rotor_is_unstable_exactly_between_its_criticals(
     assert found[0] == pytest.approx(w1, rel=1e-4) and found[1] == pytest.approx(w2, rel=1e-4)
 
 
+@pytest.mark.slow
 def test_on_anisotropic_supports_every_zone_meets_a_direct_time_integration():
     """kx = 0.5 k1, ky = 1.5 k1, lightly damped: the periodic rotor's zones of growth
     from its Floquet exponents (Hill's method), their edges within 0.5 % in speed of
@@ -249,6 +250,7 @@ def test_a_round_shaft_in_anisotropic_bearings_is_one_answer_in_either_frame():
     either_frame(9.0, 1e-5)
 
 
+@pytest.mark.slow
 def test_a_round_shaft_in_anisotropic_bearings_is_one_answer_in_either_frame_coarse():
     """The fast twin: on 12 mm elements the first pair agreed within 5e-5 (the frames'
     bases resolve it less alike), the rest as on 9 mm (2.3e-4, 4e-4 and 4e-5 measured)."""
@@ -701,6 +703,7 @@ def test_a_periodic_rotor_s_crossings_are_found_twice():
         assert near <= 1e-6 * d.omega, (d, near)
 
 
+@pytest.mark.slow
 def test_a_standing_stretch_inside_one_grid_step_gives_both_its_ends():
     """The keyed shaft on undamped isotropic bearings given as a speed table (so only the
     curves find its crossings): its pair stands at zero frequency in the turning frame

@@ -64,6 +64,7 @@ def test_frf_as_a_user_runs_it(tmp_path):
     assert (tmp_path / "o" / "frf.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow
 def test_a_shaft_of_revolution_in_anisotropic_bearings_has_one_receptance_in_either_frame():
     """The same rotor with its bearings half as stiff along y (and damped), solved in the
     stationary frame (constant: one solve a frequency) and in the frame turning with

@@ -123,6 +123,7 @@ def _check(scene, tmp_path, points):
                                                            rel=1e-9)
 
 
+@pytest.mark.slow
 def test_ctrl_c_stops_design_at_once_and_publishes_nothing(short_scene, tmp_path):
     _check(short_scene, tmp_path, QUICK_POINTS)
 

@@ -213,6 +213,7 @@ def test_a_rotor_on_journals_whips_at_half_its_speed():
                                  if x.whirl == "forward" and x.speed_rpm > 1000)
 
 
+@pytest.mark.slow
 def test_the_reduced_whirl_is_the_whirl_on_a_basis_made_for_each_speed():
     """The whirl is solved on standstill modes that hold the journals' stiffness at the
     operating speed (here kyy 6.9 MN/m at 4,000 r/min), plus the bearings' residual

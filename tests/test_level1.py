@@ -37,6 +37,7 @@ def test_q0_and_the_log_decrement_against_q_against_ross():
     assert r.qa is None and r.passed is None        # no stage, no Q_A: no verdict
 
 
+@pytest.mark.slow
 def test_a_scene_solved_on_another_s_solve_keeps_its_own_parts(monkeypatch):
     """Two scenes on one pencil (the same shaft, seats and parts; in the first the 350 mm
     disk is a compressor stage): the second takes its standstill modes from the first's
@@ -68,6 +69,7 @@ def test_a_scene_solved_on_another_s_solve_keeps_its_own_parts(monkeypatch):
     np.testing.assert_allclose(after.log_dec, alone.log_dec, rtol=1e-6)
 
 
+@pytest.mark.slow
 def test_api617_criteria_on_a_stage(monkeypatch):
     """A compressor stage on the 350 mm disk: Q_A is its Wachel estimate, Q is applied
     there; the screening passes when Q_0 / Q_A >= 2 and the log decrement at Q_A is at
@@ -118,6 +120,7 @@ def test_level1_as_a_user_runs_it(tmp_path):
     assert data["q0_n_per_mm"] > 4.0
 
 
+@pytest.mark.slow
 def test_check_screens_level1_when_the_scene_asks(tmp_path):
     """[rotor] level1 = true: `check` runs the screening and fails (exit 1) where API 617's
     criteria fail, saying so; without it the same rotor passes its check."""

@@ -247,6 +247,7 @@ def test_a_rotor_on_tilting_pads_gets_the_pads_reduced_coefficients():
     assert on.min_film == pytest.approx(b.clearance * pads.thinnest(spec, direct), rel=0.01)
 
 
+@pytest.mark.slow
 def test_a_heavily_loaded_tilting_pad_bearing_lets_its_unloaded_pads_float():
     """Pushed hard onto its lower pads, the journal draws away from the upper ones, whose
     films then diverge whatever their tilt: they carry nothing and add nothing (their

@@ -96,6 +96,7 @@ def check(text: str) -> None:
     assert np.all(m.residuals < 1e-6)
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow])
 @given(profiles())

@@ -252,6 +252,7 @@ def test_a_file_that_is_not_step_is_refused(tmp_path):
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
+@pytest.mark.slow
 def test_a_step_file_from_another_cad_kernel_gives_the_parametric_frequencies():
     """examples/keyed_stepped_shaft.step, written by build123d (tests/data/make_keyed_step.py)
     from cylinders, edge fillets and chamfers and a slot: imported, its frequencies lie

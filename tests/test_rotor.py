@@ -273,6 +273,7 @@ def test_the_two_frames_agree(size_mm, agree):
         assert abs(seen) == pytest.approx(b.frequency_hz, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_paper_shaft_turning_in_its_own_frame():
     """The grooved shaft is no solid of revolution: it turns in the rotating frame. At the
     paper's 80 r/min its pair's Coriolis coupling moves each mode by 2 W^2 / (w2^2 - w1^2)

@@ -584,6 +584,7 @@ def keyed_rotor() -> dict:
     return data
 
 
+@pytest.mark.slow
 def test_the_keyed_rotor_s_forward_critical_is_found_near_its_bode_peak():
     """A keyed stepped shaft (not of revolution: the turning frame) in damped isotropic
     bearings: its forward 1x crossings, at the ends of the stretch where its pair's roots

@@ -56,6 +56,7 @@ def test_a_slow_run_up_is_the_steady_response_and_a_coast_down_peaks_early():
     assert down.peaks[0][1] < steady[i]
 
 
+@pytest.mark.slow
 def test_a_run_up_in_the_turning_frame_is_the_stationary_frame_s():
     """The same rotor of revolution with its bearings half as stiff along y as along x
     (so periodic in the turning frame), run up in the frame turning with the shaft

@@ -33,6 +33,7 @@ def _agree(result):
     assert np.max(np.abs(result.modes.frequencies / freqs["superlu"] - 1)) < 1e-8
 
 
+@pytest.mark.slow
 def test_all_solver_paths_agree_to_1e8(short_grooved):
     _agree(short_grooved)
 

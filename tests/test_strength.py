@@ -416,6 +416,7 @@ def sharp_shoulder(fillet_mm: float) -> dict:
     return data
 
 
+@pytest.mark.slow
 def test_a_sharp_corner_is_reported_as_such_not_given_a_number():
     """A shoulder without a fillet: its elastic stress has no limit, so refining around
     it keeps raising it; the spot is a sharp edge, the check does not pass on it."""
@@ -444,7 +445,8 @@ def test_a_keyed_shaft_lists_one_spot_on_a_shoulders_circle_away_from_its_keyway
 
 
 @pytest.mark.parametrize("target,shrink", [
-    pytest.param(2.0, 2.5, marks=pytest.mark.slow), (5.0, 1.5)])
+    pytest.param(2.0, 2.5, marks=pytest.mark.slow),
+    pytest.param(5.0, 1.5, marks=pytest.mark.slow)])
 def test_a_filleted_shoulder_is_refined_around_its_hot_spot_until_bounded(target, shrink):
     """The same shoulder with a 3 mm fillet, bent by two balancing couples (M = 60 N m
     over it, whatever the seats do): a smooth notch, refined around the spot until its

@@ -227,6 +227,7 @@ def test_an_overhang_sweep_of_a_turning_pump_resumes_after_a_kill(tmp_path):
                     tmp_path / "out", 12, 3)
 
 
+@pytest.mark.slow
 def test_a_shorter_overhang_sweep_resumes_after_a_kill(tmp_path):
     """The fast twin of the one above: the example's sweep over 3 of its positions,
     killed after one row."""

@@ -87,6 +87,7 @@ def test_gmsh_leaves_a_callers_session_as_it_was(tmp_path):
     assert (tmp_path / "shaft.step").read_text()[:13] == "ISO-10303-21;"
 
 
+@pytest.mark.slow
 def test_installed_package_finds_its_scenes_from_any_folder(tmp_path):
     """A non-editable install into a fresh virtual environment (the dependencies are
     taken from the test's own environment through a .pth line), run elsewhere."""
