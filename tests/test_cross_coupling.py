@@ -64,6 +64,7 @@ def test_a_stage_refuses_what_it_cannot_be(keys, said):
         load_scene(data)
 
 
+@pytest.mark.slow
 def test_cross_coupling_drives_forward_whirl_and_damps_backward():
     from shaftfem.fem.rotor import rotor_model
     from shaftfem.workflows.campbell import whirl_at

@@ -182,6 +182,7 @@ def test_a_hint_that_does_not_serve_falls_back(plain, monkeypatch, where):
     assert np.max(np.abs(again.eigenvalues[6:] / sol.eigenvalues[6:] - 1)) < 2e-9
 
 
+@pytest.mark.slow
 def test_a_krylov_space_blind_to_a_mode_is_caught_below_a_hint_too(cylinder, plain,
                                                                    monkeypatch):
     """The mode the factor cannot see is missing below the hint: the count there says

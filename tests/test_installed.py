@@ -454,6 +454,7 @@ def test_the_same_scene_gives_byte_identical_tables_every_run(tmp_path, capsys):
     assert outputs[0] == outputs[1] == outputs[2]
 
 
+@pytest.mark.slow
 def test_the_models_choices_flipped_move_the_frequencies_the_way_physics_says(capsys):
     """`modes --sensitivity` on the stepped example: the sprocket made rigid (the scene has
     it distributing) and each bearing's band made a rigid ring (the scene's distribute)

@@ -114,6 +114,7 @@ def test_a_shift_that_misses_the_lowest_modes_is_an_error(cylinder, monkeypatch)
     assert counted > found and missing == counted - found
 
 
+@pytest.mark.slow
 def test_the_retried_search_recovers_the_modes_a_bad_shift_skipped(cylinder, monkeypatch):
     """The same bad shift with the retries: the wider search (more pairs, a larger space)
     finds every mode, proven by the inertia count, and they are the good solve's."""

@@ -188,6 +188,7 @@ def test_keyway_volume_against_opencascade():
         assert abs(removed / keyway_volume(k, 0.0175) - 1) < 2e-3
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (ccx) is not installed")
 def test_keyed_stepped_shaft_against_calculix_on_the_same_mesh(tmp_path):
     from shaftfem.fem.assembly import assemble
@@ -387,6 +388,7 @@ def test_the_papers_shaft_through_step_gives_its_frequencies(tmp_path):
     assert np.all(np.abs(fa / fb - 1) <= allowed), (fa / fb - 1, allowed)
 
 
+@pytest.mark.slow
 def test_the_tube_on_two_bearings_against_beam():
     import shaftfem
 

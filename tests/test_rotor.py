@@ -161,6 +161,7 @@ def test_friswell_591_unbalance_response(tmp_path):
         assert np.asarray(Image.open(picture)).std() > 10
 
 
+@pytest.mark.slow
 def test_cross_coupled_bearings_go_unstable():
     """kxy = -kyx growing as 150 N s/m times the speed, 0.5 N s/mm of damping: the first
     forward mode's log decrement falls through zero within 2 % of ross's onset."""
@@ -235,7 +236,8 @@ def stepped_rotor(frame: str) -> dict:
 
 
 @pytest.mark.parametrize("size_mm,agree", [
-    (12.0, 1e-4), pytest.param(8.0, 1e-6, marks=pytest.mark.slow)])
+    pytest.param(12.0, 1e-4, marks=pytest.mark.slow),
+    pytest.param(8.0, 1e-6, marks=pytest.mark.slow)])
 def test_the_two_frames_agree(size_mm, agree):
     """A shaft of revolution in isotropic bearings solved in the stationary frame (its
     material flowing through the mesh) and in the frame turning with it (Coriolis, spin
@@ -308,6 +310,7 @@ def test_paper_shaft_turning_in_its_own_frame():
     assert all(w.frequency_hz == pytest.approx(rms, rel=0.005) for w in fast)
 
 
+@pytest.mark.slow
 def test_keyed_shaft_whirls_at_its_mean_stiffness():
     """A keyed stepped shaft turns in the rotating frame. At rest its keyway splits the
     first pair by 3 %; turning fast, Coriolis coupling averages the two stiffnesses and
@@ -409,6 +412,7 @@ def test_a_torsional_curve_is_seen_at_its_own_frequency_in_the_turning_frame():
     assert np.allclose(bending.seen_hz, f + speeds / 60.0)   # a forward orbit: f + n
 
 
+@pytest.mark.slow
 def test_fewer_modes_of_the_whirl_s_pencil_are_the_lowest_of_its_basis(monkeypatch):
     """A design's standstill modes of a rotor, after its whirl's basis (18 or more modes
     of the same pencil on the same mesh) in the same process: the basis' lowest, their

@@ -168,6 +168,7 @@ def test_a_seal_needs_the_shaft_turning():
         load_scene(data)
 
 
+@pytest.mark.slow
 def test_the_diagram_is_the_machine_s_whatever_its_running_speed():
     """A seal's pressure drop is given at the machine's rated speed ([rotor]
     rated_speed_rpm), not at the running speed: moving speed_rpm moves where the

@@ -1,12 +1,14 @@
 """The work-precision study on the plain cylinder."""
 
 import numpy as np
+import pytest
 
 from references import torsion_hz
 from shaftfem.scene.load import load_scene
 from shaftfem.workflows.study import run_study, study_reference, study_table
 
 
+@pytest.mark.slow
 def test_study_recovers_torsion_and_order_four():
     scene = load_scene("plain_cylinder")
     runs = run_study(scene, {2: [12.0, 9.0, 6.75], 1: [12.0]})

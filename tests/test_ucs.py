@@ -80,6 +80,7 @@ def test_the_bearings_cross_the_synchronous_map_at_the_campbell_s_critical_speed
             assert rest < 0.8 * ours
 
 
+@pytest.mark.slow
 def test_the_map_ends_at_the_held_and_at_the_free_shaft():
     """With bearings 10^4 times stiffer than the shaft's first bending (1e11 N/m) the
     branches are the modes of the shaft held at its seats, within 1 %; with bearings
@@ -178,6 +179,7 @@ def test_the_map_is_solved_on_the_rotor_s_own_mesh():
     assert alike.hubs() == scene.hubs()
 
 
+@pytest.mark.slow
 def test_a_keyed_shaft_s_branches_are_continuous(tmp_path):
     """examples/keyed_pump_on_journals.toml's map, as a user runs `ucs --json`: a mode of
     one principal plane takes on torsion as the bearings stiffen, and a list by speed
