@@ -48,6 +48,22 @@ def test_a_force_at_midspan_is_shared_and_bends_the_bar_as_timoshenko_says():
     assert x == pytest.approx(0.3 * timoshenko_midspan(1000.0, 0.0, 0.995, 0.04), rel=2e-3)
 
 
+def test_a_travelling_force_stands_at_its_start_and_says_so():
+    """A force that travels (a follower, [[force]] travel_to_mm) loads the static line at
+    its start, position_mm: the reactions share it by moments about the seats, and the
+    text says where it was taken and which command moves it."""
+    from shaftfem.outputs.tables import static_text
+
+    s = run_static(load_scene(bar(force=[{"name": "follower", "position_mm": 250.0,
+                                          "travel_to_mm": 750.0, "fy_n": -1000.0}],
+                                  static={"gravity_m_s2": 0.0})))
+    r = {x.name: x.force for x in s.solution.reactions}
+    assert r["S0"][1] == pytest.approx(1000.0 * (997.5 - 250.0) / 995.0, rel=1e-6)
+    assert r["S1"][1] == pytest.approx(1000.0 * (250.0 - 2.5) / 995.0, rel=1e-6)
+    assert ("force follower travels from 250 to 750 mm: taken here at its start; "
+            "`shaftfem strength` moves it along its way") in static_text(s)
+
+
 def test_the_weight_of_bar_and_parts_is_carried_by_statics():
     """A pulley overhung beyond the second bearing with a belt pull: the reactions by
     moments about the first seat."""

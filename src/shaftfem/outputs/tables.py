@@ -775,6 +775,11 @@ def static_text(result) -> str:
         x, y = s.deflection_at(z)
         lines.append(f"  {name[:30]:30s} z = {z * 1e3:7.1f} mm: x {x * 1e6:8.2f} um, "
                      f"y {y * 1e6:8.2f} um")
+    for f in scene.forces:
+        if f.travel is not None:
+            lines.append(f"force {f.name} travels from {f.position * 1e3:g} to "
+                         f"{f.travel * 1e3:g} mm: taken here at its start; `shaftfem "
+                         "strength` moves it along its way and checks the seats at each place")
     return "\n".join(lines)
 
 
