@@ -573,17 +573,19 @@ def film_text(films) -> str:
                   "hot-oil carry-over 0.8; tilting pads' friction, draw and peaks from "
                   "their heated films):"]
     for f in warm:
+        # tilting pads' friction and draw come from their heated films (with the
+        # journal's share); a plain or fixed bore's from the heat balance
+        pads = f.journal_w is not None
+        short = (" - less than the pads draw: STARVED (their temperatures assume they get "
+                 "it)" if pads else " - less than the film's side flow: STARVED")
         drain = ("" if f.drain_c is None else
                  f"; supply {f.flow * 60e3:.3g} l/min drains at {f.drain_c:.1f} C"
-                 + ("" if not f.starved else " - less than the film's side flow: STARVED"
-                    if f.journal_w is None else " - less than the pads draw: STARVED (their "
-                    "temperatures assume they get it)"))
+                 + (short if f.starved else ""))
+        share = f" (the journal takes {f.journal_w:,.0f} W of it along the shaft)" if pads else ""
         lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min: fed at {f.supply_c:g} C, "
-                     f"the film runs at {f.film_c:.1f} C, friction {f.power_w:,.0f} W"
-                     + ("" if f.journal_w is None else
-                        f" (the journal takes {f.journal_w:,.0f} W of it along the shaft)")
-                     + (", side flow" if f.journal_w is None else ", the pads draw")
-                     + f" {f.side_flow * 60e3:.3g} l/min{drain}"
+                     f"the film runs at {f.film_c:.1f} C, friction {f.power_w:,.0f} W{share}, "
+                     f"{'the pads draw' if pads else 'side flow'} "
+                     f"{f.side_flow * 60e3:.3g} l/min{drain}"
                      + ("" if f.pad_peak_c is None else
                         f"; peak pad temperature {f.pad_peak_c:.1f} C (limit "
                         f"{f.pad_limit_c:g} C{': ABOVE' if f.hot else ''}); each pad's "

@@ -110,6 +110,22 @@ def _grid(pad: pads.Pad, ratio: float) -> tuple[pads.PadFilm, _Grid]:
     return f, _Grid(i=i, j=j, theta=theta, Z=Z)
 
 
+def _flows(H: np.ndarray, P: np.ndarray, m: np.ndarray, theta: np.ndarray, Z: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The film's flows qbar_theta and qbar_Z (downstream and out towards the ends only)
+    and its dissipation phi on the pad's grid (module docstring)."""
+    dP_t, dP_z = np.gradient(P, theta, Z)
+    poiseuille = H**3 / (12 * m)
+    q_t = np.maximum(0.5 * H - poiseuille * dP_t, 1e-3 * H)   # no flow back at the edge
+    q_z = np.maximum(-poiseuille * dP_z, 0.0)                 # out towards the ends
+    return q_t, q_z, m / H + poiseuille * (dP_t**2 + dP_z**2)
+
+
+def _over(v: np.ndarray, g: _Grid) -> float:
+    """int v dtheta dZ over the pad's half film."""
+    return float(np.trapezoid(np.trapezoid(v, g.Z, axis=1), g.theta))
+
+
 def march(H: np.ndarray, P: np.ndarray, m: np.ndarray, theta: np.ndarray, Z: np.ndarray,
           inlet: float, rise: float, kappa: float = 0.0, journal: float = 0.0
           ) -> tuple[np.ndarray, np.ndarray]:
@@ -117,11 +133,7 @@ def march(H: np.ndarray, P: np.ndarray, m: np.ndarray, theta: np.ndarray, Z: np.
     pressure P and relative viscosity m there (module docstring), its leading edge at
     `inlet` (C), dT_ref = `rise` (K); and the flow qbar_theta across each theta line
     (the grid's shape)."""
-    dP_t, dP_z = np.gradient(P, theta, Z)
-    poiseuille = H**3 / (12 * m)
-    q_t = np.maximum(0.5 * H - poiseuille * dP_t, 1e-3 * H)   # no flow back at the edge
-    q_z = np.maximum(-poiseuille * dP_z, 0.0)                 # out towards the ends
-    phi = m / H + poiseuille * (dP_t**2 + dP_z**2)
+    q_t, q_z, phi = _flows(H, P, m, theta, Z)
     T = np.empty_like(H)
     T[0] = inlet
     dt, dz = np.diff(theta), np.diff(Z)
@@ -164,7 +176,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
         tol = 1e-10 if moved < ROUGH else 1e-5
         state = pads.equilibrium(bore, np.array([0.0, -W]), tol=tol, start=state,
                                  viscosity=tuple(m))
-        new, flows, outs, warm, shear, sink = [], [], [], [], 0.0, 0.0
+        new, flows, outs, warm, grids = [], [], [], [], []
         for k, ((f, g), pad) in enumerate(zip(films, bore.pads)):
             q = state.q[bore.coordinates(k)]
             H = pads._film(pad, f.basis.mesh.p[0], q)[0]
@@ -173,16 +185,10 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             for a, v in zip(grid, (H, state.pads[k].pressure, m[k])):
                 a[g.i, g.j] = v
             Tk, q_t = march(*grid, g.theta, g.Z, inlets[k], rise, kappa, journal)
-            H_, P_, m_ = grid
-            dP_t, dP_z = np.gradient(P_, g.theta, g.Z)
-            phi = m_ / H_ + H_**3 / (12 * m_) * (dP_t**2 + dP_z**2)
-            shear += float(np.trapezoid(np.trapezoid(phi, g.Z, axis=1), g.theta))
-            into = kappa * (Tk - journal) / H_
-            sink += float(np.trapezoid(np.trapezoid(into, g.Z, axis=1), g.theta))
+            grids.append((grid, Tk, g))
             new.append(Tk[g.i, g.j])
             # this pad's film temperature integrated over its area, and the area
-            warm.append((np.trapezoid(np.trapezoid(Tk, g.Z, axis=1), g.theta),
-                         (g.theta[-1] - g.theta[0]) * g.Z[-1]))
+            warm.append((_over(Tk, g), (g.theta[-1] - g.theta[0]) * g.Z[-1]))
             # the flow (qbar, whole length) and mean temperature at each edge
             q_in, q_out = 2 * np.trapezoid(q_t[0], g.Z), 2 * np.trapezoid(q_t[-1], g.Z)
             flows.append(q_in)
@@ -195,6 +201,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
         T = [RELAX * a + (1 - RELAX) * b for a, b in zip(new, T)]
         m = [viscosity(t) for t in T]
         # the journal turns through every film and runs at their mean
+        marched_at = journal
         journal += RELAX * (sum(a for a, _ in warm) / sum(w for _, w in warm) - journal)
         fresh = 0.0
         for k in range(n):   # the pad before k in the journal's turn
@@ -208,6 +215,10 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             surface = [journal + SURFACE * (t - journal) for t in T]
             peaks = [float(t.max()) for t in surface]
             hot = int(np.argmax(peaks))
+            # the friction (the films' dissipation) and what the journal takes, on this
+            # round's films
+            shear = sum(_over(_flows(*grid, g.theta, g.Z)[2], g) for grid, _, g in grids)
+            sink = sum(_over(kappa * (Tk - marched_at) / grid[0], g) for grid, Tk, g in grids)
             return PadsHeat(state=state, temperature=tuple(T), surface=tuple(surface),
                             viscosity=tuple(m), inlet=tuple(inlets),
                             outlet=tuple(t for _, t in outs), journal=journal,

@@ -207,8 +207,9 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     from skfem import BilinearForm, LinearForm
 
     cells = cells_round(pad.arc, cells_per_radian)
-    f = pad_film(pad.start, pad.arc, ratio, cells, Z_CELLS if z_cells is None else z_cells)
-    w = _weights(pad, ratio, cells, Z_CELLS if z_cells is None else z_cells, len(q) > 2)
+    z_cells = Z_CELLS if z_cells is None else z_cells
+    f = pad_film(pad.start, pad.arc, ratio, cells, z_cells)
+    fixed = _weights(pad, ratio, cells, z_cells, len(q) > 2)
     H, _ = _film(pad, f.theta, q)
     if float(H.min()) <= 0:
         raise ValueError(f"the journal touches the pad at {math.degrees(pad.pivot):.0f} deg "
@@ -225,19 +226,18 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     fluidity = 1.0 if viscosity is None else 1.0 / f.basis.interpolate(viscosity)
     A = flow.assemble(f.basis, k=H ** 3 * fluidity).tocsr()
     # int dH v: dH is the preload's term and the coordinates' dg q_j
-    b = -6.0 * (w.preload + q @ w.dgv)
+    b = -6.0 * (fixed.preload + q @ fixed.dgv)
     P, live, lu = _pressure(A, b, f.free, "reynolds", guess)
-    gv, dgv = w.gv, w.dgv
-    n = len(w.g)
+    n = len(fixed.g)
     rhs = np.zeros((P.size, 2 * n))
     p = f.basis.interpolate(P)
-    for j, g in enumerate(w.g):
-        rhs[:, j] = -6.0 * dgv[j] - pushed.assemble(f.basis, k=3.0 * H ** 2 * g * fluidity,
-                                                    p=p)
-        rhs[:, n + j] = -12.0 * gv[j]
+    for j, g in enumerate(fixed.g):
+        rhs[:, j] = -6.0 * fixed.dgv[j] - pushed.assemble(
+            f.basis, k=3.0 * H ** 2 * g * fluidity, p=p)
+        rhs[:, n + j] = -12.0 * fixed.gv[j]
     dP = np.zeros_like(rhs)
     dP[live] = lu.solve(rhs[live])
-    G = 2.0 * gv                      # (n, nodes): Q_i = G_i . P over the whole length
+    G = 2.0 * fixed.gv                # (n, nodes): Q_i = G_i . P over the whole length
     dQ = G @ dP
     return PadState(force=G @ P, stiffness=-dQ[:, :n], damping=-dQ[:, n:], pressure=P,
                     wet=float(live.size / max(f.free.size, 1)))
