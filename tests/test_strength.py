@@ -43,9 +43,10 @@ def bar(**tables) -> dict:
 # bands; a torque enters as the exact linear shear (fem.stress.band_loads), so its
 # stations need no such distance.
 SHORT, LOAD, READ = 240.0, 120.0, (75.0, 165.0)
-DUTY = dict(force=[{"name": "load", "position_mm": LOAD, "fy_n": -2000.0, "fz_n": 5000.0}],
-            torque=[{"name": "in", "position_mm": 40.0, "torque_nm": 100.0},
-                    {"name": "out", "position_mm": 200.0}],
+# the duty on the 400 mm bar: the load at mid-span, the torque between 60 and 340 mm
+DUTY = dict(force=[{"name": "load", "position_mm": 200.0, "fy_n": -2000.0, "fz_n": 5000.0}],
+            torque=[{"name": "in", "position_mm": 60.0, "torque_nm": 100.0},
+                    {"name": "out", "position_mm": 340.0}],
             strength={"speed_rpm": 1000.0})
 
 
@@ -57,7 +58,10 @@ def beam_moment(z: np.ndarray | float) -> np.ndarray:
 
 @pytest.fixture(scope="module")
 def field():
-    data = bar(**DUTY)
+    data = bar(force=[{**DUTY["force"][0], "position_mm": LOAD}],
+               torque=[{**DUTY["torque"][0], "position_mm": 40.0},
+                       {**DUTY["torque"][1], "position_mm": 200.0}],
+               strength=DUTY["strength"])
     data["shaft"] = {**data["shaft"], "length_mm": SHORT}
     data["support"] = [SEATS[0], {**SEATS[1], "position_mm": SHORT - 10.0}]
     scene = load_scene({**data, "mesh": {"element_size_mm": 3.0}})
