@@ -51,17 +51,23 @@ def test_a_force_at_midspan_is_shared_and_bends_the_bar_as_timoshenko_says():
 def test_a_travelling_force_stands_at_its_start_and_says_so():
     """A force that travels (a follower, [[force]] travel_to_mm) loads the static line at
     its start, position_mm: the reactions share it by moments about the seats, and the
-    text says where it was taken and which command moves it."""
+    text says where it was taken and which command moves it. A seat's long name is
+    printed whole in its row, not cut to the column."""
     from shaftfem.outputs.tables import static_text
 
-    s = run_static(load_scene(bar(force=[{"name": "follower", "position_mm": 250.0,
-                                          "travel_to_mm": 750.0, "fy_n": -1000.0}],
-                                  static={"gravity_m_s2": 0.0})))
+    long = "non-drive-end bearing at the coupling"
+    data = bar(force=[{"name": "follower", "position_mm": 250.0, "travel_to_mm": 750.0,
+                       "fy_n": -1000.0}], static={"gravity_m_s2": 0.0})
+    data["support"][1]["name"] = long
+    s = run_static(load_scene(data))
     r = {x.name: x.force for x in s.solution.reactions}
     assert r["S0"][1] == pytest.approx(1000.0 * (997.5 - 250.0) / 995.0, rel=1e-6)
-    assert r["S1"][1] == pytest.approx(1000.0 * (250.0 - 2.5) / 995.0, rel=1e-6)
+    assert r[long][1] == pytest.approx(1000.0 * (250.0 - 2.5) / 995.0, rel=1e-6)
+    text = static_text(s)
     assert ("force follower travels from 250 to 750 mm: taken here at its start; "
-            "`shaftfem strength` moves it along its way") in static_text(s)
+            "`shaftfem strength` moves it along its way") in text
+    assert any(line.startswith(long + "  ") and "997.5 mm" in line
+               for line in text.splitlines())
 
 
 def test_the_weight_of_bar_and_parts_is_carried_by_statics():

@@ -555,16 +555,23 @@ def whirl_text(rows, title: str) -> str:
     return "\n".join(lines)
 
 
+def _width(names: list[str], head: str, least: int = 18) -> int:
+    """A name column's width: its longest name or its head, at least `least` (a name is
+    never cut: "non-drive-end bearing" read as "non-drive-end bear" is another part)."""
+    return max([least, len(head), *map(len, names)])
+
+
 def film_text(films) -> str:
     """Each journal bearing's film at the operating speeds (fem.whirl.FilmRow)."""
-    head = (f"{'journal bearing':18s} {'speed':>12s} {'ecc.':>6s} {'attitude':>9s} "
+    w = _width([f.bearing for f in films], "journal bearing")
+    head = (f"{'journal bearing':{w}s} {'speed':>12s} {'ecc.':>6s} {'attitude':>9s} "
             f"{'min film':>10s} {'Sommerfeld':>10s}  K xx, xy, yx, yy (N/mm); C (N s/mm)")
     lines = ["journal bearings at the operating speeds (Reynolds film):", head]
     for f in films:
         k, c = ", ".join(_coefficients(f.K)), ", ".join(_coefficients(f.C))
         flag = ("  the film does not lift the journal here" if not f.lifted else
                 f"  below its {f.limit_um:g} um limit" if f.thin else "")
-        lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min {f.eccentricity:6.3f} "
+        lines.append(f"{f.bearing:{w}s} {f.speed_rpm:8,.0f} r/min {f.eccentricity:6.3f} "
                      f"{f.attitude_deg:7.1f} deg {f.min_film_um:7.1f} um {f.sommerfeld:10.4g}  "
                      f"K {k}; C {c}{flag}")
     warm = [f for f in films if f.film_c is not None]
@@ -582,7 +589,7 @@ def film_text(films) -> str:
                  f"; supply {f.flow * 60e3:.3g} l/min drains at {f.drain_c:.1f} C"
                  + (short if f.starved else ""))
         share = f" (the journal takes {f.journal_w:,.0f} W of it along the shaft)" if pads else ""
-        lines.append(f"{f.bearing[:18]:18s} {f.speed_rpm:8,.0f} r/min: fed at {f.supply_c:g} C, "
+        lines.append(f"{f.bearing:{w}s} {f.speed_rpm:8,.0f} r/min: fed at {f.supply_c:g} C, "
                      f"the film runs at {f.film_c:.1f} C, friction {f.power_w:,.0f} W{share}, "
                      f"{'the pads draw' if pads else 'side flow'} "
                      f"{f.side_flow * 60e3:.3g} l/min{drain}"
@@ -756,15 +763,16 @@ def static_text(result) -> str:
 
     s, scene = result.solution, result.scene
     g = float(np.linalg.norm(scene.gravity))
+    w = _width([r.name for r in s.reactions], "support", 24)
     lines = [f"scene {scene.name}: static loads, "
              + (f"gravity {g:g} m/s^2 along ({', '.join(f'{v / g:.3g}' for v in scene.gravity)})"
                 if g else "no gravity")
              + (f", {len(scene.forces)} force(s)" if scene.forces else ""),
              f"loads: {s.load[0]:,.1f}, {s.load[1]:,.1f}, {s.load[2]:,.1f} N (x, y, z)", "",
-             f"{'support':24s} {'at':>10s} {'Fx':>12s} {'Fy':>12s} {'Fz':>12s}  (on the shaft)"]
+             f"{'support':{w}s} {'at':>10s} {'Fx':>12s} {'Fy':>12s} {'Fz':>12s}  (on the shaft)"]
     for r in s.reactions:
         fx, fy, fz = (v if abs(v) >= 0.05 else 0.0 for v in r.force)   # no "-0.0"
-        lines.append(f"{r.name[:24]:24s} {r.position * 1e3:7.1f} mm {fx:10,.1f} N "
+        lines.append(f"{r.name:{w}s} {r.position * 1e3:7.1f} mm {fx:10,.1f} N "
                      f"{fy:10,.1f} N {fz:10,.1f} N")
     r = np.hypot(s.x, s.y)
     k = int(np.argmax(r))
@@ -1191,6 +1199,8 @@ def strength_text(result) -> str:
 
     scene, st = result.scene, result.scene.strength
     turning = st.speed > 0
+    places = [f"{s.feature} z {s.z * 1e3:.1f} mm {_degrees(s.angle)} deg" for s in result.spots]
+    w = _width(places, "where", 34)
     lines = [f"scene {scene.name}: strength under the duty"
              + (f" at {st.speed * 60 / (2 * math.pi):,.0f} r/min" if turning else
                 " (standing: no fatigue cycle from the radial loads)"),
@@ -1203,15 +1213,14 @@ def strength_text(result) -> str:
              *([travel_line(result)] if result.travel else []), "",
              "hot spots (worst first; stresses von Mises, MPa; a: amplitude over a turn, "
              "m: mean, signed):",
-             f"{'#':>2s} {'where':34s} {'a':>7s} {'m':>7s} {'peak':>7s} {'bound':>8s} "
+             f"{'#':>2s} {'where':{w}s} {'a':>7s} {'m':>7s} {'peak':>7s} {'bound':>8s} "
              f"{'G 1/mm':>7s} {'n':>5s} {'K_WK':>5s} {'K_AK':>5s} {'S_fat':>6s} {'a_BK':>5s} "
              f"{'S_yld':>6s} {'a_SK':>5s}"]
-    for k, s in enumerate(result.spots, 1):
-        where = (f"{s.feature[:16]} z {s.z * 1e3:.1f} mm {_degrees(s.angle)} deg")
-        bound = ("sharp" if not s.converging else "unresolv" if not s.resolved else
+    for k, (s, where) in enumerate(zip(result.spots, places), 1):
+        bound = ("sharp" if not s.converging else "unresolved" if not s.resolved else
                  "?" if s.bound is None else f"+-{s.bound:.1%}")
         f = s.fkm
-        lines.append(f"{k:2d} {where[:34]:34s} {s.amplitude / 1e6:7.1f} {s.mean / 1e6:7.1f} "
+        lines.append(f"{k:2d} {where:{w}s} {s.amplitude / 1e6:7.1f} {s.mean / 1e6:7.1f} "
                      f"{s.peak / 1e6:7.1f} {bound:>8s} {s.gradient * 1e-3:7.3f} "
                      f"{f.support:5.3f} {f.design:5.3f} {f.mean_stress:5.3f} "
                      f"{_safety(f.fatigue_safety):>6s} {f.fatigue_utilisation:5.2f} "
@@ -1221,14 +1230,15 @@ def strength_text(result) -> str:
     notched = notch_factor_lines(result)
     if notched:
         lines += ["", *notched]
+    ws = _width([c.name for c in result.seats], "seat or part", 24)
     lines += ["", "S_fat, S_yld: safety against fatigue (FKM, infinite life) and yield; a_BK, "
               "a_SK: degree of utilisation with the required safety (<= 1 passes)", "",
-              f"{'seat or part':24s} {'at':>9s} {'slope':>10s} {'limit':>10s} "
+              f"{'seat or part':{ws}s} {'at':>9s} {'slope':>10s} {'limit':>10s} "
               f"{'deflection':>12s} {'limit':>10s}  source"]
     for c in result.seats:
         lim = "-" if c.slope_limit is None else f"{c.slope_limit * 1e3:.2f} mrad"
         dlim = "-" if c.deflection_limit is None else f"{c.deflection_limit * 1e6:.1f} um"
-        lines.append(f"{c.name[:24]:24s} {c.position * 1e3:6.1f} mm {c.slope * 1e3:5.3f} mrad "
+        lines.append(f"{c.name:{ws}s} {c.position * 1e3:6.1f} mm {c.slope * 1e3:5.3f} mrad "
                      f"{lim:>10s} {c.deflection * 1e6:9.2f} um {dlim:>10s}  {c.source}"
                      + ("" if c.ok else "  EXCEEDED"))
     lines += ["", "verdict: " + strength_verdict(result)]
