@@ -416,8 +416,6 @@ def assembled(blocks: np.ndarray, pivots: bool) -> np.ndarray:
 def operating(b: JournalBearing, omega: float) -> Operating:
     """The bearing at the spin omega (rad/s > 0): the film's table at its Sommerfeld
     number, scaled by the load and turned onto the load's direction."""
-    from scipy.interpolate import PchipInterpolator
-
     t = table(round(b.ratio, 9), b.cavitation, b.bore)
     S = b.sommerfeld(max(omega, 1e-12))
     beyond = t.sommerfeld[-1] > S
@@ -432,11 +430,7 @@ def operating(b: JournalBearing, omega: float) -> Operating:
         if Kt is not None and Ct is not None:
             Kp, Cp = Kt[0], Ct[0]
     else:
-        columns = [t.attitude, t.force, t.stiffness.reshape(-1, 4), t.damping.reshape(-1, 4),
-                   t.films]
-        if Kt is not None and Ct is not None:
-            columns += [Kt.reshape(-1, n), Ct.reshape(-1, n)]
-        at = PchipInterpolator(t.eccentricity, np.column_stack(columns))(eps)
+        at = _curve(t, "film")(eps)
         phi, Fbar = float(at[0]), float(at[1])
         Kbar, Cbar = at[2:6].reshape(2, 2), at[6:10].reshape(2, 2)
         film = float(at[10])
@@ -465,32 +459,58 @@ def operating(b: JournalBearing, omega: float) -> Operating:
                      beyond=bool(beyond), pad_K=pad_K, pad_C=pad_C)
 
 
+# each table's interpolants, made once: a heated film's speed table reads its table
+# some ten thousand times (parts.heat), and making them was most of its cost
+_CURVES: dict[int, tuple[FilmTable, dict[str, Any]]] = {}
+
+
+def _curve(t: FilmTable, name: str) -> Any:
+    """Table t's monotone cubic interpolant `name`: "eccentricity" of -log S, "heat"
+    (friction, inflow, side flow), "film" (attitude, |Fbar|, Kbar, Cbar, the thinnest
+    film and the pads' blocks) of the eccentricity."""
+    from scipy.interpolate import PchipInterpolator
+
+    kept = _CURVES.get(id(t))
+    if kept is None or kept[0] is not t:   # (a table remembered anew under its key)
+        kept = _CURVES[id(t)] = (t, {})
+    curves = kept[1]
+    if name not in curves:
+        if name == "eccentricity":
+            curves[name] = PchipInterpolator(-np.log(t.sommerfeld), t.eccentricity)
+        elif name == "heat":
+            assert t.friction is not None and t.inflow is not None and t.side_flow is not None
+            curves[name] = PchipInterpolator(t.eccentricity, np.column_stack(
+                [t.friction, t.inflow, t.side_flow]))
+        else:
+            columns = [t.attitude, t.force, t.stiffness.reshape(-1, 4),
+                       t.damping.reshape(-1, 4), t.films]
+            if t.pad_stiffness is not None and t.pad_damping is not None:
+                n = t.pad_stiffness.shape[1] * 16
+                columns += [t.pad_stiffness.reshape(-1, n), t.pad_damping.reshape(-1, n)]
+            curves[name] = PchipInterpolator(t.eccentricity, np.column_stack(columns))
+    return curves[name]
+
+
 def _eccentricity(t: FilmTable, S: float) -> float:
     """The eccentricity ratio at Sommerfeld's S on the table (lighter than its first
     row: the film's linear limit, eps proportional to 1 / S; heavier than its last: the
     last row's)."""
-    from scipy.interpolate import PchipInterpolator
-
     if t.sommerfeld[0] < S:
         return float(t.eccentricity[0] * t.sommerfeld[0] / S)
-    return float(PchipInterpolator(-np.log(t.sommerfeld), t.eccentricity)(
-        -math.log(max(S, t.sommerfeld[-1]))))
+    return float(_curve(t, "eccentricity")(-math.log(max(S, t.sommerfeld[-1]))))
 
 
 def heat_terms(b: JournalBearing, omega: float) -> tuple[float, float, float]:
     """The film's friction power (W), flow into it at its feed and side flow out of its
     ends (m^3/s) at the spin omega (rad/s), at its viscosity (film_heat's integrals
     read from the table at its Sommerfeld number)."""
-    from scipy.interpolate import PchipInterpolator
-
     t = table(round(b.ratio, 9), b.cavitation, b.bore)
     if t.friction is None or t.inflow is None or t.side_flow is None:
         raise ValueError("the film's heating is not in its table")
     assert b.viscosity is not None
     # lighter than the first row: that row's (Petroff's) film
     eps = max(_eccentricity(t, b.sommerfeld(max(omega, 1e-12))), float(t.eccentricity[0]))
-    I, q_in, q_s = (float(v) for v in PchipInterpolator(t.eccentricity, np.column_stack(
-        [t.friction, t.inflow, t.side_flow]))(eps))
+    I, q_in, q_s = (float(v) for v in _curve(t, "heat")(eps))
     R, c = b.diameter / 2, b.clearance
     return (b.viscosity * omega**2 * R**4 * I / c, omega * R**2 * c * q_in,
             omega * R**2 * c * q_s)
