@@ -1213,7 +1213,7 @@ def strength_text(result) -> str:
              *([travel_line(result)] if result.travel else []), "",
              "hot spots (worst first; stresses von Mises, MPa; a: amplitude over a turn, "
              "m: mean, signed):",
-             f"{'#':>2s} {'where':{w}s} {'a':>7s} {'m':>7s} {'peak':>7s} {'bound':>8s} "
+             f"{'#':>2s} {'where':{w}s} {'a':>7s} {'m':>7s} {'peak':>7s} {'bound':>10s} "
              f"{'G 1/mm':>7s} {'n':>5s} {'K_WK':>5s} {'K_AK':>5s} {'S_fat':>6s} {'a_BK':>5s} "
              f"{'S_yld':>6s} {'a_SK':>5s}"]
     for k, (s, where) in enumerate(zip(result.spots, places), 1):
@@ -1221,7 +1221,7 @@ def strength_text(result) -> str:
                  "?" if s.bound is None else f"+-{s.bound:.1%}")
         f = s.fkm
         lines.append(f"{k:2d} {where:{w}s} {s.amplitude / 1e6:7.1f} {s.mean / 1e6:7.1f} "
-                     f"{s.peak / 1e6:7.1f} {bound:>8s} {s.gradient * 1e-3:7.3f} "
+                     f"{s.peak / 1e6:7.1f} {bound:>10s} {s.gradient * 1e-3:7.3f} "
                      f"{f.support:5.3f} {f.design:5.3f} {f.mean_stress:5.3f} "
                      f"{_safety(f.fatigue_safety):>6s} {f.fatigue_utilisation:5.2f} "
                      f"{_safety(f.yield_safety):>6s} {f.yield_utilisation:5.2f}")

@@ -8,7 +8,10 @@ seat's or a hub's band, whose stresses depend on the fit, not on the shaft). Eac
 stress is bounded as each frequency is: the same scene solved on a mesh COARSER times
 coarser, the bound the difference between the two meshes' peaks at the spot, and at
 least CURVATURE_ERROR (h / rho)^2 in a notch of radius rho (two meshes can agree by
-chance; P2's surface stress there is off by up to about that, either way). While a
+chance; P2's surface stress there is off by up to about that, either way), plus the
+spot's scatter (a spot is the largest of its vertices, and P2's vertex-averaged stress
+scatters from vertex to vertex by a percent or so: the spot's value stands that far off
+a smooth fit of its neighbours', and is read high by it). While a
 bound exceeds the target ([strength] target_error_percent), the mesh is refined around
 those spots only (a gmsh size field: the elements within a few sizes of the spot shrink
 by at least COARSER, by as much as P2 stresses' h^2 convergence asks for AIM times the
@@ -65,6 +68,11 @@ RESOLVED = math.radians(20.0)
 # bending, tension and torsion against an axisymmetric solution converged to 1e-5,
 # benchmarks/notch_factors.py); a bound is at least this times (h / rho)^2
 CURVATURE_ERROR = 2.0
+# a spot's scatter: the quadratic fitted over the surface points within this many of its
+# element sizes (P2's surface stress is smooth to O(h^3) over them), from at least
+# SCATTER_POINTS of them
+SCATTER_REACH = 2.0
+SCATTER_POINTS = 10
 # hot spots: at most this many, each the largest within SPACING local radii, and at least
 # this share of the largest
 MAX_SPOTS = 8
@@ -761,7 +769,10 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         # (h / rho)^2 (benchmarks/notch_factors.py), so the bound is at least
         # CURVATURE_ERROR (h / rho)^2
         curvature = CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2
-        bound = None if difference is None else max(difference, curvature)
+        # ... and the spot's vertex scatter on top: both meshes' spots are read high by
+        # their own (a stress the same all round a fillet's circle: its largest vertex)
+        bound = (None if difference is None
+                 else max(difference, curvature) + _scatter(fine, i, value))
         aim = curvature if _edge_turn(coarse, int(np.argmin(d_coarse))) > RESOLVED else None
         converging, rising = True, False
         turn = _edge_turn(fine, i)
@@ -871,6 +882,27 @@ def _concave(field: _Field, i: int) -> float:
         return 0.0
     k = -np.einsum("ij,ij->i", field.normals[near] - field.normals[i], d[near]) / dist2[near]
     return max(float(k.max()), 0.0)
+
+
+def _scatter(field: _Field, i: int, value: np.ndarray) -> float:
+    """How far surface point i's value stands off a smooth fit of its neighbourhood's
+    (fraction of it): a quadratic in the surface's tangent coordinates at i, fitted by
+    least squares to the values at the surface points within SCATTER_REACH element
+    sizes (away from the load bands), |v_i - fit(i)| / v_i; 0 where too few points."""
+    if value[i] <= 0:
+        return 0.0
+    d = field.points - field.points[i]
+    near = np.flatnonzero((np.einsum("ij,ij->i", d, d)
+                           <= (SCATTER_REACH * float(field.edge[i])) ** 2) & field.allowed)
+    if near.size < SCATTER_POINTS:
+        return 0.0
+    n = field.normals[i]
+    t1 = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+    t1 /= np.linalg.norm(t1)
+    u, v = d[near] @ t1, d[near] @ np.cross(n, t1)
+    fit = np.column_stack([np.ones_like(u), u, v, u * u, u * v, v * v])
+    c = np.linalg.lstsq(fit, value[near], rcond=None)[0]
+    return float(abs(value[i] - c[0]) / value[i])
 
 
 def _xyz(s: HotSpot) -> np.ndarray:
