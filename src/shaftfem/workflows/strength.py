@@ -137,7 +137,7 @@ class HotSpot:
     rising: bool = False
     # the error the next refinement aims from (fraction): the bound, or where the coarser
     # mesh did not resolve the notch (its difference overstates the finer mesh's error)
-    # the notch's curvature term alone
+    # the notch's curvature term and the spot's scatter
     aim: float | None = None
     # the two meshes' difference alone (fraction; None when not known): the bound is it
     # or the notch's curvature term, whichever is larger
@@ -771,9 +771,10 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field,
         curvature = CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2
         # ... and the spot's vertex scatter on top: both meshes' spots are read high by
         # their own (a stress the same all round a fillet's circle: its largest vertex)
-        bound = (None if difference is None
-                 else max(difference, curvature) + _scatter(fine, i, value))
-        aim = curvature if _edge_turn(coarse, int(np.argmin(d_coarse))) > RESOLVED else None
+        scatter = _scatter(fine, i, value)
+        bound = None if difference is None else max(difference, curvature) + scatter
+        aim = (curvature + scatter if _edge_turn(coarse, int(np.argmin(d_coarse))) > RESOLVED
+               else None)
         converging, rising = True, False
         turn = _edge_turn(fine, i)
         old = _same_spot(before or [], fine, i, round_)
@@ -830,8 +831,12 @@ def _round_the_circle(before: list[HotSpot], fine: _Field, i: int, value: np.nda
     # the largest over the place the last round refined (a bending stress's peak lies in
     # its load's plane, a few degrees from where a coarser vertex found it: read at the
     # old spot's own angle, the spot stayed low by 1 - cos of that)
-    d = _distance(fine.points, replace(old, radius=r), True)
-    reach = max(_reach(old.size, r), 2 * float(fine.edge[i]))
+    # ... but on a turning shaft, where the cycle is the same all round, at the old spot
+    # itself (within its own element size, in space): its mesh before is the one its
+    # round refined for it, so the two meshes are compared where both are fine, not at
+    # the refined place's rim, where the mesh before is coarser than its spot's
+    d = _distance(fine.points, replace(old, radius=r), not turning)
+    reach = max(old.size if turning else _reach(old.size, r), 2 * float(fine.edge[i]))
     near = np.flatnonzero((d <= reach) & fine.allowed)
     if not near.size:
         return i
