@@ -858,14 +858,19 @@ def _same_spot(before: list[HotSpot], fine: _Field, i: int, round_: bool
     return before[k] if far[k] < near else None
 
 
+def _offsets(field: _Field, i: int) -> tuple[np.ndarray, np.ndarray]:
+    """Every surface point's offset from surface point i (m) and its square length."""
+    d = field.points - field.points[i]
+    return d, np.einsum("ij,ij->i", d, d)
+
+
 def _edge_turn(field: _Field, i: int) -> float:
     """How far the surface's normal turns (rad) from surface point i to the points within
     1.5 of its element sizes where the surface bends concavely towards them: about 1.5 h /
     rho on a notch of radius rho, half a right angle at a re-entrant edge however fine the
     mesh; nothing on the plain mantle or across a convex edge (two grooves' root fillets
     meeting at a land's corner), whose stress is bounded."""
-    d = field.points - field.points[i]
-    dist2 = np.einsum("ij,ij->i", d, d)
+    d, dist2 = _offsets(field, i)
     near = (dist2 > 0) & (dist2 <= (1.5 * field.edge[i]) ** 2)
     if not near.any():
         return 0.0
@@ -880,8 +885,7 @@ def _concave(field: _Field, i: int) -> float:
     rho, 0 on a plain mantle (convex) and at a convex edge. From the normals' turn
     towards the points within 1.5 element sizes: -(n_j - n_i).(p_j - p_i) / |p_j - p_i|^2
     is the normal curvature along p_j - p_i, positive where the surface is concave."""
-    d = field.points - field.points[i]
-    dist2 = np.einsum("ij,ij->i", d, d)
+    d, dist2 = _offsets(field, i)
     near = (dist2 > 0) & (dist2 <= (1.5 * field.edge[i]) ** 2)
     if not near.any():
         return 0.0
@@ -896,9 +900,9 @@ def _scatter(field: _Field, i: int, value: np.ndarray) -> float:
     sizes (away from the load bands), |v_i - fit(i)| / v_i; 0 where too few points."""
     if value[i] <= 0:
         return 0.0
-    d = field.points - field.points[i]
-    near = np.flatnonzero((np.einsum("ij,ij->i", d, d)
-                           <= (SCATTER_REACH * float(field.edge[i])) ** 2) & field.allowed)
+    d, dist2 = _offsets(field, i)
+    near = np.flatnonzero((dist2 <= (SCATTER_REACH * float(field.edge[i])) ** 2)
+                          & field.allowed)
     if near.size < SCATTER_POINTS:
         return 0.0
     n = field.normals[i]
