@@ -49,6 +49,34 @@ def test_work_aside_stops_with_the_run():
     assert process.returncode is not None and time.perf_counter() - t < 10
 
 
+def test_work_aside_past_its_time_is_stopped():
+    t = time.perf_counter()
+    job = Aside(time.sleep, 30.0)
+    process = job._process
+    with pytest.raises(TimeoutError, match="more than 1 s"):
+        job.result(timeout=1.0)
+    assert process.returncode is not None and time.perf_counter() - t < 10
+
+
+def test_a_run_outlives_work_aside_stopped_while_handed_over():
+    """gmsh sets SIGPIPE back to its default: a job of 32 MB stopped before the other
+    process read it must not end the run that gave it (it used to, silently, exit 141)."""
+    import subprocess
+    import sys
+
+    script = ("import gmsh, numpy as np\n"
+              "from shaftfem.aside import Aside\n"
+              "gmsh.initialize(readConfigFiles=False, interruptible=False)\n"
+              "try:\n"
+              "    Aside(np.sum, np.ones(4_000_000)).result(timeout=0.0)\n"
+              "except TimeoutError:\n"
+              "    print('stopped, and the run goes on')\n")
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert "the run goes on" in run.stdout
+
+
 def test_a_waiting_process_takes_its_job_when_it_comes_and_ends_without_one():
     job = Aside.waiting("numpy", "no_such_module_at_all")   # a missing one is no matter
     assert job._process is not None and job._process.poll() is None

@@ -630,6 +630,31 @@ def test_a_refined_mesh_is_never_coarser_than_the_scenes_own():
     assert followed.points.shape[0] < 0.5 * n0
 
 
+def test_a_refined_mesh_whose_delaunay_does_not_end_in_time_is_made_by_hxt(monkeypatch):
+    """A refined mesh's Delaunay runs beside the run within a time (cad.mesh.DELAUNAY_
+    SECONDS); given none, the mesh comes from gmsh's HXT: valid (generate_mesh checks
+    every Jacobian), as fine as the Delaunay's where the field asks half the scene's
+    sizes (node counts within 25 %), and the same on a second run (one thread)."""
+    import shaftfem.cad.mesh as cm
+    from shaftfem.runtime import RunOptions
+    from shaftfem.workflows.pipeline import built
+
+    placed, shape, mesh = built(load_scene(sharp_shoulder(3.0)), RunOptions())
+    half = np.full(mesh.points.shape[0], 0.5 * placed.mesh.size)
+    args = (shape, placed.shaft, placed.grooves, placed.mesh,
+            (mesh.points, mesh.cells[:, :4], half), placed.seat_cuts(), placed.hubs())
+    delaunay = cm.generate_mesh(*args, refine=True)
+    monkeypatch.setenv("SHAFTFEM_ASIDE", "1")
+    monkeypatch.setattr(cm, "DELAUNAY_SECONDS", 0.0)
+    monkeypatch.setattr(cm, "DELAUNAY_PER_ELEMENT", 0.0)
+    hxt, again = cm.generate_mesh(*args, refine=True), cm.generate_mesh(*args, refine=True)
+    n, m = delaunay.points.shape[0], hxt.points.shape[0]
+    assert 0.75 * n < m < 1.25 * n and m > 2 * mesh.points.shape[0]
+    assert np.array_equal(hxt.points, again.points) and np.array_equal(hxt.cells, again.cells)
+    assert not np.array_equal(hxt.points.shape, delaunay.points.shape) or not np.allclose(
+        hxt.points, delaunay.points)
+
+
 def test_a_spots_scatter_is_what_stands_off_a_smooth_fit():
     """The scatter added to a spot's bound: nothing where the surface stress is smooth
     (a field quadratic along a cylinder's axis is its own fit), and a vertex raised by

@@ -90,6 +90,13 @@ class Aside:
         assert pipe is not None
 
         def hand_over() -> None:   # in a thread: the run goes on while the pipe drains
+            import signal
+
+            # gmsh resets SIGPIPE to its default, which ends the whole run where the other
+            # process was stopped (or died) mid-hand-over: blocked in this thread, a
+            # write to a closed pipe raises BrokenPipeError instead
+            if hasattr(signal, "pthread_sigmask"):
+                signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGPIPE})
             try:
                 pipe.write(data)
                 pipe.close()
@@ -99,22 +106,30 @@ class Aside:
         self._writer = threading.Thread(target=hand_over, daemon=True)
         self._writer.start()
 
-    def result(self) -> Any:
-        """What the job returned; what it raised is raised here."""
+    def result(self, timeout: float | None = None) -> Any:
+        """What the job returned; what it raised is raised here. Not done within
+        `timeout` seconds, the other process is stopped and TimeoutError raised (a job
+        run right here has no limit)."""
         assert self._given, "result() of an Aside given no job"
         if self._value is None:
-            self._value = self._collect()
+            self._value = self._collect(timeout)
         ok, value = self._value
         if not ok:
             raise value
         return value
 
-    def _collect(self) -> tuple[bool, Any]:
+    def _collect(self, timeout: float | None) -> tuple[bool, Any]:
         import pickle
+        import subprocess
 
         process = self._process
         assert process is not None
-        process.wait()
+        try:
+            process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.close()
+            raise TimeoutError(f"the work beside the run took more than {timeout:.0f} s: "
+                               "stopped") from None
         try:
             if process.returncode == 0:
                 ok, value = pickle.loads(self._answer.read_bytes())

@@ -284,8 +284,11 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     than the settings'."""
     from shaftfem.cad.mesher import mesh_solid
 
-    points, cells = mesh_solid(shape.brep, shaft, grooves, settings, sizes, cuts, hubs,
-                               refine)
+    if sizes is None:
+        points, cells = mesh_solid(shape.brep, shaft, grooves, settings, None, cuts, hubs)
+    else:
+        points, cells = _refined(shape.brep, shaft, grooves, settings, sizes, cuts, hubs,
+                                 refine)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)
@@ -301,6 +304,44 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
                      straightened=straightened, unfolded=curved if straightened else None)
+
+
+# A refined mesh's sizes are set by a run, not by its user, who cannot change them.
+# gmsh's Delaunay refinement can fail to settle on them: a pump shaft's keyway, its 0.6 mm
+# floor corner asked for 0.36 mm elements, was still inserting and removing points after
+# two million steps (for more than 14 minutes; the same solid at 0.8 mm took 5 s). So
+# a refined mesh's Delaunay runs in another process, given DELAUNAY_SECONDS plus
+# DELAUNAY_PER_ELEMENT (some fifteen times its usual rate) for each element its sizes
+# ask; past that, the mesh is made by gmsh's HXT instead (11 s on that keyway).
+DELAUNAY_SECONDS = 30.0
+DELAUNAY_PER_ELEMENT = 1.5e-3
+
+
+def refined_elements(sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> float:
+    """About how many tetrahedra a size field asks: each of its tetrahedra's volume
+    over h^3 at the mean of its vertices' sizes, ELEMENTS_PER_H3 per h^3, at least one."""
+    points, tets, h = sizes
+    a, b, c, d = (points[tets[:, k]] for k in range(4))
+    volume = np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)) / 6.0
+    return float(np.sum(np.maximum(1.0, ELEMENTS_PER_H3 * volume / h[tets].mean(axis=1) ** 3)))
+
+
+def _refined(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
+             sizes: tuple[np.ndarray, np.ndarray, np.ndarray], cuts: tuple[float, ...],
+             hubs: tuple[tuple[float, float], ...], refine: bool
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """cad.mesher.mesh_solid by Delaunay within its time (see DELAUNAY_SECONDS), else
+    by HXT."""
+    from shaftfem.aside import Aside
+    from shaftfem.cad.mesher import mesh_solid
+
+    given = (brep, shaft, grooves, settings, sizes, cuts, hubs, refine)
+    limit = DELAUNAY_SECONDS + DELAUNAY_PER_ELEMENT * refined_elements(sizes)
+    try:
+        return Aside(mesh_solid, *given).result(timeout=limit)
+    except TimeoutError:
+        return mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs, refine,
+                          hxt=True)
 
 
 def _four_copies(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

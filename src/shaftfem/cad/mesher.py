@@ -275,14 +275,15 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
                settings: MeshSettings,
                sizes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
                cuts: tuple[float, ...] = (), hubs: tuple[tuple[float, float], ...] = (),
-               refine: bool = False) -> tuple[np.ndarray, np.ndarray]:
+               refine: bool = False, hxt: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Tetrahedra of the solid in `brep` (None: a plain shaft's 90-degree sector):
     points (N, 3) in m and cells (E, 4 or 10) in meshio's node order, or (E, 20) in the
     cubic element's (cad.cubic) for `settings.geometry_order` 3. `sizes`: an
     element-size field (points, tets, size at each point, m) in place of the settings'
     groove, edge and hub sizes, or with `refine` the smaller of it and those at each
     point (a former mesh refined, never coarsened); `cuts`: z (m) of planes the mesh must
-    follow; `hubs`: (z0, z1) (m) of the parts' seats, meshed finer."""
+    follow; `hubs`: (z0, z1) (m) of the parts' seats, meshed finer; `hxt`: the volume
+    by gmsh's HXT on one thread (reproducible) instead of its Delaunay refinement."""
     import meshio
 
     with session("mesh") as s, translated(MeshError, "gmsh could not mesh the solid"):
@@ -315,6 +316,9 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
         s.option("Mesh.MeshSizeFromCurvature", STEP_CURVATURE if shaft.step else 0)
         s.option("Mesh.MeshSizeExtendFromBoundary", 0)
         s.option("Mesh.Optimize", 1)
+        if hxt:
+            s.option("Mesh.Algorithm3D", 10)
+            s.option("Mesh.MaxNumThreads3D", 1)
         gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "shaft")
         try:
             gmsh.model.mesh.generate(3)
