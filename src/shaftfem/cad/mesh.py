@@ -312,9 +312,11 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
 # two million steps (for more than 14 minutes; the same solid at 0.8 mm took 5 s). So
 # a refined mesh's Delaunay runs in another process, given DELAUNAY_SECONDS plus
 # DELAUNAY_PER_ELEMENT (some fifteen times its usual rate) for each element its sizes
-# ask; past that, the mesh is made by gmsh's HXT instead (11 s on that keyway).
+# ask; past that, the mesh is made by gmsh's HXT instead (11 s on that keyway), and so
+# are the solid's later refinements in this run (they refine the same places further).
 DELAUNAY_SECONDS = 30.0
 DELAUNAY_PER_ELEMENT = 1.5e-3
+_UNSETTLED: set[str] = set()   # the solids (their BREP files) whose Delaunay did not end
 
 
 def refined_elements(sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> float:
@@ -337,11 +339,12 @@ def _refined(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings
 
     given = (brep, shaft, grooves, settings, sizes, cuts, hubs, refine)
     limit = DELAUNAY_SECONDS + DELAUNAY_PER_ELEMENT * refined_elements(sizes)
-    try:
-        return Aside(mesh_solid, *given).result(timeout=limit)
-    except TimeoutError:
-        return mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs, refine,
-                          hxt=True)
+    if str(brep) not in _UNSETTLED:
+        try:
+            return Aside(mesh_solid, *given).result(timeout=limit)
+        except TimeoutError:
+            _UNSETTLED.add(str(brep))
+    return mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs, refine, hxt=True)
 
 
 def _four_copies(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
