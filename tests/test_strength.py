@@ -658,6 +658,32 @@ def test_a_refined_mesh_whose_delaunay_does_not_end_in_time_is_made_by_hxt(monke
         hxt.points, delaunay.points)
 
 
+def test_a_refinement_far_above_the_budget_is_enlarged_or_refused_before_meshing(
+        monkeypatch):
+    """A round whose field asks, by its estimate, more than 1.5 times the DOF budget is
+    enlarged on the estimate alone and meshed once, within it; where the rounds before
+    already asked too much (0.05 mm elements within 20 mm of the fillet: about a billion
+    DOFs), no enlarging of this round's sizes helps and the round is refused with the
+    budget's reason, no mesh made."""
+    from types import SimpleNamespace
+
+    from shaftfem.errors import BudgetError
+    from shaftfem.runtime import RunOptions
+    from shaftfem.workflows.pipeline import built
+
+    placed, shape, mesh = built(load_scene(sharp_shoulder(3.0)), RunOptions())
+    spot = SimpleNamespace(z=0.150, angle=-math.pi / 2, radius=0.016)
+    made = []
+    monkeypatch.setattr(ws, "_remeshed", lambda b, m, sizes: made.append(sizes) or mesh)
+    _, asked = ws._within_budget((placed, shape), mesh, [], [ws._Request(spot, 0.05e-3, 3e-3)],
+                                 placed, RunOptions())
+    assert len(made) == 1 and asked[0].size > 4 * 0.05e-3
+    monkeypatch.setattr(ws, "_remeshed", lambda *a: pytest.fail("a mesh was made"))
+    with pytest.raises(BudgetError, match="however far this round's elements are enlarged"):
+        ws._within_budget((placed, shape), mesh, [ws._Request(spot, 0.05e-3, 20e-3)],
+                          [ws._Request(spot, 1e-3, 2e-3)], placed, RunOptions())
+
+
 def test_a_spots_scatter_is_what_stands_off_a_smooth_fit():
     """The scatter added to a spot's bound: nothing where the surface stress is smooth
     (a field quadratic along a cylinder's axis is its own fit), and a vertex raised by
