@@ -51,13 +51,11 @@ AIM = 0.5
 SHRINK_MAX = 4.0
 REACH = 2.0
 GRADING = 0.4
-# a round whose mesh would exceed the DOF budget is asked this many times more, coarser
+# a round whose mesh would exceed the DOF budget is asked this many times more, its
+# sizes enlarged (at most ENLARGE_MAX times) until its estimate is BUDGET_AIM of the budget
 BUDGET_TRIES = 3
-# ... and sizes enlarged on their estimate alone at most so many times before, where the
-# estimate exceeds the budget FAR_ABOVE times (below that a mesh is made and counted: the
-# estimate is within some 40 %)
-ESTIMATED_TRIES = 6
-FAR_ABOVE = 1.5
+ENLARGE_MAX = 8.0
+BUDGET_AIM = 0.95
 HOOP_REACH = 4.0
 # each round refines around the worst few spots still above the target, among those
 # utilised at least half as much as the worst (the others do not decide the verdict)
@@ -490,20 +488,16 @@ def _refined_sizes(mesh, requests: list[_Request], round_: bool, largest: float
 
 def _within_budget(built, mesh, requests: list[_Request], asked: list[_Request],
                    scene: Scene, options: RunOptions) -> tuple[object, list[_Request]]:
-    """The next mesh, with this round's refinement `asked` on top of the rounds' before;
-    where it exceeds the DOF budget, asked again (BUDGET_TRIES times at most) with this
-    round's sizes enlarged by the cube root of the excess (the refined volume's elements
-    scale as h^-3): a round refines as far as the budget lets it, not stops. Sizes whose
-    DOFs, estimated from the field (cad.mesh.refined_elements, scaled by what gmsh made of
-    the last round's field), exceed FAR_ABOVE times the budget are enlarged to that before
-    any mesh is made: a mesh of millions of DOFs is not made (minutes and gigabytes) only
-    to be refused."""
-    from shaftfem.cad.mesh import (
-        DOFS_PER_ELEMENT,
-        check_mesh_budget,
-        mesh_dofs,
-        refined_elements,
-    )
+    """The next mesh, with this round's refinement `asked` on top of the rounds' before,
+    within the DOF budget: a round refines as far as the budget lets it, not stops.
+    Before a mesh is made its DOFs are estimated from the size field
+    (cad.mesh.refined_elements), scaled by what gmsh made of the last field it was given
+    (it stops short of a notch's finest sizes: the pump shaft's keyway, 395,505 DOFs made
+    where 800,000 were estimated); where that is above the budget, this round's sizes are
+    enlarged until it is not, so that no mesh of millions of DOFs is made only to be
+    refused. A mesh still above the budget, counted, rescales the estimate, and the round
+    is asked again (BUDGET_TRIES times at most)."""
+    from shaftfem.cad.mesh import DOFS_PER_ELEMENT, check_mesh_budget, mesh_dofs, refined_elements
 
     placed = built[0]
     budget = placed.max_dofs
@@ -513,31 +507,36 @@ def _within_budget(built, mesh, requests: list[_Request], asked: list[_Request],
         return (DOFS_PER_ELEMENT[placed.mesh.order]
                 * refined_elements((mesh.points, mesh.cells[:, :4], sizes)))
 
-    # the field's estimate against what gmsh made of it: this mesh's DOFs over the
-    # estimate of the requests it was made from (gmsh stops short of a notch's finest
-    # sizes: the pump shaft's keyway, 395,505 DOFs made where 800,000 were estimated)
+    def grown(g: float) -> list[_Request]:
+        return [replace(q, size=q.size * g) for q in asked]
+
     made_of = float(np.clip(mesh_dofs(mesh) / estimate(requests), 0.25, 4.0))
-    tries = 0
-    for _ in range(BUDGET_TRIES + ESTIMATED_TRIES + 1):
-        sizes = _refined_sizes(mesh, requests + asked, scene.axisymmetric, scene.mesh.size)
+    for tries in range(BUDGET_TRIES + 1):
         guess = made_of * estimate(requests + asked)
-        if guess > FAR_ABOVE * budget:
-            # down to within FAR_ABOVE of the budget, where a mesh is made and counted
-            n, about, budget_ = guess, "would have about", FAR_ABOVE * budget
-        else:
-            made = _remeshed(built, mesh, sizes)
-            n, about, budget_ = mesh_dofs(made), "has", budget
-            if n <= budget or tries == BUDGET_TRIES:
-                break
-            tries += 1
-        grow = 1.1 * (n / budget_) ** (1 / 3)
-        options.say(f"the refined mesh {about} {n:,.0f} DOFs, above the budget of "
-                    f"{budget:,}: this round's elements {grow:.2f} times larger")
-        asked = [replace(q, size=q.size * grow) for q in asked]
-    else:   # the rounds before refined so much that this round's sizes cannot help
-        raise BudgetError(f"the refined mesh would have about {n:,.0f} DOFs, above the "
-                          f"budget of {budget:,} however far this round's elements are "
-                          "enlarged; raise the budget ([mesh] max_dofs or --max-dofs)")
+        if guess > budget:
+            # the least enlargement whose estimate is within BUDGET_AIM of the budget
+            if made_of * estimate(requests + grown(ENLARGE_MAX)) > BUDGET_AIM * budget:
+                raise BudgetError(
+                    f"the refined mesh would have about {guess:,.0f} DOFs, above the budget "
+                    f"of {budget:,} however far this round's elements are enlarged (the "
+                    "mesh outside this round's refinement needs that many); raise the "
+                    "budget ([mesh] max_dofs or --max-dofs)")
+            lo, hi = 1.0, ENLARGE_MAX
+            while hi / lo > 1.01:
+                mid = math.sqrt(lo * hi)
+                lo, hi = (lo, mid) if made_of * estimate(requests + grown(mid)) <= \
+                    BUDGET_AIM * budget else (mid, hi)
+            options.say(f"the refined mesh would have about {guess:,.0f} DOFs, above the "
+                        f"budget of {budget:,}: this round's elements {hi:.2f} times larger")
+            asked = grown(hi)
+        made = _remeshed(built, mesh, _refined_sizes(mesh, requests + asked,
+                                                     scene.axisymmetric, scene.mesh.size))
+        n = mesh_dofs(made)
+        if n <= budget or tries == BUDGET_TRIES:
+            break
+        made_of = n / estimate(requests + asked)
+        options.say(f"the refined mesh has {n:,} DOFs, above the budget of {budget:,}: "
+                    "asked again with its estimate scaled to it")
     check_mesh_budget(made, placed.mesh, budget)
     return made, asked
 
