@@ -29,6 +29,7 @@ from shaftfem.cad.tetrahedra import (
     barycentric,
     skfem_mesh,
     straight_positions,
+    triple_products,
 )
 from shaftfem.errors import MeshError
 
@@ -105,9 +106,7 @@ def in_node_order(points: np.ndarray, cells: np.ndarray, local: np.ndarray) -> n
     """Cells (E, 20, ours) as another program's 20-node tetrahedra, node k at reference
     point `local[k]`, every element positively oriented (vertices 1 and 2 swapped where
     the ascending order turned it)."""
-    v = points[cells[:, :4]]
-    turned = np.einsum("ed,ed->e", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]),
-                       v[:, 3] - v[:, 0]) < 0
+    turned = triple_products(points, cells) < 0
     target = barycentric(local)
     out = np.empty_like(cells)
     for flip in (False, True):

@@ -26,6 +26,7 @@ from shaftfem.cad.tetrahedra import (
     skfem_mesh,
     sorted_cells,
     straighten_folded,
+    triple_products,
 )
 from shaftfem.errors import BudgetError, MeshError
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
@@ -323,8 +324,7 @@ def refined_elements(sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> float:
     """About how many tetrahedra a size field asks: each of its tetrahedra's volume
     over h^3 at the mean of its vertices' sizes, ELEMENTS_PER_H3 per h^3, at least one."""
     points, tets, h = sizes
-    a, b, c, d = (points[tets[:, k]] for k in range(4))
-    volume = np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)) / 6.0
+    volume = np.abs(triple_products(points, tets)) / 6.0
     return float(np.sum(np.maximum(1.0, ELEMENTS_PER_H3 * volume / h[tets].mean(axis=1) ** 3)))
 
 

@@ -151,11 +151,17 @@ def element_jacobian_ratios(points: np.ndarray, cells: np.ndarray) -> np.ndarray
            - J[0, 1] * (J[1, 0] * J[2, 2] - J[1, 2] * J[2, 0])
            + J[0, 2] * (J[1, 0] * J[2, 1] - J[1, 1] * J[2, 0]))
     # each element against its straight-sided self (ascending-vertex cells mix orientations)
-    v = points[cells[:, :4]]
-    straight = np.einsum("ed,ed->e", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]),
-                         v[:, 3] - v[:, 0])
-    det = np.sign(straight)[:, None] * det
+    det = np.sign(triple_products(points, cells))[:, None] * det
     return det.min(axis=1) / np.abs(det).max(axis=1)
+
+
+def triple_products(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """(E,): six times each straight-sided tetrahedron's signed volume, m^3, from its
+    first four nodes (positive where vertex 3 lies on the side of face 0-1-2 its
+    right-handed normal points to)."""
+    v = points[cells[:, :4]]
+    return np.einsum("ed,ed->e", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]),
+                     v[:, 3] - v[:, 0])
 
 
 def straight_positions(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
