@@ -163,14 +163,16 @@ def _assemble(f: Film, X: float, Y: float, short: bool = False):
 
 
 def _pressure(A, b: np.ndarray, free: np.ndarray, cavitation: str,
-              guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, Any]:
+              guess: np.ndarray | None = None, factor: Any = None
+              ) -> tuple[np.ndarray, np.ndarray, Any]:
     """The film pressure P (on every unknown, 0 at the ends), the unknowns where it is
     free (the rest held at 0) and the factors of A there (to solve its derivatives
     with): Swift-Stieber by a primal-dual active set (from the ruptured film `guess`, or
     the half-Sommerfeld one; each step moves the film's edge by about a cell), or the
-    half-Sommerfeld film."""
+    half-Sommerfeld film. `factor`: what factors A's CSC block (SuperLU by default)."""
     from scipy.sparse.linalg import splu
 
+    splu = factor or splu
     n = A.shape[0]
     tol_r = 1e-9 * float(np.abs(b).max())
     active = np.zeros(n, dtype=bool)

@@ -160,7 +160,8 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
     rise = mu_s * omega * (radius / clearance) ** 2 / rho_c
     W = load * clearance**2 / (mu_s * omega * radius**4)
     films = [_grid(p, bore.ratio) for p in bore.pads]
-    viscosity = np.vectorize(lambda t: oil.dynamic(grade, min(t, HOTTEST)) / mu_s)
+    def viscosity(t: np.ndarray) -> np.ndarray:
+        return oil.dynamic(grade, np.minimum(t, HOTTEST)) / mu_s
     T = [np.full(f.basis.mesh.p.shape[1], supply) for f, _ in films]
     m = [np.ones_like(t) for t in T]
     inlets = [supply] * len(bore.pads)

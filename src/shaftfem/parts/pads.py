@@ -108,6 +108,18 @@ class PadFilm:
     basis: Any
     free: np.ndarray        # nodes off the pad's edges and its end
     theta: np.ndarray       # the quadrature points' theta (elements, points)
+    flow: Any               # flow_matrix's operator: k at the points -> the matrix's data
+    pattern: tuple[np.ndarray, np.ndarray]   # that matrix's CSR indices and indptr
+
+    def flow_matrix(self, k: np.ndarray):
+        """int k grad u . grad v over the film (k at the quadrature points, (elements,
+        points)): the matrix skfem assembles, its data linear in k, so one sparse product
+        (a film is assembled thousands of times on the same pad)."""
+        import scipy.sparse as sp
+
+        n = self.basis.N
+        data = self.flow @ np.broadcast_to(k, self.theta.shape).ravel()
+        return sp.csr_matrix((data, *self.pattern), shape=(n, n))
 
 
 @lru_cache(maxsize=64)
@@ -128,8 +140,59 @@ def pad_film(start: float, arc: float, ratio: float, cells: int, z_cells: int) -
     basis = Basis(mesh, ElementTriP1(), intorder=4)
     x = mesh.p
     edge = (np.isclose(x[0], start) | np.isclose(x[0], start + arc) | np.isclose(x[1], ratio))
+    flow, pattern = _flow_operator(basis)
     return PadFilm(basis=basis, free=np.flatnonzero(~edge),
-                   theta=np.asarray(basis.global_coordinates())[0])
+                   theta=np.asarray(basis.global_coordinates())[0], flow=flow,
+                   pattern=pattern)
+
+
+class Banded:
+    """The Cholesky factor of a pad's film matrix (symmetric positive definite, its nodes
+    numbered along the pad's width first: a band of about Z_CELLS), by LAPACK's banded
+    Cholesky: a film is solved thousands of times, and this is several times quicker
+    than a general sparse LU of the same matrix."""
+
+    def __init__(self, A) -> None:
+        from scipy.linalg import cholesky_banded
+
+        C = A.tocoo()
+        up = C.row <= C.col
+        u = int((C.col[up] - C.row[up]).max(initial=0))
+        ab = np.zeros((u + 1, A.shape[0]))
+        ab[u + C.row[up] - C.col[up], C.col[up]] = C.data[up]
+        self.factor = cholesky_banded(ab, overwrite_ab=True, check_finite=False)
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        from scipy.linalg import cho_solve_banded
+
+        return cho_solve_banded((self.factor, False), b, check_finite=False)
+
+
+def _flow_operator(basis) -> tuple[Any, tuple[np.ndarray, np.ndarray]]:
+    """The sparse operator taking k at the quadrature points to the CSR data of int k
+    grad u . grad v (row i, column j, element e: sum over points q of k_eq
+    grad phi_i . grad phi_j dx_eq), and that CSR matrix's indices and indptr."""
+    import scipy.sparse as sp
+
+    dofs = basis.element_dofs                      # (local, elements)
+    grads = [b[0].grad for b in basis.basis]       # each (2, elements, points)
+    dx = basis.dx                                  # (elements, points)
+    ne, nq = dx.shape
+    n_local = len(grads)
+    rows, cols, vals = [], [], []
+    for i in range(n_local):
+        for j in range(n_local):
+            rows.append(dofs[i])
+            cols.append(dofs[j])
+            vals.append(np.einsum("deq,deq->eq", grads[i], grads[j]) * dx)
+    r, c = np.concatenate(rows), np.concatenate(cols)   # (n_local^2 * ne,)
+    keys, slot = np.unique(r.astype(np.int64) * basis.N + c, return_inverse=True)
+    point = (np.arange(ne)[:, None] * nq + np.arange(nq)[None, :])   # (ne, nq)
+    op = sp.csr_matrix((np.concatenate(vals).ravel(),
+                        (np.repeat(slot, nq), np.tile(point, (n_local**2, 1)).ravel())),
+                       shape=(keys.size, ne * nq))
+    indptr = np.searchsorted(keys // basis.N, np.arange(basis.N + 1)).astype(np.int32)
+    return op, ((keys % basis.N).astype(np.int32), indptr)
 
 
 def _modes(pad: Pad, theta: np.ndarray, tilt: bool) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -151,6 +214,7 @@ class _Weights:
     dgv: np.ndarray
     preload: np.ndarray
     g: tuple[np.ndarray, ...]   # each coordinate's g at the quadrature points
+    h0: np.ndarray              # the film at q = 0 (the preload's) there
 
 
 @lru_cache(maxsize=256)
@@ -168,7 +232,8 @@ def _weights(pad: Pad, ratio: float, cells: int, z_cells: int, tilt: bool) -> _W
         gv=np.array([weighted.assemble(f.basis, k=g) for g, _ in modes]),
         dgv=np.array([weighted.assemble(f.basis, k=dg) for _, dg in modes]),
         preload=weighted.assemble(f.basis, k=m * np.sin(f.theta - pad.pivot) / (1 - m)),
-        g=tuple(g for g, _ in modes))
+        g=tuple(g for g, _ in modes),
+        h0=_film(pad, f.theta, np.zeros(len(modes)))[0])
 
 
 def _film(pad: Pad, theta: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -204,36 +269,26 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     ruptured, to start the cavitation's active set from; `viscosity`: the film's on the
     pad's nodes over the one P is scaled with (a heated film: parts.pad_heat; None:
     isoviscous), div(H^3 / mu grad P) = 6 dH/dtheta + 12 dH/dtau."""
-    from skfem import BilinearForm, LinearForm
 
     cells = cells_round(pad.arc, cells_per_radian)
     z_cells = Z_CELLS if z_cells is None else z_cells
     f = pad_film(pad.start, pad.arc, ratio, cells, z_cells)
     fixed = _weights(pad, ratio, cells, z_cells, len(q) > 2)
-    H, _ = _film(pad, f.theta, q)
+    H = fixed.h0 + sum(g * qj for g, qj in zip(fixed.g, q))   # _film's, its trig kept
     if float(H.min()) <= 0:
         raise ValueError(f"the journal touches the pad at {math.degrees(pad.pivot):.0f} deg "
                          f"(film {float(H.min()):.3g} of the clearance)")
 
-    @BilinearForm
-    def flow(u, v, w):
-        return w.k * (u.grad[0] * v.grad[0] + u.grad[1] * v.grad[1])
-
-    @LinearForm
-    def pushed(v, w):   # flow's matrix with this k times the pressure p
-        return w.k * (w.p.grad[0] * v.grad[0] + w.p.grad[1] * v.grad[1])
-
     fluidity = 1.0 if viscosity is None else 1.0 / f.basis.interpolate(viscosity)
-    A = flow.assemble(f.basis, k=H ** 3 * fluidity).tocsr()
+    A = f.flow_matrix(H ** 3 * fluidity)
     # int dH v: dH is the preload's term and the coordinates' dg q_j
     b = -6.0 * (fixed.preload + q @ fixed.dgv)
-    P, live, lu = _pressure(A, b, f.free, "reynolds", guess)
+    P, live, lu = _pressure(A, b, f.free, "reynolds", guess, factor=Banded)
     n = len(fixed.g)
     rhs = np.zeros((P.size, 2 * n))
-    p = f.basis.interpolate(P)
     for j, g in enumerate(fixed.g):
-        rhs[:, j] = -6.0 * fixed.dgv[j] - pushed.assemble(
-            f.basis, k=3.0 * H ** 2 * g * fluidity, p=p)
+        # int 3 H^2 g grad P . grad v: the flow's matrix with k = 3 H^2 g, times P
+        rhs[:, j] = -6.0 * fixed.dgv[j] - f.flow_matrix(3.0 * H ** 2 * g * fluidity) @ P
         rhs[:, n + j] = -12.0 * fixed.gv[j]
     dP = np.zeros_like(rhs)
     dP[live] = lu.solve(rhs[live])
