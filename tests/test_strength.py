@@ -631,12 +631,13 @@ def test_a_refined_mesh_is_never_coarser_than_the_scenes_own():
     assert followed.points.shape[0] < 0.5 * n0
 
 
-def test_a_refined_mesh_whose_delaunay_does_not_end_in_time_is_made_by_hxt(monkeypatch):
+def test_a_refined_mesh_whose_delaunay_does_not_end_in_time_is_made_by_hxt(monkeypatch,
+                                                                           tmp_path):
     """A refined mesh's Delaunay runs beside the run within a time (cad.mesh.DELAUNAY_
     SECONDS); given none, the mesh comes from gmsh's HXT: valid (generate_mesh checks
     every Jacobian), as fine as the Delaunay's where the field asks half the scene's
     sizes (node counts within 25 %), and the same on a second run (one thread), which
-    goes to HXT at once."""
+    goes to HXT at once; the mesh and its cache entry say HXT made it."""
     import shaftfem.cad.mesh as cm
     from shaftfem.runtime import RunOptions
     from shaftfem.workflows.pipeline import built
@@ -657,6 +658,12 @@ def test_a_refined_mesh_whose_delaunay_does_not_end_in_time_is_made_by_hxt(monke
     assert str(shape.brep) in cm._UNSETTLED
     assert not np.array_equal(hxt.points.shape, delaunay.points.shape) or not np.allclose(
         hxt.points, delaunay.points)
+    # the mesh says which mesher made it, and so does its cache entry to a warm run
+    assert hxt.hxt and again.hxt and not delaunay.hxt
+    monkeypatch.setenv("SHAFTFEM_CACHE", str(tmp_path))
+    cold = ws._remeshed((placed, shape), mesh, half)
+    warm = ws._remeshed((placed, shape), mesh, half)
+    assert cold.hxt and not cold.from_cache and warm.hxt and warm.from_cache
 
 
 def test_a_refinement_above_the_budget_is_enlarged_or_refused_before_meshing(monkeypatch):

@@ -53,6 +53,9 @@ class ShaftMesh:
     # the points before the straightening (None where no element was straightened):
     # there the straightened elements' faces followed the CAD surfaces
     unfolded: np.ndarray | None = None
+    # made by gmsh's HXT where its Delaunay did not end within its time (_refined): a
+    # different mesh of the same sizes, which the run reports
+    hxt: bool = False
 
     @property
     def n_elements(self) -> int:
@@ -285,11 +288,12 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
     than the settings'."""
     from shaftfem.cad.mesher import mesh_solid
 
+    hxt = False
     if sizes is None:
         points, cells = mesh_solid(shape.brep, shaft, grooves, settings, None, cuts, hubs)
     else:
-        points, cells = _refined(shape.brep, shaft, grooves, settings, sizes, cuts, hubs,
-                                 refine)
+        points, cells, hxt = _refined(shape.brep, shaft, grooves, settings, sizes, cuts, hubs,
+                                      refine)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
     points, cells = _compact(points, cells)
@@ -304,7 +308,8 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
         points, straightened = straighten_folded(curved, cells)
     ratio = check_jacobians(points, cells)
     return ShaftMesh(points=points, cells=cells, order=settings.order, min_jacobian_ratio=ratio,
-                     straightened=straightened, unfolded=curved if straightened else None)
+                     straightened=straightened, unfolded=curved if straightened else None,
+                     hxt=hxt)
 
 
 # A refined mesh's sizes are set by a run, not by its user, who cannot change them.
@@ -331,9 +336,9 @@ def refined_elements(sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> float:
 def _refined(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
              sizes: tuple[np.ndarray, np.ndarray, np.ndarray], cuts: tuple[float, ...],
              hubs: tuple[tuple[float, float], ...], refine: bool
-             ) -> tuple[np.ndarray, np.ndarray]:
+             ) -> tuple[np.ndarray, np.ndarray, bool]:
     """cad.mesher.mesh_solid by Delaunay within its time (see DELAUNAY_SECONDS), else
-    by HXT."""
+    by HXT: the points, the cells and whether HXT made them."""
     from shaftfem.aside import Aside
     from shaftfem.cad.mesher import mesh_solid
 
@@ -341,10 +346,11 @@ def _refined(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings
     limit = DELAUNAY_SECONDS + DELAUNAY_PER_ELEMENT * refined_elements(sizes)
     if str(brep) not in _UNSETTLED:
         try:
-            return Aside(mesh_solid, *given).result(timeout=limit)
+            return (*Aside(mesh_solid, *given).result(timeout=limit), False)
         except TimeoutError:
             _UNSETTLED.add(str(brep))
-    return mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs, refine, hxt=True)
+    return (*mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs, refine, hxt=True),
+            True)
 
 
 def _four_copies(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

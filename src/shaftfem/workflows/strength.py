@@ -209,7 +209,7 @@ class StrengthResult:
     # the finest mesh's surface with its stresses and utilisations: the hot-spot picture's
     # field and the VTK file's
     surface: StressSurface | None = field(default=None, compare=False, repr=False)
-    notes: tuple[str, ...] = ()   # why the refinement stopped short, where it did
+    notes: tuple[str, ...] = ()   # why the refinement stopped short, and a mesh HXT made
     # a travelling load's screening (Travel), the scene's loads at the worst place
     travel: tuple[Travel, ...] = ()
 
@@ -358,6 +358,14 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
         asked = _requested(open_, target)
         try:
             refined, asked = _within_budget(built, mesh, requests, asked, scene, options)
+            if refined.hxt:
+                from shaftfem.cad.mesh import mesh_dofs
+
+                made_by = (f"round {len(dofs) - 1}'s mesh ({mesh_dofs(refined):,} DOFs) was "
+                           "made by gmsh's HXT: its Delaunay did not finish in its time "
+                           "(a mesh of the same sizes, another of the same solid)")
+                options.say(made_by)
+                notes.append(made_by)
             requests += asked
             coarse, (fine, mesh, built) = fine, _solve(scene, options, (built, refined))
         except (BudgetError, MeshError) as e:
@@ -569,16 +577,19 @@ def _remeshed(built, mesh, sizes: np.ndarray):
     placed, shape = built
     digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
                             + np.round(sizes, 12).tobytes()).hexdigest()
-    key = content_key({"version": 2, "mesh": mesh_key(shape, placed.shaft, placed.grooves,
+    key = content_key({"version": 3, "mesh": mesh_key(shape, placed.shaft, placed.grooves,
                                                       placed.mesh, placed.seat_cuts(),
                                                       placed.hubs()),
                        "sizes": digest})
     path = cache_dir() / "strength" / f"{key}.npz"
-    fields, why = load_arrays(path, MESH_ARRAYS) if path.exists() else (None, "")
+    # which mesher made it is kept with it: a warm run reports what the cold one did
+    fields, why = (load_arrays(path, MESH_ARRAYS + ("hxt",)) if path.exists()
+                   else (None, ""))
     if fields is None and why:
         discard(f"refined mesh {path.stem}", why, path)
     if fields is not None:
-        made = replace(mesh_from_arrays(fields), order=placed.mesh.order)
+        made = replace(mesh_from_arrays(fields), order=placed.mesh.order,
+                       hxt=bool(fields["hxt"]))
     else:
         # refined, never coarser than the scene's own mesh: a size read from the mean
         # of a vertex's elements exceeds a notch surface's own, and a notch's far side
@@ -587,7 +598,7 @@ def _remeshed(built, mesh, sizes: np.ndarray):
         made = generate_mesh(shape, placed.shaft, placed.grooves, placed.mesh,
                              (mesh.points, mesh.cells[:, :4], sizes), placed.seat_cuts(),
                              placed.hubs(), refine=True)
-        save_arrays(path, mesh_arrays(made))
+        save_arrays(path, dict(mesh_arrays(made), hxt=np.bool_(made.hxt)))
     return made
 
 
