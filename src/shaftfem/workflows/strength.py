@@ -37,6 +37,7 @@ from shaftfem.runtime import RunOptions
 from shaftfem.scene.model import PointForce, Scene, Torque
 
 if TYPE_CHECKING:
+    from shaftfem.cad.mesh import ShaftMesh
     from shaftfem.checks.fkm import PointAssessment
 
 COARSER = 1.5
@@ -495,7 +496,7 @@ def _refined_sizes(mesh, requests: list[_Request], round_: bool, largest: float
 
 
 def _within_budget(built, mesh, requests: list[_Request], asked: list[_Request],
-                   scene: Scene, options: RunOptions) -> tuple[object, list[_Request]]:
+                   scene: Scene, options: RunOptions) -> tuple[ShaftMesh, list[_Request]]:
     """The next mesh, with this round's refinement `asked` on top of the rounds' before,
     within the DOF budget: a round refines as far as the budget lets it, not stops.
     Before a mesh is made its DOFs are estimated from the size field
@@ -560,7 +561,7 @@ def _distance(points: np.ndarray, s: HotSpot, round_: bool) -> np.ndarray:
                    + (s.radius * turn / HOOP_REACH) ** 2)
 
 
-def _remeshed(built, mesh, sizes: np.ndarray):
+def _remeshed(built, mesh, sizes: np.ndarray) -> ShaftMesh:
     """The placed scene's solid meshed to `sizes` (at the mesh's points), from the cache
     where it holds that mesh (its DOF budget checked by the caller)."""
     import hashlib
