@@ -73,11 +73,16 @@ def load_band(z: float, width: float, nodes: np.ndarray) -> Band:
 
 def band_loads(skmesh, element, band: Band, force: np.ndarray, torque: float,
                n_dofs: int, moment: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
-    """The nodal loads (3 n,) of a force (3,) N, a torque about the axis (N m) and a
-    bending moment (m_x, m_y; N m) spread as a body force over the elements whose
-    centroids lie in the band: b = F / V, b = T (-y, x) / J and b_z = m_x y / I_y -
-    m_y x / I_x with V, J, I_y = int y^2 and I_x = int x^2 over the band, so that the
-    resultants are exact on the mesh."""
+    """The nodal loads (3 n,) of a force (3,) N at the band's middle on the axis, p, a
+    torque about the axis (N m) and a bending moment (m_x, m_y; N m), spread as a body
+    force over the elements whose centroids lie in the band: b = F / V + mu x (x - c),
+    with V their volume and c their centroid, mu from their inertia about c so that the
+    moment about p is (m_x, m_y, T): int b = F and int (x - p) x b = M exactly on the
+    mesh. A set of elements is never quite symmetric about the axis, and F / V alone
+    adds the moment (c - p) x F: a 20 kN pull on a 30 mm bar's 8 mm elements bent it by
+    2.6 N m, 3.5 % of its stress. On a symmetric band this is F / V, T (-y, x) / J for
+    a torque, and a bending moment's linear b_z with its couple of shear across the
+    band's width (the least body force, in L2, with these resultants)."""
     from skfem import Basis, Functional, LinearForm
 
     zc = skmesh.p[2, skmesh.t].mean(axis=0)
@@ -87,20 +92,21 @@ def band_loads(skmesh, element, band: Band, force: np.ndarray, torque: float,
         inside = np.flatnonzero((lo <= band.z1) & (hi >= band.z0))
     basis = Basis(skmesh, element, elements=inside, intorder=4)
     volume = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(basis)
-    polar = Functional(lambda w: w.x[0] ** 2 + w.x[1] ** 2).assemble(basis)
+    c = np.array([Functional(lambda w, i=i: w.x[i]).assemble(basis) for i in range(3)]) / volume
+    S = np.array([[Functional(lambda w, i=i, j=j: (w.x[i] - c[i]) * (w.x[j] - c[j])
+                              ).assemble(basis) for j in range(3)] for i in range(3)])
+    inertia = np.trace(S) * np.eye(3) - S       # int r x (mu x r) = inertia mu, r = x - c
+    p = np.array([0.0, 0.0, 0.5 * (band.z0 + band.z1)])
+    wanted = np.array([moment[0], moment[1], torque]) - np.cross(c - p, force)
+    mu = np.linalg.solve(inertia, wanted) if wanted.any() else np.zeros(3)
+    # b_k = F_k / V + (mu x r)_k, r = x - c: each component's nodal loads from int v and
+    # int r_j v
     one = LinearForm(lambda v, w: v).assemble(basis)
+    arm = [LinearForm(lambda v, w, j=j: (w.x[j] - c[j]) * v).assemble(basis) for j in range(3)]
     out = np.zeros(n_dofs)
-    for c in range(3):
-        out[c::3] += force[c] / volume * one
-    if torque:
-        out[0::3] += LinearForm(lambda v, w: -w.x[1] * v).assemble(basis) * torque / polar
-        out[1::3] += LinearForm(lambda v, w: w.x[0] * v).assemble(basis) * torque / polar
-    mx, my = moment
-    if mx or my:
-        ix = Functional(lambda w: w.x[0] ** 2).assemble(basis)
-        iy = Functional(lambda w: w.x[1] ** 2).assemble(basis)
-        out[2::3] += (LinearForm(lambda v, w: w.x[1] * v).assemble(basis) * mx / iy
-                      - LinearForm(lambda v, w: w.x[0] * v).assemble(basis) * my / ix)
+    for k in range(3):
+        i, j = (k + 1) % 3, (k + 2) % 3          # (mu x r)_k = mu_i r_j - mu_j r_i
+        out[k::3] += force[k] / volume * one + mu[i] * arm[j] - mu[j] * arm[i]
     return out
 
 
