@@ -131,7 +131,7 @@ def main(cfg: dict) -> None:
             pre = Preconditioner(a, "bddc")
             a.Assemble()
             f = LinearForm(t * v * ds("load")).Assemble()
-            inv = CGSolver(a.mat, pre.mat, precision=1e-11, maxsteps=5000)
+            inv = CGSolver(a.mat, pre.mat, tol=1e-11, maxiter=5000)
             f.vec.data += a.harmonic_extension_trans * f.vec
             gfu.vec.data = inv * f.vec
             gfu.vec.data += a.harmonic_extension * gfu.vec

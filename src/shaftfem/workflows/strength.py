@@ -657,7 +657,8 @@ def _field_path(placed: Scene, mesh) -> Path:
 
     digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
                             + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
-    key = content_key({"version": 1, "nodes": digest, "order": placed.mesh.order,
+    # version 2: the loads spread with their exact moments (fem.stress.band_loads)
+    key = content_key({"version": 2, "nodes": digest, "order": placed.mesh.order,
                        "material": asdict(placed.material),
                        "supports": [asdict(s) for s in placed.supports],
                        "attachments": [asdict(a) for a in placed.attachments],
