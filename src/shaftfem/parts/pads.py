@@ -269,7 +269,6 @@ def pad_state(pad: Pad, ratio: float, q: np.ndarray, guess: np.ndarray | None = 
     ruptured, to start the cavitation's active set from; `viscosity`: the film's on the
     pad's nodes over the one P is scaled with (a heated film: parts.pad_heat; None:
     isoviscous), div(H^3 / mu grad P) = 6 dH/dtheta + 12 dH/dtau."""
-
     cells = cells_round(pad.arc, cells_per_radian)
     z_cells = Z_CELLS if z_cells is None else z_cells
     f = pad_film(pad.start, pad.arc, ratio, cells, z_cells)
