@@ -98,7 +98,7 @@ def band_loads(skmesh, element, band: Band, force: np.ndarray, torque: float,
     inertia = np.trace(S) * np.eye(3) - S       # int r x (mu x r) = inertia mu, r = x - c
     p = np.array([0.0, 0.0, 0.5 * (band.z0 + band.z1)])
     wanted = np.array([moment[0], moment[1], torque]) - np.cross(c - p, force)
-    mu = np.linalg.solve(inertia, wanted) if wanted.any() else np.zeros(3)
+    mu = np.linalg.solve(inertia, wanted)
     # b_k = F_k / V + (mu x r)_k, r = x - c: each component's nodal loads from int v and
     # int r_j v
     one = LinearForm(lambda v, w: v).assemble(basis)

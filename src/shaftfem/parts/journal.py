@@ -172,12 +172,12 @@ def _pressure(A, b: np.ndarray, free: np.ndarray, cavitation: str,
     half-Sommerfeld film. `factor`: what factors A's CSC block (SuperLU by default)."""
     from scipy.sparse.linalg import splu
 
-    splu = factor or splu
+    factorise = factor or splu
     n = A.shape[0]
     tol_r = 1e-9 * float(np.abs(b).max())
     active = np.zeros(n, dtype=bool)
     if guess is None or cavitation == "gumbel":
-        lu = splu(A[free][:, free].tocsc())
+        lu = factorise(A[free][:, free].tocsc())
         P = np.zeros(n)
         P[free] = lu.solve(b[free])
         if cavitation == "gumbel":
@@ -188,7 +188,7 @@ def _pressure(A, b: np.ndarray, free: np.ndarray, cavitation: str,
     tol_p = None
     for _ in range(STEPS):
         live = free[~active[free]]
-        lu = splu(A[live][:, live].tocsc())
+        lu = factorise(A[live][:, live].tocsc())
         P = np.zeros(n)
         P[live] = lu.solve(b[live])
         # ties (a node whose pressure or multiplier is zero to round-off) stay as they are

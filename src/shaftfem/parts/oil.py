@@ -14,6 +14,7 @@ viscosity_mpa_s, is better than any of this.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -24,7 +25,7 @@ DENSITY_15C = 870.0       # kg/m^3
 DENSITY_FALL = 0.00065    # per K, of the density at 15 C
 
 
-def kinematic(grade: int, temperature_c):
+def kinematic(grade: int, temperature_c: float | np.ndarray) -> Any:
     """The kinematic viscosity (m^2/s) of ISO VG `grade` at `temperature_c` (C; a float
     or an array of them, as is the result)."""
     def walther(nu: float) -> float:
@@ -38,12 +39,12 @@ def kinematic(grade: int, temperature_c):
     return float(nu) if np.ndim(nu) == 0 else nu
 
 
-def density(temperature_c):
+def density(temperature_c: float | np.ndarray) -> Any:
     """The oil's density (kg/m^3) at `temperature_c` (C)."""
     return DENSITY_15C * (1 - DENSITY_FALL * (temperature_c - 15.0))
 
 
-def dynamic(grade: int, temperature_c):
+def dynamic(grade: int, temperature_c: float | np.ndarray) -> Any:
     """The dynamic viscosity (Pa s) of ISO VG `grade` at `temperature_c` (C; a float or
     an array of them, as is the result)."""
     return kinematic(grade, temperature_c) * density(temperature_c)
