@@ -5,6 +5,9 @@ one end and loaded by the pure traction at the other, so only the notch's K_t is
 - a shaft of revolution: NGSolve at orders 5 and 6 on the half-section, the load's
   variation round the axis exact (benchmarks/axisymmetric_reference.py; converged to
   1e-5 or better);
+- a long keyway's middle in torsion: Saint-Venant's torsion of the keyed section,
+  NGSolve at orders 6 and 8 in 2D (benchmarks/section_torsion_reference.py; converged to
+  1e-9);
 - any other: NGSolve at orders 3 and 4 on netgen's own curved 3D mesh of the STEP
   (benchmarks/notch_reference.py).
 Prints, per shape, K_t as shaftfem gives it (von Mises peak over the nominal von Mises
@@ -193,6 +196,9 @@ SHAPES = {
                                        pilkey_hole_torsion(40, 10)),
     "keyway 10x5 r1, bending": (keyed(32, 40, 10, 5, 1.0), "bending", 32, (125, 175), None),
     "keyway 10x5 r1, torsion": (keyed(32, 40, 10, 5, 1.0), "torsion", 32, (125, 175), None),
+    # long enough that its middle is prismatic: there Saint-Venant's 2D torsion is exact
+    "keyway 10x5 r1 long, torsion": (keyed(32, 120, 10, 5, 1.0), "torsion", 32, (140, 160),
+                                     None),
     "radial hole 8 deep 8 r1, torsion": (keyed(32, 8, 8, 8, 1.0), "torsion", 32, (140, 160),
                                          None),
 }
@@ -240,8 +246,16 @@ def reference(name: str, step: str, notch_h: float, pieces: list | None) -> list
     """The reference's K_t at two orders: on the half-section of a shaft of revolution
     (elements of a twentieth of the notch's size at orders 5 and 6), else on the 3D
     solid (orders 3 and 4)."""
-    _, load, d, window, _ = SHAPES[name]
-    if pieces is not None:
+    geometry, load, d, window, _ = SHAPES[name]
+    if "long" in name and load == "torsion":
+        # a long keyway's middle in torsion: Saint-Venant's section, exact in 2D (the
+        # stress on a keyway's edge in pure shear: von Mises, chart and principal alike)
+        k = geometry["keyway"][0]
+        cfg = {"d_mm": d, "width_mm": k["width_mm"], "depth_mm": k["depth_mm"],
+               "corner_mm": k["corner_radius_mm"], "h_mm": k["corner_radius_mm"] / 10,
+               "orders": [6, 8]}
+        script = "section_torsion_reference.py"
+    elif pieces is not None:
         cfg = {"pieces": pieces, "load": load, "window_mm": list(window), "d_nom_mm": d,
                "notch_h_mm": notch_h / 10, "orders": [5, 6], "E_pa": E, "nu": NU}
         script = "axisymmetric_reference.py"
@@ -251,12 +265,26 @@ def reference(name: str, step: str, notch_h: float, pieces: list | None) -> list
                # netgen refines curved faces by their curvature: less so where the notch's
                # own size is already small (a keyway's 1 mm corners: order 4 within 24 GB)
                "curvature_safety": 2.0 if notch_h >= 1.5 else 1.0}
+        if "keyway" in geometry:
+            # a keyway's corners at half their radius, its ends' floor fillets (where
+            # bending peaks) at a quarter, solved by CG (order 4: 1.5 million DOFs)
+            k = geometry["keyway"][0]
+            r, b, floor = k["corner_radius_mm"], k["width_mm"], d / 2 - k["depth_mm"]
+            ends = (k["position_mm"] - k["length_mm"] / 2, k["position_mm"] + k["length_mm"] / 2)
+            boxes = [[[-b / 2 - 1, floor - 0.1, lo], [b / 2 + 1, floor + r + 0.8, hi]]
+                     for lo, hi in ((ends[0] - 1, ends[0] + b / 2 + 0.1),
+                                    (ends[1] - b / 2 - 0.1, ends[1] + 1))]
+            cfg.update(notch_h_mm=r / 2, iterative=True, fine={"h_mm": r / 4, "boxes_mm": boxes})
         script = "notch_reference.py"
     run = subprocess.run([str(NGSOLVE), str(HERE / script), json.dumps(cfg)],
                          capture_output=True, text=True, timeout=3600)
     if run.returncode != 0:
         raise RuntimeError(run.stderr[-2000:])
-    return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+    rows = [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+    for r in rows:
+        if "kt" in r:
+            r.update(kt_vm=r["kt"], kt_chart=r["kt"], kt_principal=r["kt"])
+    return rows
 
 
 def main(argv: list[str]) -> int:

@@ -61,10 +61,13 @@ from ngsolve_reference import csr  # NGSolve's matrix as SciPy's
 POINTS_PER_SIDE = 10   # a triangle's sample grid: (n + 1)(n + 2) / 2 points
 
 
-def solid(step: str, window: tuple[float, float], notch_h: float, h: float):
+def solid(step: str, window: tuple[float, float], notch_h: float, h: float,
+          fine: dict | None = None):
     """The solid with its end faces named fix (z = 0) and load (the other end), the faces
     inside the notch window named notch and meshed at notch_h, and so are the edges inside
-    it (a hole's mouth, whose mantle face reaches beyond the window)."""
+    it (a hole's mouth, whose mantle face reaches beyond the window); the faces and edges
+    inside any of fine's boxes_mm (each [[x, y, z], [x, y, z]]) at its h_mm (where a
+    notch's peak lies on a small face: a keyway end's floor fillet)."""
     geo = OCCGeometry(step)
     shape = geo.shape
     zs = [f.bounding_box for f in shape.faces]
@@ -83,6 +86,11 @@ def solid(step: str, window: tuple[float, float], notch_h: float, h: float):
         lo, hi = e.bounding_box
         if lo[2] >= window[0] - 1e-6 and hi[2] <= window[1] + 1e-6:
             e.maxh = notch_h
+    for box in (np.array(b) for b in (fine or {}).get("boxes_mm", [])):
+        for item in list(shape.faces) + list(shape.edges):
+            lo, hi = (np.array([c[0], c[1], c[2]]) for c in item.bounding_box)
+            if np.all(lo >= box[0] - 1e-6) and np.all(hi <= box[1] + 1e-6):
+                item.maxh = fine["h_mm"]
     return OCCGeometry(shape), zmax
 
 
@@ -99,7 +107,8 @@ def main(cfg: dict) -> None:
     E, nu = cfg["E_pa"], cfg["nu"]
     mu, lam = E / (2 * (1 + nu)), E * nu / ((1 + nu) * (1 - 2 * nu))
     # in mm throughout (netgen's tolerances are made for it); K_t is a ratio
-    geo, _ = solid(cfg["step"], tuple(cfg["window_mm"]), cfg["notch_h_mm"], cfg["h_mm"])
+    geo, _ = solid(cfg["step"], tuple(cfg["window_mm"]), cfg["notch_h_mm"], cfg["h_mm"],
+                   cfg.get("fine"))
     d = cfg["d_nom_mm"]
     for p in cfg["orders"]:
         mesh = Mesh(geo.GenerateMesh(maxh=cfg["h_mm"],
