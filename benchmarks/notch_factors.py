@@ -5,9 +5,6 @@ one end and loaded by the pure traction at the other, so only the notch's K_t is
 - a shaft of revolution: NGSolve at orders 5 and 6 on the half-section, the load's
   variation round the axis exact (benchmarks/axisymmetric_reference.py; converged to
   1e-5 or better);
-- a long keyway's middle in torsion: Saint-Venant's torsion of the keyed section,
-  NGSolve at orders 6 and 8 in 2D (benchmarks/section_torsion_reference.py; converged to
-  1e-9);
 - any other: NGSolve at orders 3 and 4 on netgen's own curved 3D mesh of the STEP
   (benchmarks/notch_reference.py).
 Prints, per shape, K_t as shaftfem gives it (von Mises peak over the nominal von Mises
@@ -196,9 +193,6 @@ SHAPES = {
                                        pilkey_hole_torsion(40, 10)),
     "keyway 10x5 r1, bending": (keyed(32, 40, 10, 5, 1.0), "bending", 32, (125, 175), None),
     "keyway 10x5 r1, torsion": (keyed(32, 40, 10, 5, 1.0), "torsion", 32, (125, 175), None),
-    # long enough that its middle is prismatic: there Saint-Venant's 2D torsion is exact
-    "keyway 10x5 r1 long, torsion": (keyed(32, 120, 10, 5, 1.0), "torsion", 32, (140, 160),
-                                     None),
     "radial hole 8 deep 8 r1, torsion": (keyed(32, 8, 8, 8, 1.0), "torsion", 32, (140, 160),
                                          None),
 }
@@ -247,15 +241,7 @@ def reference(name: str, step: str, notch_h: float, pieces: list | None) -> list
     (elements of a twentieth of the notch's size at orders 5 and 6), else on the 3D
     solid (orders 3 and 4)."""
     geometry, load, d, window, _ = SHAPES[name]
-    if "long" in name and load == "torsion":
-        # a long keyway's middle in torsion: Saint-Venant's section, exact in 2D (the
-        # stress on a keyway's edge in pure shear: von Mises, chart and principal alike)
-        k = geometry["keyway"][0]
-        cfg = {"d_mm": d, "width_mm": k["width_mm"], "depth_mm": k["depth_mm"],
-               "corner_mm": k["corner_radius_mm"], "h_mm": k["corner_radius_mm"] / 10,
-               "orders": [6, 8]}
-        script = "section_torsion_reference.py"
-    elif pieces is not None:
+    if pieces is not None:
         cfg = {"pieces": pieces, "load": load, "window_mm": list(window), "d_nom_mm": d,
                "notch_h_mm": notch_h / 10, "orders": [5, 6], "E_pa": E, "nu": NU}
         script = "axisymmetric_reference.py"
@@ -280,11 +266,7 @@ def reference(name: str, step: str, notch_h: float, pieces: list | None) -> list
                          capture_output=True, text=True, timeout=3600)
     if run.returncode != 0:
         raise RuntimeError(run.stderr[-2000:])
-    rows = [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
-    for r in rows:
-        if "kt" in r:
-            r.update(kt_vm=r["kt"], kt_chart=r["kt"], kt_principal=r["kt"])
-    return rows
+    return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
 
 
 def main(argv: list[str]) -> int:
