@@ -14,6 +14,8 @@ von Mises in pure shear: the same ratio, as benchmarks/notch_factors.py reads it
         "width_mm": 10, "depth_mm": 5, "corner_mm": 1, "h_mm": 0.1, "orders": [4, 6, 8]}'
 
 Prints one JSON line per order: {"order", "dofs", "kt", "where_mm"}. Seconds.
+`'{"ellipse_mm": [16, 8]}'` checks the solver instead on an ellipse of semi-axes a, b,
+whose torsion is closed: J = pi a^3 b^3 / (a^2 + b^2), tau_max = 2 T / (pi a b^2).
 """
 
 import json
@@ -56,24 +58,44 @@ def section(d: float, b: float, t: float, r: float, h: float):
     return OCCGeometry(face, dim=2)
 
 
+def warping(mesh, p: int):
+    """Saint-Venant's warping psi on the section's mesh at order p, and the torque over
+    G theta (the torsion constant J)."""
+    fes = H1(mesh, order=p)
+    u, v = fes.TnT()
+    # the warping is fixed up to a constant: a small mass term pins its mean
+    a = BilinearForm(grad(u) * grad(v) * dx + 1e-10 * u * v * dx).Assemble()
+    # int (y n_x - x n_y) v ds as the area integral it is by the divergence theorem
+    # ((y, -x) has none): no boundary normal (netgen's edges run either way round)
+    f = LinearForm((y * grad(v)[0] - x * grad(v)[1]) * dx).Assemble()
+    psi = GridFunction(fes)
+    with TaskManager():
+        psi.vec.data = a.mat.Inverse(fes.FreeDofs(), inverse="sparsecholesky") * f.vec
+    gx, gy = grad(psi)[0], grad(psi)[1]
+    return psi, gx, gy, Integrate(x * x + y * y + x * gy - y * gx, mesh), fes.ndof
+
+
+def ellipse(a: float, b: float) -> None:
+    """The solver against the ellipse's closed form (mm)."""
+    mesh = Mesh(OCCGeometry(WorkPlane().Ellipse(a, b).Face(), dim=2).GenerateMesh(maxh=1.0))
+    mesh.Curve(6)
+    _, gx, gy, J, _ = warping(mesh, 6)
+    tip = mesh(0.0, b * (1 - 1e-6))
+    tau = math.hypot(gx(tip) - b * (1 - 1e-6), gy(tip)) / J
+    print(json.dumps({"J": J, "J_exact": math.pi * a**3 * b**3 / (a**2 + b**2),
+                      "tau_per_T": tau, "tau_per_T_exact": 2 / (math.pi * a * b**2)}))
+
+
 def main(cfg: dict) -> None:
+    if "ellipse_mm" in cfg:
+        ellipse(*cfg["ellipse_mm"])
+        return
     d = cfg["d_mm"]
     geo = section(d, cfg["width_mm"], cfg["depth_mm"], cfg["corner_mm"], cfg["h_mm"])
     mesh = Mesh(geo.GenerateMesh(maxh=d / 8))
     for p in cfg["orders"]:
         mesh.Curve(p)
-        fes = H1(mesh, order=p)
-        u, v = fes.TnT()
-        # the warping is fixed up to a constant: a small mass term pins its mean
-        a = BilinearForm(grad(u) * grad(v) * dx + 1e-10 * u * v * dx).Assemble()
-        # int (y n_x - x n_y) v ds as the area integral it is by the divergence theorem
-        # ((y, -x) has none): no boundary normal (netgen's edges run either way round)
-        f = LinearForm((y * grad(v)[0] - x * grad(v)[1]) * dx).Assemble()
-        psi = GridFunction(fes)
-        with TaskManager():
-            psi.vec.data = a.mat.Inverse(fes.FreeDofs(), inverse="sparsecholesky") * f.vec
-        gx, gy = grad(psi)[0], grad(psi)[1]
-        torque = Integrate(x * x + y * y + x * gy - y * gx, mesh)
+        _, gx, gy, torque, ndof = warping(mesh, p)
         # the warping lowers the torque below the polar moment's: J = I_p - int |grad psi|^2
         assert torque < math.pi * d**4 / 32, "the warping's sign"
         tau_nom = 16 * torque / (math.pi * d**3)
@@ -86,7 +108,7 @@ def main(cfg: dict) -> None:
         tau = np.hypot(tx, ty)
         k = int(np.argmax(tau))
         where = [float(np.array(c(mips)).ravel()[k]) for c in (x, y)]
-        print(json.dumps({"order": p, "dofs": fes.ndof, "kt": float(tau[k] / tau_nom),
+        print(json.dumps({"order": p, "dofs": ndof, "kt": float(tau[k] / tau_nom),
                           "where_mm": where}), flush=True)
 
 
