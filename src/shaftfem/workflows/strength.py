@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from itertools import chain
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -865,11 +866,13 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field, before: list[HotSpot] | N
             # within the old bound of the old value, so within this of the new one; the
             # spot's own last round first, else the newest earlier round that bounded it
             # (a spot hopping between a groove's two like fillets, round after round)
-            for spot in ([old] if old is not None else []) + [
-                    _earlier_spot(e, fine, i, value, turning, round_) for e in earlier]:
+            # (lazily: the earlier rounds are searched only while none has lent a bound)
+            lenders = chain([old], (_earlier_spot(e, fine, i, value, turning, round_)
+                                    for e in earlier))
+            for spot in lenders:
                 if spot is not None and spot.bound is not None:
-                    was = spot.amplitude if cyclic else spot.peak
-                    bound = float((abs(value[i] - was) + spot.bound * was) / value[i])
+                    then = spot.amplitude if cyclic else spot.peak
+                    bound = float((abs(value[i] - then) + spot.bound * then) / value[i])
                     break
         gradient = _gradient(fine, i, turning)
         diameter = 2 * _outer_radius(fine, p[2])
