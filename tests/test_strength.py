@@ -470,6 +470,20 @@ def sharp_shoulder(fillet_mm: float) -> dict:
     return data
 
 
+def test_a_spot_anywhere_on_a_large_fillet_is_the_shoulders():
+    """A 64/32 mm step with an r 5 mm fillet: the fillet spans the 5 mm beside the step's
+    face, on the smaller section, and its torsion peak lies near its far tangent (4.1 mm
+    from the face, more than a quarter of the 16 mm radius). A spot anywhere on the
+    fillet is the shoulder's; one a radius away on the plain mantle is not."""
+    data = sharp_shoulder(5.0)
+    data["section"][1]["diameter_mm"] = 64.0
+    scene = load_scene(data)
+    face = scene.shaft.section_bounds()[0][1]
+    for off, what in ((-4.1e-3, "shoulder at 150 mm"), (-1.0e-3, "shoulder at 150 mm"),
+                      (-16e-3, "plain surface")):
+        assert ws._feature(scene, np.array([0.016, 0.0, face + off]), 0.016)[0] == what
+
+
 @pytest.mark.slow
 def test_a_sharp_corner_is_reported_as_such_not_given_a_number():
     """A shoulder without a fillet: its elastic stress has no limit, so refining around
