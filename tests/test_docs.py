@@ -139,7 +139,8 @@ def test_every_benchmark_script_makes_a_table_named_after_it():
     helpers = {"_common.py", "tables.py", "ngsolve_reference.py", "frequency_bits.py",
                "ross_reference.py", "verification_reference.py", "journal_tables.py",
                "same_numbers.py", "notch_reference.py", "axisymmetric_reference.py",
-               "tilting_pad_reference.py", "section_torsion_reference.py"}
+               "tilting_pad_reference.py", "section_torsion_reference.py",
+               "groove_root_kink.py"}
     assert present - helpers == scripts
     cited = set()
     for page in [ROOT / "README.md", *(ROOT / "docs").glob("*.md")]:

@@ -900,3 +900,16 @@ def test_a_travelling_load_is_screened_along_its_way_and_the_worst_place_bounded
 
     assert "screened at 5 places from 60.0 to 340.0 mm" in strength_text(result)
     assert "the worst place, 200.0 mm" in strength_text(result)
+
+
+def test_williams_exponent_is_a_cracks_half_and_a_right_corners_0_5445():
+    """Williams (1952): lambda = 1/2 at a crack's tip, 0.5445 at a right-angled
+    re-entrant corner, and lambda -> 1 as the wedge flattens (a smooth surface: no
+    singularity)."""
+    from shaftfem.checks.singular import wedge_exponent
+
+    assert wedge_exponent(2 * math.pi) == pytest.approx(0.5, abs=1e-9)
+    assert wedge_exponent(1.5 * math.pi) == pytest.approx(0.5445, abs=1e-4)
+    assert 0.999 < wedge_exponent(math.pi + 1e-3) < 1
+    with pytest.raises(ValueError):
+        wedge_exponent(math.pi)

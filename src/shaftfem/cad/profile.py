@@ -17,7 +17,12 @@ from shaftfem.scene.model import Grooves
 
 TOOL_OVERSHOOT = 1e-3           # the cutting tool reaches 1 mm above the surface
 FILLET_POINTS = 9               # spline points on each mapped root fillet
-FILLET_CROSSING = 0.03          # fillet meets the floor at acos(1 - 0.03) = 14 degrees
+# the root fillet meets the floor at acos(1 - FILLET_CROSSING) = 4.4 degrees, not
+# tangentially (no boolean meets two tangent surfaces): a re-entrant kink, whose stress
+# has no limit but grows only as r^-0.047 (Williams), so a crossing's converges as
+# refined to 0.03 mm (178.3 MPa where 14 degrees rose to 222 MPa and on:
+# benchmarks/groove_root_kink.py)
+FILLET_CROSSING = 0.003
 
 
 def axial_width(g: Grooves, radius: float, r: np.ndarray) -> np.ndarray:

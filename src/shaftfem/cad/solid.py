@@ -20,8 +20,9 @@ from shaftfem.scene.model import Grooves, Shaft
 # Bump when the construction or what is kept of it changes, so that solids built before
 # are not reused (workflows.stages keys them with it; 5: profiles, keyways, STEP files
 # and a reference volume; 6: a STEP import's findings kept with its solid; 7: with its
-# outer surface sampled).
-CONSTRUCTION_VERSION = 7
+# outer surface sampled; 8: the grooves' root fillet meeting the floor at 4.4 degrees,
+# not 14).
+CONSTRUCTION_VERSION = 8
 VOLUME_TOLERANCE = 0.01         # removed volume vs analytic groove volume
 PROFILE_TOLERANCE = 1e-6        # a revolved profile's volume vs its half-section's
 
