@@ -17,14 +17,12 @@ import sys
 import tempfile
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).parent))
+from _common import PAPER_REFERENCE_HZ  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 # NGSolve on its own curved mesh of the exported STEP (docs/verification.md)
-REFERENCES = {
-    "order 3, 1.06M DOFs": [432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
-                            3814.81, 3883.84, 4448.27],
-    "order 4, 448k DOFs": [432.14, 443.45, 1194.25, 1222.66, 2334.10, 2382.05, 2732.16,
-                           3815.81, 3884.44, 4448.99],
-}
+REFERENCES = {"order 4, 541k DOFs": list(PAPER_REFERENCE_HZ)}
 
 
 def held(modes: list[dict], reference: list[float]) -> int:
@@ -64,7 +62,7 @@ def main() -> None:
             m = r["modes"]
             inside = ", ".join(f"{held(m, ref)}/10 ({which})" for which, ref in REFERENCES.items())
             off = [100 * (x["frequency_hz"] / f - 1)
-                   for x, f in zip(m, REFERENCES["order 4, 448k DOFs"])]
+                   for x, f in zip(m, REFERENCES["order 4, 541k DOFs"])]
             print(f"| {name} | {r['dofs']:,} | {m[0]['frequency_hz']:.2f}, "
                   f"[{m[0]['true_frequency_low_hz']:.2f}, {m[0]['true_frequency_high_hz']:.2f}] | "
                   f"{max(x['error_bound_upper_percent'] for x in m):.2g} % | {inside} | "

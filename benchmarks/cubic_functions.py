@@ -15,8 +15,8 @@ of the P2 recovery estimate (the worst mode's, element by element). Every such
 space contains the P2 one, so its frequencies lie between the P2 ones and the
 truth (conforming: both bound from above).
 
-True errors against the NGSolve reference of docs/verification.md (order 3 on netgen's
-curved mesh, 1.06M DOFs); with ROOT_RADIUS_MM the reference does not apply and
+True errors against the NGSolve reference of docs/verification.md (order 4 on netgen's
+curved mesh, 541k DOFs); with ROOT_RADIUS_MM the reference does not apply and
 only the P2 -> P3 change is meaningful. Each mesh runs in a fresh process: the
 peak memory is that process' (assembling the full cubic space once, then the
 subsets).
@@ -32,11 +32,9 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).parent))
 import numpy as np  # noqa: E402
 
-from _common import in_fresh_process, machine, peak_mb  # noqa: E402
+from _common import PAPER_REFERENCE_HZ, in_fresh_process, machine, peak_mb  # noqa: E402
 
-# NGSolve order 3, 1.06M DOFs (docs/verification.md, "An independent reference for the paper's shaft")
-REFERENCE_HZ = np.array([432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
-                         3814.81, 3883.84, 4448.27])
+REFERENCE_HZ = np.array(PAPER_REFERENCE_HZ)
 EDGES = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]   # scikit-fem's RefTet order
 FACES = [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)]
 GRAD_LAMBDA = np.array([[-1., -1., -1.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])

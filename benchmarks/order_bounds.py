@@ -17,16 +17,15 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 sys.path.insert(0, str(Path(__file__).parents[1] / "tests"))
-from _common import in_fresh_process, machine, peak_mb  # noqa: E402, I001  (before NumPy)
+from _common import PAPER_REFERENCE_HZ, in_fresh_process, machine, peak_mb  # noqa: E402, I001  (before NumPy)
 
 import numpy as np  # noqa: E402
 
-# NGSolve order 3 on netgen's meshes (docs/verification.md): the paper's shaft (1.06M
-# DOFs, perhaps 0.05 % high) and its sharp-corner variant (458k DOFs, geometric
+# NGSolve on netgen's meshes (docs/verification.md): the paper's shaft (_common) and
+# its sharp-corner variant (order 3 (458k DOFs, geometric
 # refinement towards the sharp edges; 0.12-0.26 % from its order 2)
 REFERENCE_HZ = {
-    "paper": np.array([432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
-                       3814.81, 3883.84, 4448.27]),
+    "paper": np.array(PAPER_REFERENCE_HZ),
     "sharp": np.array([429.59, 441.52, 1187.85, 1217.83, 2323.38, 2373.88, 2720.06,
                        3800.88, 3873.06, 4435.12]),
 }

@@ -10,7 +10,7 @@ process timed from the cached solid to the frequencies: meshing (not cached), as
 factorisation, eigensolve, with nothing from an earlier solve; no bound. Each NGSolve
 case (default 16/8:3:0.25, the work-precision benchmark's) is a fresh process of the
 NGSolve venv timed from the STEP file to the frequencies. True errors are the largest of
-the ten frequencies against the NGSolve order-3 reference of docs/verification.md.
+the ten frequencies against the NGSolve order-4 reference of docs/verification.md.
 With --cli SPEC[,SPEC...] (SPEC as OURS), each round also runs `shaftfem modes` as a
 user would on geometry/paper2018.toml with its [mesh] set to SPEC, from an empty cache
 (the CAD solid built, the bound included), timed from the command to its exit.

@@ -11,8 +11,8 @@ NGSolve own-mesh case is timed from the STEP file to the frequencies, meshing in
 The same-mesh cases (benchmarks/ngsolve_same_mesh.py) show that both codes' elements
 give the same frequencies on one mesh; their time ratio is that of assembly and
 eigensolve, so they appear only in the DOF panel. True errors are the largest of the ten
-frequencies against the NGSolve order-3 reference of docs/verification.md (1.06M DOFs;
-itself perhaps 0.05 % high). Writes docs/images/work_precision.png and prints a
+frequencies against the NGSolve order-4 reference of docs/verification.md (541k DOFs;
+0.04-0.08 % from its order 3). Writes docs/images/work_precision.png and prints a
 Markdown table.
 """
 

@@ -11,9 +11,9 @@ from shaftfem.errors import SceneError
 from shaftfem.scene.load import load_scene
 from shaftfem.workflows.route import choose_route
 
-# NGSolve order 3 at 1.06M DOFs on the paper's shaft (docs/verification.md)
-REFERENCE_HZ = np.array([432.02, 443.35, 1193.91, 1222.42, 2333.47, 2381.62, 2731.30,
-                         3814.81, 3883.84, 4448.27])
+# NGSolve order 4 at 541k DOFs on the paper's shaft (docs/verification.md)
+REFERENCE_HZ = np.array([432.345, 443.605, 1194.718, 1223.043, 2334.896, 2382.666, 2733.028,
+                         3816.800, 3885.261, 4450.090])
 
 
 @pytest.fixture(scope="module")
