@@ -429,6 +429,8 @@ def hot_spots_figure(result):
                     weight="bold", path_effects=outline)
     ax.set_xlabel("z along the shaft (mm)")
     ax.set_ylabel("angle about the axis (deg)")
-    ax.set_ylim(0, 360)
+    # a little past 0 and 360 deg, so that a spot's circle on either edge is whole
+    ax.set_ylim(-12, 372)
+    ax.set_yticks(range(0, 361, 60))
     ax.set_title(f"{scene.name}: hot spots on the unrolled surface (load bands grey)")
     return fig
