@@ -913,3 +913,14 @@ def test_williams_exponent_is_a_cracks_half_and_a_right_corners_0_5445():
     assert 0.999 < wedge_exponent(math.pi + 1e-3) < 1
     with pytest.raises(ValueError):
         wedge_exponent(math.pi)
+
+
+def test_the_grooves_flat_ends_are_said_to_be_left_out():
+    """The model's grooves end in flat walls: their edges with the floor are sharp
+    (Williams' r^(0.5445 - 1) at a right-angled re-entrant corner), so the check says it
+    leaves them out, at the grooved zone's ends (the paper's: 360 mm centred on 545 mm,
+    92.5 and 452.5 mm); a shaft without grooves has nothing to say."""
+    note = ws._runouts(load_scene("paper2018_installed"))
+    assert note is not None and "92.5 and 452.5 mm" in note and "r^-0.456" in note
+    assert "not judged" in note
+    assert ws._runouts(load_scene("plain_cylinder")) is None

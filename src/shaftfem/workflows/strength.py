@@ -389,6 +389,9 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
         dofs.append(fine.dofs)
         history.insert(0, spots)
         spots = _spots(scene, fine, coarse, spots, history[1:])
+    runouts = _runouts(scene)
+    if runouts:
+        notes.append(runouts)
     seats = _seats(scene, fine)
     if worst_seats:
         # each seat at the place of the travel that bends it most
@@ -452,6 +455,22 @@ def _surface(scene: Scene, field: _Field) -> StressSurface:
         mean=field.mean, peak=field.peak, gradient=gradient,
         fatigue_utilisation=np.where(field.allowed, fkm["fatigue_utilisation"], np.nan),
         yield_utilisation=np.where(field.allowed, fkm["yield_utilisation"], np.nan))
+
+
+def _runouts(scene: Scene) -> str | None:
+    """What the check leaves out at the grooves' ends: they end in flat walls (the model's
+    runouts), each meeting the floor at a right-angled re-entrant edge, whose elastic
+    stress has no limit (checks.singular); None without grooves."""
+    from shaftfem.checks.singular import wedge_exponent
+
+    g = scene.grooves
+    if g is None:
+        return None
+    power = wedge_exponent(1.5 * math.pi) - 1
+    return (f"not judged: the grooves' ends at {g.start * 1e3:g} and "
+            f"{(g.start + g.length) * 1e3:g} mm, flat walls meeting the floor at a right "
+            f"angle (a real cam's reversal curves are not modelled), sharp re-entrant edges "
+            f"whose stress has no limit (it grows as r^{power:.3f} towards them)")
 
 
 def _utilisation(s: HotSpot) -> float:
