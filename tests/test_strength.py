@@ -744,6 +744,42 @@ def test_a_refined_mesh_is_never_coarser_than_the_scenes_own():
     assert followed.points.shape[0] < 0.5 * n0
 
 
+def test_a_refined_mesh_whose_surface_facets_cross_is_asked_again_a_little_finer(
+        monkeypatch):
+    """gmsh's boundary recovery refuses a surface mesh whose facets cross ("PLC Error: A
+    segment and a facet intersect", "overlapping facets"): where its vertices fell, not
+    the sizes, is at fault, so the refined mesh is asked again with its sizes PLC_RETRIES
+    times smaller, in turn; any other failure, or a crossing at every try, is the
+    caller's MeshError."""
+    import shaftfem.cad.mesh as cm
+    from shaftfem.errors import MeshError
+
+    asked: list[float] = []
+
+    def once(brep, shaft, grooves, settings, sizes, *rest):
+        asked.append(float(sizes[2][0]))
+        if len(asked) < 3 or how["again"]:
+            raise MeshError(f"gmsh could not mesh the solid: Exception: {how['message']}")
+        return np.zeros((4, 3)), np.zeros((1, 4), dtype=int), False
+
+    monkeypatch.setattr(cm, "_refined_once", once)
+    sizes = (np.zeros((4, 3)), np.zeros((1, 4), dtype=int), np.full(4, 1e-3))
+    how = {"again": False, "message": "PLC Error:  A segment and a facet intersect at point"}
+    cm._refined("b", None, None, None, sizes, (), (), True)
+    assert asked == pytest.approx([1e-3, *(r * 1e-3 for r in cm.PLC_RETRIES)])
+    how.update(message="Invalid boundary mesh (overlapping facets) on surface 30")
+    asked.clear()
+    cm._refined("b", None, None, None, sizes, (), (), True)
+    assert len(asked) == 3
+    for again, message in ((True, "PLC Error:  A segment and a facet intersect"),
+                           (False, "No elements in volume 1")):
+        how.update(again=again, message=message)
+        asked.clear()
+        with pytest.raises(MeshError):
+            cm._refined("b", None, None, None, sizes, (), (), True)
+        assert len(asked) == (1 + len(cm.PLC_RETRIES) if again else 1)
+
+
 def test_a_refined_mesh_whose_delaunay_does_not_end_in_time_is_made_by_hxt(monkeypatch,
                                                                            tmp_path):
     """A refined mesh's Delaunay runs beside the run within a time (cad.mesh.DELAUNAY_

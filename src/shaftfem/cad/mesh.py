@@ -338,7 +338,35 @@ def _refined(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings
              hubs: tuple[tuple[float, float], ...], refine: bool
              ) -> tuple[np.ndarray, np.ndarray, bool]:
     """cad.mesher.mesh_solid by Delaunay within its time (see DELAUNAY_SECONDS), else
-    by HXT: the points, the cells and whether HXT made them."""
+    by HXT: the points, the cells and whether HXT made them; asked again a little finer
+    (PLC_RETRIES) where the surface mesh's facets crossed."""
+    points, tets, h = sizes
+    for k, scale in enumerate((1.0, *PLC_RETRIES)):
+        try:
+            return _refined_once(brep, shaft, grooves, settings, (points, tets, scale * h),
+                                 cuts, hubs, refine)
+        except MeshError as e:
+            # a surface mesh whose facets cross each other (gmsh's boundary recovery:
+            # "PLC Error: A segment and a facet intersect", "Invalid boundary mesh
+            # (overlapping facets)"; a grooved solid whose 2 mm root fillets span its 2 mm
+            # deep grooves) is a matter of where the surface's vertices fell: the same
+            # sizes a little smaller put them elsewhere
+            if not any(m in str(e) for m in CROSSED) or k == len(PLC_RETRIES):
+                raise
+    raise AssertionError("unreachable")
+
+
+# a refined mesh whose surface facets crossed is asked again with its sizes these times
+# smaller, in turn
+PLC_RETRIES = (0.93, 0.86)
+CROSSED = ("PLC Error", "overlapping facets")
+
+
+def _refined_once(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
+                  sizes: tuple[np.ndarray, np.ndarray, np.ndarray], cuts: tuple[float, ...],
+                  hubs: tuple[tuple[float, float], ...], refine: bool
+                  ) -> tuple[np.ndarray, np.ndarray, bool]:
+    """_refined's one try: by Delaunay within its time, else by HXT."""
     from shaftfem.aside import Aside
     from shaftfem.cad.mesher import mesh_solid
 
