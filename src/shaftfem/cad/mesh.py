@@ -323,6 +323,10 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
 DELAUNAY_SECONDS = 30.0
 DELAUNAY_PER_ELEMENT = 1.5e-3
 _UNSETTLED: set[str] = set()   # the solids (their BREP files) whose Delaunay did not end
+# a refined mesh whose surface facets crossed (a message with one of CROSSED) is asked
+# again with its sizes these times smaller, in turn
+PLC_RETRIES = (0.93, 0.86)
+CROSSED = ("PLC Error", "overlapping facets")
 
 
 def refined_elements(sizes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> float:
@@ -341,7 +345,8 @@ def _refined(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings
     by HXT: the points, the cells and whether HXT made them; asked again a little finer
     (PLC_RETRIES) where the surface mesh's facets crossed."""
     points, tets, h = sizes
-    for k, scale in enumerate((1.0, *PLC_RETRIES)):
+    scales = (1.0, *PLC_RETRIES)
+    for scale in scales[:-1]:
         try:
             return _refined_once(brep, shaft, grooves, settings, (points, tets, scale * h),
                                  cuts, hubs, refine)
@@ -351,15 +356,10 @@ def _refined(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings
             # (overlapping facets)"; a grooved solid whose 2 mm root fillets span its 2 mm
             # deep grooves) is a matter of where the surface's vertices fell: the same
             # sizes a little smaller put them elsewhere
-            if not any(m in str(e) for m in CROSSED) or k == len(PLC_RETRIES):
+            if not any(m in str(e) for m in CROSSED):
                 raise
-    raise AssertionError("unreachable")
-
-
-# a refined mesh whose surface facets crossed is asked again with its sizes these times
-# smaller, in turn
-PLC_RETRIES = (0.93, 0.86)
-CROSSED = ("PLC Error", "overlapping facets")
+    return _refined_once(brep, shaft, grooves, settings, (points, tets, scales[-1] * h),
+                         cuts, hubs, refine)
 
 
 def _refined_once(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
