@@ -512,6 +512,66 @@ def test_a_keyed_shaft_lists_one_spot_on_a_shoulders_circle_away_from_its_keyway
         (round(s.z * 1e3, 1), round(math.degrees(s.angle))) for s in spots]
 
 
+def test_a_keyed_parts_torque_enters_through_its_key_and_its_keyway_is_judged():
+    """A coupling given by its position at a keyway's middle (10 x 5 mm, 40 mm long, 0.8
+    mm corners) passes 100 N m into the bar: the key's pressure on the flank it drives,
+    and the bore of the hub taking its net force, add up to the torque and nothing else
+    (the nodal loads' sum and moment); the bar beyond carries that torque (its sections),
+    at the closed form's torsion stress; the keyway's floor, corners and ends under the
+    hub are judged on the side the key does not drive, the half it drives (its flank, the
+    corner below it: the contact's stress) is not."""
+    from shaftfem.fem.assembly import _element, assemble
+    from shaftfem.fem.section import resultants
+    from shaftfem.fem.stress import Band, key_bearings, key_loads
+    from shaftfem.workflows.pipeline import built
+
+    T = 100.0
+    data = bar(keyway=[{"position_mm": 60.0, "length_mm": 40.0, "width_mm": 10.0,
+                        "depth_mm": 5.0, "corner_radius_mm": 0.8}],
+               torque=[{"name": "coupling", "position_mm": 60.0, "torque_nm": T},
+                       {"name": "out", "position_mm": 340.0}],
+               strength={"speed_rpm": 1000.0})
+    data["mesh"] = {"element_size_mm": 5.0, "groove_element_size_mm": 1.5,
+                    "edge_element_size_mm": 1.5}
+    scene = load_scene(data)
+    (key,) = key_bearings(scene)
+    # a positive torque turns the shaft towards +y at a keyway on +x
+    assert key.side == 1.0 and key.torque == T and (key.z0, key.z1) == pytest.approx((0.045, 0.075))
+    placed, _, mesh = built(scene, ws.RunOptions())
+    system = assemble(mesh, placed.material)
+    skmesh = mesh.to_skfem()
+    from skfem import Basis
+
+    element = _element(system.order)
+    where = Basis(skmesh, element).doflocs
+    nodal = key_loads(skmesh, element, key, Band(0.053, 0.067), 3 * where.shape[1])
+    f = nodal.reshape(-1, 3)
+    assert np.allclose(f.sum(axis=0), 0.0, atol=1e-9 * T / 0.016)
+    arm = where.T - np.array([0.0, 0.0, 0.060])
+    assert np.allclose(np.cross(arm, f).sum(axis=0), [0.0, 0.0, T], atol=1e-9 * T)
+
+    fine = ws._solve(scene, ws.RunOptions())[0]
+    for z in (0.120, 0.200, 0.280):
+        c = resultants(fine.read, fine.all_stress, z, D / 2)
+        assert abs(c[2, 3]) == pytest.approx(T, rel=5e-3)
+    idx = ring(fine, 200.0)
+    # (5 mm elements: P2's nodal stress within 1 %)
+    assert np.allclose(fine.mean[idx], math.sqrt(3) * 16 * T / (math.pi * D**3), rtol=1e-2)
+    p = fine.points
+    r = np.hypot(p[:, 0], p[:, 1])
+    pocket = (np.abs(p[:, 2] - 0.060) < 0.020) & (r < D / 2 - 0.5e-3) & (p[:, 0] > 0)
+    driven = pocket & (p[:, 1] > 1e-6)
+    other = pocket & (np.abs(p[:, 1] + 0.005) < 1e-4)
+    floor = pocket & (np.abs(p[:, 0] - (D / 2 - 0.005)) < 1e-6) & (p[:, 1] < -1e-6)
+    ends = pocket & (np.abs(p[:, 2] - 0.060) > 0.016) & (p[:, 1] < -1e-6)
+    assert driven.sum() > 10 and other.sum() > 10 and floor.sum() > 10 and ends.sum() > 10
+    assert not fine.allowed[driven].any()
+    assert fine.allowed[other].all() and fine.allowed[floor].all() and fine.allowed[ends].all()
+    # the mantle under the hub (the key's length) is the fit's
+    mantle = (np.abs(p[:, 2] - 0.060) < 0.020) & (r > 0.999 * D / 2)
+    assert not fine.allowed[mantle].any()
+
+
 def test_a_spot_followed_round_its_circle_keeps_the_bound_an_earlier_round_gave_it():
     """A torque on a shoulder: the stress is the same all round the fillet's circle, and
     a mesh refined elsewhere puts the spot at another vertex round it. Read against a mesh
@@ -960,3 +1020,27 @@ def test_the_grooves_flat_ends_are_said_to_be_left_out():
     assert note is not None and "92.5 and 452.5 mm" in note and "r^-0.456" in note
     assert "not judged" in note
     assert ws._runouts(load_scene("plain_cylinder")) is None
+
+
+def test_a_verdict_says_the_largest_utilisation_read_where_its_spot_has_no_bound():
+    """Spots whose bound is unknown (a notch the mesh does not follow, read low) above
+    every bounded one: the verdict names their largest degree of utilisation first, so
+    that the bounded spots' largest is not read as the shaft's."""
+    from types import SimpleNamespace as NS
+
+    from shaftfem.outputs.tables import strength_verdict
+
+    def spot(use, bound, resolved):
+        return NS(converging=True, resolved=resolved, bound=bound,
+                  fkm=NS(fatigue_utilisation=0.01, yield_utilisation=use))
+
+    result = NS(fatigue_ok=True, yield_ok=True, deflection_ok=True, target=0.02,
+                spots=[spot(0.33, None, False), spot(0.10, 0.1, True)])
+    line = strength_verdict(result)
+    assert "largest degree of utilisation read is 0.33 (hot spot 1, its bound unknown" in line
+    assert "with each known bound taken against it, the largest degree of utilisation is " \
+           "0.11 (hot spot 2)" in line
+    # the bounded spot the largest: said once, as before
+    result.spots = [spot(0.30, 0.05, True), spot(0.20, None, False)]
+    line = strength_verdict(result)
+    assert "read is" not in line and "utilisation is 0.32 (hot spot 1)" in line

@@ -148,6 +148,15 @@ def runout(k: Keyway, radius: float) -> float:
     return math.sqrt(max(rc * rc - (rc - k.depth) ** 2, 0.0))
 
 
+def key_bearing(k: Keyway, radius: float) -> tuple[float, float]:
+    """Where a key bears on its keyway's flanks along the axis (m): the straight part
+    between the round ends (DIN 6892's bearing length l - b of a round-ended key) or
+    between a disc-cut keyway's runouts. Empty (z0 = z1) in a round hole."""
+    cut = k.width / 2 if k.form == "rounded" else runout(k, radius)
+    z0 = k.start + cut
+    return z0, max(k.end - cut, z0)
+
+
 def feature_faces(shaft: Shaft, samples: dict[int, np.ndarray], tol: float = 1e-6) -> list[int]:
     """The faces (tag -> sampled points (n, 3), m) that lie wholly on a feature of the
     profile: a fillet's or chamfer's ring about its step, or a keyway's pocket."""

@@ -9,7 +9,10 @@ revolution or not (keyways, grooves, STEP):
   sin(theta) sigma_B, a fully reversed cycle at every material point;
 * T: the torques; Z: the axial forces (and gravity along the axis): steady.
 
-Every load enters as a body force spread over its band (a part's hub, or a slice a
+A torque at a keyway (a keyed part's, a coupling's) enters through the key: a pressure
+on the flank the key drives, along the key's bearing length, the hub's bore taking its
+net force (key_loads); the keyway's floor, fillets and ends are then judged as any notch.
+Every other load enters as a body force spread over its band (a part's hub, or a slice a
 quarter of a diameter wide on either side of a bare position): a body force is finite,
 so the stress it makes is too, and the hot spots are the notches', not a load's point.
 The stresses are the P2 (P1) field's at each element's vertices, averaged over the
@@ -18,6 +21,7 @@ elements that share a vertex (the nodal recovery of any FE post-processor).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
@@ -29,7 +33,7 @@ from shaftfem.fem.static import CONVERGED, SHIFT, STEPS, UNHELD, elastic_solve
 if TYPE_CHECKING:
     from shaftfem.fem.assembly import System
     from shaftfem.fem.installation import Installed
-    from shaftfem.scene.model import Scene
+    from shaftfem.scene.model import Keyway, Scene
 
 CASES = ("A", "B", "T", "Z")
 # the angles a turn is sampled at for the largest equivalent amplitude
@@ -59,6 +63,97 @@ class SurfaceStress:
     p1_basis: Any   # scikit-fem CellBasis
     edge: np.ndarray          # the longest surface edge at each surface vertex, m
     facets: np.ndarray        # the surface's triangles (m, 3), indices into `points`
+
+
+@dataclass(frozen=True)
+class KeyBearing:
+    """A key carrying `torque` (N m) into its keyway: it bears on the flank on the
+    `side` (+1: +width/2 across the keyway's own frame) from z0 to z1 (m) along the
+    axis, and from `foot` (m from the axis, along the keyway's centre line) to the
+    surface: a key's chamfer clears the floor's corner (DIN 6885: the key's chamfer is
+    larger than the keyway's corner radius), here by one corner radius, at least a tenth
+    of the depth."""
+
+    keyway: Keyway
+    z0: float
+    z1: float
+    side: float
+    torque: float
+    foot: float
+    source: int     # the torque's index among the scene's
+
+
+def key_bearings(scene: Scene) -> list[KeyBearing]:
+    """The keys the scene's torques enter through: a torque (not a travelling one) at a
+    position inside keyways' spans is shared among them equally. A positive torque
+    turns the shaft towards +y at a keyway on +x: its key drives the flank at +width/2."""
+    from shaftfem.cad.outline import key_bearing
+
+    out = []
+    for i, q in enumerate(scene.torques):
+        if q.travel is not None or q.torque == 0:
+            continue
+        keys = [k for k in scene.shaft.keyways if k.start <= q.position <= k.end]
+        for k in keys:
+            radius = scene.shaft.radius_at(0.5 * (k.start + k.end))
+            if radius is None:
+                continue
+            z0, z1 = key_bearing(k, radius)
+            if z1 - z0 < 0.1 * k.width:   # a round hole: no flank to bear on
+                continue
+            foot = radius - k.depth + k.corner_radius + max(k.corner_radius, 0.1 * k.depth)
+            out.append(KeyBearing(k, z0, z1, float(np.sign(q.torque)), q.torque / len(keys),
+                                  foot, i))
+    return out
+
+
+def key_loads(skmesh, element, key: KeyBearing, band: Band, n_dofs: int) -> np.ndarray:
+    """The nodal loads (3 n,) of the torque a key carries: a uniform pressure on the
+    driven flank's boundary facets (above the key's foot, over z0..z1), t = tau e
+    with e the keyway's across direction and tau = T / int x_k dA (x_k: the distance
+    from the axis along the keyway's centre line), so that int (x - p) x t = (., ., T);
+    and the hub's bore taking the pressure's net force and its bending moment about p (a
+    body force over the band, band_loads): the whole has no net force, a moment T about
+    the axis and none across it, exactly on the mesh."""
+    from skfem import FacetBasis, Functional, LinearForm, MeshTet
+
+    k = key.keyway
+    c, s = math.cos(k.angle), math.sin(k.angle)
+    # the flank is plane: integrated on the straight-sided mesh of the same elements (the
+    # same DOFs), whose affine map needs no Newton search for the facets' points
+    nv = int(skmesh.t.max()) + 1
+    flat = MeshTet(np.ascontiguousarray(skmesh.p[:, :nv]), skmesh.t)
+    boundary = flat.boundary_facets()
+    corners = flat.p[:, flat.facets[:, boundary]]            # (3, 3, m)
+    mid = corners.mean(axis=1)
+    xk = c * mid[0] + s * mid[1]
+    yk = -s * mid[0] + c * mid[1]
+    normal = np.cross((corners[:, 1] - corners[:, 0]).T, (corners[:, 2] - corners[:, 0]).T)
+    across = np.abs(-s * normal[:, 0] + c * normal[:, 1]) / np.linalg.norm(normal, axis=1)
+    tol = 1e-3 * k.width
+    on = ((np.abs(yk - key.side * k.width / 2) < tol) & (across > 0.99)
+          & (xk > key.foot)
+          & (mid[2] >= key.z0 - tol) & (mid[2] <= key.z1 + tol))
+    if not on.any():
+        raise SceneError(f"the keyway at {k.start * 1e3:g}-{k.end * 1e3:g} mm: no flank "
+                         "found on the mesh for its key to bear on")
+    basis = FacetBasis(flat, element, facets=boundary[on], intorder=4)
+    e = np.array([-s, c, 0.0])
+    lever = Functional(lambda w: c * w.x[0] + s * w.x[1]).assemble(basis)   # int x_k dA
+    area = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(basis)
+    zbar = Functional(lambda w: w.x[2]).assemble(basis)
+    tau = key.torque / lever
+    pz = 0.5 * (band.z0 + band.z1)
+    # the flank's pressure: force tau A e; moment about p: (z - pz) e_z x tau e + T e_z
+    force = tau * area * e
+    arm = zbar - pz * area
+    moment = tau * arm * np.array([-e[1], e[0], 0.0])
+    one = LinearForm(lambda v, w: v).assemble(basis)
+    out = np.zeros(n_dofs)
+    for i in range(2):
+        out[i::3] += tau * e[i] * one
+    return out + band_loads(skmesh, element, band, -force, 0.0, n_dofs,
+                            (-float(moment[0]), -float(moment[1])))
 
 
 def load_band(z: float, width: float, nodes: np.ndarray) -> Band:
@@ -135,9 +230,14 @@ def duty_loads(scene: Scene, system: System, inst: Installed, skmesh, element
                 nodal += band_loads(skmesh, element, band, vector, 0.0, n, moment)
                 resultant = resultant + vector
         if case == "T":
-            for q in scene.torques:
+            keys = key_bearings(scene)
+            for i, q in enumerate(scene.torques):
                 band = load_band(q.position, q.width, system.nodes)
-                nodal += band_loads(skmesh, element, band, np.zeros(3), q.torque, n)
+                mine = [kb for kb in keys if kb.source == i]
+                for kb in mine:
+                    nodal += key_loads(skmesh, element, kb, band, n)
+                if not mine:
+                    nodal += band_loads(skmesh, element, band, np.zeros(3), q.torque, n)
         cols.append(f_q + inst.T.T @ nodal)
         resultants.append(resultant)
     return np.column_stack(cols), np.array(resultants)

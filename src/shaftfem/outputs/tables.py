@@ -1270,6 +1270,16 @@ def strength_verdict(result, short: bool = False) -> str:
             (max(sp.fkm.fatigue_utilisation, sp.fkm.yield_utilisation) * (1 + sp.bound), k)
             for k, sp in enumerate(result.spots, 1)
             if sp.converging and sp.resolved and sp.bound is not None]
+        unknown = [] if short else [
+            (max(sp.fkm.fatigue_utilisation, sp.fkm.yield_utilisation), k)
+            for k, sp in enumerate(result.spots, 1)
+            if sp.converging and not (sp.resolved and sp.bound is not None)]
+        if unknown and (not known or max(unknown)[0] > max(known)[0]):
+            # a spot without a bound above every bounded one: say so first, lest the
+            # bounded ones' largest read as the shaft's
+            read, k = max(unknown)
+            line += (f"; the largest degree of utilisation read is {read:.2f} (hot spot {k}, "
+                     "its bound unknown, and a notch the mesh does not follow reads low)")
         if known:
             worst, k = max(known)
             line += (f"; with each known bound taken against it, the largest degree of "

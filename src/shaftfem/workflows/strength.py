@@ -36,7 +36,7 @@ import numpy as np
 
 from shaftfem.errors import BudgetError, MeshError, SceneError
 from shaftfem.runtime import RunOptions
-from shaftfem.scene.model import PointForce, Scene, Torque
+from shaftfem.scene.model import Keyway, PointForce, Scene, Torque
 
 if TYPE_CHECKING:
     from shaftfem.cad.mesh import ShaftMesh
@@ -392,6 +392,7 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
     runouts = _runouts(scene)
     if runouts:
         notes.append(runouts)
+    notes += _keyed(scene)
     seats = _seats(scene, fine)
     if worst_seats:
         # each seat at the place of the travel that bends it most
@@ -471,6 +472,26 @@ def _runouts(scene: Scene) -> str | None:
             f"{(g.start + g.length) * 1e3:g} mm, flat walls meeting the floor at a right "
             f"angle (a real cam's reversal curves are not modelled), sharp re-entrant edges "
             f"whose stress has no limit (it grows as r^{power:.3f} towards them)")
+
+
+def _keyed(scene: Scene) -> list[str]:
+    """How each keyed torque is taken to enter: through its key's pressure on the flank
+    it drives (fem.stress.key_loads), a model whose contact the stress below it reads."""
+    from shaftfem.fem.stress import key_bearings
+
+    out = []
+    for kb in key_bearings(scene):
+        k, q = kb.keyway, scene.torques[kb.source]
+        floor = (scene.shaft.radius_at(0.5 * (k.start + k.end)) or 0.0) - k.depth
+        out.append(f"the torque '{q.name}' ({kb.torque:+.1f} N m) enters through the key in "
+                   f"the keyway at {k.start * 1e3:g}-{k.end * 1e3:g} mm: a uniform pressure on "
+                   f"the flank it drives, from {kb.z0 * 1e3:g} to {kb.z1 * 1e3:g} mm and from "
+                   f"{(kb.foot - floor) * 1e3:.2g} mm above the floor (the key's chamfer) to "
+                   "the surface, the hub's bore taking its net force (DIN 6892's uniform "
+                   "pressure); not judged: the keyway's half on that side (the flank, the "
+                   "floor's corner below it, that half of each end), whose stress is the "
+                   "contact's (the key's fit and tilt decide it)")
+    return out
 
 
 def _utilisation(s: HotSpot) -> float:
@@ -692,8 +713,8 @@ def _field_path(placed: Scene, mesh) -> Path:
 
     digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
                             + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
-    # version 2: the loads spread with their exact moments (fem.stress.band_loads)
-    key = content_key({"version": 2, "nodes": digest, "order": placed.mesh.order,
+    # version 3: a keyed part's torque enters through its key (fem.stress.key_loads)
+    key = content_key({"version": 3, "nodes": digest, "order": placed.mesh.order,
                        "material": asdict(placed.material),
                        "supports": [asdict(s) for s in placed.supports],
                        "attachments": [asdict(a) for a in placed.attachments],
@@ -730,8 +751,9 @@ def _solved(placed: Scene, mesh, options: RunOptions) -> dict[str, np.ndarray]:
 
 def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
     """The surface points in a band where a load or a reaction enters (a seat, a hub, a
-    load's slice), widened by a quarter of the local radius: their stress is the fit's."""
-    from shaftfem.fem.stress import load_band
+    load's slice, a keyed part's keyway), widened by a quarter of the local radius: their
+    stress is the fit's; less the keyways' pockets (_pockets)."""
+    from shaftfem.fem.stress import key_bearings, load_band
 
     r = np.hypot(points[:, 0], points[:, 1])
     bands = [s.seat for s in scene.held if s.kind != "seal"]
@@ -740,11 +762,57 @@ def _excluded(scene: Scene, points: np.ndarray) -> np.ndarray:
                             + [(q.position, q.width) for q in scene.torques]):
         b = load_band(position, width, points)
         bands.append((b.z0, b.z1))
+    # a keyed part's hub covers its key at least (a coupling given by its position)
+    bands += [(kb.keyway.start, kb.keyway.end) for kb in key_bearings(scene)]
     out = np.zeros(len(points), dtype=bool)
     for z0, z1 in bands:
         near = (points[:, 2] > z0 - 0.02) & (points[:, 2] < z1 + 0.02)
         margin = 0.25 * (float(r[near].max()) if near.any() else 0.0)
         out |= (points[:, 2] >= z0 - margin) & (points[:, 2] <= z1 + margin)
+    # a keyway's pocket touches no hub (the hub bears on the mantle): judged, but for
+    # the flank its key bears on
+    return out & ~_pockets(scene, points)
+
+
+def _pockets(scene: Scene, points: np.ndarray) -> np.ndarray:
+    """The surface points inside a keyway's pocket (below the surface by 5 % of its
+    depth), less the half of a keyway a key drives on the side it drives, where the
+    stress is the contact's: the pressure's edge at the key's chamfer, 0.5 mm above a 0.4
+    mm corner, raised the paper shaft's corner below it to 25 times the nominal stress,
+    and the corner 2.5 mm round the end beyond the pressure's end to 10 times; the key's
+    fit and tilt decide it."""
+    from shaftfem.fem.stress import key_bearings
+
+    out = np.zeros(len(points), dtype=bool)
+    bearing = key_bearings(scene)
+    for k, inside in _keyway_pockets(scene, points):
+        yk = -math.sin(k.angle) * points[:, 0] + math.cos(k.angle) * points[:, 1]
+        for kb in bearing:
+            if kb.keyway == k:
+                # the half the key drives: its flank, the floor's corner below it and
+                # that half of each end (the contact's own stress)
+                inside &= ~(kb.side * yk > 0)
+        out |= inside
+    return out
+
+
+def _keyway_pockets(scene: Scene, points: np.ndarray) -> list[tuple[Keyway, np.ndarray]]:
+    """Each keyway with the surface points inside its pocket (below the surface by 5 %
+    of its depth); none on a STEP solid."""
+    if scene.shaft.step is not None:
+        return []
+    r, z = np.hypot(points[:, 0], points[:, 1]), points[:, 2]
+    out = []
+    for k in scene.shaft.keyways:
+        radius = scene.shaft.radius_at(0.5 * (k.start + k.end))
+        if radius is None:
+            continue
+        c, s = math.cos(k.angle), math.sin(k.angle)
+        xk = c * points[:, 0] + s * points[:, 1]
+        yk = -s * points[:, 0] + c * points[:, 1]
+        tol = 0.02 * k.width
+        out.append((k, (z > k.start - tol) & (z < k.end + tol) & (xk > 0)
+                    & (np.abs(yk) < k.width / 2 + tol) & (r < radius - 0.05 * k.depth)))
     return out
 
 
@@ -828,6 +896,14 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field, before: list[HotSpot] | N
     for i in _maxima(fine, fine.peak, allowed, local):
         if _clear_of(fine, i, picks, local):
             picks.append(i)
+    # every keyway is judged, however far below the worst spots it lies: its own worst
+    for values in ((fine.amplitude, fine.peak) if turning else (fine.peak,)):
+        for _, inside in _keyway_pockets(scene, fine.points):
+            own = np.flatnonzero(inside & allowed)
+            if own.size:
+                i = int(own[np.argmax(values[own])])
+                if _clear_of(fine, i, picks, local):
+                    picks.append(i)
     # a pick taken round its circle to the last round's spot there: that spot
     followed: dict[int, HotSpot] = {}
     if round_ and before:
