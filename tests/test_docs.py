@@ -140,7 +140,7 @@ def test_every_benchmark_script_makes_a_table_named_after_it():
                "ross_reference.py", "verification_reference.py", "journal_tables.py",
                "same_numbers.py", "notch_reference.py", "axisymmetric_reference.py",
                "tilting_pad_reference.py", "section_torsion_reference.py",
-               "groove_root_kink.py", "crossings_refined.py"}
+               "groove_root_kink.py", "crossings_refined.py", "keyseat_chart.py"}
     assert present - helpers == scripts
     cited = set()
     for page in [ROOT / "README.md", *(ROOT / "docs").glob("*.md")]:

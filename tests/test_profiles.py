@@ -411,3 +411,37 @@ def test_sweeps_reach_every_section_and_keyway():
     assert s.shaft.keyways[0].length == pytest.approx(0.030)
     with pytest.raises(SceneError, match=r"section 2: fillet_mm = 9"):
         load_scene(base, overrides={"section[1].fillet_mm": 9.0})
+
+
+def test_a_keyway_may_run_into_a_shoulders_fillet_and_its_volume_is_exact():
+    """A keyway on the 25 mm section running out into the 4 mm fillet of the step up to
+    35 mm (its end 0.2 mm short of the step's face): the cutter reaches above the
+    fillet's rise, and what OpenCASCADE removed is the integral over the keyway's plan
+    down from the fillet's surface; to the step's face, or past it, it is refused."""
+    import tempfile
+    from pathlib import Path
+
+    from shaftfem.cad.build import build_solid
+    from shaftfem.cad.outline import keyway_volume, outline, revolved_volume, surface_radius
+
+    stepped = STEPPED.replace("fillet_mm = 1.0\nchamfer_mm = 0.5\n[[section]]\nlength_mm = 220.0",
+                              "fillet_mm = 4.0\nchamfer_mm = 0.5\n[[section]]\nlength_mm = 220.0", 1)
+    into = "[[keyway]]\nposition_mm = 25.0\nlength_mm = 29.6\n"   # 10.2 to 39.8 mm
+    s = scene(stepped + into).shaft
+    z = np.array([30.0, 39.5, 39.8]) * 1e-3
+    # the fillet (r 4 mm, its centre at z 36, r 16.5 mm) rises above the 12.5 mm section
+    assert surface_radius(s, z) == pytest.approx(
+        [0.0125, 0.0165 - math.sqrt(16e-6 - 0.0035**2), 0.0165 - math.sqrt(16e-6 - 0.0038**2)])
+    with tempfile.TemporaryDirectory() as folder:
+        volume, n = build_solid(s, None, Path(folder) / "s.brep")
+    assert n == 1
+    removed = revolved_volume(outline(s)) - volume
+    k = s.keyways[0]
+    flat = keyway_volume(k, 0.0125)
+    exact = keyway_volume(k, 0.0125, surface=lambda z: surface_radius(s, z))
+    assert exact > flat * 1.01         # the fillet's rise is cut too (1.5 %)
+    assert abs(removed / exact - 1) < 2e-3
+    for bad in ("length_mm = 30.0\n", "length_mm = 31.0\n"):   # to the step; past it
+        with pytest.raises(SceneError) as err:
+            scene(stepped + into.replace("length_mm = 29.6\n", bad))
+        assert "may run into a fillet but not to its step" in str(err.value)

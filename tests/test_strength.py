@@ -1044,3 +1044,39 @@ def test_a_verdict_says_the_largest_utilisation_read_where_its_spot_has_no_bound
     result.spots = [spot(0.30, 0.05, True), spot(0.20, None, False)]
     line = strength_verdict(result)
     assert "read is" not in line and "utilisation is 0.32 (hot spot 1)" in line
+
+
+def test_a_relief_grooves_fillet_gets_no_shoulder_chart():
+    """A section shorter than its diameter between two larger ones is a groove: the
+    shoulder chart (whose smaller shaft runs on) is not printed beside its fillets; a
+    shoulder's is."""
+    def shaft(sections):
+        data = bar(section=sections)
+        data.pop("shaft")
+        return load_scene(data)
+
+    groove = shaft([{"length_mm": 150.0, "diameter_mm": 40.0, "fillet_mm": 1.5},
+                    {"length_mm": 4.0, "diameter_mm": 35.0, "fillet_mm": 1.5},
+                    {"length_mm": 246.0, "diameter_mm": 40.0}])
+    assert ws._groove_section(groove, 1) and not ws._groove_section(groove, 0)
+    long_ = shaft([{"length_mm": 150.0, "diameter_mm": 40.0, "fillet_mm": 1.5},
+                   {"length_mm": 40.0, "diameter_mm": 35.0, "fillet_mm": 1.5},
+                   {"length_mm": 210.0, "diameter_mm": 40.0}])
+    assert not ws._groove_section(long_, 1)
+
+
+def test_a_mesher_crashing_in_native_code_stops_the_refinement_not_the_run():
+    """gmsh's HXT once crashed in native code on a refined mesh (a keyway running into a
+    shoulder's fillet: "munmap_chunk(): invalid pointer") and took the whole run with it;
+    a refined mesh is now made in a process of its own, whose dying is a MeshError that
+    the refinement stops at, saying so."""
+    import os
+
+    from shaftfem.aside import Aside, aside_allowed
+    from shaftfem.cad.mesh import _aside
+    from shaftfem.errors import MeshError
+
+    if not aside_allowed():
+        pytest.skip("no other process here (SHAFTFEM_ASIDE=0 or a daemonic worker)")
+    with pytest.raises(MeshError, match="gmsh's HXT stopped without a mesh"):
+        _aside(Aside(os.abort), None, "HXT")

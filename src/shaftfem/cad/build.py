@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from shaftfem.cad.outline import outline as half_section
-from shaftfem.cad.outline import runout
+from shaftfem.cad.outline import runout, surface_radius
 from shaftfem.cad.profile import TOOL_OVERSHOOT, profile_outline
 from shaftfem.cad.session import session, stdout_to_devnull, translated
 from shaftfem.errors import GeometryError
@@ -175,7 +175,10 @@ def _profile_body(occ, shaft: Shaft) -> int:
     for k in shaft.keyways:
         radius = shaft.radius_at(k.start + k.length / 2)
         assert radius is not None
-        cut, _ = occ.cut([(3, body)], [(3, _keyway_tool(occ, k, radius))])
+        # the cutter reaches above the surface over its whole length (a keyway running
+        # into a fillet: the fillet's rise)
+        high = float(np.max(surface_radius(shaft, np.linspace(k.start, k.end, 201))))
+        cut, _ = occ.cut([(3, body)], [(3, _keyway_tool(occ, k, radius, high))])
         if len(cut) != 1:
             raise GeometryError(f"cutting the keyway at {k.start * 1e3:g} mm left {len(cut)} "
                                 "solids instead of 1")
@@ -183,11 +186,12 @@ def _profile_body(occ, shaft: Shaft) -> int:
     return body
 
 
-def _keyway_tool(occ, k: Keyway, radius: float) -> int:
+def _keyway_tool(occ, k: Keyway, radius: float, high: float | None = None) -> int:
     """The cutter's path as a solid: the keyway's plan (form "rounded": a slot with round
     ends; "sled": straight, its ends rising along the disc cutter) from the floor to
-    above the surface, turned to the keyway's angle."""
-    floor, top = radius - k.depth, radius + TOOL_OVERSHOOT
+    above the surface (whose highest radius over the keyway is `high`, m), turned to the
+    keyway's angle."""
+    floor, top = radius - k.depth, max(radius, high or 0.0) + TOOL_OVERSHOOT
     w = k.width
     if k.form == "rounded":   # a slot: round ends of the cutter's radius w / 2
         a = w / 2

@@ -374,11 +374,23 @@ def _refined_once(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSet
     limit = DELAUNAY_SECONDS + DELAUNAY_PER_ELEMENT * refined_elements(sizes)
     if str(brep) not in _UNSETTLED:
         try:
-            return (*Aside(mesh_solid, *given).result(timeout=limit), False)
+            return (*_aside(Aside(mesh_solid, *given), limit, "Delaunay"), False)
         except TimeoutError:
             _UNSETTLED.add(str(brep))
-    return (*mesh_solid(brep, shaft, grooves, settings, sizes, cuts, hubs, refine, hxt=True),
-            True)
+    # HXT aside too: where it crashed (a keyway running into a shoulder's fillet, its
+    # third refinement: "munmap_chunk(): invalid pointer") it took the whole run with it
+    return (*_aside(Aside(mesh_solid, *given, True), None, "HXT"), True)
+
+
+def _aside(job, timeout: float | None, mesher: str):
+    """A mesher's answer from its own process; its process dying (gmsh crashing in
+    native code) is a MeshError that says so."""
+    try:
+        return job.result(timeout=timeout)
+    except RuntimeError as e:
+        if "the work beside the run" not in str(e):
+            raise
+        raise MeshError(f"gmsh's {mesher} stopped without a mesh ({e})") from None
 
 
 def _four_copies(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

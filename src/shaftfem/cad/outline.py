@@ -118,13 +118,36 @@ def _segment_moment(p: Piece, turn: float) -> float:
     return (1.0 if inside else -1.0) * area * (rc + d * mid[1])
 
 
-def keyway_volume(k: Keyway, radius: float, n: int = 600) -> float:
+def surface_radius(shaft: Shaft, z: np.ndarray) -> np.ndarray:
+    """The outer contour's radius (m) at each z (m) of a profiled shaft: its sections,
+    fillets and chamfers (the outline's pieces running along the axis)."""
+    z = np.asarray(z, dtype=float)
+    out = np.full(z.shape, np.nan)
+    for p in outline(shaft):
+        (za, ra), (zb, rb) = p.a, p.b
+        if zb <= za:          # a step's face, or the way back along the bore
+            continue
+        on = np.isnan(out) & (z >= za - 1e-12) & (z <= zb + 1e-12)
+        if p.centre is None:
+            out[on] = ra + (rb - ra) * (z[on] - za) / (zb - za)
+        else:
+            zc, rc = p.centre
+            rho = math.dist(p.a, p.centre)
+            root = np.sqrt(np.maximum(rho * rho - (z[on] - zc) ** 2, 0.0))
+            # the branch the arc's ends lie on: below its centre (a fillet) or above
+            out[on] = rc - root if (ra + rb) / 2 < rc else rc + root
+    return out
+
+
+def keyway_volume(k: Keyway, radius: float, n: int = 600, surface=None) -> float:
     """The volume a keyway removes from a cylinder of `radius` (m^3), integrated over its
     plan: at each point (y across, z along) the depth from the surface sqrt(R^2 - y^2)
-    down to the floor (sharp floor corners)."""
+    down to the floor (sharp floor corners); `surface`: the surface's radius as a
+    function of z where it is not the cylinder's (a keyway running into a fillet)."""
     y = np.linspace(-k.width / 2, k.width / 2, n)
     z = np.linspace(k.start, k.end, 2 * n)
     Y, Z = np.meshgrid(y, z)
+    R = radius if surface is None else surface(Z)
     floor = np.full_like(Z, radius - k.depth)
     inside = np.ones_like(Z, dtype=bool)
     if k.form == "rounded":
@@ -137,7 +160,7 @@ def keyway_volume(k: Keyway, radius: float, n: int = 600) -> float:
         zc = np.clip(Z, k.start + run, k.end - run)
         dz = np.abs(Z - zc)
         floor = radius - k.depth + rc - np.sqrt(np.maximum(rc * rc - dz * dz, 0.0))
-    depth = np.where(inside, np.maximum(np.sqrt(radius**2 - Y**2) - floor, 0.0), 0.0)
+    depth = np.where(inside, np.maximum(np.sqrt(R**2 - Y**2) - floor, 0.0), 0.0)
     return float(np.trapezoid(np.trapezoid(depth, y, axis=1), z))
 
 

@@ -91,13 +91,14 @@ def _built(shaft: Shaft, grooves: Grooves | None, brep: Path, step_key: str
         return dict(volume=info.volume, groove_volume_analytic=0.0, groove_volume_cad=0.0,
                     n_volumes=1, reference_volume=info.volume), info
     from shaftfem.cad.build import build_solid
-    from shaftfem.cad.outline import keyway_volume, outline, revolved_volume
+    from shaftfem.cad.outline import keyway_volume, outline, revolved_volume, surface_radius
 
     v_grooves = 0.0
     if grooves is not None:
         section = shaft.profile[shaft.section_at(grooves.start + grooves.length / 2) or 0]
         v_grooves = groove_volume(grooves, section.diameter_start / 2)
-    v_keys = sum(keyway_volume(k, shaft.radius_at(k.start + k.length / 2) or 0.0)
+    v_keys = sum(keyway_volume(k, shaft.radius_at(k.start + k.length / 2) or 0.0,
+                               surface=lambda z: surface_radius(shaft, z))
                  for k in shaft.keyways)
     body = plain_volume(shaft, 0.0) if shaft.plain else revolved_volume(outline(shaft))
     volume, n_volumes = build_solid(shaft, grooves, brep)

@@ -148,18 +148,37 @@ def _check_end_chamfer(source: str, profile: tuple[Section, ...], c: float) -> N
                 f"({s.length / MM:g} mm), on a cylindrical end section")
 
 
+# a keyway running into a fillet ends at least this far (m) from the step's face: a cutter
+# touching the face makes OpenCASCADE meet two tangent surfaces
+STEP_CLEARANCE = 0.2 * MM
+
+
+def _keyway_span(shaft: Shaft, i: int) -> tuple[float, float]:
+    """Where a keyway may lie on section i (m): its plain span, and into a fillet at
+    either end short of the step by STEP_CLEARANCE (a keyway running out into a
+    shoulder's fillet), never into a chamfer."""
+    (z0, z1), (p0, p1) = shaft.section_bounds()[i], shaft.plain_span(i)
+    prof = shaft.profile
+    if i > 0 and prof[i - 1].diameter_end > prof[i].diameter_start and prof[i - 1].fillet:
+        p0 = z0 + STEP_CLEARANCE
+    if (i < len(prof) - 1 and prof[i].diameter_end < prof[i + 1].diameter_start
+            and prof[i].fillet):
+        p1 = z1 - STEP_CLEARANCE
+    return p0, p1
+
+
 def _keyway(source: str, i: int, raw: object, shaft: Shaft) -> Keyway:
     table = entry("keyway", i)
     t = validate_table(source, table, raw, SCHEMA["keyway"])
     centre, length = t["position_mm"] * MM, t["length_mm"] * MM
     start, end = centre - length / 2, centre + length / 2
     k = shaft.section_at(centre)
-    spans = [shaft.plain_span(i) for i in range(len(shaft.profile))]
+    spans = [_keyway_span(shaft, i) for i in range(len(shaft.profile))]
     if k is None or start < spans[k][0] - 1e-12 or end > spans[k][1] + 1e-12:
         raise SceneError(
             f"{where(source, table, 'position_mm')} = {t['position_mm']:g}: the keyway "
             f"{start / MM:g} to {end / MM:g} mm must lie within one section, clear of its "
-            "fillets and chamfers (sections: "
+            "chamfers, and may run into a fillet but not to its step (sections: "
             + ", ".join(f"{a / MM:g}-{b / MM:g}" for a, b in spans) + " mm)")
     s = shaft.profile[k]
     if s.conical:

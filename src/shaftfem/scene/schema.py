@@ -758,7 +758,8 @@ TABLES: dict[str, Table] = {
         "replace `[shaft] length_mm` and `diameter_mm`.", repeated=True),
     "keyway": Table(
         "A keyway milled into one section (width and depth default to DIN 6885-1 for the "
-        "section's diameter).", repeated=True),
+        "section's diameter); it may run out into a shoulder's fillet, up to 0.2 mm short "
+        "of the step's face.", repeated=True),
     "material": Table("An isotropic, linear elastic material.", required=True),
     "grooves": Table(
         "Helical grooves cut into the shaft, one or two hands of the same pitch, profile "
