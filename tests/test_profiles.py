@@ -445,3 +445,23 @@ def test_a_keyway_may_run_into_a_shoulders_fillet_and_its_volume_is_exact():
         with pytest.raises(SceneError) as err:
             scene(stepped + into.replace("length_mm = 29.6\n", bad))
         assert "may run into a fillet but not to its step" in str(err.value)
+
+
+def test_a_keyed_grooved_shafts_removed_volume_is_set_against_grooves_and_keyways():
+    """The paper's shaft with its keyway: what the CAD cut (grooves and keyway) is set
+    against the analytic volume of both, as the build's check does, so the record and
+    the report print two numbers that agree (the grooves' alone were printed beside
+    both, 4 % apart)."""
+    import tempfile
+
+    from shaftfem.cad.outline import keyway_volume
+    from shaftfem.cad.profile import groove_volume
+    from shaftfem.cad.solid import make_shape
+
+    s = load_scene("paper2018_keyed")
+    with tempfile.TemporaryDirectory() as folder:
+        shape = make_shape(s.shaft, s.grooves, Path(folder) / "s.brep")
+    k = s.shaft.keyways[0]
+    both = groove_volume(s.grooves, 0.016) + keyway_volume(k, 0.016)
+    assert shape.groove_volume_analytic == pytest.approx(both, rel=1e-9)
+    assert abs(shape.groove_volume_error) < 5e-3

@@ -21,8 +21,9 @@ from shaftfem.scene.model import Grooves, Shaft
 # are not reused (workflows.stages keys them with it; 5: profiles, keyways, STEP files
 # and a reference volume; 6: a STEP import's findings kept with its solid; 7: with its
 # outer surface sampled; 8: the grooves' root fillet meeting the floor at 4.4 degrees,
-# not 14).
-CONSTRUCTION_VERSION = 8
+# not 14; 9: the keyways' analytic volume kept with the grooves', as the volume cut is,
+# and a keyway's cutter reaching above a fillet it runs into).
+CONSTRUCTION_VERSION = 9
 VOLUME_TOLERANCE = 0.01         # removed volume vs analytic groove volume
 PROFILE_TOLERANCE = 1e-6        # a revolved profile's volume vs its half-section's
 
@@ -119,7 +120,8 @@ def _built(shaft: Shaft, grooves: Grooves | None, brep: Path, step_key: str
             f"the solid's volume is {volume * 1e9:.1f} mm^3 but its profile's is "
             f"{body * 1e9:.1f} mm^3: the CAD construction went wrong")
     reference = plain_volume(shaft, v_grooves) if shaft.plain else volume
-    return dict(volume=volume, groove_volume_analytic=v_grooves, groove_volume_cad=removed,
+    return dict(volume=volume, groove_volume_analytic=v_grooves + v_keys,
+                groove_volume_cad=removed,
                 n_volumes=n_volumes, reference_volume=reference), None
 
 
