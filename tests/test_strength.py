@@ -1079,3 +1079,17 @@ def test_a_mesher_crashing_in_native_code_stops_the_refinement_not_the_run(monke
     monkeypatch.setenv("SHAFTFEM_ASIDE", "1")   # the test workers run it in line
     with pytest.raises(MeshError, match="gmsh's HXT stopped without a mesh"):
         _aside(Aside(os.abort), None, "HXT")
+
+
+def test_a_shoulder_not_of_revolution_lists_at_most_two_spots_round_its_fillet():
+    """Near a keyway the shaft is not of revolution about a shoulder, and each vertex
+    round the fillet's circle may be a local maximum: the list keeps the worst two of
+    each shoulder (worst first, the others' order kept), and every spot of any other
+    feature."""
+    from types import SimpleNamespace as NS
+
+    spots = ([NS(feature="shoulder at 80 mm", n=i) for i in range(5)]
+             + [NS(feature="keyway end", n=5), NS(feature="shoulder at 120 mm", n=6),
+                NS(feature="groove root", n=7), NS(feature="groove root", n=8)])
+    kept = ws._per_shoulder(spots)
+    assert [s.n for s in kept] == [0, 1, 5, 6, 7, 8]
