@@ -1081,15 +1081,19 @@ def test_a_mesher_crashing_in_native_code_stops_the_refinement_not_the_run(monke
         _aside(Aside(os.abort), None, "HXT")
 
 
-def test_a_shoulder_not_of_revolution_lists_at_most_two_spots_round_its_fillet():
-    """Near a keyway the shaft is not of revolution about a shoulder, and each vertex
-    round the fillet's circle may be a local maximum: the list keeps the worst two of
-    each shoulder (worst first, the others' order kept), and every spot of any other
-    feature."""
+def test_a_circle_not_of_revolution_lists_at_most_two_spots_round_it():
+    """Near a keyway, or on a STEP solid, the shaft is not of revolution about a fillet,
+    and each vertex round its circle may be a local maximum: the list keeps the worst two
+    of one feature on each circle about the axis (worst first, the others' order kept),
+    and every spot elsewhere or of another feature."""
     from types import SimpleNamespace as NS
 
-    spots = ([NS(feature="shoulder at 80 mm", n=i) for i in range(5)]
-             + [NS(feature="keyway end", n=5), NS(feature="shoulder at 120 mm", n=6),
-                NS(feature="groove root", n=7), NS(feature="groove root", n=8)])
-    kept = ws._per_shoulder(spots)
+    def spot(n, feature, z, r=0.015):
+        return NS(feature=feature, z=z, radius=r, n=n)
+
+    spots = ([spot(i, "shoulder at 80 mm", 0.0789 + 1e-4 * (i % 2)) for i in range(5)]
+             + [spot(5, "keyway end", 0.0697), spot(6, "keyway end", 0.0696),
+                spot(7, "shoulder at 80 mm", 0.0789, r=0.018),     # another circle
+                spot(8, "plain surface", 0.0789), spot(9, "keyway end", 0.0696)])
+    kept = ws._per_circle(spots)
     assert [s.n for s in kept] == [0, 1, 5, 6, 7, 8]

@@ -986,26 +986,38 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field, before: list[HotSpot] | N
                              resolved=turn <= RESOLVED, rising=rising, aim=aim,
                              factors=_notch_factors(scene, fine, i, step)))
     spots.sort(key=lambda s: -_utilisation(s))
-    return _per_shoulder(spots)
+    return _per_circle(spots)
 
 
-# spots kept on one shoulder's fillet where the shaft is not of revolution about it (a
-# keyway within a width of it): its circle's vertices are each a local maximum there
-PER_SHOULDER = 2
+# spots kept on one circle about the axis where the shaft is not of revolution about it
+# (a keyway within a width of a shoulder, a STEP solid): each vertex round a fillet's
+# circle may be a local maximum there
+PER_CIRCLE = 2
+# two spots of one feature lie on one circle within this share of their radius (along
+# the axis and across it)
+SAME_CIRCLE = 0.02
 
 
-def _per_shoulder(spots: list[HotSpot]) -> list[HotSpot]:
-    """The spots (worst first) with at most PER_SHOULDER on each shoulder's fillet: a
-    hollow keyed shaft's shoulder 10 mm from its keyways' ends listed eight spots round
-    its circle, 60 to 64 MPa."""
-    seen: dict[str, int] = {}
+def _per_circle(spots: list[HotSpot]) -> list[HotSpot]:
+    """The spots (worst first) with at most PER_CIRCLE of one feature on each circle
+    about the axis: a hollow keyed shaft's shoulder 10 mm from its keyways' ends listed
+    eight round its fillet (60 to 64 MPa), a STEP shaft's shoulder eight (101 to 103
+    MPa)."""
+    kept: list[tuple[HotSpot, int]] = []   # each kept spot, and how many its circle holds
     out = []
     for s in spots:
-        if s.feature.startswith("shoulder at"):
-            seen[s.feature] = seen.get(s.feature, 0) + 1
-            if seen[s.feature] > PER_SHOULDER:
-                continue
-        out.append(s)
+        tol = SAME_CIRCLE * s.radius
+        for j, (k, n) in enumerate(kept):
+            if (k.feature == s.feature and abs(k.z - s.z) < tol
+                    and abs(k.radius - s.radius) < tol):
+                kept[j] = (k, n + 1)
+                if n + 1 > PER_CIRCLE:
+                    break
+                out.append(s)
+                break
+        else:
+            kept.append((s, 1))
+            out.append(s)
     return out
 
 
