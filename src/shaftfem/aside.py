@@ -28,6 +28,11 @@ from collections.abc import Callable
 from typing import Any
 
 
+class AsideStopped(RuntimeError):
+    """The other process ended without an answer (it died, or what it gave back could
+    not be read): not an error its job raised."""
+
+
 def aside_allowed() -> bool:
     """Whether work can go to another process here: the user did not turn it off
     (SHAFTFEM_ASIDE=0) and this process is not a daemon (those may have no children)."""
@@ -136,10 +141,10 @@ class Aside:
                 return bool(ok), value
             tail = self._said.read_text(errors="replace").strip().splitlines()[-1:]
         except Exception as e:   # an exception that cannot be rebuilt: said in words
-            return False, RuntimeError(f"the work beside the run failed: {e}")
+            return False, AsideStopped(f"the work beside the run failed: {e}")
         finally:
             self.close()
-        return False, RuntimeError(f"the work beside the run stopped (exit status "
+        return False, AsideStopped(f"the work beside the run stopped (exit status "
                                    f"{process.returncode}){': ' + tail[0] if tail else ''}")
 
     def close(self) -> None:

@@ -385,11 +385,11 @@ def _refined_once(brep, shaft: Shaft, grooves: Grooves | None, settings: MeshSet
 def _aside(job, timeout: float | None, mesher: str):
     """A mesher's answer from its own process; its process dying (gmsh crashing in
     native code) is a MeshError that says so."""
+    from shaftfem.aside import AsideStopped
+
     try:
         return job.result(timeout=timeout)
-    except RuntimeError as e:
-        if "the work beside the run" not in str(e):
-            raise
+    except AsideStopped as e:
         raise MeshError(f"gmsh's {mesher} stopped without a mesh ({e})") from None
 
 

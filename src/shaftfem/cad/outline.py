@@ -206,12 +206,17 @@ def feature_faces(shaft: Shaft, samples: dict[int, np.ndarray], tol: float = 1e-
     return out
 
 
+def keyway_frame(k: Keyway, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Points' (x, y) (m) in the keyway's own frame: along its centre line from the axis,
+    and across it (towards +y where the keyway lies on +x)."""
+    c, s = math.cos(k.angle), math.sin(k.angle)
+    return c * x + s * y, -s * x + c * y
+
+
 def _in_keyway(k: Keyway, xyz: np.ndarray, tol: float) -> bool:
     """Whether every point lies in the keyway's pocket: along it, and across it within
     half its width on its side of the axis (in the keyway's own frame)."""
-    c, s = math.cos(k.angle), math.sin(k.angle)
-    x = c * xyz[:, 0] + s * xyz[:, 1]
-    y = -s * xyz[:, 0] + c * xyz[:, 1]
+    x, y = keyway_frame(k, xyz[:, 0], xyz[:, 1])
     return bool(np.all((xyz[:, 2] > k.start - tol) & (xyz[:, 2] < k.end + tol)
                        & (np.abs(y) < k.width / 2 + tol) & (x > 0)))
 

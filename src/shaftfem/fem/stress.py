@@ -117,6 +117,8 @@ def key_loads(skmesh, element, key: KeyBearing, band: Band, n_dofs: int) -> np.n
     the axis and none across it, exactly on the mesh."""
     from skfem import FacetBasis, Functional, LinearForm, MeshTet
 
+    from shaftfem.cad.outline import keyway_frame
+
     k = key.keyway
     c, s = math.cos(k.angle), math.sin(k.angle)
     # the flank is plane: integrated on the straight-sided mesh of the same elements (the
@@ -126,8 +128,7 @@ def key_loads(skmesh, element, key: KeyBearing, band: Band, n_dofs: int) -> np.n
     boundary = flat.boundary_facets()
     corners = flat.p[:, flat.facets[:, boundary]]            # (3, 3, m)
     mid = corners.mean(axis=1)
-    xk = c * mid[0] + s * mid[1]
-    yk = -s * mid[0] + c * mid[1]
+    xk, yk = keyway_frame(k, mid[0], mid[1])
     normal = np.cross((corners[:, 1] - corners[:, 0]).T, (corners[:, 2] - corners[:, 0]).T)
     across = np.abs(-s * normal[:, 0] + c * normal[:, 1]) / np.linalg.norm(normal, axis=1)
     tol = 1e-3 * k.width

@@ -786,8 +786,7 @@ def _pockets(scene: Scene, points: np.ndarray) -> np.ndarray:
 
     out = np.zeros(len(points), dtype=bool)
     bearing = key_bearings(scene)
-    for k, inside in _keyway_pockets(scene, points):
-        yk = -math.sin(k.angle) * points[:, 0] + math.cos(k.angle) * points[:, 1]
+    for k, yk, inside in _keyway_pockets(scene, points):
         for kb in bearing:
             if kb.keyway == k:
                 # the half the key drives: its flank, the floor's corner below it and
@@ -797,9 +796,13 @@ def _pockets(scene: Scene, points: np.ndarray) -> np.ndarray:
     return out
 
 
-def _keyway_pockets(scene: Scene, points: np.ndarray) -> list[tuple[Keyway, np.ndarray]]:
-    """Each keyway with the surface points inside its pocket (below the surface by 5 %
-    of its depth); none on a STEP solid."""
+def _keyway_pockets(scene: Scene, points: np.ndarray
+                    ) -> list[tuple[Keyway, np.ndarray, np.ndarray]]:
+    """Each keyway, the points' place across it (cad.outline.keyway_frame) and which of
+    them lie inside its pocket (below the surface by 5 % of its depth); none on a STEP
+    solid."""
+    from shaftfem.cad.outline import keyway_frame
+
     if scene.shaft.step is not None:
         return []
     r, z = np.hypot(points[:, 0], points[:, 1]), points[:, 2]
@@ -808,11 +811,9 @@ def _keyway_pockets(scene: Scene, points: np.ndarray) -> list[tuple[Keyway, np.n
         radius = scene.shaft.radius_at(0.5 * (k.start + k.end))
         if radius is None:
             continue
-        c, s = math.cos(k.angle), math.sin(k.angle)
-        xk = c * points[:, 0] + s * points[:, 1]
-        yk = -s * points[:, 0] + c * points[:, 1]
+        xk, yk = keyway_frame(k, points[:, 0], points[:, 1])
         tol = 0.02 * k.width
-        out.append((k, (z > k.start - tol) & (z < k.end + tol) & (xk > 0)
+        out.append((k, yk, (z > k.start - tol) & (z < k.end + tol) & (xk > 0)
                     & (np.abs(yk) < k.width / 2 + tol) & (r < radius - 0.05 * k.depth)))
     return out
 
@@ -898,13 +899,13 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field, before: list[HotSpot] | N
         if _clear_of(fine, i, picks, local):
             picks.append(i)
     # every keyway is judged, however far below the worst spots it lies: its own worst
+    owned = [np.flatnonzero(inside & allowed)
+             for _, _, inside in _keyway_pockets(scene, fine.points)]
     for values in ((fine.amplitude, fine.peak) if turning else (fine.peak,)):
-        for _, inside in _keyway_pockets(scene, fine.points):
-            own = np.flatnonzero(inside & allowed)
-            if own.size:
-                i = int(own[np.argmax(values[own])])
-                if _clear_of(fine, i, picks, local):
-                    picks.append(i)
+        for own in (o for o in owned if o.size):
+            i = int(own[np.argmax(values[own])])
+            if _clear_of(fine, i, picks, local):
+                picks.append(i)
     # a pick taken round its circle to the last round's spot there: that spot
     followed: dict[int, HotSpot] = {}
     if round_ and before:
