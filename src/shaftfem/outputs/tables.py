@@ -1209,7 +1209,8 @@ def strength_text(result) -> str:
              f"({st.source}); R_z {st.roughness * 1e6:g} um; required safeties: fatigue "
              f"{st.fatigue_safety:g}, yield {st.yield_safety:g} at {st.peak_factor:g} x the duty",
              f"meshes solved: {', '.join(f'{d:,}' for d in result.dofs)} DOFs; bound wanted "
-             f"on each hot spot's stress: {result.target:.1%}", *result.notes,
+             f"on each hot spot's stress: {result.target:.1%}", *local_lines(result),
+             *result.notes,
              *([travel_line(result)] if result.travel else []), "",
              "hot spots (worst first; stresses von Mises, MPa; a: amplitude over a turn, "
              "m: mean, signed):",
@@ -1324,6 +1325,18 @@ def travel_line(result) -> str:
             "each seat is at the place that tilts it most.")
 
 
+def local_lines(result) -> list[str]:
+    """A line on the hot spots bounded in local models (none where there are none)."""
+    local = [(k, s.local_dofs) for k, s in enumerate(result.spots, 1) if s.local_dofs]
+    if not local:
+        return []
+    dofs = sorted(d for _, d in local)
+    span = f"{dofs[0]:,}" if dofs[0] == dofs[-1] else f"{dofs[0]:,} to {dofs[-1]:,}"
+    return [f"bounded in local models: hot spot(s) {', '.join(str(k) for k, _ in local)}, "
+            f"each in a slice of the solid round it ({span} DOFs), its cut faces moved and "
+            "loaded as the whole shaft's finest mesh says"]
+
+
 def strength_intro(result) -> str:
     """The strength section's line on the material, the safeties and the meshes."""
     st = result.scene.strength
@@ -1332,6 +1345,7 @@ def strength_intro(result) -> str:
             f"required safeties {st.fatigue_safety:g} (fatigue, FKM j_D) and "
             f"{st.yield_safety:g} (yield, at {st.peak_factor:g} x the duty). Meshes solved: "
             + ", ".join(f"{d:,}" for d in result.dofs) + " DOFs."
+            + "".join(f" {line[0].upper()}{line[1:]}." for line in local_lines(result))
             + (" " + travel_line(result) if result.travel else ""))
 
 

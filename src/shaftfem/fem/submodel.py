@@ -1,0 +1,166 @@
+"""A hot spot's local model driven by the whole shaft's solution (submodelling).
+
+A slice of the solid round the spot (cad.local), meshed far finer there than the whole
+shaft can afford, carries the same duty: its two cut faces move as the whole shaft's
+P2 displacement field says (read at each of their nodes, `read_displacements`), and
+gravity acts in it as in the whole; nothing else loads it (a slice is taken clear of
+every load band and seat). Each of the duty's cases is one right-hand side of one
+factorisation: K_ff u_f = f_f - K_fb u_b, with u_b prescribed on the cut faces.
+
+The cut faces lie a few of the whole shaft's elements from the spot: its displacements
+there are far more accurate than its stresses at the notch (they converge as h^3 against
+h^2, and the notch's disturbance decays within about its own size, Saint-Venant).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shaftfem.errors import SolverError
+
+# candidate tetrahedra per point (the nearest centroids), and how far outside a curved
+# tetrahedron a point may lie (its least barycentric coordinate) and still be read from
+# it: a cut face's node on the true surface lies a hair outside a coarse mesh's
+# element, curved onto the surface only to second order
+CANDIDATES = 12
+REACH = 0.25
+NEWTON_STEPS = 6
+# VTK's 10-node tetrahedron: the vertices, then the edges' midpoints in this order
+EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
+
+
+def _shape(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """P2 shape functions (..., 10) at barycentric coordinates lam (..., 4), and their
+    derivatives along lam_1..lam_3 (lam_0 = 1 - the others) (..., 10, 3)."""
+    n = [lam[..., i] * (2 * lam[..., i] - 1) for i in range(4)]
+    n += [4 * lam[..., i] * lam[..., j] for i, j in EDGES]
+    dl = np.zeros(lam.shape + (3,))      # d lam_i / d xi_k
+    dl[..., 0, :] = -1.0
+    for k in range(3):
+        dl[..., k + 1, k] = 1.0
+    dn = [(4 * lam[..., i, None] - 1) * dl[..., i, :] for i in range(4)]
+    dn += [4 * (lam[..., i, None] * dl[..., j, :] + lam[..., j, None] * dl[..., i, :])
+           for i, j in EDGES]
+    return np.stack(n, axis=-1), np.stack(dn, axis=-2)
+
+
+def read_displacements(points: np.ndarray, cells: np.ndarray, u: np.ndarray,
+                       at: np.ndarray) -> np.ndarray:
+    """A P2 field u (cases, N, 3) at the points of a curved 10-node mesh (points (N, 3)
+    m, cells (E, 10) in VTK's order), read at `at` (k, 3): in the element holding each
+    point, found by inverting its curved map (Newton from the straight element's
+    barycentric coordinates). Returns (cases, k, 3). A point farther outside every
+    element than REACH is refused (SolverError): the slice and the whole do not match."""
+    from scipy.spatial import cKDTree
+
+    corners = points[cells[:, :4]]
+    tree = cKDTree(corners.mean(axis=1))
+    k = min(CANDIDATES, len(cells))
+    _, near = tree.query(at, k)
+    near = near.reshape(len(at), k)
+    nodes = points[cells[near]]                                # (m, k, 10, 3)
+    # the straight element's coordinates first
+    c = nodes[..., :4, :]
+    J = np.transpose(c[..., 1:, :] - c[..., :1, :], (0, 1, 3, 2))
+    xi = np.linalg.solve(J, (at[:, None, :] - c[..., 0, :])[..., None])[..., 0]
+    for _ in range(NEWTON_STEPS):
+        lam = np.concatenate([1 - xi.sum(-1, keepdims=True), xi], axis=-1)
+        n, dn = _shape(lam)
+        x = np.einsum("mka,mkad->mkd", n, nodes)
+        Jc = np.einsum("mkae,mkad->mkde", dn, nodes)           # dx_d / dxi_e
+        step = np.linalg.solve(Jc, (at[:, None, :] - x)[..., None])[..., 0]
+        xi = xi + step
+    lam = np.concatenate([1 - xi.sum(-1, keepdims=True), xi], axis=-1)
+    n, _ = _shape(lam)
+    miss = np.linalg.norm(np.einsum("mka,mkad->mkd", n, nodes) - at[:, None, :], axis=-1)
+    size = np.linalg.norm(c[..., 1, :] - c[..., 0, :], axis=-1)
+    # an element whose map Newton did not invert (far outside it) is no candidate
+    inside = np.where(miss <= 1e-9 * size, lam.min(-1), -np.inf)
+    rows = np.arange(len(at))
+    best = np.argmax(inside, axis=1)
+    worst = -lam[rows, best].min(-1)
+    if (worst > REACH).any():
+        far = at[np.argmax(worst)] * 1e3
+        raise SolverError(f"a local model's cut face has a point ({far[0]:.2f}, "
+                          f"{far[1]:.2f}, {far[2]:.2f}) mm outside the whole shaft's mesh")
+    n, _ = _shape(lam[rows, best])                              # (m, 10)
+    own = cells[near[rows, best]]                               # (m, 10)
+    return np.einsum("ma,cmad->cmd", n, u[:, own])
+
+
+def carried(nodes: np.ndarray, forces: np.ndarray, z: float) -> np.ndarray:
+    """What the whole shaft beyond z (m) exerts on the part before it, per case: force and
+    moment about (0, 0, z) (cases, 6), N and N m, from its nodal forces K u (cases, n,
+    3) at its scalar nodes (n, 3). K u is the applied loads and the supports' reactions
+    at each node, exactly, so the sum over the nodes beyond z is the section's resultant
+    on any mesh: it does not depend on the mesh's stiffness (nothing is loaded between a
+    node and the plane but gravity on an element's share)."""
+    beyond = nodes[:, 2] > z
+    arm = nodes[beyond] - np.array([0.0, 0.0, z])
+    f = forces[:, beyond]
+    return np.concatenate([f.sum(axis=1), np.cross(arm, f).sum(axis=1)], axis=1)
+
+
+def rigid_motions(points: np.ndarray, centre: np.ndarray) -> np.ndarray:
+    """The six rigid motions of points (k, 3) about `centre`: (3 k, 6), translations
+    along x, y, z, then rotations about them (m per m, m per rad)."""
+    G = np.zeros((3 * len(points), 6))
+    r = points - centre
+    for i in range(3):
+        G[i::3, i] = 1.0
+        e = np.eye(3)[i]
+        G[:, 3 + i] = np.cross(e, r).ravel()
+    return G
+
+
+def driven_solve(K, M, nodes: np.ndarray, held: np.ndarray, u_held: np.ndarray,
+                 gravity: np.ndarray, floating: np.ndarray | None = None,
+                 u_floating: np.ndarray | None = None, load: np.ndarray | None = None,
+                 centre: np.ndarray | None = None) -> np.ndarray:
+    """Displacements (3 n, cases) of a local model with stiffness K (N/m) and vector mass
+    M (kg) over its scalar nodes `nodes` (n, 3), gravity (cases, 3) m/s^2 acting
+    throughout: the nodes `held` (bool, n) moved by u_held (cases, n_held, 3); the
+    nodes `floating` (bool, n), if given, moved by u_floating plus a rigid motion of
+    their own about `centre`, whose six generalised forces are `load` (cases, 6: the
+    force and moment the rest of the shaft exerts there, `carried`): the whole's
+    deformation of that face is kept and its resultant imposed, not its stiffness."""
+    import scipy.sparse as sp
+
+    from shaftfem.fem.factor import factorise
+
+    n = nodes.shape[0]
+    cases = u_held.shape[0]
+    fixed = np.repeat(held, 3)
+    moving = np.repeat(floating, 3) if floating is not None else np.zeros(3 * n, dtype=bool)
+    free = ~(fixed | moving)
+    U = np.zeros((3 * n, cases))
+    U[fixed] = np.moveaxis(u_held, 0, -1).reshape(-1, cases)
+    F = np.column_stack([M @ np.tile(g, n) for g in gravity])
+    Kc = K.tocsr()
+    Kf = Kc[free]
+    rhs = F[free] - Kf[:, fixed] @ U[fixed]
+    if floating is None:
+        A = Kf[:, free]
+    else:
+        assert u_floating is not None and load is not None and centre is not None
+        G = rigid_motions(nodes[floating], centre)
+        U[moving] = np.moveaxis(u_floating, 0, -1).reshape(-1, cases)
+        Km = Kc[moving]
+        KfG = sp.csr_matrix(Kf[:, moving] @ G)
+        A = sp.bmat([[Kf[:, free], KfG], [KfG.T, G.T @ (Km[:, moving] @ G)]], format="csr")
+        rhs = np.vstack([rhs - Kf[:, moving] @ U[moving],
+                         load.T + G.T @ (F[moving] - Km[:, fixed] @ U[fixed]
+                                         - Km[:, moving] @ U[moving])])
+    solve, _ = factorise(A)
+    x = solve(np.ascontiguousarray(rhs)).reshape(-1, cases)
+    k = int(free.sum())
+    U[free] = x[:k]
+    if floating is not None:
+        U[moving] += G @ x[k:]
+    residual = Kc[free] @ U - F[free]
+    scale = max(float(np.abs(F).max()), float(np.abs(Kc[free][:, fixed] @ U[fixed]).max()),
+                1e-300)
+    if float(np.abs(residual).max()) > 1e-6 * scale:
+        raise SolverError(f"a local model's solve left a residual of "
+                          f"{float(np.abs(residual).max()) / scale:.2g} of its loads")
+    return U
