@@ -255,6 +255,21 @@ def _quarter_cylinder(gmsh, shaft: Shaft, cuts: tuple[float, ...] = ()) -> None:
     for z, f in planes["x0"].items():
         gmsh.model.mesh.setPeriodic(2, [f], [planes["y0"][z]], turn)
 
+def scene_fields(gmsh, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
+                 hubs: tuple[tuple[float, float], ...]) -> tuple[list[int], float]:
+    """The size fields of the settings on the current model (the hubs', the grooves',
+    the profile's features'), and the smallest size they ask, m."""
+    smallest = min(settings.edge_size, settings.size)
+    fields = _hub_fields(gmsh, shaft, hubs, settings)
+    if hubs:
+        smallest = min(smallest, HUB_SIZE * settings.size)
+    if grooves is not None:
+        fields += _groove_fields(gmsh, shaft, grooves, settings)
+    if shaft.profile and not shaft.plain:
+        fields += _profile_fields(gmsh, shaft, settings)
+    return fields, smallest
+
+
 def _background_sizes(gmsh, sizes: tuple[np.ndarray, np.ndarray, np.ndarray]
                       ) -> tuple[float, int, int]:
     """Element sizes from a former mesh: `sizes` = (points (N, 3), tets (E, 4), size at
@@ -297,13 +312,7 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
         smallest, view = min(settings.edge_size, settings.size), None
         fields: list[int] = []
         if sizes is None or refine:
-            fields = _hub_fields(gmsh, shaft, hubs, settings)
-            if hubs:
-                smallest = min(smallest, HUB_SIZE * settings.size)
-            if grooves is not None:
-                fields += _groove_fields(gmsh, shaft, grooves, settings)
-            if shaft.profile and not shaft.plain:
-                fields += _profile_fields(gmsh, shaft, settings)
+            fields, smallest = scene_fields(gmsh, shaft, grooves, settings, hubs)
         if sizes is not None:
             given, view, field = _background_sizes(gmsh, sizes)
             smallest = given if not refine else min(smallest, given)

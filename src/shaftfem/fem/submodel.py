@@ -113,54 +113,63 @@ def rigid_motions(points: np.ndarray, centre: np.ndarray) -> np.ndarray:
     return G
 
 
-def driven_solve(K, M, nodes: np.ndarray, held: np.ndarray, u_held: np.ndarray,
-                 gravity: np.ndarray, floating: np.ndarray | None = None,
-                 u_floating: np.ndarray | None = None, load: np.ndarray | None = None,
-                 centre: np.ndarray | None = None) -> np.ndarray:
-    """Displacements (3 n, cases) of a local model with stiffness K (N/m) and vector mass
-    M (kg) over its scalar nodes `nodes` (n, 3), gravity (cases, 3) m/s^2 acting
-    throughout: the nodes `held` (bool, n) moved by u_held (cases, n_held, 3); the
-    nodes `floating` (bool, n), if given, moved by u_floating plus a rigid motion of
-    their own about `centre`, whose six generalised forces are `load` (cases, 6: the
-    force and moment the rest of the shaft exerts there, `carried`): the whole's
-    deformation of that face is kept and its resultant imposed, not its stiffness."""
+def reduced_dofs(T, nodes: np.ndarray) -> np.ndarray:
+    """The reduced coordinates (u = T q) that are the DOFs of `nodes` (bool, n) as they
+    are: a cut face's nodes lie clear of every seat and part, where T is the identity.
+    Refused (SolverError) where one is not."""
+    dofs = np.flatnonzero(np.repeat(nodes, 3))
+    rows = T.tocsr()[dofs]
+    counts = np.diff(rows.indptr)
+    if (counts != 1).any() or not np.allclose(rows.data, 1.0):
+        raise SolverError("a local model's cut face passes through a part's or a seat's band")
+    return rows.indices.copy()
+
+
+def driven_solve(K, F: np.ndarray, held: np.ndarray, u_held: np.ndarray,
+                 floating: np.ndarray | None = None, u_floating: np.ndarray | None = None,
+                 G: np.ndarray | None = None, load: np.ndarray | None = None) -> np.ndarray:
+    """The solution (n, cases) of K x = F (K N/m, F N: columns the cases) with the DOFs
+    `held` (indices) at u_held (k, cases); and, if given, the DOFs `floating` at
+    u_floating plus a rigid motion G c of their own (G: (k, 6), the six rigid motions
+    of the face, rigid_motions), whose six generalised forces G^T (K x - F) are `load`
+    (cases, 6: the force and moment the rest of the shaft exerts there, `carried`): the
+    whole's deformation of that face is kept and its resultant imposed, not the whole's
+    stiffness."""
     import scipy.sparse as sp
 
     from shaftfem.fem.factor import factorise
 
-    n = nodes.shape[0]
-    cases = u_held.shape[0]
-    fixed = np.repeat(held, 3)
-    moving = np.repeat(floating, 3) if floating is not None else np.zeros(3 * n, dtype=bool)
-    free = ~(fixed | moving)
-    U = np.zeros((3 * n, cases))
-    U[fixed] = np.moveaxis(u_held, 0, -1).reshape(-1, cases)
-    F = np.column_stack([M @ np.tile(g, n) for g in gravity])
+    n, cases = F.shape
+    X = np.zeros((n, cases))
+    X[held] = u_held
+    free = np.ones(n, dtype=bool)
+    free[held] = False
+    if floating is not None:
+        free[floating] = False
+    free_idx = np.flatnonzero(free)
     Kc = K.tocsr()
-    Kf = Kc[free]
-    rhs = F[free] - Kf[:, fixed] @ U[fixed]
+    Kf = Kc[free_idx]
+    rhs = F[free_idx] - Kf[:, held] @ X[held]
     if floating is None:
-        A = Kf[:, free]
+        A = Kf[:, free_idx]
     else:
-        assert u_floating is not None and load is not None and centre is not None
-        G = rigid_motions(nodes[floating], centre)
-        U[moving] = np.moveaxis(u_floating, 0, -1).reshape(-1, cases)
-        Km = Kc[moving]
-        KfG = sp.csr_matrix(Kf[:, moving] @ G)
-        A = sp.bmat([[Kf[:, free], KfG], [KfG.T, G.T @ (Km[:, moving] @ G)]], format="csr")
-        rhs = np.vstack([rhs - Kf[:, moving] @ U[moving],
-                         load.T + G.T @ (F[moving] - Km[:, fixed] @ U[fixed]
-                                         - Km[:, moving] @ U[moving])])
+        assert u_floating is not None and G is not None and load is not None
+        X[floating] = u_floating
+        Km = Kc[floating]
+        KfG = sp.csr_matrix(Kf[:, floating] @ G)
+        A = sp.bmat([[Kf[:, free_idx], KfG], [KfG.T, G.T @ (Km[:, floating] @ G)]],
+                    format="csr")
+        rhs = np.vstack([rhs - Kf[:, floating] @ X[floating],
+                         load.T + G.T @ (F[floating] - Km[:, held] @ X[held]
+                                         - Km[:, floating] @ X[floating])])
     solve, _ = factorise(A)
     x = solve(np.ascontiguousarray(rhs)).reshape(-1, cases)
-    k = int(free.sum())
-    U[free] = x[:k]
+    X[free_idx] = x[:free_idx.size]
     if floating is not None:
-        U[moving] += G @ x[k:]
-    residual = Kc[free] @ U - F[free]
-    scale = max(float(np.abs(F).max()), float(np.abs(Kc[free][:, fixed] @ U[fixed]).max()),
-                1e-300)
+        X[floating] += G @ x[free_idx.size:]
+    residual = Kf @ X - F[free_idx]
+    scale = max(float(np.abs(F).max()), float(np.abs(Kf[:, held] @ X[held]).max()), 1e-300)
     if float(np.abs(residual).max()) > 1e-6 * scale:
         raise SolverError(f"a local model's solve left a residual of "
                           f"{float(np.abs(residual).max()) / scale:.2g} of its loads")
-    return U
+    return X

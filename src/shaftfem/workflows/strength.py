@@ -788,23 +788,35 @@ def _bands(scene: Scene, points: np.ndarray) -> list[tuple[float, float]]:
     """Where a load or a reaction enters (z0, z1), m: a seat, a hub, a load's slice, a
     keyed part's keyway, each widened by a quarter of the local radius (read from the
     surface points near it)."""
+    seats, loads = _band_kinds(scene, points)
+    return seats + loads
+
+
+def _band_kinds(scene: Scene, points: np.ndarray
+                ) -> tuple[list[tuple[float, float]], list[tuple[float, float]]]:
+    """_bands as the seats' (where the supports react) and the loads' (the parts' hubs,
+    the forces' and torques' slices, the keyed parts' keyways)."""
     from shaftfem.fem.stress import key_bearings, load_band
 
     r = np.hypot(points[:, 0], points[:, 1])
-    bands = [s.seat for s in scene.held if s.kind != "seal"]
-    bands += [a.seat for a in scene.attachments]
+    seats = [s.seat for s in scene.held if s.kind != "seal"]
+    loads = [a.seat for a in scene.attachments]
     for position, width in ([(f.position, f.width) for f in scene.forces]
                             + [(q.position, q.width) for q in scene.torques]):
         b = load_band(position, width, points)
-        bands.append((b.z0, b.z1))
+        loads.append((b.z0, b.z1))
     # a keyed part's hub covers its key at least (a coupling given by its position)
-    bands += [(kb.keyway.start, kb.keyway.end) for kb in key_bearings(scene)]
-    out = []
-    for z0, z1 in bands:
-        near = (points[:, 2] > z0 - 0.02) & (points[:, 2] < z1 + 0.02)
-        margin = 0.25 * (float(r[near].max()) if near.any() else 0.0)
-        out.append((z0 - margin, z1 + margin))
-    return out
+    loads += [(kb.keyway.start, kb.keyway.end) for kb in key_bearings(scene)]
+
+    def widened(bands: list[tuple[float, float]]) -> list[tuple[float, float]]:
+        out = []
+        for z0, z1 in bands:
+            near = (points[:, 2] > z0 - 0.02) & (points[:, 2] < z1 + 0.02)
+            margin = 0.25 * (float(r[near].max()) if near.any() else 0.0)
+            out.append((z0 - margin, z1 + margin))
+        return out
+
+    return widened(seats), widened(loads)
 
 
 def _pockets(scene: Scene, points: np.ndarray) -> np.ndarray:
@@ -1366,20 +1378,21 @@ LOCAL_LEAST = 1.5
 LOCAL_FIRST = 4.0
 LOCAL_SEARCH = 1.0
 LOCAL_ROUNDS = 5
-# a cut face's prescribed displacements are the whole's: surface points within this
-# share of the slice's half-length from a cut face are not read
+# a cut face's prescribed displacements are the whole's: surface points nearer a cut
+# face than this share of the spot's distance from the nearer one are not read
 LOCAL_GUARD = 0.5
+# away from the spot the slice's elements grow to this share of the shaft's radius
+LOCAL_FAR = 0.25
 # at most this many spots get local models, those that may be the worst first
 LOCAL_SPOTS = 12
 
 
 def _localise(scene: Scene, spots: list[HotSpot], fine: _Field, first: _Field, built,
               target: float, options: RunOptions, notes: list[str]) -> list[HotSpot]:
-    """The spots, those the whole's meshes leave above the target (and that may decide
-    the verdict: at least half the worst utilisation at the top of their intervals)
-    bounded in local models (_localised); a spot two local models found alike once."""
-    worst = max((_utilisation(s) for s in spots), default=0.0)
-    open_ = [s for s in spots if s.converging and _upper(s) >= 0.5 * worst
+    """The spots, those the whole's meshes leave above the target bounded in local
+    models (_localised), the likely worst first; a spot two local models found alike
+    once."""
+    open_ = [s for s in spots if s.converging
              and (s.bound is None or s.bound > target or not s.resolved)]
     open_ = sorted(open_, key=_upper, reverse=True)[:LOCAL_SPOTS]
     if not open_ or fine.mesh_cells is None or fine.mesh_cells.shape[1] != 10:
@@ -1418,26 +1431,26 @@ def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
     H = float(first.edge[np.argmin(np.linalg.norm(first.points - _xyz(spot), axis=1))]
               ) / COARSER
     h = min(spot.size, H)
-    half = max(LOCAL_HALF * H, LOCAL_RADII * 0.5 * spot.diameter)
-    for b0, b1 in _bands(scene, fine.points):
-        if b0 <= spot.z <= b1:
-            return spot
-        half = min(half, spot.z - b1 if b1 < spot.z else b0 - spot.z)
-    if half < LOCAL_LEAST * H:
+    span = _local_span(scene, spot, fine, H)
+    if span is None:
         return spot
-    length = placed.shaft.length
-    z0, z1 = max(spot.z - half, 0.0), min(spot.z + half, length)
+    z0, z1 = span
+    guard = LOCAL_GUARD * min(spot.z - z0, z1 - spot.z)
     radius = float(np.hypot(fine.points[:, 0], fine.points[:, 1]).max())
     cyclic = st.speed > 0 and spot.amplitude >= 0.1 * spot.peak
     home, search = _xyz(spot), LOCAL_SEARCH * h
     centre, size, reach = home, h / LOCAL_FIRST, search
-    coarser, was, was_size = first, (spot.amplitude if cyclic else spot.peak), h
+    was, was_size = (spot.amplitude if cyclic else spot.peak), h
     last_change: float | None = None
     last_rising = False
     out = spot
     for _ in range(LOCAL_ROUNDS):
-        mesh = _local_mesh(shape.brep, (z0, z1), radius, centre, size, reach, H, placed)
-        here, driven_coarse = _local_fields(placed, mesh, (z0, z1), fine, first, st.speed > 0)
+        # a pair of meshes each round, as the whole's: the slice as the scene's settings
+        # mesh it, finer round the spot, driven by the whole's finest mesh; and all of
+        # it COARSER times coarser, driven by the whole's first
+        here, coarser = (_local_field(scene, placed, _local_mesh(
+            shape.brep, (z0, z1), radius, centre, size * k, reach, placed, k), (z0, z1),
+            driver, guard) for k, driver in ((1.0, fine), (COARSER, first)))
         value = here.amplitude if cyclic else here.peak
         near = np.flatnonzero(here.allowed & (np.linalg.norm(here.points - home, axis=1)
                                               <= search))
@@ -1451,11 +1464,6 @@ def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
         curvature = CURVATURE_ERROR * (float(here.edge[i]) * _concave(here, i)) ** 2
         scatter = _scatter(here, i, value)
         bound = None if difference is None else max(difference, curvature) + scatter
-        if bound is None and out.local_dofs and out.bound is not None:
-            # the mesh at the spot no finer than the last (gmsh's sizes are asked, not
-            # given): the truth lies within the last bound of the last value
-            then = out.amplitude if cyclic else out.peak
-            bound = float((abs(value[i] - then) + out.bound * then) / value[i])
         aim = (curvature + scatter if _edge_turn(coarser, int(np.argmin(d_coarse))) > RESOLVED
                else None)
         turn = _edge_turn(here, i)
@@ -1475,16 +1483,49 @@ def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
         error = bound if aim is None else aim
         shrink = SHRINK_MAX if not out.resolved else COARSER if error is None else float(
             np.clip(math.sqrt(error / (AIM * target)), COARSER, SHRINK_MAX))
-        coarser, was, was_size = driven_coarse, float(value[i]), float(here.edge[i])
+        was, was_size = float(value[i]), float(here.edge[i])
         last_change, last_rising = change, rising
         centre, size, reach = p, float(here.edge[i]) / shrink, REACH * float(here.edge[i])
     return out
 
 
+def _local_span(scene: Scene, spot: HotSpot, fine: _Field, H: float
+                ) -> tuple[float, float] | None:
+    """The slice round a spot (z0, z1), m: LOCAL_HALF of the whole's elements H (m) and
+    LOCAL_RADII of its radius to either side, grown to hold whole every load band it
+    reaches (a hub, a load's slice, a keyed part's keyway: their loads are applied in
+    it as in the whole), with H to spare, and cut short of every seat (whose reaction
+    is the whole's, unknown to the slice); None where no slice of at least LOCAL_LEAST
+    of H either side fits so."""
+    seats, loads = _band_kinds(scene, fine.points)
+    z = spot.z
+    if any(b0 <= z <= b1 for b0, b1 in seats):
+        return None
+    half = max(LOCAL_HALF * H, LOCAL_RADII * 0.5 * spot.diameter)
+    lo, hi = z - half, z + half
+    grown = True
+    while grown:
+        grown = False
+        for b0, b1 in loads:
+            if b1 > lo and b0 < hi and (b0 - H < lo or b1 + H > hi):
+                lo, hi, grown = min(lo, b0 - H), max(hi, b1 + H), True
+    for b0, b1 in seats:
+        if b1 < z:
+            lo = max(lo, b1)
+        else:
+            hi = min(hi, b0)
+    lo, hi = max(lo, 0.0), min(hi, scene.shaft.length)
+    if any(b1 > lo and b0 < hi and (b0 < lo or b1 > hi) for b0, b1 in loads):
+        return None    # a seat too near a hub: the slice would cut through its band
+    if min(z - lo, hi - z) < LOCAL_LEAST * H:
+        return None
+    return lo, hi
+
+
 def _local_mesh(brep: Path, span: tuple[float, float], radius: float, centre: np.ndarray,
-                size: float, reach: float, far: float, placed: Scene) -> ShaftMesh:
-    """A slice's mesh (cad.local), from the cache where it holds it; refused above the
-    scene's DOF budget."""
+                size: float, reach: float, placed: Scene, scale: float) -> ShaftMesh:
+    """A slice's mesh (cad.local), its elsewhere sizes the scene's times `scale`, from
+    the cache where it holds it; refused above the scene's DOF budget."""
     from shaftfem.cad.local import slice_mesh
     from shaftfem.cad.mesh import (
         MESH_ARRAYS,
@@ -1497,10 +1538,13 @@ def _local_mesh(brep: Path, span: tuple[float, float], radius: float, centre: np
     from shaftfem.cad.tetrahedra import straighten_folded
     from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
 
-    key = content_key({"version": 2, "solid": brep.stem, "span": list(span),
+    m = placed.mesh
+    settings = replace(m, size=m.size * scale, groove_size=m.groove_size * scale,
+                       edge_size=m.edge_size * scale)
+    key = content_key({"version": 3, "solid": brep.stem, "span": list(span),
                        "radius": radius, "centre": [float(c) for c in centre], "size": size,
-                       "reach": reach, "far": far, "grading": GRADING,
-                       "order": placed.mesh.order})
+                       "reach": reach, "grading": GRADING, "settings": vars(settings),
+                       "hubs": [list(b) for b in placed.hubs()]})
     path = cache_dir() / "strength" / "local" / f"{key}.npz"
     fields, why = load_arrays(path, MESH_ARRAYS) if path.exists() else (None, "")
     if fields is None and why:
@@ -1509,7 +1553,8 @@ def _local_mesh(brep: Path, span: tuple[float, float], radius: float, centre: np
         mesh = mesh_from_arrays(fields)
     else:
         points, cells = slice_mesh(brep, span[0], span[1], radius, centre, size, reach,
-                                   far, GRADING, placed.mesh.order)
+                                   GRADING, placed.shaft, placed.grooves, settings,
+                                   placed.hubs())
         used = np.unique(cells)
         remap = np.full(points.shape[0], -1, dtype=np.int64)
         remap[used] = np.arange(used.size)
@@ -1523,10 +1568,11 @@ def _local_mesh(brep: Path, span: tuple[float, float], radius: float, centre: np
     return mesh
 
 
-def _local_fields(placed: Scene, mesh: ShaftMesh, span: tuple[float, float], fine: _Field,
-                  first: _Field, turning: bool) -> tuple[_Field, _Field]:
-    """A slice's duty, driven on its cut faces by the whole's finest mesh and by its
-    first (coarser) one: the two fields, from the cache where it holds them."""
+def _local_field(scene: Scene, placed: Scene, mesh: ShaftMesh, span: tuple[float, float],
+                 driver: _Field, guard: float) -> _Field:
+    """A slice's duty driven on its cut faces by the whole's solution `driver`, from the
+    cache where it holds it; the surface points within `guard` (m) of a cut face, and
+    in the bands where loads enter, not read."""
     import hashlib
 
     from scipy.spatial import cKDTree
@@ -1536,7 +1582,7 @@ def _local_fields(placed: Scene, mesh: ShaftMesh, span: tuple[float, float], fin
 
     digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
                             + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
-    key = content_key({"version": 2, "mesh": digest, "fine": fine.key, "first": first.key,
+    key = content_key({"version": 5, "mesh": digest, "driver": driver.key,
                        "span": list(span)})
     path = cache_dir() / "strength" / "local" / f"{key}.fields.npz"
     names = ("points", "normals", "edge", "stress", "all_stress", "vertices", "tets",
@@ -1545,64 +1591,127 @@ def _local_fields(placed: Scene, mesh: ShaftMesh, span: tuple[float, float], fin
     if fields is None and why:
         discard(f"local duty {path.stem}", why, path)
     if fields is None:
-        fields = _local_solved(placed, mesh, span, fine, first)
+        fields = _local_solved(placed, mesh, span, driver)
         save_arrays(path, fields)
     z = fields["points"][:, 2]
-    guard = LOCAL_GUARD * 0.5 * (span[1] - span[0])
     length = placed.shaft.length
     allowed = (((z >= span[0] + guard) | (span[0] <= 1e-9))
-               & ((z <= span[1] - guard) | (span[1] >= length - 1e-9)))
-    tree = cKDTree(fields["vertices"][fields["tets"]].mean(axis=1))
-    out = []
-    for cols in (slice(0, 4), slice(4, 8)):
-        amplitude, mean, peak = cycle(fields["stress"][cols], turning)
-        empty = np.zeros(0)
-        out.append(_Field(points=fields["points"], normals=fields["normals"],
-                          edge=fields["edge"], stress=fields["stress"][cols],
-                          amplitude=amplitude, mean=mean, peak=peak,
-                          all_stress=fields["all_stress"][cols], vertices=fields["vertices"],
-                          tets=fields["tets"], facets=fields["facets"], allowed=allowed,
-                          line=(empty, empty, empty), dofs=int(fields["dofs"]), tree=tree))
-    return out[0], out[1]
+               & ((z <= span[1] - guard) | (span[1] >= length - 1e-9))
+               & ~_excluded(scene, fields["points"]))
+    assert scene.strength is not None
+    amplitude, mean, peak = cycle(fields["stress"], scene.strength.speed > 0)
+    empty = np.zeros(0)
+    return _Field(points=fields["points"], normals=fields["normals"], edge=fields["edge"],
+                  stress=fields["stress"], amplitude=amplitude, mean=mean, peak=peak,
+                  all_stress=fields["all_stress"], vertices=fields["vertices"],
+                  tets=fields["tets"], facets=fields["facets"], allowed=allowed,
+                  line=(empty, empty, empty), dofs=int(fields["dofs"]),
+                  tree=cKDTree(fields["vertices"][fields["tets"]].mean(axis=1)))
 
 
-def _local_solved(placed: Scene, mesh: ShaftMesh, span: tuple[float, float], fine: _Field,
-                  first: _Field) -> dict[str, np.ndarray]:
-    """The slice's four cases driven by `fine` and by `first` (eight columns)."""
+# the slice's held face reacts as the whole carries across it, within this share of the
+# largest force and moment the whole carries there (the whole's sum at its nodes beyond
+# the plane leaves out gravity on an element's share: 0.4 % of the weight's 3 N on the
+# paper's crossings; a band's load the slice missed would be all of it)
+BALANCE = 1e-2
+
+
+def _check_balance(K, F: np.ndarray, q: np.ndarray, dofs: np.ndarray, points: np.ndarray,
+                   z: float, driver: _Field, beyond: bool) -> None:
+    """The held face's reaction on the slice (force, moment about (0, 0, z); the slice
+    `beyond` z or before it) against what the whole (`driver`) carries across it, in
+    each case: a slice whose own loads are
+    not the whole's there is refused (SolverError)."""
+    from shaftfem.fem.submodel import carried
+
+    r = (K @ q - F)[dofs]                      # (3 k, cases): the face's nodal reactions
+    cases = r.shape[1]
+    arm = points - np.array([0.0, 0.0, z])
+    assert driver.node_xyz is not None and driver.node_force is not None
+    # what the whole beyond z exerts on the part before it; on the slice, if it lies
+    # beyond z, the opposite
+    want = carried(driver.node_xyz, driver.node_force, z) * (-1.0 if beyond else 1.0)
+    fr = r.T.reshape(cases, -1, 3)
+    got = np.concatenate([fr.sum(axis=1), np.cross(arm, fr).sum(axis=1)], axis=1)
+    # a force against the forces and the moments over the face's radius (a span in pure
+    # bending carries no shear), a moment against both the other way
+    radius = float(np.hypot(arm[:, 0], arm[:, 1]).max())
+    force, moment = float(np.abs(want[:, :3]).max()), float(np.abs(want[:, 3:]).max())
+    for part, scale in ((slice(0, 3), max(force, moment / radius, 1e-9)),
+                        (slice(3, 6), max(moment, force * radius, 1e-9))):
+        off = float(np.abs(got[:, part] - want[:, part]).max())
+        if off > BALANCE * scale:
+            what = "force" if part.start == 0 else "moment"
+            raise SolverError(f"a local model at {z * 1e3:.1f} mm does not balance as the "
+                              f"whole shaft does: its cut face's {what} is off by "
+                              f"{off / scale:.1%} of what the whole carries there")
+
+
+def _dof_columns(u: np.ndarray) -> np.ndarray:
+    """Displacements (cases, k, 3) as DOF columns (3 k, cases)."""
+    return np.moveaxis(u, 0, -1).reshape(-1, u.shape[0])
+
+
+def _local_solved(placed: Scene, mesh: ShaftMesh, span: tuple[float, float],
+                  driver: _Field) -> dict[str, np.ndarray]:
+    """The slice's four cases, its cut faces driven by the whole's solution `driver`."""
     from shaftfem.fem.assembly import _element, assemble
-    from shaftfem.fem.stress import surface_stress
-    from shaftfem.fem.submodel import carried, driven_solve, read_displacements
+    from shaftfem.fem.installation import install
+    from shaftfem.fem.stress import duty_loads, load_band, surface_stress
+    from shaftfem.fem.submodel import (
+        carried,
+        driven_solve,
+        read_displacements,
+        reduced_dofs,
+        rigid_motions,
+    )
 
+    d = driver
+    assert (d.mesh_points is not None and d.mesh_cells is not None and d.point_u is not None
+            and d.node_xyz is not None and d.node_force is not None)
     system = assemble(mesh, placed.material)
     nodes = system.nodes
+    skmesh = mesh.to_skfem()
+    element = _element(system.order)
     length = placed.shaft.length
+    # the slice's own loads (those whose bands it holds, _local_span) and parts, as the
+    # whole applies them; no seat
+    inside = [(f.position, f.width) for f in placed.forces] + [
+        (q.position, q.width) for q in placed.torques]
+    bands = [load_band(z, w, nodes) for z, w in inside]
+    within = [span[0] < 0.5 * (b.z0 + b.z1) < span[1] for b in bands]
+    n_f = len(placed.forces)
+    own = replace(placed, supports=(),
+                  forces=tuple(f for f, w in zip(placed.forces, within[:n_f]) if w),
+                  torques=tuple(q for q, w in zip(placed.torques, within[n_f:]) if w),
+                  attachments=tuple(a for a in placed.attachments
+                                    if span[0] < 0.5 * (a.seat[0] + a.seat[1]) < span[1]))
+    inst = install(own, system.K, system.M, nodes, skmesh, system.order)
+    F, _ = duty_loads(own, system, inst, skmesh, element)
     faces = [np.abs(nodes[:, 2] - z) < 1e-9 for z, inner in
              ((span[0], span[0] > 1e-9), (span[1], span[1] < length - 1e-9)) if inner]
     # with two cut faces, the first is held as the whole moves it and the second floats
     # with what the whole carries across it (fem.submodel.driven_solve): the slice's
     # bending and twist are then its own, not the whole's mesh's stiffness
     held = faces[0]
-    floating = faces[1] if len(faces) == 2 else None
-    u_held, u_floating, load = [], [], []
-    for f in (fine, first):
-        assert (f.mesh_points is not None and f.mesh_cells is not None
-                and f.point_u is not None and f.node_xyz is not None
-                and f.node_force is not None)
-        u_held.append(read_displacements(f.mesh_points, f.mesh_cells, f.point_u, nodes[held]))
-        if floating is not None:
-            u_floating.append(read_displacements(f.mesh_points, f.mesh_cells, f.point_u,
-                                                 nodes[floating]))
-            load.append(carried(f.node_xyz, f.node_force, span[1]))
-    g = np.array(placed.gravity)
-    gravity = np.array([[g[0], g[1], 0.0], [-g[1], g[0], 0.0], [0.0, 0.0, 0.0],
-                        [0.0, 0.0, g[2]]])
-    U = driven_solve(system.K, system.M, nodes, held, np.concatenate(u_held),
-                     np.vstack([gravity, gravity]), floating,
-                     np.concatenate(u_floating) if floating is not None else None,
-                     np.concatenate(load) if floating is not None else None,
-                     np.array([0.0, 0.0, span[1]]))
-    skmesh = mesh.to_skfem()
-    surface = surface_stress(skmesh, _element(system.order), placed.material.lame, U)
+    held_dofs = reduced_dofs(inst.T, held)
+    u_held = _dof_columns(read_displacements(d.mesh_points, d.mesh_cells, d.point_u,
+                                             nodes[held]))
+    if len(faces) == 2:
+        floating = faces[1]
+        q = driven_solve(inst.K, F, held_dofs, u_held, reduced_dofs(inst.T, floating),
+                         _dof_columns(read_displacements(d.mesh_points, d.mesh_cells,
+                                                         d.point_u, nodes[floating])),
+                         rigid_motions(nodes[floating], np.array([0.0, 0.0, span[1]])),
+                         carried(d.node_xyz, d.node_force, span[1]))
+    else:
+        q = driven_solve(inst.K, F, held_dofs, u_held)
+    # the held face is the slice's first end (the slice beyond it) unless the slice
+    # starts at the shaft's end
+    first_end = span[0] > 1e-9
+    _check_balance(inst.K, F, q, held_dofs, nodes[held], span[0] if first_end else span[1],
+                   d, first_end)
+    surface = surface_stress(skmesh, element, placed.material.lame, np.asarray(inst.T @ q))
     p1 = surface.p1_basis.mesh
     return {"points": surface.points, "normals": surface.normals, "edge": surface.edge,
             "stress": surface.stress, "all_stress": surface.all_stress,
