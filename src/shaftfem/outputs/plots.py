@@ -387,7 +387,8 @@ def hot_spots_figure(result):
     """The shaft's surface unrolled (z in mm along, the angle about the axis in degrees
     across), coloured by the degree of utilisation (the larger of FKM's fatigue a_BK and
     yield a_SK: 1 uses up the required safety), with each hot spot numbered as in the
-    table and the bands where loads enter shaded (a workflows.strength.StrengthResult)."""
+    table, filled with its own utilisation (its local model's where it had one), and the
+    bands where loads enter shaded (a workflows.strength.StrengthResult)."""
     import numpy as np
     from matplotlib import patheffects
 
@@ -402,8 +403,13 @@ def hot_spots_figure(result):
     judged = order[np.isfinite(values[order])]
     bands = order[~np.isfinite(values[order])]
     ax.scatter(points[bands, 2] * 1e3, angle[bands], c="0.75", s=2, rasterized=True)
+    # each spot filled with its own utilisation: a spot bounded in a local model reads
+    # above the whole's coarser field round it (the paper's crossings: 0.36 on a field
+    # that tops at 0.33), and one colour scale holds both
+    used = [max(s.fkm.fatigue_utilisation, s.fkm.yield_utilisation) for s in result.spots]
+    top = max([float(np.max(values[judged], initial=0.0)), *used, 1e-9])
     art = ax.scatter(points[judged, 2] * 1e3, angle[judged], c=values[judged], s=2,
-                     cmap="inferno", vmin=0.0, rasterized=True)
+                     cmap="inferno", vmin=0.0, vmax=top, rasterized=True)
     fig.colorbar(art, ax=ax, label="utilisation max(a_BK, a_SK)")
     for s in scene.held:
         ax.axvspan(s.seat[0] * 1e3, s.seat[1] * 1e3, color="0.85", alpha=0.6, lw=0)
@@ -412,8 +418,10 @@ def hot_spots_figure(result):
     span = float(np.ptp(points[:, 2])) * 1e3
     where = [(s.z * 1e3, np.degrees(s.angle) % 360) for s in result.spots]
     groups: list[list[int]] = []
+    if where:
+        ax.scatter([z for z, _ in where], [a for _, a in where], c=used, cmap="inferno",
+                   vmin=0.0, vmax=top, s=81, edgecolors="C0", linewidths=1.5, zorder=3)
     for k, (z, a) in enumerate(where, 1):
-        ax.plot(z, a, "o", mfc="none", mec="C0", ms=9, mew=1.5)
         for g in groups:
             z0, a0 = where[g[0] - 1]
             if abs(z0 - z) < 0.03 * span and abs((a0 - a + 180) % 360 - 180) < 20:
