@@ -923,6 +923,23 @@ def test_a_spots_scatter_is_what_stands_off_a_smooth_fit():
     assert 0.005 < ws._scatter(field, i, raised) <= 0.01
 
 
+def pulled_shoulder(big: float, radius: float, fillet_size: float) -> dict:
+    """A big/32 mm shoulder with its fillet (mm) pulled by 20 kN, meshed at fillet_size
+    (mm) on its fillet."""
+    return {"name": "pulled", "material": STEEL, "static": {"gravity_m_s2": 0.0},
+            "section": [{"length_mm": 150.0, "diameter_mm": 32.0, "fillet_mm": radius},
+                        {"length_mm": 150.0, "diameter_mm": big}],
+            "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": fillet_size,
+                     "edge_element_size_mm": fillet_size},
+            "support": [{"name": "left", "position_mm": 10.0, "width_mm": 16.0,
+                         "kind": "springs", "radial_stiffness_n_per_mm": 1e9},
+                        {"name": "right", "position_mm": 290.0, "width_mm": 16.0,
+                         "kind": "springs", "radial_stiffness_n_per_mm": 1e9,
+                         "axial_stiffness_n_per_mm": 1e9}],
+            "force": [{"name": "pull", "position_mm": 40.0, "fz_n": -20000.0}],
+            "strength": {"target_error_percent": 2.0}}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("big,radius,exact", [(64.0, 5.0, 1.72582), (48.0, 3.0, 1.958409)])
 def test_a_shoulders_stress_in_tension_lies_within_its_bound_of_an_exact_solution(
@@ -934,19 +951,7 @@ def test_a_shoulders_stress_in_tension_lies_within_its_bound_of_an_exact_solutio
     rounds that coarsened the fillet's far side read 1.7484 +-0.19 % on the first; the
     second read 1.9970, +1.97 %, against +-1.79 % before its vertices' scatter was in
     the bound.)"""
-    stepped = {"name": "pulled", "material": STEEL, "static": {"gravity_m_s2": 0.0},
-               "section": [{"length_mm": 150.0, "diameter_mm": 32.0, "fillet_mm": radius},
-                           {"length_mm": 150.0, "diameter_mm": big}],
-               "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": radius / 2,
-                        "edge_element_size_mm": radius / 2},
-               "support": [{"name": "left", "position_mm": 10.0, "width_mm": 16.0,
-                            "kind": "springs", "radial_stiffness_n_per_mm": 1e9},
-                           {"name": "right", "position_mm": 290.0, "width_mm": 16.0,
-                            "kind": "springs", "radial_stiffness_n_per_mm": 1e9,
-                            "axial_stiffness_n_per_mm": 1e9}],
-               "force": [{"name": "pull", "position_mm": 40.0, "fz_n": -20000.0}],
-               "strength": {"target_error_percent": 2.0}}
-    result = ws.run_strength(load_scene(stepped))
+    result = ws.run_strength(load_scene(pulled_shoulder(big, radius, radius / 2)))
     spot = max((s for s in result.spots if 0.140 <= s.z <= 0.160), key=lambda s: s.peak)
     kt = spot.peak / (20000.0 / (math.pi * 0.032**2 / 4))
     assert spot.bound is not None and spot.converging
@@ -1108,19 +1113,7 @@ def test_a_notch_the_whole_mesh_does_not_resolve_is_bounded_in_a_local_model(
     (fem.submodel), to the target, and NGSolve's axisymmetric K_t lies within its
     bound (measured: +0.27 % inside +-1.81 %, +0.055 % inside +-1.34 %)."""
     monkeypatch.setattr(ws, "MAX_REFINEMENTS", 0)
-    stepped = {"name": "pulled", "material": STEEL, "static": {"gravity_m_s2": 0.0},
-               "section": [{"length_mm": 150.0, "diameter_mm": 32.0, "fillet_mm": radius},
-                           {"length_mm": 150.0, "diameter_mm": big}],
-               "mesh": {"element_size_mm": 8.0, "groove_element_size_mm": 4.5,
-                        "edge_element_size_mm": 4.5},
-               "support": [{"name": "left", "position_mm": 10.0, "width_mm": 16.0,
-                            "kind": "springs", "radial_stiffness_n_per_mm": 1e9},
-                           {"name": "right", "position_mm": 290.0, "width_mm": 16.0,
-                            "kind": "springs", "radial_stiffness_n_per_mm": 1e9,
-                            "axial_stiffness_n_per_mm": 1e9}],
-               "force": [{"name": "pull", "position_mm": 40.0, "fz_n": -20000.0}],
-               "strength": {"target_error_percent": 2.0}}
-    result = ws.run_strength(load_scene(stepped))
+    result = ws.run_strength(load_scene(pulled_shoulder(big, radius, 4.5)))
     spot = max((s for s in result.spots if 0.140 <= s.z <= 0.160), key=lambda s: s.peak)
     kt = spot.peak / (20000.0 / (math.pi * 0.032**2 / 4))
     assert spot.local_dofs > 0 and spot.converging and spot.resolved

@@ -15,17 +15,13 @@ shoulder's 1.6 mm fillet read 0.9 % low, its bound 0.13 %).
 
 from __future__ import annotations
 
-import contextlib
-import io
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from shaftfem.cad.session import session, translated
 from shaftfem.errors import MeshError
-from shaftfem.scene.model import Grooves, MeshSettings, Shaft, cell_type
+from shaftfem.scene.model import Grooves, MeshSettings, Shaft
 
 
 def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarray,
@@ -37,9 +33,7 @@ def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarr
     `size` (m) within `reach` of `centre` (3,), graded by `grading` to the sizes the
     scene's mesh settings give (its features', grooves' and hubs', cad.mesher), which
     rule beyond."""
-    import meshio
-
-    from shaftfem.cad.mesher import scene_fields
+    from shaftfem.cad.mesher import read_tetrahedra, scene_fields
 
     with session("local") as s, translated(MeshError, "gmsh could not mesh a hot spot's "
                                                       "local model"):
@@ -102,15 +96,4 @@ def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarr
         gmsh.model.mesh.generate(3)
         if settings.order >= 2:
             gmsh.model.mesh.setOrder(2)
-        fd, tmp = tempfile.mkstemp(suffix=".msh")
-        os.close(fd)
-        try:
-            gmsh.write(tmp)
-            with contextlib.redirect_stdout(io.StringIO()):  # meshio prints a blank line
-                m = meshio.read(tmp)
-        finally:
-            os.unlink(tmp)
-    cells = m.cells_dict.get(cell_type(settings.order))
-    if cells is None or len(cells) == 0:
-        raise MeshError("a hot spot's local model has no tetrahedra")
-    return m.points, cells
+        return read_tetrahedra(gmsh, settings.order, "a hot spot's local model")

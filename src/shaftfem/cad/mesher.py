@@ -299,7 +299,6 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
     point (a former mesh refined, never coarsened); `cuts`: z (m) of planes the mesh must
     follow; `hubs`: (z0, z1) (m) of the parts' seats, meshed finer; `hxt`: the volume
     by gmsh's HXT on one thread (reproducible) instead of its Delaunay refinement."""
-    import meshio
 
     with session("mesh") as s, translated(MeshError, "gmsh could not mesh the solid"):
         gmsh = s.gmsh
@@ -342,18 +341,26 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
         finally:
             if view is not None:
                 gmsh.view.remove(view)
-        # through an .msh file and meshio: meshio puts the 10-node tets in VTK order
-        fd, tmp = tempfile.mkstemp(suffix=".msh")
-        os.close(fd)
-        try:
-            gmsh.write(tmp)
-            with contextlib.redirect_stdout(io.StringIO()):  # meshio prints a blank line
-                m = meshio.read(tmp)
-        finally:
-            os.unlink(tmp)
-    cells = m.cells_dict.get(cell_type(settings.order))
+        return read_tetrahedra(gmsh, settings.order, "the mesh")
+
+
+def read_tetrahedra(gmsh, order: int, what: str) -> tuple[np.ndarray, np.ndarray]:
+    """The current model's tetrahedra of the element order's cell type, through an .msh
+    file and meshio (meshio puts the 10-node tets in VTK order): points (N, 3) and cells;
+    `what` names the mesh in the error when it has none."""
+    import meshio
+
+    fd, tmp = tempfile.mkstemp(suffix=".msh")
+    os.close(fd)
+    try:
+        gmsh.write(tmp)
+        with contextlib.redirect_stdout(io.StringIO()):  # meshio prints a blank line
+            m = meshio.read(tmp)
+    finally:
+        os.unlink(tmp)
+    cells = m.cells_dict.get(cell_type(order))
     if cells is None or len(cells) == 0:
-        raise MeshError("the mesh has no tetrahedra")
+        raise MeshError(f"{what} has no tetrahedra")
     return m.points, cells
 
 

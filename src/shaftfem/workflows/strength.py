@@ -963,26 +963,11 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field, before: list[HotSpot] | N
         picks = moved
     spots = []
     for i in picks:
-        p = fine.points[i]
         # the stress that governs the spot: its amplitude on a turning shaft, unless the
         # steady stress dwarfs it (a torsion-only span), then its peak
         cyclic = turning and fine.amplitude[i] >= 0.1 * fine.peak[i]
         value = fine.amplitude if cyclic else fine.peak
-        # how far each of the coarser mesh's surface points lies from the spot (m)
-        d_coarse = np.linalg.norm(coarse.points - p, axis=1)
-        difference = _bound(fine, coarse, i, value,
-                            coarse.amplitude if cyclic else coarse.peak, d_coarse)
-        # two meshes can agree by chance (the peak falls between vertices differently on
-        # each): P2's surface stress in a notch of radius rho is off by up to about 1.7
-        # (h / rho)^2 (benchmarks/notch_factors.py), so the bound is at least
-        # CURVATURE_ERROR (h / rho)^2
-        curvature = CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2
-        # ... and the spot's vertex scatter on top: both meshes' spots are read high by
-        # their own (a stress the same all round a fillet's circle: its largest vertex)
-        scatter = _scatter(fine, i, value)
-        bound = None if difference is None else max(difference, curvature) + scatter
-        aim = (curvature + scatter if _edge_turn(coarse, int(np.argmin(d_coarse))) > RESOLVED
-               else None)
+        difference, bound, aim = _two_meshes(fine, coarse, i, cyclic)
         converging, rising = True, False
         turn = _edge_turn(fine, i)
         old = followed.get(i) or _same_spot(before or [], fine, i, round_)
@@ -1018,6 +1003,30 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field, before: list[HotSpot] | N
                                rising=rising, aim=aim))
     spots.sort(key=lambda s: -_utilisation(s))
     return _per_circle(spots)
+
+
+def _two_meshes(fine: _Field, coarse: _Field, i: int, cyclic: bool
+                ) -> tuple[float | None, float | None, float | None]:
+    """At the fine mesh's surface point i, for the stress that governs it (the amplitude,
+    `cyclic`, else the peak): the two meshes' difference (_bound), the bound and the
+    error the next refinement aims from (HotSpot's `difference`, `bound`, `aim`)."""
+    value = fine.amplitude if cyclic else fine.peak
+    # how far each of the coarser mesh's surface points lies from the spot (m)
+    d_coarse = np.linalg.norm(coarse.points - fine.points[i], axis=1)
+    difference = _bound(fine, coarse, i, value, coarse.amplitude if cyclic else coarse.peak,
+                        d_coarse)
+    # two meshes can agree by chance (the peak falls between vertices differently on
+    # each): P2's surface stress in a notch of radius rho is off by up to about 1.7
+    # (h / rho)^2 (benchmarks/notch_factors.py), so the bound is at least
+    # CURVATURE_ERROR (h / rho)^2
+    curvature = CURVATURE_ERROR * (float(fine.edge[i]) * _concave(fine, i)) ** 2
+    # ... and the spot's vertex scatter on top: both meshes' spots are read high by
+    # their own (a stress the same all round a fillet's circle: its largest vertex)
+    scatter = _scatter(fine, i, value)
+    bound = None if difference is None else max(difference, curvature) + scatter
+    aim = (curvature + scatter if _edge_turn(coarse, int(np.argmin(d_coarse))) > RESOLVED
+           else None)
+    return difference, bound, aim
 
 
 def _hot_spot(scene: Scene, field: _Field, i: int, **state: Any) -> HotSpot:
@@ -1458,14 +1467,7 @@ def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
             break
         i = int(near[np.argmax(value[near])])
         p = here.points[i]
-        d_coarse = np.linalg.norm(coarser.points - p, axis=1)
-        difference = _bound(here, coarser, i, value,
-                            coarser.amplitude if cyclic else coarser.peak, d_coarse)
-        curvature = CURVATURE_ERROR * (float(here.edge[i]) * _concave(here, i)) ** 2
-        scatter = _scatter(here, i, value)
-        bound = None if difference is None else max(difference, curvature) + scatter
-        aim = (curvature + scatter if _edge_turn(coarser, int(np.argmin(d_coarse))) > RESOLVED
-               else None)
+        difference, bound, aim = _two_meshes(here, coarser, i, cyclic)
         turn = _edge_turn(here, i)
         # a sharp edge rises as refined, with an apparent order below 1 (as in _spots)
         change = float(value[i]) - was
