@@ -123,3 +123,24 @@ def test_a_floating_face_takes_its_bending_from_the_moment_it_carries_not_the_wh
     sigma, p = sigma[used], p[used]
     assert np.abs(sigma[:, 2, 2] - E * k * p[:, 1]).max() < 1e-8 * E * k * 0.01
     assert np.abs(U[:, 0].reshape(-1, 3) - exact).max() < 1e-9 * k * 0.02 ** 2
+
+
+def test_a_slice_whose_face_does_not_carry_what_the_whole_carries_there_is_refused():
+    """The held face's reaction against the whole's resultant across it (the nodal
+    forces beyond the plane): equal passes, 20 % short is refused."""
+    import scipy.sparse as sp
+
+    from shaftfem.errors import SolverError
+    from shaftfem.workflows import strength as ws
+
+    face = np.array([[0.01, 0.0, 0.1], [0.0, 0.01, 0.1], [-0.01, 0.0, 0.1], [0.0, -0.01, 0.1]])
+    whole = ws._Field(points=face, normals=face, edge=face[:, 0], stress=None,
+                      amplitude=None, mean=None, peak=None, all_stress=None, vertices=face,
+                      tets=None, facets=None, allowed=None, line=None, dofs=0,
+                      node_xyz=np.array([[0.0, 0.0, 0.05], [0.0, 0.0, 0.2]]),
+                      node_force=np.array([[[0.0, 0.0, 100.0], [0.0, 0.0, -100.0]]]))
+    K, F, dofs = sp.identity(12, format="csr"), np.zeros((12, 1)), np.arange(12)
+    pull = np.tile([0.0, 0.0, 25.0], 4)[:, None]   # the slice beyond z = 0.1 is pulled back
+    ws._check_balance(K, F, pull, dofs, face, 0.1, whole, True, np.zeros((1, 6)))
+    with pytest.raises(SolverError, match="does not balance"):
+        ws._check_balance(K, F, 0.8 * pull, dofs, face, 0.1, whole, True, np.zeros((1, 6)))

@@ -23,6 +23,12 @@ from shaftfem.cad.session import session, translated
 from shaftfem.errors import MeshError
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft
 
+# gmsh's Delaunay refinement can fail to settle on a notch's small sizes (the pump
+# shaft's 0.6 mm keyway corners kept it inserting and removing points for minutes, as on
+# the whole, cad.mesh): a slice's mesh is made in a process of its own, given this long
+# (a slice's usual mesh takes 1 to 3 s), and past that by gmsh's HXT
+DELAUNAY_SECONDS = 60.0
+
 
 def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarray,
                size: float, reach: float, grading: float, shaft: Shaft,
@@ -32,7 +38,24 @@ def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarr
     solid in `brep` between z0 and z1 (m), whose largest radius is below `radius` (m):
     `size` (m) within `reach` of `centre` (3,), graded by `grading` to the sizes the
     scene's mesh settings give (its features', grooves' and hubs', cad.mesher), which
-    rule beyond."""
+    rule beyond. By gmsh's Delaunay within DELAUNAY_SECONDS, else by its HXT."""
+    from shaftfem.aside import Aside
+    from shaftfem.cad.mesh import _aside
+
+    given = (brep, z0, z1, radius, centre, size, reach, grading, shaft, grooves, settings,
+             hubs)
+    try:
+        return _aside(Aside(_slice_mesh, *given), DELAUNAY_SECONDS, "Delaunay")
+    except TimeoutError:
+        return _aside(Aside(_slice_mesh, *given, True), None, "HXT")
+
+
+def _slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarray,
+                size: float, reach: float, grading: float, shaft: Shaft,
+                grooves: Grooves | None, settings: MeshSettings,
+                hubs: tuple[tuple[float, float], ...], hxt: bool = False
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """slice_mesh's one try, by Delaunay or (`hxt`) by HXT on one thread."""
     from shaftfem.cad.mesher import read_tetrahedra, scene_fields
 
     with session("local") as s, translated(MeshError, "gmsh could not mesh a hot spot's "
@@ -92,6 +115,9 @@ def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarr
         s.option("Mesh.MeshSizeFromCurvature", 0)
         s.option("Mesh.MeshSizeExtendFromBoundary", 0)
         s.option("Mesh.Optimize", 1)
+        if hxt:
+            s.option("Mesh.Algorithm3D", 10)
+            s.option("Mesh.MaxNumThreads3D", 1)
         gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "slice")
         gmsh.model.mesh.generate(3)
         if settings.order >= 2:

@@ -1447,8 +1447,7 @@ def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
     guard = LOCAL_GUARD * min(spot.z - z0, z1 - spot.z)
     radius = float(np.hypot(fine.points[:, 0], fine.points[:, 1]).max())
     cyclic = st.speed > 0 and spot.amplitude >= 0.1 * spot.peak
-    home, search = _xyz(spot), LOCAL_SEARCH * h
-    centre, size, reach = home, h / LOCAL_FIRST, search
+    centre, size, reach = _xyz(spot), h / LOCAL_FIRST, LOCAL_SEARCH * h
     was, was_size = (spot.amplitude if cyclic else spot.peak), h
     last_change: float | None = None
     last_rising = False
@@ -1461,8 +1460,12 @@ def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
             shape.brep, (z0, z1), radius, centre, size * k, reach, placed, k), (z0, z1),
             driver, guard) for k, driver in ((1.0, fine), (COARSER, first)))
         value = here.amplitude if cyclic else here.peak
-        near = np.flatnonzero(here.allowed & (np.linalg.norm(here.points - home, axis=1)
-                                              <= search))
+        # the peak within the place this round refined (the first round's: one of the
+        # whole's elements round its spot): where a stress is the same all round a
+        # fillet's circle, the largest vertex elsewhere on it lies where the mesh is
+        # coarser, and refining there would only move it round again
+        near = np.flatnonzero(here.allowed & (np.linalg.norm(here.points - centre, axis=1)
+                                              <= reach))
         if near.size == 0:
             break
         i = int(near[np.argmax(value[near])])
@@ -1584,7 +1587,7 @@ def _local_field(scene: Scene, placed: Scene, mesh: ShaftMesh, span: tuple[float
 
     digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
                             + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
-    key = content_key({"version": 5, "mesh": digest, "driver": driver.key,
+    key = content_key({"version": 6, "mesh": digest, "driver": driver.key,
                        "span": list(span)})
     path = cache_dir() / "strength" / "local" / f"{key}.fields.npz"
     names = ("points", "normals", "edge", "stress", "all_stress", "vertices", "tets",
@@ -1619,7 +1622,7 @@ BALANCE = 1e-2
 
 
 def _check_balance(K, F: np.ndarray, q: np.ndarray, dofs: np.ndarray, points: np.ndarray,
-                   z: float, driver: _Field, beyond: bool) -> None:
+                   z: float, driver: _Field, beyond: bool, other: np.ndarray) -> None:
     """The held face's reaction on the slice (force, moment about (0, 0, z); the slice
     `beyond` z or before it) against what the whole (`driver`) carries across it, in
     each case: a slice whose own loads are
@@ -1636,9 +1639,13 @@ def _check_balance(K, F: np.ndarray, q: np.ndarray, dofs: np.ndarray, points: np
     fr = r.T.reshape(cases, -1, 3)
     got = np.concatenate([fr.sum(axis=1), np.cross(arm, fr).sum(axis=1)], axis=1)
     # a force against the forces and the moments over the face's radius (a span in pure
-    # bending carries no shear), a moment against both the other way
+    # bending carries no shear), a moment against both the other way; at both faces
+    # (`other`: what the whole carries across the slice's other end, if it has one): a
+    # face the whole loads with little but gravity (a coupling's free end) reads that
+    # little against the slice's own loads
     radius = float(np.hypot(arm[:, 0], arm[:, 1]).max())
-    force, moment = float(np.abs(want[:, :3]).max()), float(np.abs(want[:, 3:]).max())
+    both = np.vstack([want, other])
+    force, moment = float(np.abs(both[:, :3]).max()), float(np.abs(both[:, 3:]).max())
     for part, scale in ((slice(0, 3), max(force, moment / radius, 1e-9)),
                         (slice(3, 6), max(moment, force * radius, 1e-9))):
         off = float(np.abs(got[:, part] - want[:, part]).max())
@@ -1699,20 +1706,22 @@ def _local_solved(placed: Scene, mesh: ShaftMesh, span: tuple[float, float],
     held_dofs = reduced_dofs(inst.T, held)
     u_held = _dof_columns(read_displacements(d.mesh_points, d.mesh_cells, d.point_u,
                                              nodes[held]))
+    other = np.zeros((F.shape[1], 6))
     if len(faces) == 2:
         floating = faces[1]
+        other = carried(d.node_xyz, d.node_force, span[1])
         q = driven_solve(inst.K, F, held_dofs, u_held, reduced_dofs(inst.T, floating),
                          _dof_columns(read_displacements(d.mesh_points, d.mesh_cells,
                                                          d.point_u, nodes[floating])),
                          rigid_motions(nodes[floating], np.array([0.0, 0.0, span[1]])),
-                         carried(d.node_xyz, d.node_force, span[1]))
+                         other)
     else:
         q = driven_solve(inst.K, F, held_dofs, u_held)
     # the held face is the slice's first end (the slice beyond it) unless the slice
     # starts at the shaft's end
     first_end = span[0] > 1e-9
     _check_balance(inst.K, F, q, held_dofs, nodes[held], span[0] if first_end else span[1],
-                   d, first_end)
+                   d, first_end, other)
     surface = surface_stress(skmesh, element, placed.material.lame, np.asarray(inst.T @ q))
     p1 = surface.p1_basis.mesh
     return {"points": surface.points, "normals": surface.normals, "edge": surface.edge,
