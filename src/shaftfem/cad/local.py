@@ -26,8 +26,10 @@ from shaftfem.scene.model import Grooves, MeshSettings, Shaft
 # gmsh's Delaunay refinement can fail to settle on a notch's small sizes (the pump
 # shaft's 0.6 mm keyway corners kept it inserting and removing points for minutes, as on
 # the whole, cad.mesh): a slice's mesh is made in a process of its own, given this long
-# (a slice's usual mesh takes 1 to 3 s), and past that by gmsh's HXT
-DELAUNAY_SECONDS = 60.0
+# (a slice's usual mesh takes 1 to 3 s), and past that by gmsh's HXT, as are that
+# slice's later meshes in this run (they refine the same place further)
+DELAUNAY_SECONDS = 30.0
+_UNSETTLED: set[tuple[str, float, float]] = set()
 
 
 def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarray,
@@ -44,10 +46,13 @@ def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarr
 
     given = (brep, z0, z1, radius, centre, size, reach, grading, shaft, grooves, settings,
              hubs)
-    try:
-        return _aside(Aside(_slice_mesh, *given), DELAUNAY_SECONDS, "Delaunay")
-    except TimeoutError:
-        return _aside(Aside(_slice_mesh, *given, True), None, "HXT")
+    which = (str(brep), round(z0, 9), round(z1, 9))
+    if which not in _UNSETTLED:
+        try:
+            return _aside(Aside(_slice_mesh, *given), DELAUNAY_SECONDS, "Delaunay")
+        except TimeoutError:
+            _UNSETTLED.add(which)
+    return _aside(Aside(_slice_mesh, *given, True), None, "HXT")
 
 
 def _slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarray,
