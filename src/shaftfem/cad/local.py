@@ -16,12 +16,16 @@ shoulder's 1.6 mm fillet read 0.9 % low, its bound 0.13 %).
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from shaftfem.cad.session import session, translated
 from shaftfem.errors import MeshError
 from shaftfem.scene.model import Grooves, MeshSettings, Shaft
+
+if TYPE_CHECKING:
+    from shaftfem.cad.mesh import ShaftMesh
 
 # gmsh's Delaunay refinement can fail to settle on a notch's small sizes (the pump
 # shaft's 0.6 mm keyway corners kept it inserting and removing points for minutes, as on
@@ -35,24 +39,28 @@ _UNSETTLED: set[tuple[str, float, float]] = set()
 def slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarray,
                size: float, reach: float, grading: float, shaft: Shaft,
                grooves: Grooves | None, settings: MeshSettings,
-               hubs: tuple[tuple[float, float], ...]) -> tuple[np.ndarray, np.ndarray]:
-    """Tetrahedra (points (N, 3) m, cells (E, 4 or 10) in meshio's node order) of the
-    solid in `brep` between z0 and z1 (m), whose largest radius is below `radius` (m):
+               hubs: tuple[tuple[float, float], ...]) -> ShaftMesh:
+    """The checked mesh (cad.mesh.checked_mesh) of the solid in `brep` between z0 and z1
+    (m), whose largest radius is below `radius` (m):
     `size` (m) within `reach` of `centre` (3,), graded by `grading` to the sizes the
     scene's mesh settings give (its features', grooves' and hubs', cad.mesher), which
     rule beyond. By gmsh's Delaunay within DELAUNAY_SECONDS, else by its HXT."""
     from shaftfem.aside import Aside
-    from shaftfem.cad.mesh import _aside
+    from shaftfem.cad.mesh import _aside, checked_mesh
 
     given = (brep, z0, z1, radius, centre, size, reach, grading, shaft, grooves, settings,
              hubs)
     which = (str(brep), round(z0, 9), round(z1, 9))
-    if which not in _UNSETTLED:
+    hxt = which in _UNSETTLED
+    if not hxt:
         try:
-            return _aside(Aside(_slice_mesh, *given), DELAUNAY_SECONDS, "Delaunay")
+            points, cells = _aside(Aside(_slice_mesh, *given), DELAUNAY_SECONDS, "Delaunay")
         except TimeoutError:
             _UNSETTLED.add(which)
-    return _aside(Aside(_slice_mesh, *given, True), None, "HXT")
+            hxt = True
+    if hxt:
+        points, cells = _aside(Aside(_slice_mesh, *given, True), None, "HXT")
+    return checked_mesh(points, cells, settings, hxt)
 
 
 def _slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndarray,
@@ -61,7 +69,7 @@ def _slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndar
                 hubs: tuple[tuple[float, float], ...], hxt: bool = False
                 ) -> tuple[np.ndarray, np.ndarray]:
     """slice_mesh's one try, by Delaunay or (`hxt`) by HXT on one thread."""
-    from shaftfem.cad.mesher import read_tetrahedra, scene_fields
+    from shaftfem.cad.mesher import mesh_options, read_tetrahedra, scene_fields
 
     with session("local") as s, translated(MeshError, "gmsh could not mesh a hot spot's "
                                                       "local model"):
@@ -114,15 +122,9 @@ def _slice_mesh(brep: Path, z0: float, z1: float, radius: float, centre: np.ndar
         m = f.add("Min")
         f.setNumbers(m, "FieldsList", [t, *fields])
         f.setAsBackgroundMesh(m)
-        s.option("Mesh.MeshSizeMax", far)
-        s.option("Mesh.MeshSizeMin", 0.5 * min(size, smallest))
-        s.option("Mesh.MeshSizeFromPoints", 0)
-        s.option("Mesh.MeshSizeFromCurvature", 0)
-        s.option("Mesh.MeshSizeExtendFromBoundary", 0)
-        s.option("Mesh.Optimize", 1)
-        if hxt:
-            s.option("Mesh.Algorithm3D", 10)
-            s.option("Mesh.MaxNumThreads3D", 1)
+        # as the whole's options (a STEP solid's features sized by their curvature too:
+        # away from the spot the slice is meshed as the whole is)
+        mesh_options(s, shaft, far, min(size, smallest), hxt)
         gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "slice")
         gmsh.model.mesh.generate(3)
         if settings.order >= 2:

@@ -296,6 +296,14 @@ def generate_mesh(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
                                       refine)
     if shape.brep is None:
         points, cells = _four_copies(points, cells)
+    return checked_mesh(points, cells, settings, hxt)
+
+
+def checked_mesh(points: np.ndarray, cells: np.ndarray, settings: MeshSettings,
+                 hxt: bool = False) -> ShaftMesh:
+    """A mesher's points and cells as a ShaftMesh: the nodes no element uses dropped,
+    cubic geometry curved inside, folded curved elements straightened as far as they
+    must be, and every element's Jacobian checked."""
     points, cells = _compact(points, cells)
     straightened = 0
     curved = points

@@ -255,6 +255,23 @@ def _quarter_cylinder(gmsh, shaft: Shaft, cuts: tuple[float, ...] = ()) -> None:
     for z, f in planes["x0"].items():
         gmsh.model.mesh.setPeriodic(2, [f], [planes["y0"][z]], turn)
 
+def mesh_options(s, shaft: Shaft, largest: float, smallest: float, hxt: bool) -> None:
+    """The session's meshing options: sizes from the background field alone, between
+    half the smallest it asks and `largest` (m); a STEP solid's small features found by
+    their curvature; `hxt`: the volume by HXT on one thread (reproducible) instead of
+    the Delaunay refinement."""
+    s.option("Mesh.MeshSizeMax", largest)
+    s.option("Mesh.MeshSizeMin", smallest * 0.5)
+    s.option("Mesh.MeshSizeFromPoints", 0)
+    # the user's own solid: its small features are found by their curvature
+    s.option("Mesh.MeshSizeFromCurvature", STEP_CURVATURE if shaft.step else 0)
+    s.option("Mesh.MeshSizeExtendFromBoundary", 0)
+    s.option("Mesh.Optimize", 1)
+    if hxt:
+        s.option("Mesh.Algorithm3D", 10)
+        s.option("Mesh.MaxNumThreads3D", 1)
+
+
 def scene_fields(gmsh, shaft: Shaft, grooves: Grooves | None, settings: MeshSettings,
                  hubs: tuple[tuple[float, float], ...]) -> tuple[list[int], float]:
     """The size fields of the settings on the current model (the hubs', the grooves',
@@ -317,16 +334,7 @@ def mesh_solid(brep: Path | None, shaft: Shaft, grooves: Grooves | None,
             smallest = given if not refine else min(smallest, given)
             fields.append(field)
         _background(gmsh, fields)
-        s.option("Mesh.MeshSizeMax", settings.size)
-        s.option("Mesh.MeshSizeMin", smallest * 0.5)
-        s.option("Mesh.MeshSizeFromPoints", 0)
-        # the user's own solid: its small features are found by their curvature
-        s.option("Mesh.MeshSizeFromCurvature", STEP_CURVATURE if shaft.step else 0)
-        s.option("Mesh.MeshSizeExtendFromBoundary", 0)
-        s.option("Mesh.Optimize", 1)
-        if hxt:
-            s.option("Mesh.Algorithm3D", 10)
-            s.option("Mesh.MaxNumThreads3D", 1)
+        mesh_options(s, shaft, settings.size, smallest, hxt)
         gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "shaft")
         try:
             gmsh.model.mesh.generate(3)

@@ -716,22 +716,21 @@ def _solve(scene: Scene, options: RunOptions, given=None) -> tuple[_Field, objec
 
 # a mesh's solved duty, kept in the cache: warm runs (the same scene again, or its
 # refinement rounds) read it instead of solving again
-FIELD_ARRAYS = ("points", "normals", "edge", "stress", "all_stress", "vertices", "tets",
-                "facets", "line_z", "line_x", "line_y", "dofs", "mesh_points", "mesh_cells",
-                "point_u", "node_xyz", "node_force")
+SURFACE_ARRAYS = ("points", "normals", "edge", "stress", "all_stress", "vertices", "tets",
+                  "facets", "dofs")
+FIELD_ARRAYS = SURFACE_ARRAYS + ("line_z", "line_x", "line_y", "mesh_points", "mesh_cells",
+                                 "point_u", "node_xyz", "node_force")
 
 
 def _field_path(placed: Scene, mesh) -> Path:
     """Where a mesh's solved duty is kept: keyed by the mesh itself (its nodes and
     cells) and everything the four cases' solution depends on (material, seats, parts,
     loads, gravity)."""
-    import hashlib
     from dataclasses import asdict
 
     from shaftfem.store import cache_dir, content_key
 
-    digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
-                            + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
+    digest = _mesh_digest(mesh)
     # version 3: a keyed part's torque enters through its key (fem.stress.key_loads);
     # 5: the mesh, its displacements and nodal forces kept, to drive local models
     key = content_key({"version": 5, "nodes": digest, "order": placed.mesh.order,
@@ -742,6 +741,14 @@ def _field_path(placed: Scene, mesh) -> Path:
                        "torques": [asdict(t) for t in placed.torques],
                        "gravity": list(placed.gravity)})
     return cache_dir() / "strength" / "fields" / f"{key}.npz"
+
+
+def _mesh_digest(mesh) -> str:
+    """A hash of a mesh's nodes and cells, for the cache keys of what is solved on it."""
+    import hashlib
+
+    return hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
+                          + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
 
 
 def _solved(placed: Scene, mesh, options: RunOptions) -> dict[str, np.ndarray]:
@@ -761,12 +768,8 @@ def _solved(placed: Scene, mesh, options: RunOptions) -> dict[str, np.ndarray]:
     U = solve_cases(placed, system, inst, F, resultants)
     surface = surface_stress(skmesh, element, placed.material.lame, U)
     z, x, y = line(system, U[:, 0])
-    p1 = surface.p1_basis.mesh
-    return {"points": surface.points, "normals": surface.normals, "edge": surface.edge,
-            "stress": surface.stress, "all_stress": surface.all_stress,
-            "vertices": np.ascontiguousarray(p1.p.T), "tets": np.ascontiguousarray(p1.t.T),
-            "facets": surface.facets, "line_z": z, "line_x": x, "line_y": y,
-            "dofs": np.array(system.n_dofs), "mesh_points": mesh.points,
+    return {**_surface_arrays(surface, system.n_dofs), "line_z": z, "line_x": x, "line_y": y,
+            "mesh_points": mesh.points,
             "mesh_cells": mesh.cells, "point_u": system.at_points(U),
             "node_xyz": system.nodes,
             "node_force": np.moveaxis((system.K @ U).reshape(-1, 3, U.shape[1]), 2, 0)}
@@ -1390,8 +1393,6 @@ LOCAL_ROUNDS = 5
 # a cut face's prescribed displacements are the whole's: surface points nearer a cut
 # face than this share of the spot's distance from the nearer one are not read
 LOCAL_GUARD = 0.5
-# away from the spot the slice's elements grow to this share of the shaft's radius
-LOCAL_FAR = 0.25
 # at most this many spots get local models, those that may be the worst first
 LOCAL_SPOTS = 12
 
@@ -1537,21 +1538,13 @@ def _local_mesh(brep: Path, span: tuple[float, float], radius: float, centre: np
     """A slice's mesh (cad.local), its elsewhere sizes the scene's times `scale`, from
     the cache where it holds it; refused above the scene's DOF budget."""
     from shaftfem.cad.local import slice_mesh
-    from shaftfem.cad.mesh import (
-        MESH_ARRAYS,
-        ShaftMesh,
-        check_jacobians,
-        check_mesh_budget,
-        mesh_arrays,
-        mesh_from_arrays,
-    )
-    from shaftfem.cad.tetrahedra import straighten_folded
+    from shaftfem.cad.mesh import MESH_ARRAYS, check_mesh_budget, mesh_arrays, mesh_from_arrays
     from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
 
     m = placed.mesh
     settings = replace(m, size=m.size * scale, groove_size=m.groove_size * scale,
                        edge_size=m.edge_size * scale)
-    key = content_key({"version": 3, "solid": brep.stem, "span": list(span),
+    key = content_key({"version": 4, "solid": brep.stem, "span": list(span),
                        "radius": radius, "centre": [float(c) for c in centre], "size": size,
                        "reach": reach, "grading": GRADING, "settings": vars(settings),
                        "hubs": [list(b) for b in placed.hubs()]})
@@ -1562,17 +1555,8 @@ def _local_mesh(brep: Path, span: tuple[float, float], radius: float, centre: np
     if fields is not None:
         mesh = mesh_from_arrays(fields)
     else:
-        points, cells = slice_mesh(brep, span[0], span[1], radius, centre, size, reach,
-                                   GRADING, placed.shaft, placed.grooves, settings,
-                                   placed.hubs())
-        used = np.unique(cells)
-        remap = np.full(points.shape[0], -1, dtype=np.int64)
-        remap[used] = np.arange(used.size)
-        points, cells = np.ascontiguousarray(points[used]), remap[cells]
-        points, straightened = straighten_folded(points, cells)
-        mesh = ShaftMesh(points=points, cells=cells, order=placed.mesh.order,
-                         min_jacobian_ratio=check_jacobians(points, cells),
-                         straightened=straightened)
+        mesh = slice_mesh(brep, span[0], span[1], radius, centre, size, reach, GRADING,
+                          placed.shaft, placed.grooves, settings, placed.hubs())
         save_arrays(path, mesh_arrays(mesh))
     check_mesh_budget(mesh, placed.mesh, placed.max_dofs)
     return mesh
@@ -1583,21 +1567,16 @@ def _local_field(scene: Scene, placed: Scene, mesh: ShaftMesh, span: tuple[float
     """A slice's duty driven on its cut faces by the whole's solution `driver`, from the
     cache where it holds it; the surface points within `guard` (m) of a cut face, and
     in the bands where loads enter, not read."""
-    import hashlib
 
     from scipy.spatial import cKDTree
 
     from shaftfem.fem.stress import cycle
     from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
 
-    digest = hashlib.sha256(np.ascontiguousarray(mesh.points).tobytes()
-                            + np.ascontiguousarray(mesh.cells).tobytes()).hexdigest()
-    key = content_key({"version": 6, "mesh": digest, "driver": driver.key,
+    key = content_key({"version": 6, "mesh": _mesh_digest(mesh), "driver": driver.key,
                        "span": list(span)})
     path = cache_dir() / "strength" / "local" / f"{key}.fields.npz"
-    names = ("points", "normals", "edge", "stress", "all_stress", "vertices", "tets",
-             "facets", "dofs")
-    fields, why = load_arrays(path, names) if path.exists() else (None, "")
+    fields, why = load_arrays(path, SURFACE_ARRAYS) if path.exists() else (None, "")
     if fields is None and why:
         discard(f"local duty {path.stem}", why, path)
     if fields is None:
@@ -1709,15 +1688,17 @@ def _local_solved(placed: Scene, mesh: ShaftMesh, span: tuple[float, float],
     # bending and twist are then its own, not the whole's mesh's stiffness
     held = faces[0]
     held_dofs = reduced_dofs(inst.T, held)
-    u_held = _dof_columns(read_displacements(d.mesh_points, d.mesh_cells, d.point_u,
-                                             nodes[held]))
+    # the whole's field read at both faces' nodes at once (one search of its elements)
+    at = np.vstack([nodes[f] for f in faces])
+    u = read_displacements(d.mesh_points, d.mesh_cells, d.point_u, at)
+    k = int(held.sum())
+    u_held = _dof_columns(u[:, :k])
     other = np.zeros((F.shape[1], 6))
     if len(faces) == 2:
         floating = faces[1]
         other = carried(d.node_xyz, d.node_force, span[1])
         q = driven_solve(inst.K, F, held_dofs, u_held, reduced_dofs(inst.T, floating),
-                         _dof_columns(read_displacements(d.mesh_points, d.mesh_cells,
-                                                         d.point_u, nodes[floating])),
+                         _dof_columns(u[:, k:]),
                          rigid_motions(nodes[floating], np.array([0.0, 0.0, span[1]])),
                          other)
     else:
@@ -1727,12 +1708,18 @@ def _local_solved(placed: Scene, mesh: ShaftMesh, span: tuple[float, float],
     first_end = span[0] > 1e-9
     _check_balance(inst.K, F, q, held_dofs, nodes[held], span[0] if first_end else span[1],
                    d, first_end, other)
-    surface = surface_stress(skmesh, element, placed.material.lame, np.asarray(inst.T @ q))
+    return _surface_arrays(surface_stress(skmesh, element, placed.material.lame,
+                                          np.asarray(inst.T @ q)), system.n_dofs)
+
+
+def _surface_arrays(surface, n_dofs: int) -> dict[str, np.ndarray]:
+    """A solution's surface stresses (fem.stress.SurfaceStress) and its vertex field's
+    mesh as the named arrays of a cache entry (SURFACE_ARRAYS), with its DOFs."""
     p1 = surface.p1_basis.mesh
     return {"points": surface.points, "normals": surface.normals, "edge": surface.edge,
             "stress": surface.stress, "all_stress": surface.all_stress,
             "vertices": np.ascontiguousarray(p1.p.T), "tets": np.ascontiguousarray(p1.t.T),
-            "facets": surface.facets, "dofs": np.array(system.n_dofs)}
+            "facets": surface.facets, "dofs": np.array(n_dofs)}
 
 
 def _seats(scene: Scene, field: _Field) -> tuple[SeatCheck, ...]:
