@@ -60,3 +60,30 @@ def test_cli_json_has_the_promised_fields(tmp_path, capsys):
     assert len(data["modes"]) == 10
     assert {"frequency_hz", "kind"} <= set(data["modes"][0])
     assert "Hz" in capsys.readouterr().out
+
+
+def test_a_runouts_volume_against_the_sector_formula():
+    """A rectangular groove running out: at each height its floor has risen by h(z), so
+    it removes (phi/2) (R^2 - (R - d + h)^2) of the section while h < d. Integrated here
+    by quadrature, apart from groove_volume's grid of widths."""
+    from dataclasses import replace
+
+    from scipy.integrate import quad
+
+    from shaftfem.cad.profile import runout_lift
+    from shaftfem.scene.model import Grooves
+
+    R = 0.016
+    g = Grooves(hands=(1,), pitch=0.08, width=0.008, depth=0.003, root_radius=0.0,
+                length=0.12, start=0.05, runout=0.01)
+    phi = 2 * np.pi * g.width / g.pitch
+
+    def area(z: float) -> float:
+        floor = R - g.depth + float(runout_lift(g, R, np.array(z)))
+        return phi / 2 * max(0.0, R**2 - floor**2)
+
+    run, _ = quad(area, 0.0, g.runout, limit=200)
+    plain = groove_volume(replace(g, runout=0.0), R)
+    assert abs((groove_volume(g, R) - plain) / (2 * run) - 1) < 1e-3   # its r grid: 2.5e-4
+    lift = runout_lift(g, R, np.array([0.0, g.runout]))
+    assert lift[0] == 0.0 and lift[1] > g.depth     # it leaves the floor and the surface

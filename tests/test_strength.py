@@ -1018,14 +1018,38 @@ def test_williams_exponent_is_a_cracks_half_and_a_right_corners_0_5445():
 
 
 def test_the_grooves_flat_ends_are_said_to_be_left_out():
-    """The model's grooves end in flat walls: their edges with the floor are sharp
+    """Grooves without runouts end in flat walls: their edges with the floor are sharp
     (Williams' r^(0.5445 - 1) at a right-angled re-entrant corner), so the check says it
     leaves them out, at the grooved zone's ends (the paper's: 360 mm centred on 545 mm,
-    92.5 and 452.5 mm); a shaft without grooves has nothing to say."""
-    note = ws._runouts(load_scene("paper2018_installed"))
+    92.5 and 452.5 mm); a shaft without grooves, or whose grooves run out, has nothing
+    to say."""
+    note = ws._runouts(load_scene("paper2018"))
     assert note is not None and "92.5 and 452.5 mm" in note and "r^-0.456" in note
-    assert "not judged" in note
+    assert "not judged" in note and "runout_mm" in note
     assert ws._runouts(load_scene("plain_cylinder")) is None
+    assert ws._runouts(load_scene("paper2018_installed")) is None
+
+
+def test_each_keyway_end_and_groove_runout_is_judged_on_its_own():
+    """The places a designer names are each searched for their own worst point: the
+    keyway's two halves along the axis (46-55 and 55-64 mm on the paper's shaft) and the
+    two runouts (82.5-92.5 and 452.5-462.5 mm), each below the surface; and a spot in a
+    runout is called one."""
+    s = load_scene("paper2018_installed")
+    z = np.linspace(0.0, 0.545, 5451)
+    deep = np.column_stack([np.full_like(z, 0.0145), np.zeros_like(z), z])
+    masks = ws._owned(s, deep)
+    assert len(masks) == 4
+    spans = [(z[m].min() * 1e3, z[m].max() * 1e3) for m in masks]
+    assert spans[0][0] == pytest.approx(46.0, abs=0.3) and spans[1][1] == pytest.approx(
+        64.0, abs=0.3) and spans[0][1] < 55.0 <= spans[1][0]
+    assert spans[2] == pytest.approx((82.6, 92.4), abs=0.05)
+    assert spans[3] == pytest.approx((452.6, 462.4), abs=0.05)
+    top = deep.copy()
+    top[:, 0] = 0.016
+    assert not any(m.any() for m in ws._owned(s, top)[2:])     # on the surface: no runout
+    assert ws._feature(s, np.array([0.0145, 0.0, 0.088]), 0.016)[0] == "groove runout"
+    assert ws._feature(s, np.array([0.0135, 0.0, 0.100]), 0.016)[0] == "groove root"
 
 
 def test_a_verdict_says_the_largest_utilisation_read_where_its_spot_has_no_bound():

@@ -144,3 +144,32 @@ def test_a_slice_whose_face_does_not_carry_what_the_whole_carries_there_is_refus
     ws._check_balance(K, F, pull, dofs, face, 0.1, whole, True, np.zeros((1, 6)))
     with pytest.raises(SolverError, match="does not balance"):
         ws._check_balance(K, F, 0.8 * pull, dofs, face, 0.1, whole, True, np.zeros((1, 6)))
+
+
+def test_a_point_among_many_small_elements_is_found_in_the_large_one_holding_it():
+    """One large straight tetrahedron, and beside its face many small ones whose centres
+    lie nearer a point inside it than its own centre (as at a runout's seam): the point is
+    read in the large one, a linear field exactly (the nearest centres alone hold none)."""
+    from shaftfem.fem.submodel import CANDIDATES
+
+    edges = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
+
+    def tet(corners):
+        c = np.asarray(corners, dtype=float)
+        return np.vstack([c, [0.5 * (c[i] + c[j]) for i, j in edges]])
+
+    big = tet([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)])
+    small = [tet(np.array([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, -1)]) * 0.02
+                 + (0.01 * i, 0.01 * j, 0.0))
+             for i in range(6) for j in range(6)]
+    blocks = [big, *small]
+    points = np.vstack(blocks)
+    cells = np.arange(len(points)).reshape(len(blocks), 10)
+    at = np.array([[0.03, 0.03, 0.03]])
+    centres = points[cells[:, :4]].mean(axis=1)
+    d = np.linalg.norm(centres - at, axis=1)
+    assert (d[1:] < d[0]).sum() > CANDIDATES
+    a = np.array([[1.0, 2.0, -1.0], [0.5, 0.0, 3.0], [2.0, -1.0, 1.0]])
+    u = (points @ a.T)[None]
+    got = read_displacements(points, cells, u, at)
+    assert np.allclose(got[0], at @ a.T, atol=1e-12)

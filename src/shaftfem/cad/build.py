@@ -31,12 +31,13 @@ import numpy as np
 
 from shaftfem.cad.outline import outline as half_section
 from shaftfem.cad.outline import runout, surface_radius
-from shaftfem.cad.profile import TOOL_OVERSHOOT, profile_outline
+from shaftfem.cad.profile import RUNOUT_CLEARANCE, TOOL_OVERSHOOT, profile_outline, runout_lift
 from shaftfem.cad.session import session, stdout_to_devnull, translated
 from shaftfem.errors import GeometryError
 from shaftfem.scene.model import Grooves, Keyway, Shaft
 
 SECTIONS_PER_CELL = 13          # exact sections per half turn (15 degree steps)
+RUNOUT_SECTIONS = 7            # exact sections along each runout
 STEP_SUFFIXES = (".step", ".stp")
 
 
@@ -75,12 +76,12 @@ def _section_wire(occ, outline, z: float, theta: float, pitch: float) -> int:
     return occ.addWire(curves)
 
 
-def _groove_piece(occ, g: Grooves, radius: float, outline, hand: int,
-                  z0: float, length: float, theta0: float) -> int:
-    """A groove tool over [z0, z0 + length] whose centre starts at angle theta0."""
-    n = max(3, math.ceil((SECTIONS_PER_CELL - 1) * length / (g.pitch / 2)) + 1)
+def _groove_piece(occ, g: Grooves, hand: int, zs: np.ndarray, outlines: list, z0: float,
+                  theta0: float) -> int:
+    """A groove tool lofted through its sections at heights `zs` (their outlines in the
+    axial section), its centre at angle theta0 at z0."""
     wires = []
-    for z in np.linspace(z0, z0 + length, n):
+    for z, outline in zip(zs, outlines):
         theta = theta0 + hand * 2 * math.pi * (z - z0) / g.pitch
         wires.append(_section_wire(occ, outline, float(z), theta, g.pitch))
     out = occ.addThruSections(wires, makeSolid=True, makeRuled=False)
@@ -90,23 +91,40 @@ def _groove_piece(occ, g: Grooves, radius: float, outline, hand: int,
     return vols[0]
 
 
-def _cell(occ, g: Grooves, radius: float, outline, z0: float, length: float,
-          turn: float, bore: float = 0.0) -> int:
+def _cell(occ, g: Grooves, radius: float, z0: float, length: float, turn: float,
+          bore: float = 0.0, runouts: tuple[bool, bool] = (False, False)) -> int:
     """A grooved stretch [z0, z0 + length]: cylinder (less its bore of radius `bore`)
-    minus each hand's groove piece.
+    minus each hand's groove piece; with `runouts` (before, after), the stretch
+    reaches g.runout further on that side, where the grooves' floors rise out.
 
     `turn` is the angle of the right-hand groove's centre at z0 minus pi/2.
     """
     floor = radius - g.depth
-    body = occ.addCylinder(0, 0, z0, 0, 0, length, radius)
+    before, after = (g.runout if r else 0.0 for r in runouts)
+    n = max(3, math.ceil((SECTIONS_PER_CELL - 1) * length / (g.pitch / 2)) + 1)
+    # the tool stands high enough for a risen floor and its root fillets
+    top = radius + TOOL_OVERSHOOT + (RUNOUT_CLEARANCE + g.root_radius
+                                     if before or after else 0.0)
+    plain = profile_outline(g, radius, 0.0, top)
+    lofts = [(np.linspace(z0, z0 + length, n), [plain] * n)]
+    for z, run in ((z0, -before), (z0 + length, after)):
+        if run:   # its own loft (one loft through both took ten times as long to cut)
+            zs = np.linspace(z, z + run, RUNOUT_SECTIONS)
+            lofts.append((zs, [profile_outline(g, radius, float(h), top)
+                               for h in runout_lift(g, radius, np.abs(zs - z))]))
+    lo, span = z0 - before, before + length + after
+    body = occ.addCylinder(0, 0, lo, 0, 0, span, radius)
     if bore > 0:
-        hole = occ.addCylinder(0, 0, z0, 0, 0, length, bore)
+        hole = occ.addCylinder(0, 0, lo, 0, 0, span, bore)
         body = occ.cut([(3, body)], [(3, hole)])[0][0][1]
     for hand in g.hands:
         theta0 = hand * (math.pi / 2 + turn)
-        tool = _groove_piece(occ, g, radius, outline, hand, z0, length, theta0)
-        outer = occ.addCylinder(0, 0, z0 - 1e-3, 0, 0, length + 2e-3, radius + 2 * TOOL_OVERSHOOT)
-        inner = occ.addCylinder(0, 0, z0 - 2e-3, 0, 0, length + 4e-3, floor)
+        tools = [_groove_piece(occ, g, hand, zs, out, z0, theta0) for zs, out in lofts]
+        tool = tools[0]
+        if len(tools) > 1:
+            tool = occ.fuse([(3, tool)], [(3, t) for t in tools[1:]])[0][0][1]
+        outer = occ.addCylinder(0, 0, lo - 1e-3, 0, 0, span + 2e-3, top + TOOL_OVERSHOOT)
+        inner = occ.addCylinder(0, 0, lo - 2e-3, 0, 0, span + 4e-3, floor)
         ring, _ = occ.cut([(3, outer)], [(3, inner)])
         piece, _ = occ.intersect([(3, tool)], ring)
         if not piece:
@@ -239,34 +257,45 @@ def _grooved(gmsh, shaft: Shaft, g: Grooves, plug) -> None:
     L = shaft.length
     section = shaft.profile[shaft.section_at(g.start + g.length / 2) or 0]
     R, bore = section.diameter_start / 2, section.bore / 2
-    outline = profile_outline(g, R)
     half = g.pitch / 2
     n_full = int(math.floor(g.length / half + 1e-9))
     rest = g.length - n_full * half
     end = g.start + g.length
+    run = g.runout
     # Volume tags in axial order (the plain start first): gmsh numbers the imported
     # solid's entities in this order, and the mesh depends on it.
-    start_plug = plug(0.0, g.start) if g.start > 1e-9 else None
+    start_plug = plug(0.0, g.start - run) if g.start - run > 1e-9 else None
+    # the cells: full ones copied from the first, turned by pi every other one; a
+    # shorter last one, and the end cells where the grooves run out, built apart
+    spans = [(g.start + k * half, half, k * math.pi) for k in range(n_full)]
+    if rest > 1e-9:
+        spans.append((g.start + n_full * half, rest, n_full * math.pi))
+    proto, spare = None, False   # the full cell at the start, and whether it is apart
     cells = []
-    if n_full:
-        cell = _cell(occ, g, R, outline, g.start, half, 0.0, bore)
-        cells.append(cell)
-        for k in range(1, n_full):
-            copy = occ.copy([(3, cell)])
+    for k, (z0, length, turn) in enumerate(spans):
+        runouts = (bool(run) and k == 0, bool(run) and k == len(spans) - 1)
+        if any(runouts) or length < half - 1e-12:
+            cells.append(_cell(occ, g, R, z0, length, turn, bore, runouts))
+        elif k == 0:
+            proto = _cell(occ, g, R, g.start, half, 0.0, bore)
+            cells.append(proto)
+        else:
+            if proto is None:
+                proto, spare = _cell(occ, g, R, g.start, half, 0.0, bore), True
+            copy = occ.copy([(3, proto)])
             if k % 2:
                 occ.rotate(copy, 0, 0, 0, 0, 0, 1, math.pi)
             occ.translate(copy, 0, 0, k * half)
             cells.append(copy[0][1])
-    if rest > 1e-9:
-        cells.append(_cell(occ, g, R, outline, g.start + n_full * half, rest, n_full * math.pi,
-                           bore))
-    end_plug = plug(end, L) if L - end > 1e-9 else None
+    if spare:
+        occ.remove([(3, proto)], recursive=True)
+    end_plug = plug(end + run, L) if L - end - run > 1e-9 else None
     # A plain end's disk meets a cell's notched face only in part: that one needs a
     # general fragment, of the two solids alone (fast); so does a shorter last cell,
     # whose face is built apart from the copies'. Then every contact is a shared face.
     if start_plug is not None:
         start_plug, cells[0] = _join(occ, start_plug, cells[0])
-    if rest > 1e-9 and n_full:
+    if rest > 1e-9 and len(cells) > 1:
         cells[-2], cells[-1] = _join(occ, cells[-2], cells[-1])
     if end_plug is not None:
         cells[-1], end_plug = _join(occ, cells[-1], end_plug)

@@ -73,8 +73,10 @@ def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves
     floor = R - grooves.depth
     tol = 1e-6
 
+    lo, hi = grooves.cut
+
     def in_zone(z: np.ndarray) -> bool:
-        return bool(np.all((z > grooves.start - tol) & (z < grooves.start + grooves.length + tol)))
+        return bool(np.all((z > lo - tol) & (z < hi + tol)))
 
     faces = []
     for _, s in gmsh.model.getEntities(2):
@@ -93,7 +95,8 @@ def _groove_entities(gmsh, shaft: Shaft, grooves: Grooves
         xyz = _sample(gmsh, 1, c, 5)
         r = np.hypot(xyz[:, 0], xyz[:, 1])
         # every curve on the floor radius: the helical floor edges, and the arcs where
-        # the grooves' flat ends meet the floor (sharp re-entrant edges)
+        # the grooves' flat ends meet the floor (sharp re-entrant edges) or their runouts
+        # leave it (a shallow kink)
         if np.all(np.abs(r - floor) < tol) and in_zone(xyz[:, 2]):
             edges[c] = xyz
     return faces, edges

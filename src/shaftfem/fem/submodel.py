@@ -23,6 +23,7 @@ from shaftfem.errors import SolverError
 # it: a cut face's node on the true surface lies a hair outside a coarse mesh's
 # element, curved onto the surface only to second order
 CANDIDATES = 12
+MORE_CANDIDATES = 400    # for the points the nearest CANDIDATES do not hold
 REACH = 0.25
 NEWTON_STEPS = 6
 # VTK's 10-node tetrahedron: the vertices, then the edges' midpoints in this order
@@ -53,9 +54,30 @@ def read_displacements(points: np.ndarray, cells: np.ndarray, u: np.ndarray,
     element than REACH is refused (SolverError): the slice and the whole do not match."""
     from scipy.spatial import cKDTree
 
-    corners = points[cells[:, :4]]
-    tree = cKDTree(corners.mean(axis=1))
-    k = min(CANDIDATES, len(cells))
+    tree = cKDTree(points[cells[:, :4]].mean(axis=1))
+    own, lam, worst = _located(points, cells, tree, at, min(CANDIDATES, len(cells)))
+    # among small elements (a runout's seam, a fine feature) the nearest centres may all
+    # be others': those points are looked for again among many more
+    again = np.flatnonzero(worst > REACH)
+    chunks = -(-again.size // 256) if len(cells) > CANDIDATES else 0
+    for part in np.array_split(again, chunks) if chunks else []:
+        e, l_, w = _located(points, cells, tree, at[part], min(MORE_CANDIDATES, len(cells)))
+        better = w < worst[part]
+        own[part[better]], lam[part[better]], worst[part[better]] = (
+            e[better], l_[better], w[better])
+    if (worst > REACH).any():
+        far = at[np.argmax(worst)] * 1e3
+        raise SolverError(f"a local model's cut face has a point ({far[0]:.2f}, "
+                          f"{far[1]:.2f}, {far[2]:.2f}) mm outside the whole shaft's mesh")
+    n, _ = _shape(lam)                                          # (m, 10)
+    return np.einsum("ma,cmad->cmd", n, u[:, cells[own]])
+
+
+def _located(points: np.ndarray, cells: np.ndarray, tree, at: np.ndarray, k: int
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For each point of `at`, among the k elements whose centres lie nearest: the one
+    holding it (or nearest to), its barycentric coordinates there, and how far outside
+    that element it lies (-min lam; <= 0 inside)."""
     _, near = tree.query(at, k)
     near = near.reshape(len(at), k)
     nodes = points[cells[near]]                                # (m, k, 10, 3)
@@ -78,14 +100,7 @@ def read_displacements(points: np.ndarray, cells: np.ndarray, u: np.ndarray,
     inside = np.where(miss <= 1e-9 * size, lam.min(-1), -np.inf)
     rows = np.arange(len(at))
     best = np.argmax(inside, axis=1)
-    worst = -lam[rows, best].min(-1)
-    if (worst > REACH).any():
-        far = at[np.argmax(worst)] * 1e3
-        raise SolverError(f"a local model's cut face has a point ({far[0]:.2f}, "
-                          f"{far[1]:.2f}, {far[2]:.2f}) mm outside the whole shaft's mesh")
-    n, _ = _shape(lam[rows, best])                              # (m, 10)
-    own = cells[near[rows, best]]                               # (m, 10)
-    return np.einsum("ma,cmad->cmd", n, u[:, own])
+    return near[rows, best], lam[rows, best], -lam[rows, best].min(-1)
 
 
 def carried(nodes: np.ndarray, forces: np.ndarray, z: float) -> np.ndarray:

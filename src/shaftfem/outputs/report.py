@@ -230,7 +230,9 @@ def shaft_facts(result: ModalResult) -> list[str]:
         lines.append(f"grooves: {hands}-hand, pitch {g.pitch * 1e3:g} mm, width "
                      f"{g.width * 1e3:g} mm (axial), depth {g.depth * 1e3:g} mm, root radius "
                      f"{g.root_radius * 1e3:g} mm, over {g.length * 1e3:g} mm from "
-                     f"{g.start * 1e3:g} mm; removed volume"
+                     f"{g.start * 1e3:g} mm"
+                     f"{f', running out over {g.runout * 1e3:g} mm beyond' if g.runout else ''}"
+                     "; removed volume"
                      f"{' (grooves and keyways)' if scene.shaft.keyways else ''} "
                      f"{result.shape.groove_volume_cad * 1e9:.1f} mm^3 (analytic "
                      f"{result.shape.groove_volume_analytic * 1e9:.1f} mm^3)")

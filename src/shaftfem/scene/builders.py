@@ -134,6 +134,7 @@ class Grooves(_Table):
     root_radius_mm: Number | None = None
     grooved_length_mm: Number | None = None
     start_mm: Number | None = None
+    runout_mm: Number | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

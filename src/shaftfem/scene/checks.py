@@ -25,7 +25,7 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
     L = shaft.length
     narrowest = max(SEAT_MIN, SEAT_PER_ELEMENT * mesh.size)
     edges = [0.0] + ([L] if L else [])  # an unplaced STEP shaft's length is not known yet
-    edges += [] if grooves is None else [grooves.start, grooves.start + grooves.length]
+    edges += [] if grooves is None else list(grooves.cut)
     edges += list(shaft.step_positions())
     for table, part in seats:
         lo, hi = part.seat
@@ -56,11 +56,12 @@ def check_seats(source: str, shaft: Shaft, grooves: Grooves | None,
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm lies on "
                 f"section {k + 1}, a cone; seats go on cylindrical sections")
-        if grooves is not None and lo < grooves.start + grooves.length and hi > grooves.start:
+        if grooves is not None and lo < grooves.cut[1] and hi > grooves.cut[0]:
             raise SceneError(
                 f"{at} = {part.position / MM:g}: the seat {lo / MM:g} to {hi / MM:g} mm lies "
-                f"over the grooved zone ({grooves.start / MM:g} to "
-                f"{(grooves.start + grooves.length) / MM:g} mm); seats must be on plain shaft")
+                f"over the grooved zone ({grooves.cut[0] / MM:g} to {grooves.cut[1] / MM:g} mm"
+                f"{', with its runouts' if grooves.runout else ''}); seats must be on plain "
+                "shaft")
     ordered = sorted(seats, key=lambda s: s[1].seat[0])
     for (ta, a), (tb, b) in zip(ordered, ordered[1:]):
         # seats that touch would share the nodes of their common edge
@@ -82,20 +83,27 @@ def check_grooves(source: str, g: dict, shaft: Shaft) -> Grooves:
     start = g["start_mm"]
     if start is None:
         start = (length - g["grooved_length_mm"]) / 2
+    run = g["runout_mm"]
+    lo, hi = start - run, start + g["grooved_length_mm"] + run
+    if run > 0 and (lo <= 0 or hi >= length):
+        raise fail("runout_mm", f"the runouts {lo:g} to {start:g} and "
+                   f"{start + g['grooved_length_mm']:g} to {hi:g} mm must lie on the shaft, "
+                   f"inside 0 to {length:g} mm (a groove that runs off an end has no runout "
+                   "there: set runout_mm = 0)")
     k = shaft.section_at((start + g["grooved_length_mm"] / 2) * MM)
     section = shaft.profile[k or 0]
     radius, bore = section.diameter_start / 2 / MM, section.bore / 2 / MM
     if k is not None and not shaft.plain:
         z0, z1 = (z / MM for z in shaft.plain_span(k))
-        if start < z0 - 1e-9 or start + g["grooved_length_mm"] > z1 + 1e-9 or section.conical:
-            raise fail("grooved_length_mm", f"the grooved zone {start:g} to "
-                       f"{start + g['grooved_length_mm']:g} mm must lie within one cylindrical "
-                       f"section, clear of its fillets and chamfers (section {k + 1}: "
-                       f"{z0:g} to {z1:g} mm"
-                       f"{', a cone' if section.conical else ''})")
-        if any(key.start < (start + g["grooved_length_mm"]) * MM and key.end > start * MM
-               for key in shaft.keyways):
-            raise fail("grooved_length_mm", "a keyway lies over the grooved zone")
+        key = "runout_mm" if run > 0 else "grooved_length_mm"
+        if lo < z0 - 1e-9 or hi > z1 + 1e-9 or section.conical:
+            raise fail(key, f"the grooved zone {lo:g} to {hi:g} mm"
+                       f"{' (with its runouts)' if run > 0 else ''} must lie within one "
+                       f"cylindrical section, clear of its fillets and chamfers (section "
+                       f"{k + 1}: {z0:g} to {z1:g} mm{', a cone' if section.conical else ''})")
+        if any(kw.start < hi * MM and kw.end > lo * MM for kw in shaft.keyways):
+            raise fail(key, "a keyway lies over the grooved zone"
+                       f"{' or its runouts' if run > 0 else ''}")
     if g["depth_mm"] >= radius - bore:
         raise fail("depth_mm", f"must be less than the wall ({radius - bore:g} mm: the "
                    f"section's radius {radius:g} mm less its bore's)" if bore else
@@ -119,6 +127,7 @@ def check_grooves(source: str, g: dict, shaft: Shaft) -> Grooves:
         root_radius=g["root_radius_mm"] * MM,
         length=g["grooved_length_mm"] * MM,
         start=start * MM,
+        runout=run * MM,
     )
 
 

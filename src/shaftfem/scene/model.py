@@ -185,7 +185,9 @@ class Grooves:
     The profile is given in the axial section (as screw-thread profiles are):
     `width` along the shaft axis, `depth` radially, `root_radius` the fillet at
     the two floor corners. Each hand (+1 right, -1 left) is one groove.
-    The grooves run from z = `start` to z = `start + length`.
+    The grooves run at full depth from z = `start` to z = `start + length`; beyond
+    each end each floor rises out to the surface over `runout` along the axis (as the
+    cutter lifts out), or, with `runout` 0, each groove ends in a flat wall.
     """
 
     hands: tuple[int, ...]
@@ -195,6 +197,12 @@ class Grooves:
     root_radius: float
     length: float
     start: float
+    runout: float = 0.0
+
+    @property
+    def cut(self) -> tuple[float, float]:
+        """Where the grooves cut the shaft (m): the grooved zone and its runouts."""
+        return self.start - self.runout, self.start + self.length + self.runout
 
 
 def cell_type(order: int) -> str:

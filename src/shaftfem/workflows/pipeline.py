@@ -275,8 +275,10 @@ def _pencil(scene: Scene) -> dict:
     _seated keeps)."""
     from dataclasses import asdict
 
+    from shaftfem.workflows.stages import grooves_key
+
     return {"shaft": asdict(scene.shaft),
-            "grooves": asdict(scene.grooves) if scene.grooves else None,
+            "grooves": grooves_key(scene.grooves),
             "material": asdict(scene.material), "order": scene.mesh.order,
             "supports": [_seated(s) for s in scene.supports],
             "attachments": [_carried(a) for a in scene.attachments],

@@ -41,8 +41,20 @@ def shape_key(shaft: Shaft, grooves: Grooves | None) -> str:
     from shaftfem.cad.solid import CONSTRUCTION_VERSION
 
     return content_key({"version": CONSTRUCTION_VERSION, "sections": SECTIONS_PER_CELL,
-                        "shaft": asdict(shaft.unplaced()),
-                        "grooves": asdict(grooves) if grooves else None})
+                        "shaft": asdict(shaft.unplaced()), "grooves": grooves_key(grooves)})
+
+
+def grooves_key(grooves: Grooves | None) -> dict | None:
+    """The grooves as a key holds them: without runouts as before runouts were modelled
+    (their solids and meshes stay valid), with them with how they are built."""
+    if grooves is None:
+        return None
+    if not grooves.runout:
+        return {k: v for k, v in asdict(grooves).items() if k != "runout"}
+    from shaftfem.cad.build import RUNOUT_SECTIONS
+    from shaftfem.cad.profile import RUNOUT_CLEARANCE, RUNOUT_FORM
+
+    return {**asdict(grooves), "runout": [RUNOUT_FORM, RUNOUT_SECTIONS, RUNOUT_CLEARANCE]}
 
 
 def solid(scene: Scene, use_cache: bool = True) -> tuple[Scene, ShaftShape]:
@@ -142,7 +154,7 @@ def mesh_key(shape: ShaftShape, shaft: Shaft, grooves: Grooves | None,
                       BORE_ELEMENTS, STEP_CURVATURE],
         "folds": ["partly straightened, each on its own", list(KEPT_CURVING), KEPT_RATIO],
         **({"nodes": "parametric", "inside": "harmonic"} if geometry["order"] == 3 else {}),
-        "shaft": asdict(shaft), "grooves": asdict(grooves) if grooves else None,
+        "shaft": asdict(shaft), "grooves": grooves_key(grooves),
         "settings": geometry, **({"cuts": list(cuts)} if cuts else {}),
         **({"hubs": [list(h) for h in hubs], "hub_size": HUB_SIZE} if hubs else {}),
     }

@@ -87,6 +87,7 @@ def _reactions_path(scene: Scene):
     from dataclasses import asdict
 
     from shaftfem.store import cache_dir, content_key
+    from shaftfem.workflows.stages import grooves_key
 
     # a bearing's or seal's part in the static solution is its stiffness at standstill
     # (its reference speed's): a tolerance case's seal, which has none there, or its
@@ -97,7 +98,7 @@ def _reactions_path(scene: Scene):
               "standstill": None if s.bearing is None or s.kind == "journal"
               else list(s.radial_xy)} for s in scene.supports]
     key = content_key({"version": 2, "shaft": asdict(scene.shaft),
-                       "grooves": asdict(scene.grooves) if scene.grooves else None,
+                       "grooves": grooves_key(scene.grooves),
                        "material": asdict(scene.material), "mesh": asdict(scene.mesh),
                        "supports": seats,
                        "attachments": [asdict(a) for a in scene.attachments],

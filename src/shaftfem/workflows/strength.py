@@ -474,19 +474,20 @@ def _surface(scene: Scene, field: _Field) -> StressSurface:
 
 
 def _runouts(scene: Scene) -> str | None:
-    """What the check leaves out at the grooves' ends: they end in flat walls (the model's
-    runouts), each meeting the floor at a right-angled re-entrant edge, whose elastic
-    stress has no limit (checks.singular); None without grooves."""
+    """What the check leaves out at the grooves' ends where they have no runouts: flat
+    walls, each meeting the floor at a right-angled re-entrant edge, whose elastic stress
+    has no limit (checks.singular); None without grooves or with runouts."""
     from shaftfem.checks.singular import wedge_exponent
 
     g = scene.grooves
-    if g is None:
+    if g is None or g.runout > 0:
         return None
     power = wedge_exponent(1.5 * math.pi) - 1
     return (f"not judged: the grooves' ends at {g.start * 1e3:g} and "
             f"{(g.start + g.length) * 1e3:g} mm, flat walls meeting the floor at a right "
-            f"angle (a real cam's reversal curves are not modelled), sharp re-entrant edges "
-            f"whose stress has no limit (it grows as r^{power:.3f} towards them)")
+            f"angle, sharp re-entrant edges whose stress has no limit (it grows as "
+            f"r^{power:.3f} towards them); [grooves] runout_mm models the floor rising out "
+            "as the cutter lifts")
 
 
 def _keyed(scene: Scene) -> list[str]:
@@ -865,6 +866,27 @@ def _keyway_pockets(scene: Scene, points: np.ndarray
     return out
 
 
+def _owned(scene: Scene, points: np.ndarray) -> list[np.ndarray]:
+    """The places a designer names and asks about, each judged by its own worst point
+    however far below the shaft's worst it lies: each keyway's two halves along the axis
+    (its ends: a whole mesh coarser than their corners puts its worst at either), each
+    groove runout (between the grooved zone's end and the runout's, below the surface by
+    5 % of the depth)."""
+    z = points[:, 2]
+    out = []
+    for k, _, inside in _keyway_pockets(scene, points):
+        mid = 0.5 * (k.start + k.end)
+        out += [inside & (z < mid), inside & (z >= mid)]
+    g = scene.grooves
+    if g is not None and g.runout > 0:
+        j = scene.shaft.section_at(g.start + 0.5 * g.length)
+        radius = scene.shaft.profile[j or 0].diameter_start / 2
+        below = np.hypot(points[:, 0], points[:, 1]) < radius - 0.05 * g.depth
+        end = g.start + g.length
+        out += [below & (z > g.cut[0]) & (z < g.start), below & (z > end) & (z < g.cut[1])]
+    return out
+
+
 def _maxima(field: _Field, values: np.ndarray, allowed: np.ndarray,
             round_: np.ndarray) -> list[int]:
     """Local maxima of `values` on the surface, largest first: points with no larger
@@ -907,7 +929,7 @@ def _locally_round(scene: Scene, points: np.ndarray) -> np.ndarray:
     spans = [(k.start - k.width, k.end + k.width) for k in scene.shaft.keyways]
     g = scene.grooves
     if g is not None:
-        spans.append((g.start - g.width, g.start + g.length + g.width))
+        spans.append((g.cut[0] - g.width, g.cut[1] + g.width))
     out = np.ones(len(points), dtype=bool)
     for z0, z1 in spans:
         out &= (z < z0) | (z > z1)
@@ -943,9 +965,9 @@ def _spots(scene: Scene, fine: _Field, coarse: _Field, before: list[HotSpot] | N
     for i in _maxima(fine, fine.peak, allowed, local):
         if _clear_of(fine, i, picks, local):
             picks.append(i)
-    # every keyway is judged, however far below the worst spots it lies: its own worst
-    owned = [np.flatnonzero(inside & allowed)
-             for _, _, inside in _keyway_pockets(scene, fine.points)]
+    # every keyway's end and groove runout is judged, however far below the worst spots
+    # it lies: its own worst
+    owned = [np.flatnonzero(inside & allowed) for inside in _owned(scene, fine.points)]
     for values in ((fine.amplitude, fine.peak) if turning else (fine.peak,)):
         for own in (o for o in owned if o.size):
             i = int(own[np.argmax(values[own])])
@@ -1276,7 +1298,9 @@ def _feature(scene: Scene, p: np.ndarray, outer: float) -> tuple[str, int | None
     z = float(p[2])
     below = outer - r
     g = scene.grooves
-    if g is not None and g.start <= z <= g.start + g.length and below > 0.05 * g.depth:
+    if g is not None and g.cut[0] <= z <= g.cut[1] and below > 0.05 * g.depth:
+        if not g.start <= z <= g.start + g.length:
+            return "groove runout", None
         return ("groove root" if below > 0.5 * g.depth else "groove flank"), None
     for k in scene.shaft.keyways:
         if not k.start - 1e-3 <= z <= k.start + k.length + 1e-3:
@@ -1394,7 +1418,7 @@ LOCAL_ROUNDS = 5
 # face than this share of the spot's distance from the nearer one are not read
 LOCAL_GUARD = 0.5
 # at most this many spots get local models, those that may be the worst first
-LOCAL_SPOTS = 12
+LOCAL_SPOTS = 16
 
 
 def _localise(scene: Scene, spots: list[HotSpot], fine: _Field, first: _Field, built,
