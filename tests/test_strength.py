@@ -1170,3 +1170,10 @@ def test_a_local_models_slice_holds_a_hubs_band_whole_and_stops_short_of_a_seat(
     assert lo == pytest.approx(0.028 + 0.004) and hi == pytest.approx(0.065 + 0.004 + 0.004)
     on_seat = replace(spot, z=0.020)
     assert ws._local_span(scene, on_seat, fine, 4e-3) is None
+
+
+def test_a_signed_stress_that_rounds_to_zero_prints_without_a_minus():
+    """A runout that carries nothing but the weight's bending read "-0.0" MPa mean."""
+    from shaftfem.outputs.tables import _mpa
+
+    assert f"{_mpa(-4e3):.1f}" == "0.0" and f"{_mpa(-6e4):.1f}" == "-0.1"

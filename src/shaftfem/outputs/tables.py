@@ -1221,7 +1221,7 @@ def strength_text(result) -> str:
         bound = ("sharp" if not s.converging else "unresolved" if not s.resolved else
                  "?" if s.bound is None else f"+-{s.bound:.1%}")
         f = s.fkm
-        lines.append(f"{k:2d} {where:{w}s} {s.amplitude / 1e6:7.1f} {s.mean / 1e6:7.1f} "
+        lines.append(f"{k:2d} {where:{w}s} {s.amplitude / 1e6:7.1f} {_mpa(s.mean):7.1f} "
                      f"{s.peak / 1e6:7.1f} {bound:>10s} {s.gradient * 1e-3:7.3f} "
                      f"{f.support:5.3f} {f.design:5.3f} {f.mean_stress:5.3f} "
                      f"{_safety(f.fatigue_safety):>6s} {f.fatigue_utilisation:5.2f} "
@@ -1353,7 +1353,7 @@ def strength_spot_rows(result) -> tuple[list[str], list[list[str]]]:
     """The hot spots' table: where, the stresses with their bound, FKM's safeties."""
 
     rows = [[str(k), s.feature, f"{s.z * 1e3:.1f}", _degrees(s.angle),
-             f"{s.amplitude / 1e6:.1f}", f"{s.mean / 1e6:.1f}", f"{s.peak / 1e6:.1f}",
+             f"{s.amplitude / 1e6:.1f}", f"{_mpa(s.mean):.1f}", f"{s.peak / 1e6:.1f}",
              "sharp edge" if not s.converging else "unresolved" if not s.resolved
              else "?" if s.bound is None else f"{s.bound:.1%}",
              f"{s.gradient * 1e-3:.3f}", _safety(s.fkm.fatigue_safety),
@@ -1386,3 +1386,8 @@ def strength_markdown(result) -> list[str]:
         lines += [notched[0], "", *(f"- {r.strip()}" for r in notched[1:]), ""]
     lines += markdown(*strength_seat_rows(result))
     return lines
+
+
+def _mpa(stress: float) -> float:
+    """A signed stress in MPa as printed to 0.1 MPa, without a minus on a zero ("-0.0")."""
+    return round(stress / 1e6, 1) + 0.0
