@@ -63,9 +63,11 @@ def test_cli_json_has_the_promised_fields(tmp_path, capsys):
 
 
 def test_a_runouts_volume_against_the_sector_formula():
-    """A rectangular groove running out: at each height its floor has risen by h(z), so
-    it removes (phi/2) (R^2 - (R - d + h)^2) of the section while h < d. Integrated here
-    by quadrature, apart from groove_volume's grid of widths."""
+    """A rectangular groove running out: its tool reaches 0.5 mm below the floor, and in
+    the runout its floor rises from there to the lift's top, d + 0.5 mm above the floor:
+    at each height the floor stands e = max(0, h (H + 0.5) / H - 0.5) mm above the
+    groove's, so the groove removes (phi/2) (R^2 - (R - d + e)^2) of the section while
+    e < d. Integrated here by quadrature, apart from groove_volume's grid of widths."""
     from dataclasses import replace
 
     from scipy.integrate import quad
@@ -78,8 +80,11 @@ def test_a_runouts_volume_against_the_sector_formula():
                 length=0.12, start=0.05, runout=0.01)
     phi = 2 * np.pi * g.width / g.pitch
 
+    dip, top = 0.5e-3, g.depth + 0.5e-3
+
     def area(z: float) -> float:
-        floor = R - g.depth + float(runout_lift(g, R, np.array(z)))
+        h = float(runout_lift(g, R, np.array(z)))
+        floor = R - g.depth + max(0.0, h * (top + dip) / top - dip)
         return phi / 2 * max(0.0, R**2 - floor**2)
 
     run, _ = quad(area, 0.0, g.runout, limit=200)

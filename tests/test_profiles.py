@@ -467,10 +467,15 @@ def test_a_keyed_grooved_shafts_removed_volume_is_set_against_grooves_and_keyway
     assert abs(shape.groove_volume_error) < 5e-3
 
 
-def test_grooves_running_out_are_built_as_their_analytic_volume(tmp_path):
-    """Two crossing grooves whose floors rise out over 8 mm beyond the grooved zone: the
-    solid is one body and removes what the analytic runouts remove (a wrong lift or a
-    runout lost in the booleans moves it by 3 % of the whole: each runout holds 1.5 %)."""
+@pytest.mark.parametrize("more", [{}, {"grooves.hands": ["right"]},
+                                  {"grooves.root_radius_mm": 0.0}],
+                         ids=["crossing", "one hand", "sharp root"])
+def test_grooves_running_out_are_built_as_their_analytic_volume(tmp_path, more):
+    """Grooves whose floors rise out over 8 mm beyond the grooved zone: the solid is one
+    body and removes what the analytic runouts remove (a wrong lift or a runout lost in
+    the booleans moves it by 2 % of the whole or more: the runouts hold 2.5 % of it). A
+    sharp-cornered groove's tool reaches 0.5 mm below its floor: its runout rises from
+    there (it first rose 0.5 mm short, and cut 2.2 % too much)."""
     from dataclasses import replace
 
     from shaftfem.cad.profile import groove_volume
@@ -478,12 +483,12 @@ def test_grooves_running_out_are_built_as_their_analytic_volume(tmp_path):
 
     s = load_scene("paper2018", overrides={"shaft.length_mm": 120.0,
                                            "grooves.grooved_length_mm": 80.0,
-                                           "grooves.runout_mm": 8.0})
+                                           "grooves.runout_mm": 8.0, **more})
     g = s.grooves
     assert g.cut == pytest.approx((0.012, 0.108))
     shape = make_shape(s.shaft, g, tmp_path / "s.brep")
     runouts = groove_volume(g, 0.016) - groove_volume(replace(g, runout=0.0), 0.016)
-    assert runouts > 0.025 * shape.groove_volume_analytic
+    assert runouts > 0.02 * shape.groove_volume_analytic
     assert abs(shape.groove_volume_error) < 1e-3
     assert shape.n_volumes == 4          # two plain ends, the two end cells
 

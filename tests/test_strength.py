@@ -1149,7 +1149,8 @@ def test_a_local_models_slice_holds_a_hubs_band_whole_and_stops_short_of_a_seat(
     """The paper's gear keyway's end at 63.7 mm lies in the gear hub's band (45-65 mm,
     the key at 46-64 mm): its slice holds that band whole with a spare element beyond,
     and stops at the gear-end bearing's seat (12-28 mm, widened by a quarter radius).
-    A spot on a seat gets no slice."""
+    A spot on a seat gets no slice; a slice reaching into a groove runout holds it
+    whole."""
     scene = load_scene("paper2018_installed")
     z = np.linspace(0.0, scene.shaft.length, 2000)
     points = np.column_stack([np.full_like(z, 0.016), np.zeros_like(z), z])
@@ -1162,14 +1163,19 @@ def test_a_local_models_slice_holds_a_hubs_band_whole_and_stops_short_of_a_seat(
                               amplitude=0.0, mean=1.0, peak=1.0, bound=None,
                               converging=True, gradient=0.0, diameter=0.032, fkm=None),
                    size=1e-3)
-    # 24 mm (1.5 R) either side, grown to the hub's band widened by 4 mm, and 4 mm more
+    # 24 mm (1.5 R) either side, grown to the hub's band widened by 4 mm, and 4 mm more;
+    # on the other side to the runout's end (87.7 mm lies in it), and 4 mm more
     lo, hi = ws._local_span(scene, spot, fine, 4e-3)
-    assert lo == pytest.approx(0.045 - 0.004 - 0.004) and hi == pytest.approx(0.0637 + 0.024)
+    assert lo == pytest.approx(0.045 - 0.004 - 0.004) and hi == pytest.approx(0.0925 + 0.004)
     # a spot at 40 mm: 16 mm reaches into the seat's band (widened to 32 mm): cut there
     lo, hi = ws._local_span(scene, replace(spot, z=0.040), fine, 4e-3)
     assert lo == pytest.approx(0.028 + 0.004) and hi == pytest.approx(0.065 + 0.004 + 0.004)
     on_seat = replace(spot, z=0.020)
     assert ws._local_span(scene, on_seat, fine, 4e-3) is None
+    # a crossing at 116.2 mm: 24 mm reaches into the runout at 82.5-92.5 mm, held whole
+    # (a cut face beside its start meshed with crossing facets), 4 mm to spare
+    lo, hi = ws._local_span(scene, replace(spot, z=0.1162), fine, 4e-3)
+    assert lo == pytest.approx(0.0825 - 0.004) and hi == pytest.approx(0.1162 + 0.024)
 
 
 def test_a_signed_stress_that_rounds_to_zero_prints_without_a_minus():
@@ -1177,3 +1183,11 @@ def test_a_signed_stress_that_rounds_to_zero_prints_without_a_minus():
     from shaftfem.outputs.tables import _mpa
 
     assert f"{_mpa(-4e3):.1f}" == "0.0" and f"{_mpa(-6e4):.1f}" == "-0.1"
+
+
+def test_places_the_screening_does_not_tell_apart_give_the_first_as_the_worst():
+    """The paper's follower from 352.5 mm on loads the crossings alike (0.193 to three
+    decimals): the worst place must not hang on a solve's last digit; a place clearly
+    worse is taken however late."""
+    assert ws._worst_place([0.14, 0.18, 0.1931, 0.1932, 0.1930]) == 2
+    assert ws._worst_place([0.14, 0.18, 0.1931, 0.21, 0.1930]) == 3

@@ -40,11 +40,23 @@ def runout_lift(g: Grooves, radius: float, beyond: np.ndarray) -> np.ndarray:
     return (g.depth + RUNOUT_CLEARANCE) * u**2
 
 
+def _sharp_dip(g: Grooves, radius: float) -> float:
+    """How far a sharp-cornered groove's tool reaches below its floor (m)."""
+    return min(0.5e-3, 0.5 * (radius - g.depth))
+
+
+def _sharp_lift(g: Grooves, radius: float, lift: float) -> float:
+    """A sharp-cornered groove's floor (m above the groove's) in a runout where the lift
+    is `lift`: its tool's floor, which starts below the groove's, rising to the same top."""
+    dip, rise = _sharp_dip(g, radius), g.depth + RUNOUT_CLEARANCE
+    return max(0.0, lift * (rise + dip) / rise - dip)
+
+
 def axial_width(g: Grooves, radius: float, r: np.ndarray, lift: float = 0.0) -> np.ndarray:
     """Width of the groove along the axis (m) at radius r, for r in [R-d, R], its floor
     risen by `lift` (m, in a runout)."""
     r = np.asarray(r, dtype=float)
-    floor = radius - g.depth + lift
+    floor = radius - g.depth + (lift if g.root_radius > 0 else _sharp_lift(g, radius, lift))
     w = np.full_like(r, g.width)
     if g.root_radius > 0:
         rf = g.root_radius
@@ -104,7 +116,11 @@ def profile_outline(g: Grooves, radius: float, lift: float = 0.0, top: float | N
     top = radius + TOOL_OVERSHOOT if top is None else top
     rf = g.root_radius
     if rf == 0:
-        bottom = floor - min(0.5e-3, 0.5 * floor)
+        # the tool's floor reaches below the groove's; in a runout it rises from there
+        # to the runout's top (_sharp_lift)
+        dip = _sharp_dip(g, radius)
+        rise = g.depth + RUNOUT_CLEARANCE
+        bottom = radius - g.depth - dip + lift * (rise + dip) / rise
         return [
             ("arc", [(-a, bottom), (a, bottom)]),
             ("radial", [(a, bottom), (a, top)]),

@@ -1316,7 +1316,7 @@ def travel_line(result) -> str:
     when no load travels)."""
     if not result.travel:
         return ""
-    worst = max(result.travel, key=lambda t: t.utilisation)
+    worst = result.travel[result.worst_place]
     return (f"The travelling loads were screened at {len(result.travel)} places from "
             f"{result.travel[0].position * 1e3:.1f} to {result.travel[-1].position * 1e3:.1f} "
             "mm on the coarser mesh (worst degree of utilisation at each: "

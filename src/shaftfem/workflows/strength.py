@@ -80,6 +80,9 @@ CURVATURE_ERROR = 2.0
 # SCATTER_POINTS of them
 SCATTER_REACH = 2.0
 SCATTER_POINTS = 10
+# travelling loads: screened places whose worst utilisations lie within this share of
+# each other are taken as alike (the first is bounded)
+PLACES_ALIKE = 0.005
 # hot spots: at most this many, each the largest within SPACING local radii, and at least
 # this share of the largest
 MAX_SPOTS = 8
@@ -216,8 +219,10 @@ class StrengthResult:
     # field and the VTK file's
     surface: StressSurface | None = field(default=None, compare=False, repr=False)
     notes: tuple[str, ...] = ()   # why the refinement stopped short, and a mesh HXT made
-    # a travelling load's screening (Travel), the scene's loads at the worst place
+    # a travelling load's screening (Travel), the scene's loads at the worst place,
+    # and which of them was bounded (its index, _worst_place)
     travel: tuple[Travel, ...] = ()
+    worst_place: int = 0
 
     @property
     def sharp(self) -> tuple[HotSpot, ...]:
@@ -342,6 +347,7 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
     stations = _stations(scene)
     travel: list[Travel] = []
     worst_seats: dict[str, SeatCheck] = {}
+    bounded = 0
     if len(stations) > 1:
         for where, station in stations:
             # screened on the coarser mesh alone: the places are compared, not bounded
@@ -357,7 +363,8 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
                 if c.name not in worst_seats or _seat_use(c) > _seat_use(worst_seats[c.name]):
                     worst_seats[c.name] = c
         # the worst place is bounded: its coarser mesh again (from the cache), then finer
-        scene = stations[int(np.argmax([t.utilisation for t in travel]))][1]
+        bounded = _worst_place([t.utilisation for t in travel])
+        scene = stations[bounded][1]
     coarse = _solve(with_mesh(scene, scene.mesh.size * 1e3 * COARSER), options)[0]
     first = coarse
     fine, mesh, built = _solve(scene, options)
@@ -414,7 +421,15 @@ def run_strength(scene: Scene, options: RunOptions = RunOptions()) -> StrengthRe
         seats = tuple(worst_seats.get(c.name, c) for c in seats)
     return StrengthResult(scene=scene, spots=tuple(spots), seats=seats,
                           dofs=tuple(dofs), target=target, surface=_surface(scene, fine),
-                          notes=tuple(notes), travel=tuple(travel))
+                          notes=tuple(notes), travel=tuple(travel), worst_place=bounded)
+
+
+def _worst_place(utilisations: list[float]) -> int:
+    """The worst of the screened places: the first within PLACES_ALIKE of the largest
+    utilisation (places the screening's mesh does not tell apart load the spots alike,
+    and the last digit of a solve must not choose among them)."""
+    top = max(utilisations)
+    return next(i for i, u in enumerate(utilisations) if u >= top * (1 - PLACES_ALIKE))
 
 
 def _travelling(scene: Scene) -> list[PointForce | Torque]:
@@ -1529,10 +1544,16 @@ def _local_span(scene: Scene, spot: HotSpot, fine: _Field, H: float
     """The slice round a spot (z0, z1), m: LOCAL_HALF of the whole's elements H (m) and
     LOCAL_RADII of its radius to either side, grown to hold whole every load band it
     reaches (a hub, a load's slice, a keyed part's keyway: their loads are applied in
-    it as in the whole), with H to spare, and cut short of every seat (whose reaction
+    it as in the whole) and every groove runout, with H to spare, and cut short of every
+    seat (whose reaction
     is the whole's, unknown to the slice); None where no slice of at least LOCAL_LEAST
     of H either side fits so."""
     seats, loads = _band_kinds(scene, fine.points)
+    g = scene.grooves
+    if g is not None and g.runout > 0:
+        # a runout is held whole too: a cut face through it, beside the small faces where
+        # it leaves the groove's floor, meshed with facets crossing each other
+        loads = loads + [(g.cut[0], g.start), (g.start + g.length, g.cut[1])]
     z = spot.z
     if any(b0 <= z <= b1 for b0, b1 in seats):
         return None
