@@ -1172,6 +1172,17 @@ def test_a_local_models_slice_holds_a_hubs_band_whole_and_stops_short_of_a_seat(
     assert lo == pytest.approx(0.028 + 0.004) and hi == pytest.approx(0.065 + 0.004 + 0.004)
     on_seat = replace(spot, z=0.020)
     assert ws._local_span(scene, on_seat, fine, 4e-3) is None
+    # ... and the run says so, the spot kept as the whole bounded it
+    from pathlib import Path
+    from types import SimpleNamespace as NS
+
+    from shaftfem.runtime import RunOptions
+
+    notes: list[str] = []
+    kept = ws._localised(scene, on_seat, fine, fine, (scene, NS(brep=Path("unused"))), 0.02,
+                         RunOptions(), notes)
+    assert kept is on_seat and len(notes) == 1 and "no local model for the spot at 20.0 mm" \
+        in notes[0]
     # a crossing at 116.2 mm: 24 mm reaches into the runout at 82.5-92.5 mm, held whole
     # (a cut face beside its start meshed with crossing facets), 4 mm to spare
     lo, hi = ws._local_span(scene, replace(spot, z=0.1162), fine, 4e-3)

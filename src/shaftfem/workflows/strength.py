@@ -1452,7 +1452,7 @@ def _localise(scene: Scene, spots: list[HotSpot], fine: _Field, first: _Field, b
     for s in spots:
         if s in open_:
             try:
-                s = _localised(scene, s, fine, first, built, target, options)
+                s = _localised(scene, s, fine, first, built, target, options, notes)
             except (BudgetError, MeshError, SolverError) as e:
                 why = f"the local model at {s.z * 1e3:.1f} mm stopped: {e}"
                 options.say(why)
@@ -1467,9 +1467,10 @@ def _localise(scene: Scene, spots: list[HotSpot], fine: _Field, first: _Field, b
 
 
 def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
-               target: float, options: RunOptions) -> HotSpot:
+               target: float, options: RunOptions, notes: list[str] | None = None
+               ) -> HotSpot:
     """The spot bounded in a slice of the solid round it (see LOCAL_HALF), or as it was
-    where no slice fits between the load bands."""
+    where no slice fits between the load bands (said in `notes`)."""
     placed, shape = built
     st = scene.strength
     assert st is not None
@@ -1482,6 +1483,13 @@ def _localised(scene: Scene, spot: HotSpot, fine: _Field, first: _Field, built,
     h = min(spot.size, H)
     span = _local_span(scene, spot, fine, H)
     if span is None:
+        why = (f"no local model for the spot at {spot.z * 1e3:.1f} mm: no slice of the solid "
+               "round it fits short of the seats beside it (a slice stops short of every "
+               "seat and holds every load band whole); its bound is the whole shaft's, "
+               "which a larger [mesh] max_dofs or finer sizes there tighten")
+        options.say(why)
+        if notes is not None:
+            notes.append(why)
         return spot
     z0, z1 = span
     guard = LOCAL_GUARD * min(spot.z - z0, z1 - spot.z)
