@@ -20,6 +20,10 @@ The solid (why it is built this way is in the comments):
   and intersected with the ring R-d <= r <= R+1 mm, so that every groove floor
   is the same exact cylinder and two crossing floors never meet as two slightly
   different surfaces (a trial showed full-length swept tubes failing there).
+* Where the grooves run out, the end cells are built apart, each groove's tool the
+  cell's loft fused to a loft of its own along the runout (its floor rising,
+  cad.profile.runout_lift): their face towards the next cell has that cell's exact
+  section, so glue joins them as it joins the copies.
 """
 
 from __future__ import annotations
@@ -292,7 +296,8 @@ def _grooved(gmsh, shaft: Shaft, g: Grooves, plug) -> None:
     end_plug = plug(end + run, L) if L - end - run > 1e-9 else None
     # A plain end's disk meets a cell's notched face only in part: that one needs a
     # general fragment, of the two solids alone (fast); so does a shorter last cell,
-    # whose face is built apart from the copies'. Then every contact is a shared face.
+    # whose face is built apart from the copies' (an end cell with runouts is a full
+    # one, its face as the copies'). Then every contact is a shared face.
     if start_plug is not None:
         start_plug, cells[0] = _join(occ, start_plug, cells[0])
     if rest > 1e-9 and len(cells) > 1:
