@@ -1148,7 +1148,7 @@ def test_a_notch_the_whole_mesh_does_not_resolve_is_bounded_in_a_local_model(
 def test_a_local_models_slice_holds_a_hubs_band_whole_and_stops_short_of_a_seat():
     """The paper's gear keyway's end at 63.7 mm lies in the gear hub's band (45-65 mm,
     the key at 46-64 mm): its slice holds that band whole with a spare element beyond,
-    and stops at the gear-end bearing's seat (12-28 mm, widened by a quarter radius).
+    and stops at the gear-end bearing's seat (12-28 mm).
     A spot on a seat gets no slice; a slice reaching into a groove runout holds it
     whole."""
     scene = load_scene("paper2018_installed")
@@ -1167,7 +1167,8 @@ def test_a_local_models_slice_holds_a_hubs_band_whole_and_stops_short_of_a_seat(
     # on the other side to the runout's end (87.7 mm lies in it), and 4 mm more
     lo, hi = ws._local_span(scene, spot, fine, 4e-3)
     assert lo == pytest.approx(0.045 - 0.004 - 0.004) and hi == pytest.approx(0.0925 + 0.004)
-    # a spot at 40 mm: 16 mm reaches into the seat's band (widened to 32 mm): cut there
+    # a spot at 40 mm: 24 mm reaches into the seat's band (12-28 mm): cut an element (4
+    # mm) short of it
     lo, hi = ws._local_span(scene, replace(spot, z=0.040), fine, 4e-3)
     assert lo == pytest.approx(0.028 + 0.004) and hi == pytest.approx(0.065 + 0.004 + 0.004)
     on_seat = replace(spot, z=0.020)

@@ -1552,10 +1552,11 @@ def _local_span(scene: Scene, spot: HotSpot, fine: _Field, H: float
     """The slice round a spot (z0, z1), m: LOCAL_HALF of the whole's elements H (m) and
     LOCAL_RADII of its radius to either side, grown to hold whole every load band it
     reaches (a hub, a load's slice, a keyed part's keyway: their loads are applied in
-    it as in the whole) and every groove runout, with H to spare, and cut short of every
-    seat (whose reaction
-    is the whole's, unknown to the slice); None where no slice of at least LOCAL_LEAST
-    of H either side fits so."""
+    it as in the whole) and every groove runout, with H to spare, and cut H short of
+    every seat's band (where its reaction, the whole's, unknown to the slice, enters; not
+    the band widened against the fit's stresses, in which no spot is judged: a shoulder's
+    fillet beside a bearing lies there); None where no slice of at least LOCAL_LEAST of H
+    either side fits so."""
     seats, loads = _band_kinds(scene, fine.points)
     g = scene.grooves
     if g is not None and g.runout > 0:
@@ -1573,11 +1574,13 @@ def _local_span(scene: Scene, spot: HotSpot, fine: _Field, H: float
         for b0, b1 in loads:
             if b1 > lo and b0 < hi and (b0 - H < lo or b1 + H > hi):
                 lo, hi, grown = min(lo, b0 - H), max(hi, b1 + H), True
-    for b0, b1 in seats:
+    for b0, b1 in (s.seat for s in scene.held if s.kind != "seal"):
+        # one of the whole's elements short of it: a cut face on the band's edge would
+        # take the whole's nodes there, whose reactions are the seat's, as the section's
         if b1 < z:
-            lo = max(lo, b1)
+            lo = max(lo, b1 + H)
         else:
-            hi = min(hi, b0)
+            hi = min(hi, b0 - H)
     lo, hi = max(lo, 0.0), min(hi, scene.shaft.length)
     if any(b1 > lo and b0 < hi and (b0 < lo or b1 > hi) for b0, b1 in loads):
         return None    # a seat too near a hub: the slice would cut through its band
