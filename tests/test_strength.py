@@ -696,12 +696,14 @@ def test_the_gear_shaft_example_within_a_smaller_budget(tmp_path):
     time: the run above, to the 400,000 DOFs it needs, is slow): its second mesh has
     137,970 DOFs, so no refinement around its spots fits the budget, however coarse;
     it stops on its first two meshes, before making a third, with the same worst spot,
-    mean stress and seat slopes, and says so; its K_t beside the charts' is flagged as
-    read where the mesh does not follow the fillet."""
+    mean stress and seat slopes, and says so. That spot, a fillet 6 mm from the right
+    bearing's seat, is then bounded in a local model that stops short of the seat's
+    band (on the whole it read 55.0 MPa +-14.1 % at 383,700 DOFs)."""
     stdout, worst = _gear_shaft(tmp_path, ["--max-dofs", "140000"])
     assert worst["feature"] == "shoulder at 210 mm"
     assert "above the budget of 140,000 however far" in stdout
-    assert "the mesh does not follow the fillet there: these are low" in stdout
+    assert worst["local_model_dofs"] > 0 and worst["bound_percent"] <= 2.0
+    assert abs(worst["peak_mpa"] / 55.0 - 1) < 0.141
 
 
 def _gear_shaft(tmp_path, flags: list[str] | None = None) -> tuple[str, dict]:
