@@ -45,11 +45,17 @@ def _sharp_dip(g: Grooves, radius: float) -> float:
     return min(0.5e-3, 0.5 * (radius - g.depth))
 
 
+def _sharp_tool_floor(g: Grooves, radius: float, lift: float) -> float:
+    """A sharp-cornered groove's tool's floor (m above the groove's: below it, -dip, at
+    full depth) in a runout where the lift is `lift`, rising to the runout's same top."""
+    dip, rise = _sharp_dip(g, radius), g.depth + RUNOUT_CLEARANCE
+    return lift * (rise + dip) / rise - dip
+
+
 def _sharp_lift(g: Grooves, radius: float, lift: float) -> float:
     """A sharp-cornered groove's floor (m above the groove's) in a runout where the lift
-    is `lift`: its tool's floor, which starts below the groove's, rising to the same top."""
-    dip, rise = _sharp_dip(g, radius), g.depth + RUNOUT_CLEARANCE
-    return max(0.0, lift * (rise + dip) / rise - dip)
+    is `lift`: its tool's floor, or the groove's where the tool reaches below it."""
+    return max(0.0, _sharp_tool_floor(g, radius, lift))
 
 
 def axial_width(g: Grooves, radius: float, r: np.ndarray, lift: float = 0.0) -> np.ndarray:
@@ -117,10 +123,8 @@ def profile_outline(g: Grooves, radius: float, lift: float = 0.0, top: float | N
     rf = g.root_radius
     if rf == 0:
         # the tool's floor reaches below the groove's; in a runout it rises from there
-        # to the runout's top (_sharp_lift)
-        dip = _sharp_dip(g, radius)
-        rise = g.depth + RUNOUT_CLEARANCE
-        bottom = radius - g.depth - dip + lift * (rise + dip) / rise
+        # to the runout's top
+        bottom = radius - g.depth + _sharp_tool_floor(g, radius, lift)
         return [
             ("arc", [(-a, bottom), (a, bottom)]),
             ("radial", [(a, bottom), (a, top)]),

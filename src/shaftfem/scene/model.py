@@ -204,6 +204,14 @@ class Grooves:
         """Where the grooves cut the shaft (m): the grooved zone and its runouts."""
         return self.start - self.runout, self.start + self.length + self.runout
 
+    @property
+    def runouts(self) -> tuple[tuple[float, float], ...]:
+        """The runouts' spans (z0, z1), m: none where the grooves end flat."""
+        if not self.runout:
+            return ()
+        lo, hi = self.cut
+        return (lo, self.start), (self.start + self.length, hi)
+
 
 def cell_type(order: int) -> str:
     """meshio's name of the mesh's cells for an element order: 10-node tetrahedra (curved,

@@ -211,7 +211,8 @@ SCHEMA: dict[str, dict[str, Key]] = {
             float, "distance from the shaft's left end to the grooved zone, mm "
             "(default: the zone is centred)", *upto(20_000, "up to 20 m", closed_low=True),
             required=False,
-        ),        "runout_mm": Key(
+        ),
+        "runout_mm": Key(
             float, "axial length beyond each end of the grooved zone over which each "
             "groove's floor rises out to the surface, as the cutter lifts out, mm (0 = the "
             "grooves end in flat walls, whose sharp re-entrant edges strength cannot judge)",

@@ -893,12 +893,10 @@ def _owned(scene: Scene, points: np.ndarray) -> list[np.ndarray]:
         mid = 0.5 * (k.start + k.end)
         out += [inside & (z < mid), inside & (z >= mid)]
     g = scene.grooves
-    if g is not None and g.runout > 0:
-        j = scene.shaft.section_at(g.start + 0.5 * g.length)
-        radius = scene.shaft.profile[j or 0].diameter_start / 2
+    radius = None if g is None else scene.shaft.radius_at(g.start + 0.5 * g.length)
+    if g is not None and radius is not None:
         below = np.hypot(points[:, 0], points[:, 1]) < radius - 0.05 * g.depth
-        end = g.start + g.length
-        out += [below & (z > g.cut[0]) & (z < g.start), below & (z > end) & (z < g.cut[1])]
+        out += [below & (z > z0) & (z < z1) for z0, z1 in g.runouts]
     return out
 
 
@@ -1558,11 +1556,10 @@ def _local_span(scene: Scene, spot: HotSpot, fine: _Field, H: float
     fillet beside a bearing lies there); None where no slice of at least LOCAL_LEAST of H
     either side fits so."""
     seats, loads = _band_kinds(scene, fine.points)
-    g = scene.grooves
-    if g is not None and g.runout > 0:
+    if scene.grooves is not None:
         # a runout is held whole too: a cut face through it, beside the small faces where
         # it leaves the groove's floor, meshed with facets crossing each other
-        loads = loads + [(g.cut[0], g.start), (g.start + g.length, g.cut[1])]
+        loads = loads + list(scene.grooves.runouts)
     z = spot.z
     if any(b0 <= z <= b1 for b0, b1 in seats):
         return None
