@@ -25,6 +25,14 @@ and conductivity; the film cells are those of ross's own test of this rig.
 
     .venv-ross3/bin/python benchmarks/tilting_pad_reference.py --heat tests/data/fillon_ross.json
 
+`--heat --grown`: the same with ross's pads deformed by their pressure and heat (2D
+plane-strain pads, 20 mm thick) and its journal and shell grown by their temperatures,
+the shell at the supply's (deform_type "pad_mechanical_thermal_shaft_shell_thermal"),
+at shaftfem's steel expansion (parts.pad_heat.EXPANSION). About 3 minutes.
+
+    .venv-ross3/bin/python benchmarks/tilting_pad_reference.py --heat --grown \
+        tests/data/fillon_ross_grown.json
+
 `--whirl`: the first bearing at its first speed reduced at whirls of WHIRL_RATIOS times
 the spin (ross's excitation_ratio), its pads massless (pad_density 1e-9: shaftfem's
 film table takes massless pads).
@@ -114,18 +122,30 @@ FILLON = {"diameter": 0.1, "length": 0.07, "pad_clearance": 148e-6, "preload": 0
           "carry_over": 0.8, "speeds_rpm": [1000.0, 2000.0, 3000.0, 4000.0]}
 
 
-def heat(path: str) -> int:
+# --heat --grown: ross's pads deformed by their pressure and heat (its 2D plane-strain
+# pads) and its journal and shell grown by theirs, the shell at the supply's temperature,
+# at shaftfem's expansion (parts.pad_heat.EXPANSION) and with 20 mm pads
+GROWN = "pad_mechanical_thermal_shaft_shell_thermal"
+
+
+def heat(path: str, grown: bool = False) -> int:
     """The --heat file: ross's peak pad temperature, journal temperature and
-    eccentricity on Fillon's bearing at each speed."""
+    eccentricity on Fillon's bearing at each speed (`grown`: its pads, journal and shell
+    deformed, GROWN)."""
     import ross
     from ross.bearings.tilting_pad import TiltingPad
     from ross.units import Q_
 
     sys.path.insert(0, str(Path(__file__).parents[1] / "src"))
-    from shaftfem.parts import oil  # pure Python: no shaftfem dependency is needed here
+    # numpy and scipy only, which ross has: no other shaftfem dependency is needed here
+    from shaftfem.parts import oil
+    from shaftfem.parts.pad_heat import EXPANSION
 
     b = FILLON
     g, n = b["grade"], b["pads"]
+    deform = {"deform_type": GROWN, "pad_expansion": EXPANSION,
+              "journal_expansion": EXPANSION, "shell_expansion": EXPANSION} if grown else {
+              "deform_type": None}
     lubricant = {"liquid_viscosity1": oil.dynamic(g, 40.0), "temperature1": 313.15,
                  "liquid_viscosity2": oil.dynamic(g, 70.0), "temperature2": 343.15,
                  "liquid_density": oil.density(b["supply_c"]),
@@ -135,7 +155,7 @@ def heat(path: str) -> int:
     for rpm in b["speeds_rpm"]:
         bearing = TiltingPad(
             n=0, speed=Q_([rpm], "RPM"), equilibrium_type="match_load", thermal_type="full",
-            deform_type=None, journal_diameter=b["diameter"],
+            **deform, journal_diameter=b["diameter"],
             radial_clearance=b["pad_clearance"] * (1 - b["preload"]), pad_thickness=0.02,
             pivot_angle=Q_([b["first_pivot_deg"] + k * 360.0 / n for k in range(n)], "deg"),
             pad_arc=Q_([b["arc_deg"]] * n, "deg"), pad_axial_length=[b["length"]] * n,
@@ -152,8 +172,9 @@ def heat(path: str) -> int:
         print(rows[-1], flush=True)
     with open(path, "w") as f:
         json.dump({"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, "
-                             "thermal_type='full', deform_type=None, 24 x 10 x 10 film "
-                             "cells, 10 through each pad",
+                             f"thermal_type='full', deform_type={deform['deform_type']!r}, "
+                             "24 x 10 x 10 film cells, 10 through each pad"
+                             + (f", expansion {EXPANSION:g} 1/K" if grown else ""),
                    "bearing": b, "results": rows}, f, indent=1)
     return 0
 
@@ -165,7 +186,7 @@ def main(argv: list[str]) -> int:
     if argv[0] == "--whirl":
         return whirl(argv[1])
     if argv[0] == "--heat":
-        return heat(argv[1])
+        return heat(argv[-1], grown=argv[1] == "--grown")
     out = {"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, thermal_type=None, "
                      "equilibrium_type='match_load', 60 x 40 film cells per pad",
            "bearings": {name: {**b, "results": solve(b)} for name, b in BEARINGS.items()}}

@@ -88,3 +88,65 @@ def test_fillons_bearing_heats_as_an_independent_thd_film(rpm):
     assert abs(h.journal - ref["journal_c"]) < 3.0
     assert abs(math.hypot(*h.state.q[:2]) - ref["eccentricity"]) < 0.02
     assert h.hottest in (2, 3) and 40.0 < h.journal < h.peak < {1000.0: 49.5, 4000.0: 76.5}[rpm]
+
+
+def _film_between(R: float, centre: np.ndarray, radius: float, theta: np.ndarray) -> np.ndarray:
+    """The gap along each ray theta from the bore's centre between a journal of radius R
+    and a pad's face, a circle about `centre` of `radius` (exact: the ray meets it where
+    |r u - centre| = radius)."""
+    u = np.stack([np.cos(theta), np.sin(theta)])
+    b = centre @ u
+    return b + np.sqrt(b**2 - centre @ centre + radius**2) - R
+
+
+@pytest.mark.parametrize("tilts", [True, False])
+def test_a_pad_grown_by_its_heat_has_the_film_its_expanded_geometry_gives(tilts):
+    """A journal 12 K above the supply and a 20 mm pad 25 K above it, the housing at the
+    supply (parts.pad_heat.grown): the film is that between the journal's circle grown
+    about the bore's centre and the pad's face grown about its pivot (a fixed pad, the
+    housing's bore, keeps its size), built point by point, to 1 % of its change."""
+    R, c_b, m, t = 0.05, 80e-6, 0.4, 0.02
+    dT_j, dT_p, alpha = 12.0, 25.0, pad_heat.EXPANSION
+    pivot = math.radians(-60.0)
+    pad = pads.Pad(start=pivot - 0.6, arc=1.2, pivot=pivot, preload=m, tilts=tilts)
+    hot = pad_heat.grown(pad, R, c_b, dT_j, dT_p, t)
+    n = np.array([math.cos(pivot), math.sin(pivot)])
+    c_p = c_b / (1 - m)
+    centre, radius = -(c_p - c_b) * n, R + c_p        # the face: R + c_b out at the pivot
+    back = (R + c_b + t) * n                            # the pivot, held by the housing
+    e = alpha * dT_p if tilts else 0.0
+    theta = np.linspace(pad.start, pad.start + pad.arc, 9)
+    cold = _film_between(R, centre, radius, theta)
+    grown = _film_between(R * (1 + alpha * dT_j), back + (1 + e) * (centre - back),
+                          (1 + e) * radius, theta)
+    ours = pads._film(hot, theta, np.zeros(3 if tilts else 2))[0] * c_b
+    assert np.abs(ours - grown).max() < 0.01 * np.abs(grown - cold).max()
+    assert np.abs(grown - cold).max() > 5e-6        # the growth is microns, not round-off
+    assert pad_heat.grown(pad, R, c_b, 0.0, 0.0, t) == pad
+
+
+def test_parts_that_grow_through_the_clearance_are_refused():
+    pad = pads.Pad(start=0.0, arc=1.0, pivot=0.5, preload=0.3, tilts=True)
+    with pytest.raises(ValueError, match="grow through the clearance"):
+        pad_heat.grown(pad, 0.05, 50e-6, 100.0, 100.0, 0.02)
+
+
+FILLON_GROWN = Path(__file__).parent / "data" / "fillon_ross_grown.json"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("rpm", [1000.0, 4000.0])
+def test_fillons_bearing_grown_by_its_heat_runs_as_an_independent_tehd_film(rpm):
+    """The same bearing with its parts grown by their heat (20 mm pads): the peak pad
+    temperature within 1 C of ross 3.1's film on pads deformed by their pressure and heat
+    (2D plane-strain pads) with its journal and shell grown, the eccentricity within
+    0.02; and hotter than on rigid parts of their cold size."""
+    ref = {r["speed_rpm"]: r for r in json.loads(FILLON_GROWN.read_text())["results"]}[rpm]
+    bore = pads.tilting(0.7, 4, math.radians(75), 0.47, 0.5, math.radians(45))
+    args = (bore, 10e3, rpm * math.pi / 30, 0.05, 148e-6 * (1 - 0.47), 32, 40.0)
+    h = pad_heat.heated(*args, thickness=0.02)
+    assert abs(h.peak - ref["peak_c"]) < 1.0
+    assert abs(h.journal - ref["journal_c"]) < 3.0
+    assert abs(math.hypot(*h.state.q[:2]) - ref["eccentricity"]) < 0.02
+    assert h.peak > pad_heat.heated(*args).peak
+    assert all(c < 148e-6 * (1 - 0.47) for c in h.clearance)

@@ -304,12 +304,15 @@ def test_a_tilting_pad_journal_fed_at_its_supply_reports_its_pads_temperatures()
         del s["oil_temperature_c"]
     rows = film_rows(equipped(load_scene(scene)))
     assert rows
+    cold = max(scene["support"][0]["radial_clearance_um"])
     for f in rows:
         assert 40.0 < f.film_c < f.pad_peak_c == max(f.pad_peaks_c)
+        # the journal and pads grow with their heat: the clearance closes
+        assert f.hot_clearance_um is not None and 0.5 * cold < f.hot_clearance_um < cold
         # pads from the first past the load's line: 0 and 3 straddle it
         loaded, free = (f.pad_peaks_c[0], f.pad_peaks_c[3]), (f.pad_peaks_c[1], f.pad_peaks_c[2])
         assert min(loaded) > max(free)
         assert f.hot == (f.pad_peak_c > 50.0)
     text = film_text(rows)
-    assert "peak pad temperature" in text
+    assert "peak pad temperature" in text and "hot clearance" in text
     assert ("ABOVE" in text) == any(f.hot for f in rows)

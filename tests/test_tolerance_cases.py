@@ -327,6 +327,7 @@ def test_a_hub_on_a_keyway_left_to_the_default_is_keyed_and_bracketed_by_rigid()
     ({"oil_supply_temperature_c": 40.0}, "oil_temperature_c", "one of them"),
     ({"oil_flow_l_min": 2.0}, "oil_flow_l_min", "only with oil_supply_temperature_c"),
     ({"pad_temperature_limit_c": 110.0}, "pad_temperature_limit_c", "tilting_pad"),
+    ({"pad_thickness_mm": 15.0}, "pad_thickness_mm", "tilting_pad"),
     ({"oil_temperature_c": None, "oil_supply_temperature_c": 200.0},
      "oil_supply_temperature_c", "in [-20, 150] C"),
     ({"oil_temperature_c": None, "oil_iso_vg": None, "viscosity_mpa_s": 20.0,

@@ -485,6 +485,8 @@ class FilmRow:
     # ... and of the friction power, what the films give the journal (W), which it sheds
     # along the shaft, not into the drain
     journal_w: float | None = None
+    # the least of the pads' clearances at their pivots, the parts grown by their heat (um)
+    hot_clearance_um: float | None = None
 
     @property
     def hot(self) -> bool:
@@ -521,6 +523,7 @@ class FilmRow:
                     "peak_pad_temperature_c": self.pad_peak_c,
                     "pad_peak_temperatures_c": list(self.pad_peaks_c),
                     "journal_heat_w": self.journal_w,
+                    "hot_clearance_um": self.hot_clearance_um,
                     "pad_temperature_limit_c": self.pad_limit_c})}
 
 

@@ -578,7 +578,7 @@ def film_text(films) -> str:
     if warm:
         lines += ["", "the films' heating (fed at the supply's temperature; heat balance, "
                   "hot-oil carry-over 0.8; tilting pads' friction, draw and peaks from "
-                  "their heated films):"]
+                  "their heated films, on the journal and pads grown by their heat):"]
     for f in warm:
         # tilting pads' friction and draw come from their heated films (with the
         # journal's share); a plain or fixed bore's from the heat balance
@@ -597,7 +597,10 @@ def film_text(films) -> str:
                         f"; peak pad temperature {f.pad_peak_c:.1f} C (limit "
                         f"{f.pad_limit_c:g} C{': ABOVE' if f.hot else ''}); each pad's "
                         "peak from the load's line in the journal's turn: "
-                        + ", ".join(f"{t:.1f}" for t in f.pad_peaks_c) + " C"))
+                        + ", ".join(f"{t:.1f}" for t in f.pad_peaks_c) + " C")
+                     + ("" if f.hot_clearance_um is None else
+                        f"; hot clearance {f.hot_clearance_um:.1f} um (the least pad's, at "
+                        "its pivot)"))
     return "\n".join(lines)
 
 

@@ -27,9 +27,26 @@ flow (hot-oil carry-over, Ettles):
 
     Q_in T_in = lambda Q_out,prev T_out,prev + (Q_in - lambda Q_out,prev) T_s.
 
+The heat grows the parts, closing the clearance (a hot clearance, `grown`). The
+clearances are declared with the whole bearing at one temperature, and the housing that
+holds the pivots stays at the supply's. The journal, at T_j, grows by alpha R (T_j -
+T_s). A tilting pad, adiabatic, is at its face's mean temperature T_p through its
+thickness t; it grows about its pivot: its face there moves in by alpha t (T_p - T_s)
+and its radius of curvature grows by alpha (R + c_p) (T_p - T_s). A fixed pad is the
+housing's bore and keeps its size. So
+
+    c_b' = c_b - alpha R (T_j - T_s) - alpha t (T_p - T_s)      (t = 0: a fixed pad)
+    c_p' = c_p - alpha R (T_j - T_s) + alpha (R + c_p) (T_p - T_s)   (tilting)
+
+with alpha a steel's (EXPANSION) for the shaft, the pads' backs and the housing, and the
+pad's film over c_b at its pivot (Pad.gap) c_b' / c_b, its preload 1 - c_b' / c_p'. This
+is the thermal part of ross 3.1's pads' and shaft's deformation (its deform_type
+"pad_mechanical_thermal_shaft_shell_thermal", the shell at the supply's temperature),
+without the pads' bending under their pressure and their heat's gradient through them.
+
 A pad's pressure (its film with its viscosity, pads.pad_state) and its temperature are
 solved in turn until the temperatures settle; the journal's place and the pads' tilts
-are those of the heated film.
+are those of the heated film, on its grown parts.
 
 References: Ettles (1969), hot oil carry-over in thrust bearings; Fillon, Bligoud and
 Frene (1992), J. Tribology 114, a tilting-pad bearing's measured and computed pad
@@ -38,7 +55,7 @@ temperatures (docs/journal-bearing.md, "The film's heating").
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -64,6 +81,13 @@ ROUNDS = 60
 # ... and until they move by less than this (K), the film's equilibrium is solved to a
 # looser tolerance
 ROUGH = 0.5
+# a steel's linear thermal expansion (1/K): the journal, the pads (a thin babbitt on a
+# steel back) and the housing
+EXPANSION = 11.5e-6
+# a tilting pad's radial thickness over the journal's diameter where none is given
+# (0.12 to 0.2 on the bearings of ross 3.1's examples and literature cases): its
+# growth moves the peak pad temperature by about 0.3 K per 10 mm on Fillon's bearing
+THICKNESS = 0.15
 
 
 @dataclass(frozen=True)
@@ -88,6 +112,26 @@ class PadsHeat:
     power: float = 0.0   # W, the films' shear at their own viscosity, over all pads
     journal_power: float = 0.0   # W, of it what the films give the journal
     fresh: float = 0.0   # m^3/s, the supply oil the pads' leading edges draw
+    # m, each pad's film at its pivot with the journal centred, grown (c_b')
+    clearance: tuple[float, ...] = ()
+
+
+def grown(pad: pads.Pad, radius: float, clearance: float, journal_rise: float,
+          pad_rise: float, thickness: float, expansion: float = EXPANSION) -> pads.Pad:
+    """The pad as the heat grows the parts (module docstring): the journal of `radius`
+    (m) `journal_rise` (K) above the supply, the pad (of `thickness`, m, if it tilts)
+    `pad_rise`; its gap and preload on the cold clearance c_b (m). A ValueError where
+    the journal would fill the bore."""
+    c_p = clearance / (1 - pad.preload)
+    journal = expansion * radius * journal_rise
+    face = expansion * thickness * pad_rise if pad.tilts else 0.0
+    curve = expansion * (radius + c_p) * pad_rise if pad.tilts else 0.0
+    c_b, c_p = clearance - journal - face, c_p - journal + curve
+    if c_b <= 0.05 * clearance:
+        raise ValueError(f"the journal, {journal_rise:.0f} K above the supply, and the "
+                         f"pads, {pad_rise:.0f} K, grow through the clearance "
+                         f"({clearance * 1e6:.1f} um cold, {c_b * 1e6:.1f} um hot)")
+    return replace(pad, gap=c_b / clearance, preload=1 - c_b / c_p)
 
 
 @dataclass(frozen=True)
@@ -121,6 +165,13 @@ def _flows(H: np.ndarray, P: np.ndarray, m: np.ndarray, theta: np.ndarray, Z: np
     return q_t, q_z, m / H + poiseuille * (dP_t**2 + dP_z**2)
 
 
+def _on_grid(v: np.ndarray, g: _Grid) -> np.ndarray:
+    """Nodal values v on the pad's grid (theta, Z)."""
+    out = np.zeros((g.theta.size, g.Z.size))
+    out[g.i, g.j] = v
+    return out
+
+
 def _over(v: np.ndarray, g: _Grid) -> float:
     """int v dtheta dZ over the pad's half film."""
     return float(np.trapezoid(np.trapezoid(v, g.Z, axis=1), g.theta))
@@ -150,11 +201,15 @@ def march(H: np.ndarray, P: np.ndarray, m: np.ndarray, theta: np.ndarray, Z: np.
 
 def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance: float,
            grade: int, supply: float, carry_over: float = CARRY_OVER,
-           specific_heat: float = SPECIFIC_HEAT) -> PadsHeat:
+           specific_heat: float = SPECIFIC_HEAT, thickness: float | None = None
+           ) -> PadsHeat:
     """The bore's heated film carrying `load` (N, along -y) at the spin omega (rad/s), the
-    journal's radius and the bearing's clearance c_b (m), oil of ISO VG `grade` supplied
-    at `supply` (C); a ValueError where a film runs above parts.heat.HOTTEST or the
-    temperatures do not settle."""
+    journal's radius and the bearing's clearance c_b (m, cold), oil of ISO VG `grade`
+    supplied at `supply` (C), the parts grown by the heat with tilting pads `thickness`
+    thick (m; None: the parts keep their cold size); a ValueError where a film runs above
+    parts.heat.HOTTEST, the parts grow through the clearance, or the temperatures do not
+    settle."""
+    cold = bore
     mu_s = oil.dynamic(grade, supply)
     rho_c = oil.density(supply) * specific_heat
     rise = mu_s * omega * (radius / clearance) ** 2 / rho_c
@@ -175,6 +230,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
         # while the temperatures still move by degrees, the film's place need not be
         # exact: the last rounds settle it to the full tolerance
         tol = 1e-10 if moved < ROUGH else 1e-5
+        used = bore
         state = pads.equilibrium(bore, np.array([0.0, -W]), tol=tol, start=state,
                                  viscosity=tuple(m))
         new, flows, outs, warm, grids = [], [], [], [], []
@@ -204,6 +260,13 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
         # the journal turns through every film and runs at their mean
         marched_at = journal
         journal += RELAX * (sum(a for a, _ in warm) / sum(w for _, w in warm) - journal)
+        if thickness is not None:
+            # each pad's face (its adiabatic wall, SURFACE) on the film's area
+            faces = [_over(_on_grid(journal + SURFACE * (t - journal), g), g) / a
+                     for t, (_, g), (_, a) in zip(T, films, warm)]
+            bore = pads.Bore(tuple(grown(p, radius, clearance, journal - supply, f - supply,
+                                         thickness) for p, f in zip(cold.pads, faces)),
+                             cold.ratio)
         fresh = 0.0
         for k in range(n):   # the pad before k in the journal's turn
             q_prev, t_prev = outs[(k - 1) % n]
@@ -220,7 +283,8 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             # round's films
             shear = sum(_over(_flows(*grid, g.theta, g.Z)[2], g) for grid, _, g in grids)
             sink = sum(_over(kappa * (Tk - marched_at) / grid[0], g) for grid, Tk, g in grids)
-            return PadsHeat(state=state, temperature=tuple(T), surface=tuple(surface),
+            return PadsHeat(clearance=tuple(p.gap * clearance for p in used.pads),
+                            state=state, temperature=tuple(T), surface=tuple(surface),
                             viscosity=tuple(m), inlet=tuple(inlets),
                             outlet=tuple(t for _, t in outs), journal=journal,
                             flow=tuple(omega * radius**2 * clearance * q for q in flows),

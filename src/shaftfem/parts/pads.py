@@ -9,14 +9,16 @@ centre of curvature sits c_p - c_b towards its pivot angle theta_p, c_p = c_b / 
 with m the preload, so with the journal centred its film is thinnest (c_b) at theta_p:
 
     H = H_0(theta) + sum_j g_j(theta) q_j,
-    H_0 = (1 - m cos(theta - theta_p)) / (1 - m),
+    H_0 = a (1 - m cos(theta - theta_p)) / (1 - m),
 
 over the generalised coordinates q: the journal's (X, Y), with g = -cos, -sin, and a
 tilting pad's tilt about its pivot, g = -sin(theta - theta_p) (the tilt's angle times
-R / c_b). On each pad div(H^3 grad P) = 6 dH/dtheta + 12 dH/dtau, P = 0 at the pad's
-edges (the grooves' oil at ambient pressure) and its ends, Swift-Stieber cavitation
-where the film ruptures. The film's generalised force on coordinate i (the virtual work
-of the pressure as q_i moves the surfaces) is Q_i = int P g_i dtheta dZ, so that
+R / c_b). The film at theta_p with the journal centred, a (over c_b), is 1 but on a pad
+a running bearing's heat has grown (Pad.gap, parts.pad_heat.grown). On each pad
+div(H^3 grad P) = 6 dH/dtheta + 12 dH/dtau, P = 0 at the pad's edges (the grooves' oil
+at ambient pressure) and its ends, Swift-Stieber cavitation where the film ruptures.
+The film's generalised force on coordinate i (the virtual work of the pressure as q_i
+moves the surfaces) is Q_i = int P g_i dtheta dZ, so that
 Q_X, Q_Y are the force on the journal and a tilt's Q its moment about the pivot; the
 stiffness K_ij = -dQ_i/dq_j and damping C_ij = -dQ_i/dq'_j are those of the discrete
 film, exact (one tangent solve each on the pad's own factorisation).
@@ -46,13 +48,16 @@ Z_CELLS = 16
 class Pad:
     """One arc of a bore (rad): where it starts and how far it spans, the pivot angle
     its preload points to (a fixed pad's middle, or a tilting pad's pivot), the preload
-    m = 1 - c_b / c_p in [0, 1), and whether it tilts about its pivot."""
+    m = 1 - c_b / c_p in [0, 1), whether it tilts about its pivot, and its film at the
+    pivot angle with the journal centred over the bearing's clearance c_b (1 but where a
+    running bearing's heat has grown its parts: parts.pad_heat.grown)."""
 
     start: float
     arc: float
     pivot: float
     preload: float = 0.0
     tilts: bool = False
+    gap: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -231,7 +236,8 @@ def _weights(pad: Pad, ratio: float, cells: int, z_cells: int, tilt: bool) -> _W
     return _Weights(
         gv=np.array([weighted.assemble(f.basis, k=g) for g, _ in modes]),
         dgv=np.array([weighted.assemble(f.basis, k=dg) for _, dg in modes]),
-        preload=weighted.assemble(f.basis, k=m * np.sin(f.theta - pad.pivot) / (1 - m)),
+        preload=weighted.assemble(f.basis, k=pad.gap * m * np.sin(f.theta - pad.pivot)
+                                  / (1 - m)),
         g=tuple(g for g, _ in modes),
         h0=_film(pad, f.theta, np.zeros(len(modes)))[0])
 
@@ -239,9 +245,9 @@ def _weights(pad: Pad, ratio: float, cells: int, z_cells: int, tilt: bool) -> _W
 def _film(pad: Pad, theta: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The pad's film thickness H and dH/dtheta at angles theta, its coordinates q =
     (X, Y[, tilt])."""
-    m = pad.preload
-    H = (1 - m * np.cos(theta - pad.pivot)) / (1 - m)
-    dH = m * np.sin(theta - pad.pivot) / (1 - m)
+    m, a = pad.preload, pad.gap / (1 - pad.preload)
+    H = a * (1 - m * np.cos(theta - pad.pivot))
+    dH = a * m * np.sin(theta - pad.pivot)
     for (g, dg), qj in zip(_modes(pad, theta, len(q) > 2), q):
         H = H + g * qj
         dH = dH + dg * qj

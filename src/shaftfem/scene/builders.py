@@ -203,6 +203,7 @@ class Support(_Table):
     pad_inertia_kg_mm2: Number | None = None
     pivot_stiffness_n_per_mm: Number | None = None
     pad_mass_kg: Number | None = None
+    pad_thickness_mm: Number | None = None
     groove_arc_deg: Number | None = None
     min_film_um: Number | None = None
     elements: int | None = None

@@ -498,6 +498,10 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         raise SceneError(f"{where(source, table, 'pad_mass_kg')}: only with "
                          "pivot_stiffness_n_per_mm (on a rigid pivot the pad does not move "
                          "radially)")
+    if t["pad_thickness_mm"] is not None and (t["bore"] != "tilting_pad" or supply is None):
+        raise SceneError(f"{where(source, table, 'pad_thickness_mm')}: only with bore = "
+                         "\"tilting_pad\" and oil_supply_temperature_c (the pads grow with "
+                         "their heated film's temperature)")
     if t["oil_flow_l_min"] is not None and supply is None:
         raise SceneError(f"{where(source, table, 'oil_flow_l_min')}: only with "
                          "oil_supply_temperature_c (the flow the supply heats)")
@@ -532,6 +536,8 @@ def _journal(source: str, i: int, raw: dict, s: Support, shaft: Shaft,
         pad_inertia=(t["pad_inertia_kg_mm2"] or 0.0) * 1e-6,
         pivot_stiffness=None if t["pivot_stiffness_n_per_mm"] is None
         else t["pivot_stiffness_n_per_mm"] * 1e3, pad_mass=t["pad_mass_kg"] or 0.0,
+        pad_thickness=None if t["pad_thickness_mm"] is None
+        else t["pad_thickness_mm"] * MM,
         oil_flow=None if t["oil_flow_l_min"] is None else t["oil_flow_l_min"] / 60e3)
     # an oil given by its grade: the viscosities of its temperature range come from the
     # part (shaftfem.parts.oil), with the film's coefficients

@@ -591,6 +591,9 @@ class JournalBearing:
     # on it (kg)
     pivot_stiffness: float | None = None
     pad_mass: float = 0.0
+    # m: each tilting pad's radial thickness, for its growth with its heat (None: 0.15 of
+    # the diameter, parts.pad_heat.THICKNESS)
+    pad_thickness: float | None = None
 
     @property
     def ratio(self) -> float:

@@ -365,6 +365,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "pad_mass_kg": Key(float, "each tilting pad's mass on its flexible pivot, kg (with "
                            "pivot_stiffness_n_per_mm; default 0)",
                            *upto(1e4, "up to 10^4 kg", closed_low=True), required=False),
+        "pad_thickness_mm": Key(float, "each tilting pad's radial thickness, mm (bore = "
+                                "\"tilting_pad\" with oil_supply_temperature_c: the pads "
+                                "grow with their heat, closing the clearance; default "
+                                "0.15 of the journal's diameter)",
+                                *upto(1_000, "up to 1 m"), required=False),
         "groove_arc_deg": Key(float, "each axial groove's arc, deg (bore = "
                               "\"two_axial_groove\", \"elliptical\"; default 20)",
                               lambda v: 0 < v < 90, "in (0, 90)", default=20.0,

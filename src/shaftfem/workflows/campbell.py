@@ -1149,7 +1149,8 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                     # the share the journal takes and sheds along the shaft
                     power, into_oil, side = thd.power, thd.power - thd.journal_power, thd.fresh
                     warm.update(pad_peak_c=max(peaks), pad_limit_c=b.pad_limit,
-                                pad_peaks_c=peaks, journal_w=thd.journal_power)
+                                pad_peaks_c=peaks, journal_w=thd.journal_power,
+                                hot_clearance_um=min(thd.clearance) * 1e6)
                 # the supply carries off the film's heat: it drains warmer by H / (rho c Q)
                 drain = None if b.oil_flow is None else supply + into_oil / (
                     oil.density(supply) * heat.SPECIFIC_HEAT * b.oil_flow)
@@ -1166,14 +1167,15 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
 
 def pads_heat(b, omega: float):
     """A tilting pads' journal's heated film (parts.pad_heat.PadsHeat) at the spin omega
-    (rad/s), fed at its supply temperature: its pads from the first past the load's line
-    in the journal's turn."""
+    (rad/s), fed at its supply temperature, its parts grown by their heat: its pads from
+    the first past the load's line in the journal's turn."""
     from shaftfem.parts import pad_heat, pads
 
     assert b.oil_iso_vg is not None and b.oil_supply_temperature is not None
     bore = pads.bore_of(b.bore, b.ratio)
+    thickness = b.pad_thickness or pad_heat.THICKNESS * b.diameter
     return pad_heat.heated(bore, b.load, omega, b.diameter / 2, b.clearance, b.oil_iso_vg,
-                           b.oil_supply_temperature)
+                           b.oil_supply_temperature, thickness=thickness)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()
