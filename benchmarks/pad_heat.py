@@ -9,7 +9,9 @@ thermohydrodynamic film on the same rig and oil (tests/data/fillon_ross.json, wr
 `benchmarks/tilting_pad_reference.py --heat`). Twice: on rigid parts of their cold size,
 and on parts grown by their heat with 20 mm pads (parts.pad_heat.grown), against ross's
 pads deformed by their pressure and heat and its journal and shell grown
-(tests/data/fillon_ross_grown.json, `--heat --grown`).
+(tests/data/fillon_ross_grown.json, `--heat --grown`). Last, the synchronously reduced
+stiffness and damping the rotor model takes (the heat balance's one film temperature on
+the cold clearance) against the heated, grown film's.
 
     .venv/bin/python benchmarks/pad_heat.py
 
@@ -26,7 +28,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).parent))
 
 import _common  # noqa: E402, F401  (one BLAS thread, as the CLI)
-from shaftfem.parts import pad_heat, pads  # noqa: E402
+from shaftfem.parts import heat, journal, oil, pad_heat, pads  # noqa: E402
+from shaftfem.scene.model import JournalBearing, JournalBore, condensed  # noqa: E402
 
 SPEEDS = (1000.0, 2000.0, 3000.0, 4000.0)
 TEHD = (43.7, 53.4, 63.2, 72.9)        # C, the paper's prediction
@@ -57,5 +60,32 @@ def main() -> None:
                   f"{min(h.clearance) * 1e6:.1f} |")
 
 
+def coefficients() -> None:
+    """The balance's K_xx and C_xx (the pads isotropic here) against the heated film's."""
+    c = 148e-6 * (1 - 0.47)
+    spec = JournalBore(kind="tilting_pad", pads=4, arc=math.radians(75), preload=0.47)
+    b = JournalBearing(diameter=0.1, length=0.07, clearance=c, viscosity=None, load=10e3,
+                       bore=spec, oil_iso_vg=32, oil_supply_temperature=40.0)
+    journal.remember(pads.film_table(spec, round(b.ratio, 9)))
+    bore = pads.bore_of(spec, b.ratio)
+    print("\nsynchronous coefficients: the heat balance's film (what the rotor takes) "
+          "against the heated film on grown parts\n")
+    print("| r/min | film, C | K_xx, MN/m | heated, grown | off | C_xx, kN s/m | "
+          "heated, grown | off |")
+    print("|---|---|---|---|---|---|---|---|")
+    for n in SPEEDS:
+        w = n * math.pi / 30
+        h = heat.heat_balance(b, w, 40.0)
+        op = journal.operating(heat.running(b, h), w)
+        t = pad_heat.heated(bore, 10e3, w, 0.05, c, 32, 40.0, thickness=PADS)
+        Z = condensed(t.state.stiffness + 1j * t.state.damping)
+        unit = oil.dynamic(32, 40.0) * w * 0.05**4 / c**3   # the film's force scale / c_b
+        k, d = unit * Z.real[0, 0], unit / w * Z.imag[0, 0]
+        print(f"| {n:,.0f} | {h.effective:.1f} | {op.K[0, 0] / 1e6:.1f} | {k / 1e6:.1f} | "
+              f"{op.K[0, 0] / k - 1:+.1%} | {op.C[0, 0] / 1e3:.1f} | {d / 1e3:.1f} | "
+              f"{op.C[0, 0] / d - 1:+.1%} |")
+
+
 if __name__ == "__main__":
     main()
+    coefficients()
