@@ -10,8 +10,8 @@ thermohydrodynamic film on the same rig and oil (tests/data/fillon_ross.json, wr
 and on parts grown by their heat with 20 mm pads (parts.pad_heat.grown), against ross's
 pads deformed by their pressure and heat and its journal and shell grown
 (tests/data/fillon_ross_grown.json, `--heat --grown`). Last, the synchronously reduced
-stiffness and damping the rotor model takes (the heat balance's one film temperature on
-the cold clearance) against the heated, grown film's.
+stiffness and damping of the heat balance's one film temperature on the cold clearance
+against the heated, grown film's (what the rotor model takes) and ross's.
 
     .venv/bin/python benchmarks/pad_heat.py
 
@@ -61,7 +61,9 @@ def main() -> None:
 
 
 def coefficients() -> None:
-    """The balance's K_xx and C_xx (the pads isotropic here) against the heated film's."""
+    """The balance's K_xx and C_xx (the pads isotropic here) against the heated film's
+    on grown parts (what the rotor model takes), and ross's on its deformed and grown
+    film (massless pads)."""
     c = 148e-6 * (1 - 0.47)
     spec = JournalBore(kind="tilting_pad", pads=4, arc=math.radians(75), preload=0.47)
     b = JournalBearing(diameter=0.1, length=0.07, clearance=c, viscosity=None, load=10e3,
@@ -70,9 +72,11 @@ def coefficients() -> None:
     bore = pads.bore_of(spec, b.ratio)
     print("\nsynchronous coefficients: the heat balance's film (what the rotor takes) "
           "against the heated film on grown parts\n")
-    print("| r/min | film, C | K_xx, MN/m | heated, grown | off | C_xx, kN s/m | "
-          "heated, grown | off |")
-    print("|---|---|---|---|---|---|---|---|")
+    ross = {r["speed_rpm"]: r for r in
+            json.loads((DATA / "fillon_ross_grown.json").read_text())["results"]}
+    print("| r/min | film, C | K_xx, MN/m | heated, grown | off | ross 3.1 | C_xx, kN s/m | "
+          "heated, grown | off | ross 3.1 |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for n in SPEEDS:
         w = n * math.pi / 30
         h = heat.heat_balance(b, w, 40.0)
@@ -81,9 +85,10 @@ def coefficients() -> None:
         Z = condensed(t.state.stiffness + 1j * t.state.damping)
         unit = oil.dynamic(32, 40.0) * w * 0.05**4 / c**3   # the film's force scale / c_b
         k, d = unit * Z.real[0, 0], unit / w * Z.imag[0, 0]
+        r = ross[n]
         print(f"| {n:,.0f} | {h.effective:.1f} | {op.K[0, 0] / 1e6:.1f} | {k / 1e6:.1f} | "
-              f"{op.K[0, 0] / k - 1:+.1%} | {op.C[0, 0] / 1e3:.1f} | {d / 1e3:.1f} | "
-              f"{op.C[0, 0] / d - 1:+.1%} |")
+              f"{op.K[0, 0] / k - 1:+.1%} | {r['kxx'] / 1e6:.1f} | {op.C[0, 0] / 1e3:.1f} | "
+              f"{d / 1e3:.1f} | {op.C[0, 0] / d - 1:+.1%} | {r['cxx'] / 1e3:.1f} |")
 
 
 if __name__ == "__main__":

@@ -129,9 +129,9 @@ GROWN = "pad_mechanical_thermal_shaft_shell_thermal"
 
 
 def heat(path: str, grown: bool = False) -> int:
-    """The --heat file: ross's peak pad temperature, journal temperature and
-    eccentricity on Fillon's bearing at each speed (`grown`: its pads, journal and shell
-    deformed, GROWN)."""
+    """The --heat file: ross's peak pad temperature, journal temperature, eccentricity
+    and synchronously reduced K (N/m) and C (N s/m), its pads massless, on Fillon's
+    bearing at each speed (`grown`: its pads, journal and shell deformed, GROWN)."""
     import ross
     from ross.bearings.tilting_pad import TiltingPad
     from ross.units import Q_
@@ -163,17 +163,19 @@ def heat(path: str, grown: bool = False) -> int:
             oil_supply_temperature=Q_(b["supply_c"], "degC"), oil_flow_v=Q_(10, "gallon/min"),
             fxs_load=0.0, fys_load=-b["load"], hot_oil_lambda=b["carry_over"],
             pad_conductivity=50.0, edges_convection=73.59,
-            journal_temperature=Q_(49, "degC"),
+            journal_temperature=Q_(49, "degC"), pad_density=1e-9,
             total_ex_film=24, total_ez_film=10, total_ey_film=10, total_ey_pad=10)
         out = bearing._results.outputs[0]
         rows.append({"speed_rpm": rpm, "peak_c": float(out["tpad_max"][0]) - 273.15,
                      "journal_c": float(out["journal_temperature_output"][0]) - 273.15,
-                     "eccentricity": float(out["eccentricity"][0])})
+                     "eccentricity": float(out["eccentricity"][0]),
+                     **{k: float(getattr(bearing, k)[0])
+                        for k in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")}})
         print(rows[-1], flush=True)
     with open(path, "w") as f:
         json.dump({"source": f"ross-rotordynamics {ross.__version__}, TiltingPad, "
                              f"thermal_type='full', deform_type={deform['deform_type']!r}, "
-                             "24 x 10 x 10 film cells, 10 through each pad"
+                             "24 x 10 x 10 film cells, 10 through each pad, massless pads"
                              + (f", expansion {EXPANSION:g} 1/K" if grown else ""),
                    "bearing": b, "results": rows}, f, indent=1)
     return 0

@@ -150,3 +150,72 @@ def test_fillons_bearing_grown_by_its_heat_runs_as_an_independent_tehd_film(rpm)
     assert abs(math.hypot(*h.state.q[:2]) - ref["eccentricity"]) < 0.02
     assert h.peak > pad_heat.heated(*args).peak
     assert all(c < 148e-6 * (1 - 0.47) for c in h.clearance)
+
+
+def fillon(**kw):
+    """Fillon's bearing as a scene's journal (its oil by its supply), its film table
+    solved."""
+    from shaftfem.parts import journal
+    from shaftfem.scene.model import JournalBearing, JournalBore
+
+    spec = JournalBore(kind="tilting_pad", pads=4, arc=math.radians(75), preload=0.47)
+    b = JournalBearing(diameter=0.1, length=0.07, clearance=148e-6 * (1 - 0.47),
+                       viscosity=None, load=10e3, bore=spec, oil_iso_vg=32,
+                       oil_supply_temperature=40.0, pad_thickness=0.02, **kw)
+    journal.remember(pads.film_table(spec, round(b.ratio, 9)))
+    return journal.with_oil(b)
+
+
+def test_the_rotor_takes_the_heated_films_coefficients_at_its_operating_speed(monkeypatch):
+    """Fed tilting pads' speed table (parts.pad_heat.heated_table) at an operating speed:
+    the heated film's matrices on the grown parts there, to round-off, the table's
+    other rows moved off the heat balance's; a load along +x turns them with it."""
+    from shaftfem.parts import heat, journal
+    from shaftfem.scene.model import condensed
+
+    monkeypatch.setattr(pad_heat, "SAMPLES", 2)
+    b = fillon(direction=(1.0, 0.0))
+    t = journal.speed_table(b, 4000 * math.pi / 30, points=21, film=heat.at_speed)
+    w = float(t.speeds[15])
+    amended = pad_heat.heated_table(b, t, at=(w,))
+    K, C = pad_heat.film_matrices(b, pad_heat.heated_at(b, w), w)
+    Z = condensed(K + 1j * w * C)
+    assert np.abs(amended.pad_K[15] - K).max() < 1e-9 * np.abs(K).max()
+    assert np.abs(amended.K[15] - Z.real).max() < 1e-9 * np.abs(Z.real).max()
+    assert np.abs(amended.C[15] * w - Z.imag).max() < 1e-9 * np.abs(Z.imag).max()
+    assert abs(amended.K[15][0, 0] / t.K[15][0, 0] - 1) > 0.02
+    # the same film under a load along -y: the journal's coordinates turned by 90 deg
+    down = fillon()
+    K_down, _ = pad_heat.film_matrices(down, pad_heat.heated_at(down, w), w)
+    T = np.eye(K.shape[0])
+    T[:2, :2] = journal.rotation(math.pi / 2)
+    assert np.abs(T @ K_down @ T.T - K).max() < 1e-9 * np.abs(K).max()
+    assert np.abs(K_down - K).max() > 1e-3 * np.abs(K).max()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("rpm", [1000.0, 4000.0])
+def test_fillons_heated_grown_coefficients_are_an_independent_tehd_films(rpm):
+    """The rotor model's K_xx and C_xx of Fillon's bearing fed at 40 C (its heated film
+    on grown parts, at an operating speed) within 6 % of ross 3.1's synchronously reduced
+    ones on its deformed and grown film, massless pads; its table between samples within
+    1.5 % of the heated film solved there."""
+    from shaftfem.parts import heat, journal
+    from shaftfem.scene.model import condensed
+
+    ref = {r["speed_rpm"]: r for r in json.loads(FILLON_GROWN.read_text())["results"]}[rpm]
+    b = fillon()
+    w = rpm * math.pi / 30
+    t = journal.speed_table(b, 5000 * math.pi / 30, film=heat.at_speed)
+    amended = pad_heat.heated_table(b, t, at=(w,))
+    K, C = pad_heat.film_matrices(b, pad_heat.heated_at(b, w), w)
+    Z = condensed(K + 1j * w * C)
+    assert Z.real[0, 0] == pytest.approx(ref["kxx"], rel=0.06)
+    assert Z.imag[0, 0] / w == pytest.approx(ref["cxx"], rel=0.06)
+    # a table speed between the samples
+    i = int(np.argmin(np.abs(t.speeds - 1.3 * w)))
+    wi = float(t.speeds[i])
+    K, C = pad_heat.film_matrices(b, pad_heat.heated_at(b, wi), wi)
+    Z = condensed(K + 1j * wi * C)
+    assert amended.K[i][0, 0] == pytest.approx(Z.real[0, 0], rel=0.015)
+    assert amended.C[i][0, 0] * wi == pytest.approx(Z.imag[0, 0], rel=0.015)

@@ -415,6 +415,26 @@ def assembled(blocks: np.ndarray, pivots: bool) -> np.ndarray:
     return A
 
 
+def pad_matrices(b: JournalBearing, Kp: np.ndarray, Cp: np.ndarray, unit: float,
+                 omega: float) -> tuple[np.ndarray, np.ndarray]:
+    """A bore of tilting pads' K (N/m) and C (N s/m) on (x, y, R phi_1, ...[, each
+    pivot's radial motion]) from its pads' nondimensional blocks (P, 4, 4; FilmTable),
+    the film's force scale over c (`unit`, N/m) and the spin (rad/s), turned onto the
+    load's direction, each flexible pivot's spring on its pad's radial motion."""
+    Q = rotation(math.atan2(b.direction[1], b.direction[0]) + math.pi / 2)
+    k_pivot = b.pivot_stiffness
+    pivots = k_pivot is not None
+    # the tilts and radial motions are scalars: only the journal's block turns
+    T = np.eye(2 + Kp.shape[0] * (2 if pivots else 1))
+    T[:2, :2] = Q
+    K = unit * (T @ assembled(Kp, pivots) @ T.T)
+    C = unit / omega * (T @ assembled(Cp, pivots) @ T.T)
+    if k_pivot is not None:   # each pivot's spring holds its pad's radial motion
+        P = Kp.shape[0]
+        K[2 + P:, 2 + P:] += k_pivot * np.eye(P)
+    return K, C
+
+
 def operating(b: JournalBearing, omega: float) -> Operating:
     """The bearing at the spin omega (rad/s > 0): the film's table at its Sommerfeld
     number, scaled by the load and turned onto the load's direction."""
@@ -443,16 +463,8 @@ def operating(b: JournalBearing, omega: float) -> Operating:
     w = max(omega, 1e-12)
     K, C = unit * (Q @ Kbar @ Q.T), unit / w * (Q @ Cbar @ Q.T)
     pad_K = pad_C = None
-    if pads:   # the tilts and radial motions are scalars: only the journal's block turns
-        k_pivot = b.pivot_stiffness
-        pivots = k_pivot is not None
-        T = np.eye(2 + Kp.shape[0] * (2 if pivots else 1))
-        T[:2, :2] = Q
-        pad_K = unit * (T @ assembled(Kp, pivots) @ T.T)
-        pad_C = unit / w * (T @ assembled(Cp, pivots) @ T.T)
-        if k_pivot is not None:   # each pivot's spring holds its pad's radial motion
-            P = Kp.shape[0]
-            pad_K[2 + P:, 2 + P:] += k_pivot * np.eye(P)
+    if pads:
+        pad_K, pad_C = pad_matrices(b, Kp, Cp, unit, w)
         # reduced from the film read here, so that the two agree exactly at this speed
         Z = condensed(pad_K + 1j * w * pad_C)
         K, C = Z.real, Z.imag / w
@@ -609,13 +621,17 @@ def with_oil(b: JournalBearing) -> JournalBearing:
 
 
 def coefficients(b: JournalBearing, rotor: Rotor,
-                 film: Callable[[JournalBearing, float], JournalBearing] | None = None
+                 film: Callable[[JournalBearing, float], JournalBearing] | None = None,
+                 amend: Callable[[JournalBearing, SpeedTable], SpeedTable] | None = None
                  ) -> BearingCoefficients:
     """A loaded journal bearing's coefficients against speed, up to the Campbell
     diagram's end; its standstill ones at the lowest operating speed (or where its film
-    lifts the journal, if later). A ValueError if the film does not lift it by then."""
+    lifts the journal, if later); `amend`: a finer film's correction of the speed table
+    (parts.pad_heat.heated_table). A ValueError if the film does not lift it by then."""
     try:
         speeds = speed_table(with_oil(b), rotor.max_speed, film=film)
+        if amend is not None:
+            speeds = amend(with_oil(b), speeds)
     except ValueError as e:
         raise ValueError(f"{e}; the load is too large for this film (a larger clearance "
                          "ratio, viscosity, length or speed carries more)") from None

@@ -55,12 +55,19 @@ temperatures (docs/journal-bearing.md, "The film's heating").
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
+from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from shaftfem.parts import oil, pads
 from shaftfem.parts.heat import CARRY_OVER, HOTTEST, SPECIFIC_HEAT
+from shaftfem.scene.model import JournalBearing, condensed
+
+if TYPE_CHECKING:
+    from shaftfem.parts.journal import SpeedTable
 
 # Across the film, heated evenly (Couette shear), from the isothermal journal (xi = 0)
 # to the adiabatic pad (xi = 1): T = T_j + A (xi - xi^2 / 2), the journal taking k A / h.
@@ -114,6 +121,7 @@ class PadsHeat:
     fresh: float = 0.0   # m^3/s, the supply oil the pads' leading edges draw
     # m, each pad's film at its pivot with the journal centred, grown (c_b')
     clearance: tuple[float, ...] = ()
+    bore: pads.Bore | None = None   # the pads grown, as the state's film has them
 
 
 def grown(pad: pads.Pad, radius: float, clearance: float, journal_rise: float,
@@ -283,7 +291,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             # round's films
             shear = sum(_over(_flows(*grid, g.theta, g.Z)[2], g) for grid, _, g in grids)
             sink = sum(_over(kappa * (Tk - marched_at) / grid[0], g) for grid, Tk, g in grids)
-            return PadsHeat(clearance=tuple(p.gap * clearance for p in used.pads),
+            return PadsHeat(clearance=tuple(p.gap * clearance for p in used.pads), bore=used,
                             state=state, temperature=tuple(T), surface=tuple(surface),
                             viscosity=tuple(m), inlet=tuple(inlets),
                             outlet=tuple(t for _, t in outs), journal=journal,
@@ -293,3 +301,99 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
                             journal_power=2 * rho_c * omega * clearance * radius**2 * sink,
                             fresh=omega * radius**2 * clearance * fresh)
     raise ValueError(f"the pads' temperatures did not settle in {ROUNDS} rounds")
+
+
+# the speeds a fed tilting-pad journal's heated film is solved at for its rotor model's
+# coefficients, evenly in log(speed) over its speed table, besides its operating speeds
+SAMPLES = 8
+
+
+def heated_at(b: JournalBearing, omega: float) -> PadsHeat:
+    """A fed bore of pads' heated film at the spin omega (rad/s), its parts grown with
+    tilting pads b.pad_thickness thick (THICKNESS of the diameter if not given), its
+    pads from the first past the load's line in the journal's turn; in the frame of the
+    load along -y, whatever its direction."""
+    return _heated_at(replace(b, direction=(0.0, -1.0)), omega)
+
+
+@lru_cache(maxsize=256)
+def _heated_at(b: JournalBearing, omega: float) -> PadsHeat:
+    assert b.bore is not None and b.oil_iso_vg is not None
+    assert b.oil_supply_temperature is not None
+    bore = pads.bore_of(b.bore, b.ratio)
+    thickness = b.pad_thickness or THICKNESS * b.diameter
+    return heated(bore, b.load, omega, b.diameter / 2, b.clearance, b.oil_iso_vg,
+                  b.oil_supply_temperature, thickness=thickness)
+
+
+def film_matrices(b: JournalBearing, h: PadsHeat, omega: float
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """The heated film's K (N/m) and C (N s/m) on (x, y, R phi_1, ...[, each pivot's
+    radial motion]), as parts.journal.operating gives the isoviscous film's."""
+    from shaftfem.parts.journal import pad_matrices
+
+    assert h.bore is not None and b.oil_iso_vg is not None
+    assert b.oil_supply_temperature is not None
+    blocks = [pads._on_pivot(p, s) for p, s in zip(h.bore.pads, h.state.pads) if p.tilts]
+    Kp, Cp = np.array([k for k, _ in blocks]), np.array([c for _, c in blocks])
+    # the film's forces are on the supply oil's viscosity's scale (heated)
+    unit = (oil.dynamic(b.oil_iso_vg, b.oil_supply_temperature) * omega
+            * (b.diameter / 2) ** 4 / b.clearance**3)
+    return pad_matrices(b, Kp, Cp, unit, omega)
+
+
+def heated_table(b: JournalBearing, t: SpeedTable, at: tuple[float, ...] = ()
+                 ) -> SpeedTable:
+    """A fed tilting-pad journal's speed table (from its heat balance's one film
+    temperature on the cold clearance) corrected to its heated film on grown parts: the
+    difference of the two films' matrices, solved at SAMPLES speeds and at the
+    operating speeds `at` (rad/s), spread over the table's speeds, monotone cubic in
+    log(speed). Below the lowest speed the heated film settles at, the difference falls
+    with the balance's temperature rise, to none where the film does not warm."""
+    from scipy.interpolate import PchipInterpolator
+
+    from shaftfem.parts import heat
+    from shaftfem.parts.journal import operating
+
+    if t.pad_K is None or t.pad_C is None or b.oil_supply_temperature is None:
+        return t
+    lo, top = float(t.speeds[0]), float(t.speeds[-1])
+    speeds = sorted({*np.geomspace(lo, top, SAMPLES + 1)[1:].tolist(),
+                     *(w for w in at if lo < w <= top)})
+    xs, dK, dC = [], [], []
+    for w in speeds:
+        try:
+            h = heated_at(b, w)
+        except ValueError:   # a film the heated march does not settle: the balance's
+            continue
+        K, C = film_matrices(b, h, w)
+        base = operating(heat.at_speed(b, w), w)
+        assert base.pad_K is not None and base.pad_C is not None
+        xs.append(math.log(w))
+        dK.append(K - base.pad_K)
+        dC.append(C - base.pad_C)
+    if not xs:
+        return t
+    x = np.log(t.speeds)
+    if len(xs) > 1:
+        fK = PchipInterpolator(xs, np.array(dK), axis=0)
+        fC = PchipInterpolator(xs, np.array(dC), axis=0)
+        at_x = np.clip(x, xs[0], xs[-1])
+        DK, DC = fK(at_x), fC(at_x)
+    else:
+        DK = np.repeat(dK[0][None], x.size, axis=0)
+        DC = np.repeat(dC[0][None], x.size, axis=0)
+    below = np.flatnonzero(x < xs[0])
+    if below.size:
+        supply = b.oil_supply_temperature
+        def rise(w: float) -> float:
+            return heat.heat_balance(b, w, supply).effective - supply
+        first = rise(math.exp(xs[0]))
+        for i in below:
+            share = min(max(rise(float(t.speeds[i])) / first, 0.0), 1.0) if first > 0 else 0.0
+            DK[i], DC[i] = share * DK[i], share * DC[i]
+    pad_K, pad_C = t.pad_K + DK, t.pad_C + DC
+    Z = [condensed(A + 1j * w * B) for w, A, B in zip(t.speeds, pad_K, pad_C)]
+    return replace(t, K=np.array([z.real for z in Z]),
+                   C=np.array([z.imag / w for z, w in zip(Z, t.speeds)]),
+                   pad_K=pad_K, pad_C=pad_C)

@@ -1143,6 +1143,7 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                 power, into_oil, side = h.power, h.power, h.side_flow
                 if b.bore is not None and b.bore.kind == "tilting_pad" and w > 0:
                     thd = pads_heat(b, w)
+                    op = heated_operating(b, thd, w, op)
                     peaks = tuple(float(t.max()) for t in thd.surface)
                     # the friction, the supply drawn and the drain from the same heated
                     # film as the peaks (each pad's shear at its own viscosity), with
@@ -1165,17 +1166,29 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
     return tuple(rows)
 
 
+def heated_operating(b, h, omega: float, op):
+    """The journal's film at the spin omega as its heated film h on grown parts has it
+    (parts.pad_heat): its place, thinnest film and reduced K, C (the rotor model's at
+    this speed, parts.pad_heat.heated_table); the Sommerfeld number the balance's
+    (`op`, parts.journal.Operating)."""
+    from shaftfem.parts import pad_heat, pads
+    from shaftfem.scene.model import condensed
+
+    K, C = pad_heat.film_matrices(b, h, omega)
+    Z = condensed(K + 1j * omega * C)
+    X, Y = h.state.q[:2]
+    return replace(op, eccentricity=math.hypot(X, Y), attitude=math.atan2(X, -Y),
+                   min_film=b.clearance * pads.thinnest(h.bore, h.state), K=Z.real,
+                   C=Z.imag / omega, pad_K=K, pad_C=C)
+
+
 def pads_heat(b, omega: float):
     """A tilting pads' journal's heated film (parts.pad_heat.PadsHeat) at the spin omega
     (rad/s), fed at its supply temperature, its parts grown by their heat: its pads from
     the first past the load's line in the journal's turn."""
-    from shaftfem.parts import pad_heat, pads
+    from shaftfem.parts import journal, pad_heat
 
-    assert b.oil_iso_vg is not None and b.oil_supply_temperature is not None
-    bore = pads.bore_of(b.bore, b.ratio)
-    thickness = b.pad_thickness or pad_heat.THICKNESS * b.diameter
-    return pad_heat.heated(bore, b.load, omega, b.diameter / 2, b.clearance, b.oil_iso_vg,
-                           b.oil_supply_temperature, thickness=thickness)
+    return pad_heat.heated_at(journal.with_oil(b), omega)
 
 
 def whirl_table(scene: Scene, speed_rpm: float, options: RunOptions = RunOptions()

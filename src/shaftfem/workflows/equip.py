@@ -115,12 +115,21 @@ def film_table(bearing: JournalBearing) -> None:
 @functools.lru_cache(maxsize=64)
 def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoefficients:
     """A loaded journal's coefficients against speed (parts.journal.coefficients), its
-    film's table from the cache; kept for the process: every study of a scene and each
+    film's table from the cache, tilting pads fed at a supply on their heated film
+    (parts.pad_heat.heated_table); kept for the process: every study of a scene and each
     of its cases asks for the same journals."""
-    from shaftfem.parts import heat, journal
+    from functools import partial
+
+    from shaftfem.parts import heat, journal, pad_heat
 
     film_table(bearing)
-    return journal.coefficients(bearing, rotor, film=heat.at_speed)
+    amend = None
+    if bearing.bore is not None and bearing.bore.kind == "tilting_pad" \
+            and bearing.oil_supply_temperature is not None:
+        # fed tilting pads: their heated film on grown parts, exact at the operating
+        # speeds
+        amend = partial(pad_heat.heated_table, at=tuple(rotor.speeds))
+    return journal.coefficients(bearing, rotor, film=heat.at_speed, amend=amend)
 
 
 def _journal(scene: Scene, i: int, s: Support) -> Support:
