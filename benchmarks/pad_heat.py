@@ -70,8 +70,8 @@ def coefficients() -> None:
                        bore=spec, oil_iso_vg=32, oil_supply_temperature=40.0)
     journal.remember(pads.film_table(spec, round(b.ratio, 9)))
     bore = pads.bore_of(spec, b.ratio)
-    print("\nsynchronous coefficients: the heat balance's film (what the rotor takes) "
-          "against the heated film on grown parts\n")
+    print("\nsynchronous coefficients: the heat balance's film against the heated film on "
+          "grown parts (what the rotor model takes) and ross's\n")
     ross = {r["speed_rpm"]: r for r in
             json.loads((DATA / "fillon_ross_grown.json").read_text())["results"]}
     print("| r/min | film, C | K_xx, MN/m | heated, grown | off | ross 3.1 | C_xx, kN s/m | "
