@@ -287,12 +287,16 @@ def test_the_report_names_a_journals_bore():
     assert words() == ""
 
 
-def test_a_tilting_pad_journal_fed_at_its_supply_reports_its_pads_temperatures():
+def test_a_tilting_pad_journal_fed_at_its_supply_reports_its_pads_temperatures(monkeypatch):
     """The wheel rotor on 4 tilting pads loaded between pads, fed at 40 C with a 50 C pad
     limit: at the running speed each journal's film runs above its supply and its pads'
     surface above that at its peak; the two pads the load falls between are the hot
     ones; the peak over the limit is flagged, in the report's words too."""
     from shaftfem.outputs.tables import film_text
+    from shaftfem.parts import pad_heat
+
+    # the heated film's samples over the speed table are not what is judged here
+    monkeypatch.setattr(pad_heat, "SAMPLES", 2)
     from shaftfem.scene.load import load_scene
     from shaftfem.workflows.campbell import film_rows
     from shaftfem.workflows.static import equipped
