@@ -468,8 +468,9 @@ class FilmRow:
     limit_um: float
     lifted: bool = True
     # an oil given by its supply temperature (parts.heat): its supply and the film's
-    # effective temperature (C), the film's friction power (W) and side flow (m^3/s: the
-    # oil the feed must make up; on tilting pads the supply their leading edges draw);
+    # effective temperature (C; on tilting pads their heated films' mean), the film's
+    # friction power (W) and side flow (m^3/s: the oil the feed must make up; on tilting
+    # pads the supply their leading edges draw);
     # with the supply's flow (m^3/s), the drain's temperature (C)
     supply_c: float | None = None
     film_c: float | None = None

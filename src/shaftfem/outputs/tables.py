@@ -566,7 +566,10 @@ def film_text(films) -> str:
     w = _width([f.bearing for f in films], "journal bearing")
     head = (f"{'journal bearing':{w}s} {'speed':>12s} {'ecc.':>6s} {'attitude':>9s} "
             f"{'min film':>10s} {'Sommerfeld':>10s}  K xx, xy, yx, yy (N/mm); C (N s/mm)")
-    lines = ["journal bearings at the operating speeds (Reynolds film):", head]
+    fed = any(f.journal_w is not None for f in films)
+    lines = ["journal bearings at the operating speeds (Reynolds film"
+             + ("; tilting pads fed at a supply: their heated film on grown parts"
+                if fed else "") + "):", head]
     for f in films:
         k, c = ", ".join(_coefficients(f.K)), ", ".join(_coefficients(f.C))
         flag = ("  the film does not lift the journal here" if not f.lifted else
@@ -577,8 +580,9 @@ def film_text(films) -> str:
     warm = [f for f in films if f.film_c is not None]
     if warm:
         lines += ["", "the films' heating (fed at the supply's temperature; heat balance, "
-                  "hot-oil carry-over 0.8; tilting pads' friction, draw and peaks from "
-                  "their heated films, on the journal and pads grown by their heat):"]
+                  "hot-oil carry-over 0.8; tilting pads' film temperature (their films' "
+                  "mean), friction, draw and peaks from their heated films, on the journal "
+                  "and pads grown by their heat):"]
     for f in warm:
         # tilting pads' friction and draw come from their heated films (with the
         # journal's share); a plain or fixed bore's from the heat balance

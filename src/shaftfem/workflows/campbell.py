@@ -1141,6 +1141,7 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
             warm: dict = {}
             if supply is not None and h is not None:
                 power, into_oil, side = h.power, h.power, h.side_flow
+                film_c = h.effective
                 if b.bore is not None and b.bore.kind == "tilting_pad" and w > 0:
                     thd = pads_heat(b, w)
                     op = heated_operating(b, thd, w, op)
@@ -1149,13 +1150,14 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                     # film as the peaks (each pad's shear at its own viscosity), with
                     # the share the journal takes and sheds along the shaft
                     power, into_oil, side = thd.power, thd.power - thd.journal_power, thd.fresh
+                    film_c = thd.journal   # the films' mean, as the coefficients have it
                     warm.update(pad_peak_c=max(peaks), pad_limit_c=b.pad_limit,
                                 pad_peaks_c=peaks, journal_w=thd.journal_power,
                                 hot_clearance_um=min(thd.clearance) * 1e6)
                 # the supply carries off the film's heat: it drains warmer by H / (rho c Q)
                 drain = None if b.oil_flow is None else supply + into_oil / (
                     oil.density(supply) * heat.SPECIFIC_HEAT * b.oil_flow)
-                warm.update(supply_c=supply, film_c=h.effective, power_w=power,
+                warm.update(supply_c=supply, film_c=film_c, power_w=power,
                             side_flow=side, flow=b.oil_flow, drain_c=drain)
             rows.append(FilmRow(
                 bearing=s.name, speed_rpm=w / RPM, eccentricity=op.eccentricity,
@@ -1169,17 +1171,18 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
 def heated_operating(b, h, omega: float, op):
     """The journal's film at the spin omega as its heated film h on grown parts has it
     (parts.pad_heat): its place, thinnest film and reduced K, C (the rotor model's at
-    this speed, parts.pad_heat.heated_table); the Sommerfeld number the balance's
-    (`op`, parts.journal.Operating)."""
-    from shaftfem.parts import pad_heat, pads
+    this speed, parts.pad_heat.heated_table), and its Sommerfeld number at the films'
+    mean temperature; the rest as `op` (parts.journal.Operating)."""
+    from shaftfem.parts import oil, pad_heat, pads
     from shaftfem.scene.model import condensed
 
     K, C = pad_heat.film_matrices(b, h, omega)
     Z = condensed(K + 1j * omega * C)
     X, Y = h.state.q[:2]
+    mean = replace(b, viscosity=oil.dynamic(b.oil_iso_vg, h.journal))
     return replace(op, eccentricity=math.hypot(X, Y), attitude=math.atan2(X, -Y),
                    min_film=b.clearance * pads.thinnest(h.bore, h.state), K=Z.real,
-                   C=Z.imag / omega, pad_K=K, pad_C=C)
+                   C=Z.imag / omega, pad_K=K, pad_C=C, sommerfeld=mean.sommerfeld(omega))
 
 
 def pads_heat(b, omega: float):
