@@ -219,3 +219,24 @@ def test_fillons_heated_grown_coefficients_are_an_independent_tehd_films(rpm):
     Z = condensed(K + 1j * wi * C)
     assert amended.K[i][0, 0] == pytest.approx(Z.real[0, 0], rel=0.015)
     assert amended.C[i][0, 0] * wi == pytest.approx(Z.imag[0, 0], rel=0.015)
+
+
+def test_a_heated_table_is_kept_and_read_back(monkeypatch):
+    """Fed tilting pads' heated speed table (workflows.equip) is kept in the cache by its
+    content: the second ask reads the same arrays without solving a heated film."""
+    from shaftfem.parts import heat, journal
+    from shaftfem.workflows import equip
+
+    monkeypatch.setattr(pad_heat, "SAMPLES", 2)
+    b = fillon()
+    t = journal.speed_table(b, 3000 * math.pi / 30, points=11, film=heat.at_speed)
+    first = equip._heated_table(b, t, at=(float(t.speeds[8]),))
+
+    def unsolvable(*args, **kw):
+        raise AssertionError("solved again")
+
+    monkeypatch.setattr(pad_heat, "heated_table", unsolvable)
+    again = equip._heated_table(b, t, at=(float(t.speeds[8]),))
+    for name in ("K", "C", "pad_K", "pad_C"):
+        assert np.array_equal(getattr(first, name), getattr(again, name))
+    assert not np.array_equal(first.K, t.K)

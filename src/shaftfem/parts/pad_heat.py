@@ -308,6 +308,16 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
 SAMPLES = 8
 
 
+def settings() -> dict:
+    """What a heated film's table depends on besides its bearing and its film table (a
+    cache's key), as they stand now."""
+    return {"heated_version": 1, "samples": SAMPLES, "expansion": EXPANSION,
+            "thickness": THICKNESS, "nusselt": NUSSELT, "surface": SURFACE,
+            "conductivity": CONDUCTIVITY, "settled": SETTLED, "relax": RELAX,
+            "rounds": ROUNDS, "rough": ROUGH, "carry_over": CARRY_OVER,
+            "specific_heat": SPECIFIC_HEAT, "hottest": HOTTEST}
+
+
 def heated_at(b: JournalBearing, omega: float) -> PadsHeat:
     """A fed bore of pads' heated film at the spin omega (rad/s), its parts grown with
     tilting pads b.pad_thickness thick (THICKNESS of the diameter if not given), its

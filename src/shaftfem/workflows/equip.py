@@ -120,7 +120,7 @@ def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoeffi
     of its cases asks for the same journals."""
     from functools import partial
 
-    from shaftfem.parts import heat, journal, pad_heat
+    from shaftfem.parts import heat, journal
 
     film_table(bearing)
     amend = None
@@ -128,8 +128,38 @@ def journal_coefficients(bearing: JournalBearing, rotor: Rotor) -> BearingCoeffi
             and bearing.oil_supply_temperature is not None:
         # fed tilting pads: their heated film on grown parts, exact at the operating
         # speeds
-        amend = partial(pad_heat.heated_table, at=tuple(rotor.speeds))
+        amend = partial(_heated_table, at=tuple(rotor.speeds))
     return journal.coefficients(bearing, rotor, film=heat.at_speed, amend=amend)
+
+
+def _heated_table(b: JournalBearing, t, at: tuple[float, ...]):
+    """Fed tilting pads' speed table on their heated film (parts.pad_heat.heated_table)
+    from the cache, keyed by the bearing, the table's speeds, its film table's and the
+    heated film's settings; else solved and kept there: it solves the heated film some
+    ten times, seconds each."""
+    from dataclasses import asdict
+
+    import numpy as np
+
+    from shaftfem.parts import pad_heat
+    from shaftfem.store import cache_dir, content_key, discard, load_arrays, save_arrays
+
+    film = _film_path(b)[3]
+    key = content_key({"bearing": asdict(b), "speeds": t.speeds.tolist(), "at": list(at),
+                       "film": film.stem, **pad_heat.settings()})
+    path = cache_dir() / "heated" / f"{key}.npz"
+    names = ("K", "C", "pad_K", "pad_C")
+    if path.exists():
+        fields, why = load_arrays(path, names)
+        if fields is not None:
+            return replace(t, **fields)
+        discard("heated film table", why, path)
+    out = pad_heat.heated_table(b, t, at=at)
+    try:
+        save_arrays(path, {n: np.asarray(getattr(out, n)) for n in names})
+    except OSError:   # a cache that cannot be written costs time, not the result
+        pass
+    return out
 
 
 def _journal(scene: Scene, i: int, s: Support) -> Support:
