@@ -320,3 +320,31 @@ def test_a_tilting_pad_journal_fed_at_its_supply_reports_its_pads_temperatures(m
     text = film_text(rows)
     assert "peak pad temperature" in text and "hot clearance" in text
     assert ("ABOVE" in text) == any(f.hot for f in rows)
+
+
+def test_a_pads_heated_film_that_fails_is_said_naming_the_bearing_and_its_keys(monkeypatch):
+    """Where the pads' heated film cannot be had at an operating speed (its parts grow
+    through the clearance, it runs above the oil's line, it does not settle), the films'
+    table says so in one line naming the bearing, the speed and the keys."""
+    from shaftfem.errors import SceneError
+    from shaftfem.parts import pad_heat
+    from shaftfem.scene.load import load_scene
+    from shaftfem.workflows.campbell import film_rows
+    from shaftfem.workflows.static import equipped
+
+    bore = {"bore": "tilting_pad", "pads": 4, "pad_arc_deg": 70.0, "preload": 0.25,
+            "oil_supply_temperature_c": 40.0}
+    scene = wheel_on(**bore)
+    for s in scene["support"]:
+        del s["oil_temperature_c"]
+    monkeypatch.setattr(pad_heat, "SAMPLES", 2)
+    held = equipped(load_scene(scene))
+
+    def grows_through(*args, **kw):
+        raise ValueError("the journal, 90 K above the supply, and the pads, 120 K, grow "
+                         "through the clearance")
+
+    monkeypatch.setattr(pad_heat, "heated_at", grows_through)
+    with pytest.raises(SceneError, match=r"journal bearing .* r/min: the journal, 90 K.*"
+                                         r"pad_thickness_mm"):
+        film_rows(held)

@@ -1143,7 +1143,13 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                 power, into_oil, side = h.power, h.power, h.side_flow
                 film_c = h.effective
                 if b.bore is not None and b.bore.kind == "tilting_pad" and w > 0:
-                    thd = pads_heat(b, w)
+                    try:
+                        thd = pads_heat(b, w)
+                    except ValueError as e:
+                        raise SceneError(
+                            f"{scene.source}: journal bearing {s.name!r} at {w / RPM:,.0f} "
+                            f"r/min: {e} (its oil_supply_temperature_c, radial_clearance_um "
+                            "and pad_thickness_mm set its pads' heated film)") from None
                     op = heated_operating(b, thd, w, op)
                     peaks = tuple(float(t.max()) for t in thd.surface)
                     # the friction, the supply drawn and the drain from the same heated
