@@ -28,8 +28,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).parent))
 
 import _common  # noqa: E402, F401  (one BLAS thread, as the CLI)
-from shaftfem.parts import heat, journal, oil, pad_heat, pads  # noqa: E402
-from shaftfem.scene.model import JournalBearing, JournalBore, condensed  # noqa: E402
+from shaftfem.parts import heat, journal, pad_heat, pads  # noqa: E402
+from shaftfem.scene.model import JournalBearing, JournalBore  # noqa: E402
 
 SPEEDS = (1000.0, 2000.0, 3000.0, 4000.0)
 TEHD = (43.7, 53.4, 63.2, 72.9)        # C, the paper's prediction
@@ -66,10 +66,10 @@ def coefficients() -> None:
     film (massless pads)."""
     c = 148e-6 * (1 - 0.47)
     spec = JournalBore(kind="tilting_pad", pads=4, arc=math.radians(75), preload=0.47)
-    b = JournalBearing(diameter=0.1, length=0.07, clearance=c, viscosity=None, load=10e3,
-                       bore=spec, oil_iso_vg=32, oil_supply_temperature=40.0)
+    b = journal.with_oil(JournalBearing(
+        diameter=0.1, length=0.07, clearance=c, viscosity=None, load=10e3, bore=spec,
+        oil_iso_vg=32, oil_supply_temperature=40.0, pad_thickness=PADS))
     journal.remember(pads.film_table(spec, round(b.ratio, 9)))
-    bore = pads.bore_of(spec, b.ratio)
     print("\nsynchronous coefficients: the heat balance's film against the heated film on "
           "grown parts (what the rotor model takes) and ross's\n")
     ross = {r["speed_rpm"]: r for r in
@@ -81,10 +81,8 @@ def coefficients() -> None:
         w = n * math.pi / 30
         h = heat.heat_balance(b, w, 40.0)
         op = journal.operating(heat.running(b, h), w)
-        t = pad_heat.heated(bore, 10e3, w, 0.05, c, 32, 40.0, thickness=PADS)
-        Z = condensed(t.state.stiffness + 1j * t.state.damping)
-        unit = oil.dynamic(32, 40.0) * w * 0.05**4 / c**3   # the film's force scale / c_b
-        k, d = unit * Z.real[0, 0], unit / w * Z.imag[0, 0]
+        hot = pad_heat.heated_operating(b, pad_heat.heated_at(b, w), w, op)
+        k, d = hot.K[0, 0], hot.C[0, 0]
         r = ross[n]
         print(f"| {n:,.0f} | {h.effective:.1f} | {op.K[0, 0] / 1e6:.1f} | {k / 1e6:.1f} | "
               f"{op.K[0, 0] / k - 1:+.1%} | {r['kxx'] / 1e6:.1f} | {op.C[0, 0] / 1e3:.1f} | "

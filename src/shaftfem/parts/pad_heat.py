@@ -67,7 +67,7 @@ from shaftfem.parts.heat import CARRY_OVER, HOTTEST, SPECIFIC_HEAT
 from shaftfem.scene.model import JournalBearing, condensed
 
 if TYPE_CHECKING:
-    from shaftfem.parts.journal import SpeedTable
+    from shaftfem.parts.journal import Operating, SpeedTable
 
 # Across the film, heated evenly (Couette shear), from the isothermal journal (xi = 0)
 # to the adiabatic pad (xi = 1): T = T_j + A (xi - xi^2 / 2), the journal taking k A / h.
@@ -173,6 +173,12 @@ def _flows(H: np.ndarray, P: np.ndarray, m: np.ndarray, theta: np.ndarray, Z: np
     return q_t, q_z, m / H + poiseuille * (dP_t**2 + dP_z**2)
 
 
+def _face(T: np.ndarray, journal: float) -> np.ndarray:
+    """The pad's surface temperature under a film whose bulk is at T (C), the journal at
+    `journal`: the adiabatic wall's (SURFACE)."""
+    return journal + SURFACE * (T - journal)
+
+
 def _on_grid(v: np.ndarray, g: _Grid) -> np.ndarray:
     """Nodal values v on the pad's grid (theta, Z)."""
     out = np.zeros((g.theta.size, g.Z.size))
@@ -269,8 +275,8 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
         marched_at = journal
         journal += RELAX * (sum(a for a, _ in warm) / sum(w for _, w in warm) - journal)
         if thickness is not None:
-            # each pad's face (its adiabatic wall, SURFACE) on the film's area
-            faces = [_over(_on_grid(journal + SURFACE * (t - journal), g), g) / a
+            # each pad's face's mean over the film's area
+            faces = [_over(_on_grid(_face(t, journal), g), g) / a
                      for t, (_, g), (_, a) in zip(T, films, warm)]
             bore = pads.Bore(tuple(grown(p, radius, clearance, journal - supply, f - supply,
                                          thickness) for p, f in zip(cold.pads, faces)),
@@ -283,8 +289,7 @@ def heated(bore: pads.Bore, load: float, omega: float, radius: float, clearance:
             fresh += flows[k] - kept
         rate = min(moved / before, 0.99) if before < np.inf else 0.99
         if max(moved * rate / (1 - rate), moved) < SETTLED:
-            # the pad's surface: the film's adiabatic wall (SURFACE)
-            surface = [journal + SURFACE * (t - journal) for t in T]
+            surface = [_face(t, journal) for t in T]
             peaks = [float(t.max()) for t in surface]
             hot = int(np.argmax(peaks))
             # the friction (the films' dissipation) and what the journal takes, on this
@@ -350,6 +355,22 @@ def film_matrices(b: JournalBearing, h: PadsHeat, omega: float
     unit = (oil.dynamic(b.oil_iso_vg, b.oil_supply_temperature) * omega
             * (b.diameter / 2) ** 4 / b.clearance**3)
     return pad_matrices(b, Kp, Cp, unit, omega)
+
+
+def heated_operating(b: JournalBearing, h: PadsHeat, omega: float, op: Operating
+                     ) -> Operating:
+    """The journal's film at the spin omega as its heated film h on grown parts has it:
+    its place, thinnest film and reduced K, C (the rotor model's at this speed,
+    heated_table), and its Sommerfeld number at the films' mean temperature; the rest as
+    `op`, the heat balance's (parts.journal.operating)."""
+    K, C = film_matrices(b, h, omega)
+    Z = condensed(K + 1j * omega * C)
+    X, Y = h.state.q[:2]
+    assert h.bore is not None and b.oil_iso_vg is not None
+    mean = replace(b, viscosity=oil.dynamic(b.oil_iso_vg, h.journal))
+    return replace(op, eccentricity=math.hypot(X, Y), attitude=math.atan2(X, -Y),
+                   min_film=b.clearance * pads.thinnest(h.bore, h.state), K=Z.real,
+                   C=Z.imag / omega, pad_K=K, pad_C=C, sommerfeld=mean.sommerfeld(omega))
 
 
 def heated_table(b: JournalBearing, t: SpeedTable, at: tuple[float, ...] = ()

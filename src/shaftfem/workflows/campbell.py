@@ -1122,7 +1122,7 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
     """Each journal bearing at each operating speed and range end: its film there."""
     import math
 
-    from shaftfem.parts import heat, oil
+    from shaftfem.parts import heat, oil, pad_heat
     from shaftfem.parts.journal import operating
 
     rotor = scene.rotor
@@ -1150,7 +1150,7 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                             f"{scene.source}: journal bearing {s.name!r} at {w / RPM:,.0f} "
                             f"r/min: {e} (its oil_supply_temperature_c, radial_clearance_um "
                             "and pad_thickness_mm set its pads' heated film)") from None
-                    op = heated_operating(b, thd, w, op)
+                    op = pad_heat.heated_operating(b, thd, w, op)
                     peaks = tuple(float(t.max()) for t in thd.surface)
                     # the friction, the supply drawn and the drain from the same heated
                     # film as the peaks (each pad's shear at its own viscosity), with
@@ -1172,23 +1172,6 @@ def film_rows(scene: Scene) -> tuple[FilmRow, ...]:
                 C=tuple(float(v) for v in op.C.ravel()), limit_um=b.min_film * 1e6,
                 lifted=not op.beyond, **warm))
     return tuple(rows)
-
-
-def heated_operating(b, h, omega: float, op):
-    """The journal's film at the spin omega as its heated film h on grown parts has it
-    (parts.pad_heat): its place, thinnest film and reduced K, C (the rotor model's at
-    this speed, parts.pad_heat.heated_table), and its Sommerfeld number at the films'
-    mean temperature; the rest as `op` (parts.journal.Operating)."""
-    from shaftfem.parts import oil, pad_heat, pads
-    from shaftfem.scene.model import condensed
-
-    K, C = pad_heat.film_matrices(b, h, omega)
-    Z = condensed(K + 1j * omega * C)
-    X, Y = h.state.q[:2]
-    mean = replace(b, viscosity=oil.dynamic(b.oil_iso_vg, h.journal))
-    return replace(op, eccentricity=math.hypot(X, Y), attitude=math.atan2(X, -Y),
-                   min_film=b.clearance * pads.thinnest(h.bore, h.state), K=Z.real,
-                   C=Z.imag / omega, pad_K=K, pad_C=C, sommerfeld=mean.sommerfeld(omega))
 
 
 def pads_heat(b, omega: float):
